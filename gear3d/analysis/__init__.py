@@ -1,0 +1,1 @@
+"""Independent checks: brute-force cutting simulation, pair rolling, comparisons."""

@@ -1,0 +1,94 @@
+"""Brute-force cutting simulation (seed 001's own method): blank minus many rack positions.
+
+Deliberately independent of the envelope engine: it uses only the rack *outline* (dense
+samples of its elements' points, no normals, no contact condition) and shapely/GEOS
+polygon booleans (the engine trims with Clipper2). Slow; used as the oracle in tests and
+as the baseline line in benchmarks.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..racks import Corner, Rack
+
+
+def rack_outline(rack: Rack, periods: int, samples: int = 200) -> np.ndarray:
+    """Rack boundary (u, v) mm over ``2*periods+1`` periods, from point samples only."""
+    one = []
+    for el in rack.elements:
+        if isinstance(el, Corner):
+            one.append(np.array([[el.u, el.v]]))
+            continue
+        t = np.linspace(0, 1, samples)
+        u, v, _, _ = el.uv(t)
+        one.append(np.stack([u, v], axis=1))
+    one = np.concatenate(one)
+    out = [one + [k * rack.pitch, 0.0] for k in range(-periods, periods + 1)]
+    return np.concatenate(out)
+
+
+def simulate_cut(rack: Rack, teeth: int, module: float, shift_coeff: float = 0.0,
+                 internal: bool = False, positions: int = 2000, rolls: float = 3.0,
+                 samples: int = 200, window: float | None = None):
+    """Gear region (shapely geometry, mm) left by a rack rolled on the pitch circle.
+
+    ``positions`` rack positions evenly spread over ``±rolls`` pitches of travel (enough
+    to finish tooth 0 and its neighbours). Returns (region, blank_radius): compare only
+    the neighbourhood of tooth 0. ``window`` (pitches) keeps only the rack part within
+    that distance of the pitch point at each position: a straight rack inside a ring cuts
+    through the far teeth, so rings are simulated with a local rack segment (default 0.75).
+    """
+    import shapely
+    r = module * teeth / 2
+    xm = shift_coeff * module
+    sigma = -1.0 if internal else 1.0
+    per = int(math.ceil(rolls)) + 2
+    uv = rack_outline(rack, per, samples)
+    # rack body behind its root line; a ring's rack also covers the centre
+    back = -(r + 2 * module) if internal else -(rack.dedendum + 3 * module)
+    if window is None and internal:
+        window = 0.75
+    polys = []
+    for d in np.linspace(-rolls * rack.pitch, rolls * rack.pitch, positions):
+        seg = uv if window is None else uv[np.abs(uv[:, 0] + d) <= window * rack.pitch]
+        poly_uv = np.vstack([seg, [[seg[-1, 0], back], [seg[0, 0], back]]])
+        X = r - sigma * (poly_uv[:, 1] - xm)
+        Y = poly_uv[:, 0] + d
+        phi = -d / r
+        c, s = math.cos(phi), math.sin(phi)
+        polys.append(shapely.Polygon(np.stack([c * X - s * Y, s * X + c * Y], axis=1)))
+    cut = shapely.union_all(shapely.make_valid(np.array(polys, dtype=object)))
+    if internal:
+        outer = r - xm + rack.addendum + 2 * module
+        blank = shapely.Point(0, 0).buffer(outer, quad_segs=2048)
+    else:
+        outer = r + xm + rack.dedendum + module
+        blank = shapely.Point(0, 0).buffer(outer, quad_segs=2048)
+    return blank.difference(cut), outer
+
+
+def compare_tooth(region, loop: np.ndarray, pitch_angle: float, window: float = 0.45,
+                  rmax: float | None = None):
+    """Two-sided max distance (mm) between the brute-force boundary and ``loop`` near tooth 0.
+
+    Only boundary points within ``window`` pitches of angle 0 (and inside ``rmax``) count.
+    """
+    import shapely
+    from ..model import loops_distance
+    bnd = shapely.get_coordinates(region.boundary)
+    def sel(p):
+        a = np.arctan2(p[:, 1], p[:, 0])
+        m = np.abs(a) < window * pitch_angle
+        if rmax is not None:
+            m &= np.hypot(p[:, 0], p[:, 1]) < rmax
+        return p[m]
+    b = sel(bnd)
+    l = sel(np.asarray(loop))
+    # densify the engine loop's chords so both directions compare curves, not vertices
+    d1 = loops_distance([loop], b).max()
+    ring = shapely.LinearRing(bnd)
+    d2 = shapely.distance(shapely.points(l), region.boundary).max()
+    del ring
+    return float(max(d1, d2))

@@ -1,0 +1,158 @@
+"""The one conjugate engine: a tool rolling on a pitch curve, its envelope, and trimming.
+
+Contact condition (Willis): a tool point touches the generated profile when its normal
+passes through the pitch point. Solved in closed form, vectorised, no root finding:
+
+* **rack tool** (pitch line tangent to the pitch circle of radius r): with rack
+  coordinates (u, v) as in :mod:`gear3d.racks` and datum shifted by ``shift`` (mm) away
+  from the gear material, the roll is ``d = -u - (v - shift) dv/du`` and the gear turns
+  by ``phi = d / r``. The point, taken relative to the pitch point, is turned into the
+  gear frame. Corners sweep their normal, which yields the trochoids.
+* **wheel tool** (pitch circle r1 meshing with pitch circle r2): intersect the normal
+  line p + lambda n with the circle |x| = r1 (a quadratic) to find the tool angle, then
+  map to the generated wheel's frame. The rack is the limit r1 -> inf.
+
+Both give exact, vectorised evaluators ``G(t)`` of the raw envelope (one period), which
+:func:`trim` turns into the loops a cutter would leave: the raw loop is oriented with the
+material on its left, and a positive-winding fill (manifold3d / Clipper2, exact integer
+arithmetic) cuts away swallowtails (undercut) and crossed flanks (pointing).
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .racks import Corner, Rack, Smooth
+
+
+def _rot(pts: np.ndarray, ang) -> np.ndarray:
+    c, s = np.cos(ang), np.sin(ang)
+    x, y = pts[..., 0], pts[..., 1]
+    return np.stack([c * x - s * y, s * x + c * y], axis=-1)
+
+
+def rack_element_uvn(el, t):
+    """Rack point (u, v) and tangent slope terms for element ``el`` at params ``t``.
+
+    Returns u, v, du, dv, where (du, dv) is a tangent (for corners, the tangent of the
+    swept normal direction).
+    """
+    t = np.asarray(t, float)
+    if isinstance(el, Corner):
+        psi = el.psi0 + (el.psi1 - el.psi0) * t
+        # tangent perpendicular to normal (cos psi, sin psi)
+        return (np.full_like(t, el.u), np.full_like(t, el.v), -np.sin(psi), np.cos(psi))
+    return el.uv(t)
+
+
+def rack_envelope_piece(el, radius: float, shift: float, internal: bool):
+    """Exact evaluator ``G(t)`` (mm, gear frame) of the envelope of one rack element.
+
+    ``radius`` is the pitch radius (mm); ``shift`` the rack displacement x*m (mm, positive
+    away from the gear material); ``internal`` cuts a ring (rack teeth point outward).
+    Points that never touch the gear (normal parallel to the datum) come out as NaN.
+    """
+    sigma = -1.0 if internal else 1.0
+
+    def G(t):
+        u, v, du, dv = rack_element_uvn(el, t)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            slope = np.where(np.abs(du) > 1e-300, dv / du, np.nan)
+        h = v - shift
+        ycon = -h * slope                       # Y of the contact point (X axis through pitch point)
+        ycon = np.where(np.isfinite(ycon), ycon, np.where(np.abs(h) < 1e-15, 0.0, np.nan))
+        d = ycon - u                            # rack translation at contact
+        X = radius - sigma * h
+        phi = d / radius
+        return _rot(np.stack([X, ycon], axis=-1), -phi)
+    return G
+
+
+def rack_envelope(rack: Rack, radius: float, shift: float = 0.0, internal: bool = False):
+    """Raw envelope pieces (one tooth period, tooth 0 centred at angle 0) and their names."""
+    return [(rack_envelope_piece(el, radius, shift, internal), el.name) for el in rack.elements]
+
+
+def wheel_envelope_piece(point_normal, r1: float, r2: float, internal: bool, tool_is_ring: bool = False):
+    """Exact evaluator of the envelope of a wheel tool on the generated wheel's frame.
+
+    ``point_normal(t) -> (p, n)`` gives tool points and normals (mm) in the tool frame
+    (tool centre at its origin, in reference phase). The tool's pitch circle r1 rolls on
+    the generated wheel's pitch circle r2. External pairs: centre distance r1 + r2;
+    internal: |r2 - r1| (the ring is the larger one). The generated wheel's centre is the
+    origin and the pitch point sits at (r2, 0).
+    """
+    k = 1.0 if internal else -1.0          # direction from tool centre to pitch point is k*x
+    o1 = r2 - k * r1
+
+    def G(t):
+        p, n = point_normal(t)
+        pn = np.einsum("ij,ij->i", p, n)
+        nn = np.einsum("ij,ij->i", n, n)
+        pp = np.einsum("ij,ij->i", p, p)
+        disc = pn * pn - nn * (pp - r1 * r1)
+        with np.errstate(invalid="ignore"):
+            sq = np.sqrt(disc)
+        l1, l2 = (-pn - sq) / nn, (-pn + sq) / nn
+        lam = np.where(np.abs(l1) < np.abs(l2), l1, l2)
+        w = p + lam[:, None] * n                 # pitch point in the tool frame
+        # w = k r1 (cos phi1, -sin phi1)
+        phi1 = np.arctan2(-k * w[:, 1], k * w[:, 0])
+        phi2 = k * r1 * phi1 / r2
+        q = _rot(p, phi1) + np.array([o1, 0.0])
+        return _rot(q, -phi2)
+    return G
+
+
+# ----------------------------------------------------------------------------- trimming
+
+def signed_area(loop: np.ndarray) -> float:
+    """Shoelace area (mm^2): positive for counter-clockwise loops."""
+    x, y = loop[:, 0], loop[:, 1]
+    return 0.5 * float(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1)))
+
+
+def pattern(chain: np.ndarray, teeth: int) -> np.ndarray:
+    """Repeat one period's open chain ``teeth`` times around the origin into a closed loop."""
+    ang = 2 * math.pi * np.arange(teeth) / teeth
+    reps = _rot(chain[None, :-1, :], ang[:, None])
+    return reps.reshape(-1, 2)
+
+
+def circle_loop(radius: float, tol: float, ccw: bool = True, phase: float = 0.0) -> np.ndarray:
+    """Polygon inscribed in a circle (mm) whose chords sag at most ``tol`` (mm)."""
+    n = max(int(math.ceil(math.pi / math.acos(max(1.0 - tol / radius, -1.0)))), 8)
+    a = phase + 2 * math.pi * np.arange(n) / n
+    if not ccw:
+        a = a[::-1]
+    return np.stack([radius * np.cos(a), radius * np.sin(a)], axis=1)
+
+
+def trim(raw_loop: np.ndarray, internal: bool, rim_radius: float | None, tol: float,
+         clip_radius: tuple | None = None):
+    """Cut the raw envelope loop down to what a cutter leaves. Returns (loops, raw_area).
+
+    The raw loop is oriented so that the material lies on its left (CCW for a gear,
+    CW for the hole of a ring) and filled with the positive rule. ``rim_radius`` closes a
+    ring gear on the outside. ``clip_radius = (r_min, r_max)`` optionally intersects with an
+    annulus (tip turning / root correction), either bound may be None.
+    """
+    from manifold3d import CrossSection, FillRule
+
+    loop = raw_loop
+    area = signed_area(loop)
+    if (area < 0) != internal:
+        loop = loop[::-1]
+    paths = [loop]
+    if internal:
+        paths.append(circle_loop(rim_radius, tol, ccw=True))
+    cs = CrossSection(paths, FillRule.Positive)
+    if clip_radius is not None:
+        rmin, rmax = clip_radius
+        if rmax is not None:
+            cs = cs ^ CrossSection([circle_loop(rmax, tol)], FillRule.Positive)
+        if rmin is not None:
+            cs = cs - CrossSection([circle_loop(rmin, tol)], FillRule.Positive)
+    polys = [np.asarray(p, float) for p in cs.to_polygons()]
+    return polys, abs(area)

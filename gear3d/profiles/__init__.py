@@ -1,0 +1,49 @@
+"""Gear families. Each registers a builder ``f(**params) -> Profile``.
+
+Rack families (involute, sine) go through the one engine in :mod:`gear3d.envelope`;
+closed forms (sine-circular, ...) hand their exact evaluators to the same builder.
+"""
+from __future__ import annotations
+
+from ..errors import GearError, check_number
+
+FAMILIES: dict = {}
+
+
+def register(name: str):
+    def deco(fn):
+        FAMILIES[name] = fn
+        return fn
+    return deco
+
+
+def profile(family: str, **params):
+    """Build a profile of ``family`` (see :data:`FAMILIES`) from keyword parameters (mm, deg)."""
+    _load()
+    if family not in FAMILIES:
+        raise GearError("family", family, "one of " + ", ".join(sorted(FAMILIES)))
+    return FAMILIES[family](**params)
+
+
+def families() -> list:
+    _load()
+    return sorted(FAMILIES)
+
+
+def _load():
+    from . import involute, sine, sine_circular  # noqa: F401  (registration side effect)
+
+
+def common(teeth, module, tolerance, *, max_teeth=100_000):
+    """Validate the parameters every family shares; return (teeth, module, tolerance)."""
+    from ..tessellate import MIN_TOLERANCE
+    z = check_number("teeth", teeth, 1, max_teeth, integer=True)
+    m = check_number("module", module, 0, 1000, lo_open=True, unit="mm")
+    tol = check_number("tolerance", tolerance, MIN_TOLERANCE, m / 4, unit="mm (at most module/4)")
+    return z, m, tol
+
+
+def reject_unknown(family: str, extra: dict):
+    if extra:
+        k = sorted(extra)[0]
+        raise GearError(k, extra[k], f"not a parameter of the {family} family")
