@@ -130,13 +130,15 @@ def circle_loop(radius: float, tol: float, ccw: bool = True, phase: float = 0.0)
 
 
 def trim(raw_loop: np.ndarray, internal: bool, rim_radius: float | None, tol: float,
-         clip_radius: tuple | None = None):
+         blank: tuple | None = None):
     """Cut the raw envelope loop down to what a cutter leaves. Returns (loops, raw_area).
 
     The raw loop is oriented so that the material lies on its left (CCW for a gear,
-    CW for the hole of a ring) and filled with the positive rule. ``rim_radius`` closes a
-    ring gear on the outside. ``clip_radius = (r_min, r_max)`` optionally intersects with an
-    annulus (tip turning / root correction), either bound may be None.
+    CW for the hole of a ring) and filled with the positive rule; ``rim_radius`` closes a
+    ring gear on the outside. ``blank = (r_min, r_max)`` (mm, either may be None) is the
+    turned blank the cutter works on: material beyond it never existed, which removes
+    the flank overshoots past the tip circle. Of what is left, the one connected body
+    (the largest component) is the gear: detached slivers are envelope artefacts.
     """
     from manifold3d import CrossSection, FillRule
 
@@ -148,11 +150,15 @@ def trim(raw_loop: np.ndarray, internal: bool, rim_radius: float | None, tol: fl
     if internal:
         paths.append(circle_loop(rim_radius, tol, ccw=True))
     cs = CrossSection(paths, FillRule.Positive)
-    if clip_radius is not None:
-        rmin, rmax = clip_radius
+    if blank is not None:
+        rmin, rmax = blank
         if rmax is not None:
             cs = cs ^ CrossSection([circle_loop(rmax, tol)], FillRule.Positive)
         if rmin is not None:
             cs = cs - CrossSection([circle_loop(rmin, tol)], FillRule.Positive)
-    polys = [np.asarray(p, float) for p in cs.to_polygons()]
+    parts = cs.decompose()
+    if not parts:
+        return [], abs(area)
+    main = max(parts, key=lambda c: c.area())
+    polys = [np.asarray(p, float) for p in main.to_polygons()]
     return polys, abs(area)

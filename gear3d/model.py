@@ -183,7 +183,22 @@ def build_profile(family: str, params: dict, pieces, teeth: int, pitch_radius: f
     # tessellation error includes Clipper's rounding of the vertices
     max_err = max(errs) + CLIPPER_ROUNDING
     raw = pattern(chain, teeth)
-    loops, raw_area = trim(raw, internal, rim_radius, tol, clip_radius)
+    rc = np.hypot(chain[:, 0], chain[:, 1])
+    if nominal_tip_radius is None:
+        nominal_tip_radius = float(rc.min() if internal else rc.max())
+    # the blank: the nominal tip circle (outside by 2 tol so its chords never touch the
+    # true tip) or the user's turned tip radius, which is an exact cut
+    if internal:
+        rb = nominal_tip_radius - 2 * tol
+        if clip_radius is not None and clip_radius[0] is not None:
+            rb = max(rb, clip_radius[0])
+        blank = (max(rb, tol), None)
+    else:
+        rb = nominal_tip_radius + 2 * tol
+        if clip_radius is not None and clip_radius[1] is not None:
+            rb = min(rb, clip_radius[1])
+        blank = (None, rb)
+    loops, raw_area = trim(raw, internal, rim_radius, tol, blank)
     expected = 2 if internal else 1
     if len(loops) != expected or any(len(l) < 3 for l in loops):
         raise GearError("addendum_coeff", params.get("addendum_coeff"),
@@ -197,13 +212,10 @@ def build_profile(family: str, params: dict, pieces, teeth: int, pitch_radius: f
         raise GearError("addendum_coeff", params.get("addendum_coeff"), "a smaller value", "no tooth is left")
     # ---- what trimming removed from tooth 0: undercut (root side) and pointing (tip side)
     dist = loops_distance([tl], chain)
-    rc = np.hypot(chain[:, 0], chain[:, 1])
     removed = dist > 4 * tol + 1e-9
     tip_side = (rc < pitch_radius) if internal else (rc > pitch_radius)
     under = removed & ~tip_side
     # pointed: the flanks cross before the tooth reaches the tip circle it was cut for
-    if nominal_tip_radius is None:
-        nominal_tip_radius = float(rc.min() if internal else rc.max())
     shortfall = (tip - nominal_tip_radius) if internal else (nominal_tip_radius - tip)
     pointed = bool(shortfall > 4 * tol + 1e-9)
     cusp_idx = _cusps(chain, tol)
