@@ -2,9 +2,31 @@
 
 One conjugate engine (:mod:`gear3d.envelope`) generates every family's profile; profiles
 carry a measured error; bodies come from manifold3d; exporters write STL/3MF/STEP/DXF.
+
+Public names are imported lazily so that ``import gear3d`` and the CLI start fast.
 """
 from .errors import GearError, ToleranceError
 from .profiles import families, profile
 
-__all__ = ["GearError", "ToleranceError", "profile", "families"]
 __version__ = "0.1.0"
+
+#: public name -> module that defines it (imported on first use)
+_LAZY = {
+    "body": "gear3d.solids",
+    "Body": "gear3d.solids",
+    "place_pair": "gear3d.solids",
+    "check_pair": "gear3d.analysis.pairs",
+    "mate": "gear3d.analysis.pairs",
+    "write": "gear3d.export",
+    "Profile": "gear3d.model",
+    "simulate_cut": "gear3d.analysis.cutting",
+}
+
+__all__ = ["GearError", "ToleranceError", "profile", "families", *_LAZY]
+
+
+def __getattr__(name):
+    if name in _LAZY:
+        import importlib
+        return getattr(importlib.import_module(_LAZY[name]), name)
+    raise AttributeError(f"module 'gear3d' has no attribute {name!r}")

@@ -30,8 +30,19 @@ def families() -> list:
     return sorted(FAMILIES)
 
 
+#: modules that register families (a module not shipped yet is skipped)
+FAMILY_MODULES = ["involute", "sine", "sine_circular", "cycloid", "gerotor", "ec", "moineau",
+                  "triangular"]
+
+
 def _load():
-    from . import involute, sine, sine_circular  # noqa: F401  (registration side effect)
+    import importlib
+    for name in FAMILY_MODULES:
+        try:
+            importlib.import_module(f"{__name__}.{name}")
+        except ModuleNotFoundError as e:
+            if e.name != f"{__name__}.{name}":
+                raise
 
 
 def common(teeth, module, tolerance, *, max_teeth=100_000):
