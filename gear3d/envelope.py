@@ -151,11 +151,11 @@ def trim(raw_loop: np.ndarray, internal: bool, rim_radius: float | None, tol: fl
         paths.append(circle_loop(rim_radius, tol, ccw=True))
     cs = CrossSection(paths, FillRule.Positive)
     if blank is not None:
-        rmin, rmax = blank
+        rmin, rmax = (b if b is None or np.ndim(b) else circle_loop(b, tol) for b in blank)
         if rmax is not None:
-            cs = cs ^ CrossSection([circle_loop(rmax, tol)], FillRule.Positive)
+            cs = cs ^ CrossSection([rmax], FillRule.Positive)
         if rmin is not None:
-            cs = cs - CrossSection([circle_loop(rmin, tol)], FillRule.Positive)
+            cs = cs - CrossSection([rmin], FillRule.Positive)
     parts = cs.decompose()
     if not parts:
         return [], abs(area)

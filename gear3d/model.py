@@ -14,7 +14,8 @@ import numpy as np
 
 from .envelope import circle_loop, pattern, signed_area, trim
 from .errors import GearError
-from .tessellate import tessellate, point_segment_distance
+from .corners import chords_near, corner_angle, exact_crossing, new_vertices, refine
+from .tessellate import chord_deviation, point_segment_distance, tessellate
 
 #: Clipper2 (inside manifold3d) rounds to 1e-8 mm; half a unit in each axis
 CLIPPER_ROUNDING = 0.5e-8 * math.sqrt(2)
@@ -47,9 +48,7 @@ class Profile:
     @property
     def tooth_loop(self) -> np.ndarray:
         """The loop that carries the teeth (the outer loop of a gear, the hole of a ring)."""
-        if self.internal:
-            return min(self.loops, key=lambda l: np.hypot(l[:, 0], l[:, 1]).max())
-        return max(self.loops, key=lambda l: abs(signed_area(l)))
+        return _tooth_loop(self.loops, self.internal)
 
     @property
     def area(self) -> float:
@@ -170,40 +169,85 @@ def build_profile(family: str, params: dict, pieces, teeth: int, pitch_radius: f
     proper teeth.
     """
     tol = tolerance
-    chains, errs, minv, labels = [], [], 0.0, []
-    for i, G in enumerate(pieces):
-        ts = tessellate(_finite(G), tol)
-        pts = ts.points
-        chains.append(pts if i == 0 else pts[1:])
-        labels.append(np.full(len(pts) - (0 if i == 0 else 1), i))
-        errs.append(ts.max_error)
-        minv += ts.min_vertices
-    chain = np.concatenate(chains)
-    label = np.concatenate(labels)
-    # tessellation error includes Clipper's rounding of the vertices
-    max_err = max(errs) + CLIPPER_ROUNDING
-    raw = pattern(chain, teeth)
+    fs = [_finite(G) for G in pieces]
+    tess = [tessellate(f, tol) for f in fs]
+    ts = [x.t for x in tess]
+    minv = float(sum(x.min_vertices for x in tess))
+    # the blank is decided from the first tessellation
+    chain, label = _chain(fs, ts)
     rc = np.hypot(chain[:, 0], chain[:, 1])
     if nominal_tip_radius is None:
         nominal_tip_radius = float(rc.min() if internal else rc.max())
     # the blank: the nominal tip circle (outside by 2 tol so its chords never touch the
     # true tip) or the user's turned tip radius, which is an exact cut
+    clip_binding = False
     if internal:
         rb = nominal_tip_radius - 2 * tol
-        if clip_radius is not None and clip_radius[0] is not None:
-            rb = max(rb, clip_radius[0])
+        if clip_radius is not None and clip_radius[0] is not None and clip_radius[0] > rb:
+            rb, clip_binding = clip_radius[0], True
         blank = (max(rb, tol), None)
     else:
         rb = nominal_tip_radius + 2 * tol
-        if clip_radius is not None and clip_radius[1] is not None:
-            rb = min(rb, clip_radius[1])
+        if clip_radius is not None and clip_radius[1] is not None and clip_radius[1] < rb:
+            rb, clip_binding = clip_radius[1], True
         blank = (None, rb)
-    loops, raw_area = trim(raw, internal, rim_radius, tol, blank)
+    # trim; refine the chords that meet at trimmed corners; trim again
+    corners = []
+    nraw = len(fs)
+    if clip_binding:
+        # the turned tip circle joins the corner machinery as one more exact piece
+        fs.append(_arc_piece(rb, teeth))
+        ts.append(tessellate(fs[-1], tol).t)
+    for it in range(5):
+        pts_list = [f(t) for f, t in zip(fs, ts)]
+        chain, label = _chain(fs[:nraw], ts[:nraw], pts_list[:nraw])
+        raw = pattern(chain, teeth)
+        if clip_binding:
+            ring = pattern(pts_list[-1], teeth)
+            blank = (ring, None) if internal else (None, ring)
+            raw_all = np.concatenate([raw, ring])
+        else:
+            raw_all = raw
+        loops, raw_area = trim(raw, internal, rim_radius, tol, blank)
+        if not loops:
+            break
+        tl = _tooth_loop(loops, internal)
+        corners, changed = [], False
+        final = it == 4
+        nv = new_vertices(tl, raw_all)
+        if len(nv):
+            ang = np.arctan2(tl[nv, 1], tl[nv, 0])
+            nv = nv[np.abs(ang) <= math.pi / teeth + 1e-9] if teeth > 1 else nv
+        for i in nv:
+            q = tl[i]
+            theta = corner_angle(tl, i)
+            # two chords within d of their curves, crossing at angle g, cross within ~2d/sin(g)
+            gamma = min(theta, math.pi - theta)
+            target = tol * max(math.sin(gamma), 0.01) / 3
+            near = []
+            for pi_, (f, pts) in enumerate(zip(fs, pts_list)):
+                ch = chords_near(q, pts, teeth, 2 * tol + 1e-9)
+                near += [(pi_, j, k) for j, k in ch]
+                idx = [j for j, _ in ch]
+                if idx:
+                    sub = np.unique(np.clip(np.concatenate([np.array(idx) + o for o in (-1, 0, 1)]), 0, len(ts[pi_]) - 2))
+                    dev = chord_deviation(f, ts[pi_])[sub]
+                    if (dev > target).any() and not final:
+                        ts[pi_] = refine(f, ts[pi_], idx, target)
+                        changed = True
+            corners.append((q, theta, near))
+        if not changed:
+            break
+    max_err = max(float(chord_deviation(f, t).max(initial=0.0)) for f, t in zip(fs, ts))
+    corner_errs = _measure_corners(fs, ts, corners, teeth)
+    max_err = max([max_err, *corner_errs]) + CLIPPER_ROUNDING
+    fs, ts = fs[:nraw], ts[:nraw]
     expected = 2 if internal else 1
     if len(loops) != expected or any(len(l) < 3 for l in loops):
         raise GearError("addendum_coeff", params.get("addendum_coeff"),
                         "a value that leaves separate teeth on a single body",
                         f"trimming gave {len(loops)} loop(s) instead of {expected}")
+    rc = np.hypot(chain[:, 0], chain[:, 1])
     prof = Profile(family, dict(params), teeth, pitch_radius, internal, tol, loops, {}, list(pieces), chain)
     tl = prof.tooth_loop
     rr = np.hypot(tl[:, 0], tl[:, 1])
@@ -249,12 +293,71 @@ def build_profile(family: str, params: dict, pieces, teeth: int, pitch_radius: f
         "tolerance": tol,
         "vertices": int(sum(len(l) for l in loops)),
         "vertices_per_tooth": int(len(chain) - 1),
+        "trimmed_corners": len(corners),
         "min_vertices_per_tooth": float(minv),
     }
     if extra_report:
         rep.update(extra_report)
     prof.report = rep
     return prof
+
+
+def _chain(fs, ts, pts_list=None):
+    """Concatenate the pieces' samples into one period's open chain, with piece labels."""
+    if pts_list is None:
+        pts_list = [f(t) for f, t in zip(fs, ts)]
+    chains = [p if i == 0 else p[1:] for i, p in enumerate(pts_list)]
+    labels = [np.full(len(c), i) for i, c in enumerate(chains)]
+    return np.concatenate(chains), np.concatenate(labels)
+
+
+def _arc_piece(radius, teeth):
+    """Exact evaluator of the circle ``radius`` (mm) over tooth 0's sector, CCW."""
+    w = 2 * math.pi / teeth
+
+    def f(t):
+        a = (np.asarray(t, float) - 0.5) * w
+        return np.stack([radius * np.cos(a), radius * np.sin(a)], axis=-1)
+    return f
+
+
+def _tooth_loop(loops, internal):
+    if internal:
+        return min(loops, key=lambda l: np.hypot(l[:, 0], l[:, 1]).max())
+    return max(loops, key=lambda l: abs(signed_area(l)))
+
+
+def _measure_corners(fs, ts, corners, teeth):
+    """Distance (mm) from each trimmed corner to the exact crossing of its two curves."""
+    errs = []
+    for q, _theta, near in corners:
+        best = None
+        for a in range(len(near)):
+            for b in range(a + 1, len(near)):
+                pa, ja, ka = near[a]
+                pb, jb, kb = near[b]
+                if pa == pb and ka == kb and abs(ja - jb) <= 1:
+                    continue
+                ra = 2 * math.pi * ka / teeth
+                fa = fs[pa]
+                ta0, ta1 = ts[pa][ja], ts[pa][ja + 1]
+                tb0, tb1 = ts[pb][jb], ts[pb][jb + 1]
+                # work in the frame of copy ka: rotate q back
+                qa = _rotate_pt(q, -ra)
+                x = exact_crossing(fa, ta0, ta1, fs[pb], tb0, tb1, 2 * math.pi * (kb - ka) / teeth, qa)
+                if x is None:
+                    continue
+                d = float(np.hypot(*(x - qa)))
+                if best is None or d < best:
+                    best = d
+        if best is not None:
+            errs.append(best)
+    return errs
+
+
+def _rotate_pt(p, a):
+    c, s = math.cos(a), math.sin(a)
+    return np.array([c * p[0] - s * p[1], s * p[0] + c * p[1]])
 
 
 def _finite(G):

@@ -1,0 +1,114 @@
+"""Trimmed corners: where two exact curves cross, chords must be tighter than the tolerance.
+
+Two chords that each stay within ``tol`` of their curves can cross up to
+``tol / sin(theta/2)`` away from the exact crossing (theta: the angle between the curves).
+So after a first trim, the chords that meet at a new (Clipper-made) vertex are refined to
+``tol * sin(theta/2) / 2``, and the corner error is *measured*: Newton's method finds the
+exact crossing of the two exact curves and its distance to the polygon corner.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .tessellate import chord_deviation, point_segment_distance
+
+
+def _rot(p, a):
+    c, s = math.cos(a), math.sin(a)
+    return np.stack([c * p[..., 0] - s * p[..., 1], s * p[..., 0] + c * p[..., 1]], axis=-1)
+
+
+def new_vertices(loop: np.ndarray, raw: np.ndarray, eps: float = 1e-7) -> np.ndarray:
+    """Indices of ``loop`` vertices that are not (within ``eps`` mm) raw tessellation vertices."""
+    from scipy.spatial import cKDTree
+    d, _ = cKDTree(raw).query(loop, distance_upper_bound=eps * 10)
+    return np.nonzero(~(d <= eps))[0]
+
+
+def corner_angle(loop: np.ndarray, i: int) -> float:
+    """Angle (rad) between the two polygon edges meeting at vertex ``i`` (pi = straight)."""
+    a, b, c = loop[i - 1], loop[i], loop[(i + 1) % len(loop)]
+    u, v = a - b, c - b
+    nu, nv = np.hypot(*u), np.hypot(*v)
+    if nu == 0 or nv == 0:
+        return math.pi
+    return float(math.acos(np.clip(np.dot(u, v) / (nu * nv), -1, 1)))
+
+
+def chords_near(q: np.ndarray, pts: np.ndarray, teeth: int, dist: float):
+    """Chords of a piece's samples ``pts`` (tooth 0) within ``dist`` of ``q`` in any tooth copy.
+
+    Returns a list of (chord index, copy k) with the copy rotated by 2*pi*k/teeth.
+    """
+    out = []
+    for k in range(-1, 2) if teeth > 1 else (0,):
+        p = _rot(pts, 2 * math.pi * k / teeth) if k else pts
+        d = point_segment_distance(q[None, :], p[:-1], p[1:])
+        for j in np.nonzero(d <= dist)[0]:
+            out.append((int(j), k))
+    return out
+
+
+def refine(f, t: np.ndarray, chords, target: float, max_iter: int = 40) -> np.ndarray:
+    """Bisect the chords ``chords`` (indices into ``t``) and their neighbours until each of
+    them deviates at most ``target`` (mm) from the exact curve ``f``."""
+    lo = max(min(chords) - 1, 0)
+    hi = min(max(chords) + 2, len(t) - 1)
+    ta, tb = t[lo], t[hi]
+    for _ in range(max_iter):
+        sel = np.nonzero((t >= ta) & (t <= tb))[0]
+        tt = t[sel]
+        dev = chord_deviation(f, tt)
+        bad = dev > target
+        if not bad.any():
+            break
+        if np.any(np.diff(tt)[bad] < 1e-15):
+            break
+        t = np.sort(np.concatenate([t, 0.5 * (tt[:-1][bad] + tt[1:][bad])]))
+    return t
+
+
+def exact_crossing(fa, ta0, ta1, fb, tb0, tb1, rot_b: float, q0: np.ndarray, iters: int = 30):
+    """Crossing of exact curves fa (on [ta0, ta1]) and fb rotated by ``rot_b`` (on [tb0, tb1]).
+
+    Newton iteration in the two parameters from the chords' crossing; numeric Jacobian.
+    Returns the point (mm) or None if it does not converge inside the intervals (widened x3).
+    """
+    def A(s):
+        return fa(np.array([s]))[0]
+
+    def B(s):
+        return _rot(fb(np.array([s])), rot_b)[0]
+
+    # start from the chords' crossing parameters
+    pa0, pa1, pb0, pb1 = A(ta0), A(ta1), B(tb0), B(tb1)
+    da, db = pa1 - pa0, pb1 - pb0
+    den = da[0] * (-db[1]) - da[1] * (-db[0])
+    if abs(den) < 1e-300:
+        return None
+    rhs = pb0 - pa0
+    sa = (rhs[0] * (-db[1]) - rhs[1] * (-db[0])) / den
+    sb = (da[0] * rhs[1] - da[1] * rhs[0]) / den
+    s, u = ta0 + sa * (ta1 - ta0), tb0 + sb * (tb1 - tb0)
+    ha = max(abs(ta1 - ta0), 1e-14) * 1e-4
+    hb = max(abs(tb1 - tb0), 1e-14) * 1e-4
+    for _ in range(iters):
+        F = A(s) - B(u)
+        Ja = (A(s + ha) - A(s - ha)) / (2 * ha)
+        Jb = -(B(u + hb) - B(u - hb)) / (2 * hb)
+        J = np.stack([Ja, Jb], axis=1)
+        try:
+            step = np.linalg.solve(J, -F)
+        except np.linalg.LinAlgError:
+            return None
+        s, u = s + step[0], u + step[1]
+        if np.hypot(*F) < 1e-13:
+            break
+    wa, wb = 3 * abs(ta1 - ta0), 3 * abs(tb1 - tb0)
+    if not (min(ta0, ta1) - wa <= s <= max(ta0, ta1) + wa and min(tb0, tb1) - wb <= u <= max(tb0, tb1) + wb):
+        return None
+    if np.hypot(*(A(s) - B(u))) > 1e-9:
+        return None
+    return A(s)
