@@ -1,0 +1,429 @@
+"""Gear bodies: a profile extruded and turned by a twist law, plus hub features.
+
+Construction: ``CrossSection(loops, FillRule.Positive).extrude(W, n)`` then one
+``warp_batch`` that (1) moves the uniform extrusion layers to planned heights, (2) insets
+vertices in the chamfer bands and (3) turns each layer by θ(z). Every body is manifold by
+construction; features are manifold booleans.
+
+Error budget (mm). The finished surface deviates from the exactly turned profile by at most
+
+    e_profile (polygon of the profile, measured by the profile builder)
+  + e_offset  (round joins of an XY offset, tol/8 when used)
+  + ρ·Δθ²/8   (a vertex's straight path between layers cuts the helix's arc; ρ = largest radius)
+  + L·Δθ/4    (a side quad of length L twisted by Δθ is split into two triangles: the
+               zig-zag of long edges; L is capped by inserting collinear profile vertices)
+  + ρ·θ''·Δz²/8 (the law's own curvature between layers, chevron-arch only)
+
+A twisted body rebuilds its profile at half the body tolerance when the profile's measured
+error leaves too little room for the twist terms; the layer count and the edge-length cap
+are chosen together to meet the rest with the fewest triangles. The result is then
+*measured*: slices at layer heights and mid-layer heights, turned back by -θ(z), are
+compared with the exact profile (:meth:`Profile.exact_distance`, densified along every
+slice edge); ``report["max_error"]`` is that measurement and a body that misses its
+tolerance raises :class:`ToleranceError` instead of being returned.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+
+from ..envelope import circle_loop
+from ..errors import GearError, ToleranceError, check_choice, check_number
+from .features import (apply_features, check_chamfer, miter_vectors, offset_loops,
+                       plan_features, subdivide)
+from .twist import KINDS, TwistLaw, default_arch_radius
+
+#: refuse bodies that would need more triangles than this (memory: ~200 B per triangle)
+MAX_TRIANGLES = 40_000_000
+#: smallest body tolerance with a twist (half of it goes to the profile, whose floor is 1e-7 mm)
+MIN_TWIST_TOLERANCE = 2e-7
+
+
+@dataclass(eq=False)
+class Body:
+    """One gear body. ``manifold``/``mesh`` are in the part's own frame (gear axis = z,
+    bottom face at z = 0, tooth 0 on +x at z where θ = 0); ``transform`` (4x4) places it in
+    an assembly (identity unless placed by :func:`place_pair`)."""
+    manifold: object
+    profile: object
+    twist: TwistLaw
+    report: dict
+    name: str
+    transform: np.ndarray = field(default_factory=lambda: np.eye(4))
+    _mesh: object = field(default=None, repr=False)
+
+    @property
+    def kind(self) -> str:
+        return self.report["kind"]
+
+    @property
+    def width(self) -> float:
+        return self.report["width"]
+
+    @property
+    def mesh(self):
+        """trimesh.Trimesh of the manifold (float64 vertices, part frame, cached)."""
+        if self._mesh is None:
+            import trimesh
+            m = self.manifold.to_mesh64()
+            self._mesh = trimesh.Trimesh(np.asarray(m.vert_properties, float)[:, :3],
+                                         np.asarray(m.tri_verts, np.int64), process=False)
+        return self._mesh
+
+    def world_manifold(self):
+        """The manifold moved by ``transform``."""
+        return self.manifold.transform(np.asarray(self.transform, float)[:3, :4])
+
+    def world_mesh(self):
+        """A trimesh copy moved by ``transform``."""
+        m = self.mesh.copy()
+        m.apply_transform(self.transform)
+        return m
+
+    def placed(self, transform, name: str | None = None) -> "Body":
+        """The same body with another placement (shares the manifold and mesh)."""
+        return replace(self, transform=np.asarray(transform, float), name=name or self.name)
+
+
+# --------------------------------------------------------------------------- body()
+
+def body(profile, kind="spur", width=10.0, helix_angle_deg=0.0, hand="right", gap=0.0,
+         arch_radius=None, tolerance=None, bore=None, hub_diameter=None, hub_length=0.0,
+         keyway=False, set_screw=None, lightening_holes=0, web_thickness=None, xy_offset=0.0,
+         elephant_foot=0.0, chamfer=0.0, name=None, rim_diameter=None, _law=None) -> Body:
+    """A 3D gear body (mm, degrees) from a :class:`gear3d.model.Profile`.
+
+    ``kind``: spur | helical | herringbone | chevron-arch (see :mod:`gear3d.solids.twist`).
+    ``width``: face width (mm). ``helix_angle_deg``: β at the pitch circle, in (0, 90) for
+    the twisted kinds, 0 for spur. ``hand``: right | left (of the lower half for the V
+    kinds). ``gap``: herringbone central groove width (mm, the groove bottom is the root
+    circle). ``arch_radius``: chevron-arch R (mm) in [module, W/(2 sin β)], default spans the
+    middle third of the face (2 R sin β = W/3). ``tolerance``: body tolerance (mm), default
+    the profile's. Hub: ``bore``, ``hub_diameter``/``hub_length`` (boss on the top face),
+    ``keyway`` (DIN 6885 groove by bore), ``set_screw`` (hole diameter), ``lightening_holes``
+    (count) in a web of ``web_thickness``. Print compensation: ``xy_offset`` (mm, + = more
+    material; applied to the profile before extrusion), ``elephant_foot`` (45° chamfer of
+    the bottom edge, mm), ``chamfer`` (45° chamfer of both tooth ends, mm; the bottom takes
+    the larger of the two). ``rim_diameter``: ring gears only, rebuilds the profile with
+    that rim. Backlash: use the family's ``backlash`` or a negative ``xy_offset``.
+
+    Raises :class:`GearError` naming the bad parameter; :class:`ToleranceError` when the
+    tolerance is out of reach (too fine or too many triangles).
+    """
+    from manifold3d import CrossSection, FillRule, Manifold
+
+    prof = _check_profile(profile)
+    kind = check_choice("kind", kind, KINDS)
+    W = check_number("width", width, 0, 100_000, lo_open=True, unit="mm")
+    if kind == "spur":
+        beta = check_number("helix_angle_deg", helix_angle_deg, 0, 0, unit="deg for a spur body "
+                            "(use kind='helical')")
+    else:
+        beta = check_number("helix_angle_deg", helix_angle_deg, 0, 90, lo_open=True, hi_open=True,
+                            unit="deg")
+    hand = check_choice("hand", hand, ("right", "left"))
+    gap = check_number("gap", gap, 0, 0 if kind != "herringbone" else W, hi_open=kind == "herringbone",
+                       unit="mm" if kind == "herringbone" else "mm (a gap is for herringbone bodies)")
+    m = prof.module
+    R = None
+    if kind == "chevron-arch":
+        hi = W / (2 * math.sin(math.radians(beta)))
+        R = arch_radius if arch_radius is not None else min(max(default_arch_radius(W, beta), m), hi)
+        R = check_number("arch_radius", R, m, hi, unit=f"mm (module .. W/(2 sin β) for β={beta:g} deg)")
+    elif arch_radius is not None:
+        raise GearError("arch_radius", arch_radius, "None unless kind='chevron-arch'")
+    twisted = kind != "spur"
+    tol_lo = MIN_TWIST_TOLERANCE if twisted else 1e-7
+    tol = check_number("tolerance", prof.tolerance if tolerance is None else tolerance, tol_lo, m / 4,
+                       unit="mm (at most module/4)")
+    if tolerance is None:
+        tol = prof.tolerance
+    if rim_diameter is not None:
+        if not prof.internal:
+            raise GearError("rim_diameter", rim_diameter, "None for an external gear (rings only)")
+        rr = float(prof.report["root_radius"])
+        check_number("rim_diameter", rim_diameter, 2 * rr, None, lo_open=True,
+                     unit=f"mm (beyond the root diameter {2 * rr:.6g})")
+        prof = _rebuild(prof, rim_radius=rim_diameter / 2)
+    delta = check_number("xy_offset", xy_offset, -m / 2, m / 2, unit="mm (|offset| <= module/2)")
+    ef = check_number("elephant_foot", elephant_foot, 0, W / 2, hi_open=True, unit="mm")
+    ch = check_number("chamfer", chamfer, 0, W / 2, hi_open=True, unit="mm")
+    cb, ct = max(ef, ch), ch
+    if cb + ct >= W:
+        raise GearError("chamfer", ch, f"chamfers that sum to less than the width {W:g} mm")
+    feats = plan_features(prof, W, bore=bore, hub_diameter=hub_diameter, hub_length=hub_length,
+                          keyway=keyway, set_screw=set_screw, lightening_holes=lightening_holes,
+                          web_thickness=web_thickness)
+
+    # ---- the law and the error budget
+    sign = 1.0 if hand == "right" else -1.0
+    law = _law if _law is not None else TwistLaw(kind, W, prof.pitch_radius, sign, beta, gap, R)
+    e_off = tol / 8 if delta else 0.0
+    twist_share = 0.4 * tol if twisted else 0.0
+    if prof.report["max_error"] + e_off + twist_share > tol:
+        tp = (tol - e_off) * (0.5 if twisted else 0.9)
+        if tp < 1e-7:
+            raise ToleranceError("tolerance", tol, f"a number >= {tol_lo:g} mm for this body")
+        prof = prof.at_tolerance(tp)
+    e_p = float(prof.report["max_error"])
+    loops = offset_loops(prof.loops, delta, e_off)
+    rho = max(float(np.hypot(l[:, 0], l[:, 1]).max()) for l in loops)
+    e_z = max(tol - e_p - e_off, 0.0)
+    knots, max_len, bound = _plan(law, W, rho, loops, e_z, (cb, ct))
+    loops = subdivide(loops, max_len)
+    cs = CrossSection(loops, FillRule.Positive)
+    polys = [np.asarray(p, float) for p in cs.to_polygons()]
+    nv = sum(len(p) for p in polys)
+    est = 2 * nv * (len(knots) - 1) + 2 * nv
+    if est > MAX_TRIANGLES:
+        raise ToleranceError("tolerance", tol, f"a coarser value for this body (it would need about "
+                             f"{est:.3g} triangles, limit {MAX_TRIANGLES:.3g})")
+    vecs = None
+    if cb or ct:
+        vecs = miter_vectors(polys)
+        check_chamfer(polys, vecs, cb, "elephant_foot" if ef >= ch else "chamfer")
+        check_chamfer(polys, vecs, ct, "chamfer")
+
+    man = Manifold.extrude(cs, W, len(knots) - 2)
+    man = man.warp_batch(_warp(law, W, knots, polys, vecs, cb, ct))
+    _check_manifold(man, "width", W)
+
+    # ---- measure the tooth surface against the exactly turned profile
+    skip = [(0.0, cb), (W - ct, W)] + ([(W / 2 - gap / 2, W / 2 + gap / 2)] if gap else [])
+    max_err, heights = measure(man, law, prof, knots, delta, skip)
+    if max_err > tol:
+        raise ToleranceError("tolerance", tol, "a coarser value",
+                             f"measured body error {max_err:.3g} mm exceeds it")
+    if gap:
+        man = _cut_gap(man, prof, W, gap, tol)
+    man = apply_features(man, feats, W, tol)
+    _check_manifold(man, "bore", bore)
+
+    rep = prof.report
+    mesh = man.to_mesh64()
+    report = {
+        "kind": kind, "width": W, "helix_angle_deg": beta, "hand": law.hand,
+        "gap": gap, "arch_radius": R,
+        "lead": (2 * math.pi * prof.pitch_radius / math.tan(math.radians(beta))) if twisted else math.inf,
+        "total_twist_deg": math.degrees(float(np.ptp(law(np.linspace(0, W, 257))))),
+        "volume": float(man.volume()), "surface_area": float(man.surface_area()),
+        "triangles": int(man.num_tri()), "vertices": int(man.num_vert()),
+        "layers": len(knots) - 1, "max_edge_length": max_len,
+        "max_error": max_err, "max_error_bound": bound, "measured_heights": heights,
+        "tolerance": tol, "watertight": bool(len(mesh.tri_verts) > 0 and man.status().name == "NoError"),
+        "genus": int(man.genus()),
+        "family": prof.family, "teeth": prof.teeth, "module": m, "internal": prof.internal,
+        "pitch_radius": prof.pitch_radius, "tip_radius": rep["tip_radius"],
+        "root_radius": rep["root_radius"], "rim_radius": rep.get("rim_radius"),
+        "profile_area": prof.area, "profile_tolerance": prof.tolerance, "profile_max_error": e_p,
+        "xy_offset": delta, "elephant_foot": ef, "chamfer": ch,
+        "features": {k: v for k, v in vars(feats).items() if k != "volumes" and v},
+        "feature_volumes": dict(feats.volumes),
+    }
+    name = name or f"{prof.family}-z{prof.teeth}-{kind}"
+    return Body(man, prof, law, report, str(name))
+
+
+def mate_body(profile2, like: Body, **features) -> Body:
+    """The mating wheel of ``like`` built from ``profile2`` with the mate twist law
+    (θ2 = -θ1·r1/r2 external, +θ1·r1/r2 internal), same kind, width and tolerance.
+    ``features``: hub/print keywords of :func:`body` for this wheel."""
+    p2 = _check_profile(profile2)
+    internal = bool(p2.internal or like.profile.internal)
+    law = like.twist.mate(p2.pitch_radius, internal)
+    r = like.report
+    features.setdefault("tolerance", r["tolerance"])
+    return body(p2, kind=r["kind"], width=r["width"], helix_angle_deg=r["helix_angle_deg"],
+                hand=law.hand, gap=r["gap"], arch_radius=r["arch_radius"], _law=law, **features)
+
+
+def place_pair(body1: Body, body2: Body, internal: bool = False) -> list:
+    """Place two meshing bodies: body1 at the origin, body2 at the centre distance along +x
+    (r1 + r2 external, |r2 - r1| internal), in mesh phase: body1's tooth 0 and a space of
+    body2 face each other at the pitch point. Twisted pairs must carry mating laws
+    (:func:`mate_body`); then every transverse section meshes as the planar pair."""
+    for nm, b in (("body1", body1), ("body2", body2)):
+        if not isinstance(b, Body):
+            raise GearError(nm, type(b).__name__, "a gear3d Body")
+    p1, p2 = body1.profile, body2.profile
+    internal = bool(internal or p1.internal or p2.internal)
+    if p1.internal and p2.internal:
+        raise GearError("body2", body2.name, "an external gear (both bodies are rings)")
+    if internal and not (p1.internal or p2.internal):
+        raise GearError("internal", True, "False unless one of the bodies is a ring gear")
+    if abs(p1.module - p2.module) > 1e-9 * p1.module:
+        raise GearError("body2", body2.name, f"a gear of module {p1.module:g} mm like body1",
+                        f"its module is {p2.module:g} mm")
+    if not body2.twist.is_mate_of(body1.twist, internal):
+        raise GearError("body2", body2.name, "a body whose twist law mates body1's "
+                        "(build it with mate_body(profile2, like=body1))")
+    r1, r2 = p1.pitch_radius, p2.pitch_radius
+    a = r1 + r2 if not internal else abs(r2 - r1)
+    px = -r1 if p2.internal else r1          # the pitch point on the x axis
+    g1 = 0.0 if px > 0 else math.pi          # direction body1 centre -> pitch point
+    g2 = math.pi if px < a else 0.0          # direction body2 centre -> pitch point
+    t1 = _rigid(g1, 0.0)
+    t2 = _rigid(g2 - math.pi / p2.teeth, a)
+    return [body1.placed(t1), body2.placed(t2)]
+
+
+# ------------------------------------------------------------------------ internals
+
+def _check_profile(profile):
+    if not hasattr(profile, "loops") or not hasattr(profile, "pitch_radius"):
+        raise GearError("profile", type(profile).__name__, "a gear3d Profile (gear3d.profile(...))")
+    return profile
+
+
+def _rebuild(prof, **changes):
+    from ..profiles import profile as make
+    params = dict(prof.params)
+    params.update(changes)
+    return make(prof.family, **params)
+
+
+def _rigid(angle: float, x: float) -> np.ndarray:
+    c, s = math.cos(angle), math.sin(angle)
+    t = np.eye(4)
+    t[:2, :2] = [[c, -s], [s, c]]
+    t[0, 3] = x
+    return t
+
+
+def _plan(law: TwistLaw, W: float, rho: float, loops, e_z: float, chamfers):
+    """Layer heights (mm), edge-length cap (mm) and the predicted error bound (mm).
+
+    Pieces between the law's breaks and the chamfer bands get uniform layers. The share f of
+    the twist budget going to the arc sag ρΔθ²/8 (the rest to the zig-zag LΔθ/4) is chosen
+    to minimise vertices x layers."""
+    cb, ct = chamfers
+    cuts = set(law.breaks()) | {cb, W - ct}
+    cuts = sorted(z for z in cuts if 0 <= z <= W)
+    pieces = [(a, b) for a, b in zip(cuts[:-1], cuts[1:]) if b - a > 1e-12 * max(W, 1)]
+    bnds = [law.bounds(a, b) for a, b in pieces]
+    if all(d1 == 0 for d1, _ in bnds):
+        return np.array(cuts), math.inf, 0.0
+    if e_z <= 0:
+        raise ToleranceError("tolerance", e_z, "a positive twist budget")
+    curved = any(d2 > 0 for _, d2 in bnds)
+    e_law = 0.25 * e_z if curved else 0.0
+    e = e_z - e_law
+    lens = np.concatenate([np.hypot(*(np.roll(l, -1, axis=0) - l).T) for l in loops])
+    best = None
+    for f in np.linspace(0.05, 0.95, 19):
+        dth = math.sqrt(8 * f * e / rho)
+        lmax = 4 * (1 - f) * e / (2 * math.sin(dth / 2))
+        nv = int(np.ceil(lens / lmax).sum())
+        counts = []
+        for (a, b), (d1, d2) in zip(pieces, bnds):
+            n = max(1, math.ceil((b - a) * d1 / dth - 1e-9))
+            if d2 > 0:
+                n = max(n, math.ceil((b - a) / math.sqrt(8 * e_law / (rho * d2))))
+            counts.append(n)
+        cost = nv * sum(counts)
+        if best is None or cost < best[0]:
+            best = (cost, counts, lmax)
+    _, counts, lmax = best
+    zs = [np.linspace(a, b, n + 1)[:-1] for (a, b), n in zip(pieces, counts)]
+    knots = np.concatenate(zs + [np.array([W])])
+    dz = np.diff(knots)
+    mid = (knots[:-1] + knots[1:]) / 2
+    dth = np.abs(np.diff(law(knots)))
+    d2 = np.abs(law.d2theta(np.concatenate([knots[:-1], mid, knots[1:]]))).reshape(3, -1).max(0)
+    bound = float((rho * dth ** 2 / 8 + lmax * 2 * np.sin(dth / 2) / 4 + rho * d2 * dz ** 2 / 8).max())
+    return knots, float(lmax), bound
+
+
+def _warp(law, W, knots, polys, vecs, cb, ct):
+    """The vectorised warp: uniform layer -> planned height, chamfer inset, turn by θ(z)."""
+    K = len(knots)
+    tree = vec = None
+    if vecs is not None:
+        from scipy.spatial import cKDTree
+        tree = cKDTree(np.concatenate(polys))
+        vec = np.concatenate(vecs)
+
+    def warp(P):
+        P = np.asarray(P, float)
+        j = np.clip(np.rint(P[:, 2] * (K - 1) / W).astype(np.int64), 0, K - 1)
+        z = knots[j]
+        xy = P[:, :2]
+        if tree is not None:
+            inset = np.zeros(len(P))
+            if cb:
+                inset = np.maximum(inset, cb * np.clip(1 - z / cb, 0, 1))
+            if ct:
+                inset = np.maximum(inset, ct * np.clip(1 - (W - z) / ct, 0, 1))
+            sel = inset > 0
+            if sel.any():
+                _, idx = tree.query(xy[sel])
+                xy = xy.copy()
+                xy[sel] -= inset[sel, None] * vec[idx]
+        th = law(z)
+        c, s = np.cos(th), np.sin(th)
+        return np.stack([c * xy[:, 0] - s * xy[:, 1], s * xy[:, 0] + c * xy[:, 1], z], axis=1)
+    return warp
+
+
+def _slice_heights(knots, skip):
+    """Layer and mid-layer heights to measure: the first, middle and last layer of every
+    run of equal layers, their mid-heights, outside the chamfer bands and the gap."""
+    K = len(knots)
+    idx = sorted({0, 1, K // 4, K // 2 - 1, K // 2, (3 * K) // 4, K - 3, K - 2} & set(range(K - 1)))
+    dz = np.diff(knots)
+    # where the layer spacing changes (law pieces): measure there too
+    changes = np.nonzero(np.abs(np.diff(dz)) > 1e-9 * max(dz.max(), 1e-300))[0]
+    idx = sorted(set(idx) | set(changes.tolist()) | set((changes + 1).tolist()))
+    hs = []
+    for i in idx:
+        for z in (knots[i], 0.5 * (knots[i] + knots[i + 1])):
+            if not any(a - 1e-12 <= z <= b + 1e-12 for a, b in skip if b > a):
+                hs.append(float(z))
+    return sorted(set(hs))
+
+
+def measure(man, law, prof, knots, delta=0.0, skip=()):
+    """Max distance (mm) between slices of ``man`` turned back by -θ(z) and the exact profile
+    (offset by ``delta``); slice edges are sampled at 0, 1/4, 1/2, 3/4 of their length."""
+    heights = _slice_heights(np.asarray(knots), list(skip))
+    worst = 0.0
+    fr = np.array([0.0, 0.25, 0.5, 0.75])
+    for z in heights:
+        polys = man.slice(z).to_polygons()
+        if not polys:
+            raise GearError("width", None, "a body with material", f"empty slice at z={z:g} mm")
+        pts = []
+        for p in polys:
+            p = np.asarray(p, float)
+            d = np.roll(p, -1, axis=0) - p
+            pts.append((p[:, None, :] + fr[None, :, None] * d[:, None, :]).reshape(-1, 2))
+        pts = np.concatenate(pts)
+        th = -float(law(z))
+        c, s = math.cos(th), math.sin(th)
+        pts = pts @ np.array([[c, s], [-s, c]])
+        err = np.abs(prof.exact_distance(pts) - abs(delta))
+        worst = max(worst, float(err.max()))
+    return worst, heights
+
+
+def _cut_gap(man, prof, W, gap, tol):
+    """Herringbone groove: remove the teeth in the central gap down to the root circle
+    (2 tol deeper, so that no sliver of tooth is left between chords)."""
+    from manifold3d import CrossSection, FillRule, Manifold, OpType
+    rr = float(prof.report["root_radius"])
+    tip = float(prof.report["tip_radius"])
+    if prof.internal:
+        loops = [circle_loop(rr + 2 * tol, tol)]
+    else:
+        big = tip + 1.0 + prof.module
+        loops = [circle_loop(big, tol), circle_loop(rr - 2 * tol, tol, ccw=False)]
+    cut = Manifold.extrude(CrossSection(loops, FillRule.Positive), gap).translate((0, 0, W / 2 - gap / 2))
+    return Manifold.batch_boolean([man, cut], OpType.Subtract)
+
+
+def _check_manifold(man, param, value):
+    if man.is_empty() or man.status().name != "NoError":
+        raise GearError(param, value, "values that leave a solid body",
+                        f"the body came out {'empty' if man.is_empty() else man.status().name}")
