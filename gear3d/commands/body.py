@@ -1,0 +1,80 @@
+"""``gear3d body FAMILY ... --kind K --width MM -o OUT``: one 3D gear body.
+
+OUT's extension picks the format (.stl .3mf .step .png .json ...); without ``-o`` the body
+report is printed as JSON.
+"""
+from __future__ import annotations
+
+import json
+import sys
+
+from .profile import add_profile_flags, family_params
+
+#: CLI flag -> body() keyword
+BODY_FLAGS = [
+    ("--width", float, "face width (mm)", "width"),
+    ("--helix-angle", float, "helix angle at the pitch circle (deg)", "helix_angle_deg"),
+    ("--gap", float, "herringbone central groove width (mm)", "gap"),
+    ("--arch-radius", float, "chevron-arch: arch radius R in the unrolled pitch cylinder (mm)", "arch_radius"),
+    ("--body-tolerance", float, "body tolerance (mm), default the profile --tolerance", "tolerance"),
+    ("--bore", float, "bore diameter (mm)", "bore"),
+    ("--hub-diameter", float, "hub boss diameter (mm)", "hub_diameter"),
+    ("--hub-length", float, "hub boss length above the top face (mm)", "hub_length"),
+    ("--set-screw", float, "radial set-screw hole diameter (mm)", "set_screw"),
+    ("--lightening-holes", int, "number of lightening holes in the web", "lightening_holes"),
+    ("--web-thickness", float, "web thickness (mm), faces recessed around the hub", "web_thickness"),
+    ("--xy-offset", float, "print compensation: XY offset of the profile (mm, + = more material)", "xy_offset"),
+    ("--elephant-foot", float, "45 deg chamfer of the bottom (first layer) edge (mm)", "elephant_foot"),
+    ("--chamfer", float, "45 deg chamfer of both tooth ends (mm)", "chamfer"),
+    ("--rim-diameter", float, "ring gears: outer rim diameter (mm)", "rim_diameter"),
+    ("--name", str, "part name (3MF object name)", "name"),
+]
+
+
+def add_parser(sub):
+    p = sub.add_parser("body", help="a 3D gear body -> .stl .3mf .step .png .json")
+    add_profile_flags(p)
+    p.add_argument("--kind", default="spur", choices=["spur", "helical", "herringbone", "chevron-arch"],
+                   help="twist law")
+    p.add_argument("--hand", default="right", choices=["right", "left"], help="helix hand")
+    p.add_argument("--keyway", action="store_true", help="DIN 6885 keyway groove for the bore")
+    for flag, typ, hlp, dest in BODY_FLAGS:
+        p.add_argument(flag, type=typ, dest="b_" + dest, default=None, help=hlp)
+    p.add_argument("-o", "--output", default=None, help="output file; extension picks the format")
+    return p
+
+
+def body_params(args) -> dict:
+    kw = {"kind": args.kind, "hand": args.hand}
+    if args.keyway:
+        kw["keyway"] = True
+    for _flag, _typ, _hlp, dest in BODY_FLAGS:
+        v = getattr(args, "b_" + dest)
+        if v is not None:
+            kw[dest] = v
+    return kw
+
+
+def run(args) -> int:
+    from .. import profile
+    from ..errors import GearError
+    from ..solids import body
+    out = args.output
+    if out is not None:
+        from ..export import check_output
+        check_output(out, kinds="body")
+    kw = body_params(args)
+    if "width" not in kw:
+        raise GearError("width", None, "a number > 0 mm (--width)")
+    b = body(profile(args.family, **family_params(args)), **kw)
+    if out is None:
+        json.dump(b.report, sys.stdout, indent=1, default=float)
+        sys.stdout.write("\n")
+        return 0
+    from ..export import write
+    info = write(b, out)
+    r = b.report
+    sys.stdout.write(f"wrote {out}: {r['kind']} {r['family']} z={r['teeth']} {r['triangles']} triangles, "
+                     f"max_error={r['max_error']:.3g} mm (tolerance {r['tolerance']:g} mm)"
+                     + (f" {info}" if info else "") + "\n")
+    return 0
