@@ -1,0 +1,49 @@
+"""JSON: a profile's loops (mm) and report; a body's (or bodies') report. NaN/inf -> null."""
+from __future__ import annotations
+
+import json
+import math
+
+import numpy as np
+
+
+def clean(x):
+    """JSON-safe copy: numpy scalars/arrays to Python, NaN/inf to None, keys to str."""
+    if isinstance(x, dict):
+        return {str(k): clean(v) for k, v in x.items()}
+    if isinstance(x, (list, tuple)):
+        return [clean(v) for v in x]
+    if isinstance(x, np.ndarray):
+        return clean(x.tolist())
+    if isinstance(x, (np.bool_, bool)):
+        return bool(x)
+    if isinstance(x, (np.integer,)):
+        return int(x)
+    if isinstance(x, (float, np.floating)):
+        x = float(x)
+        return x if math.isfinite(x) else None
+    return x
+
+
+def to_dict(obj) -> dict:
+    from ..model import Profile
+    if isinstance(obj, Profile):
+        return {"family": obj.family, "params": clean(obj.params),
+                "loops": [np.asarray(l, float).tolist() for l in obj.loops],
+                "report": clean(obj.report)}
+    from . import as_bodies, body_name
+    bodies = as_bodies(obj)
+    return {"bodies": [{"name": body_name(b, i), "report": clean(getattr(b, "report", {}) or {})}
+                       for i, b in enumerate(bodies)]}
+
+
+def write(obj, path, **opts):
+    if opts:
+        from ..errors import GearError
+        k = sorted(opts)[0]
+        raise GearError(k, opts[k], "not an option of the JSON exporter")
+    data = clean(to_dict(obj))
+    with open(path, "w", encoding="utf-8") as f:
+        json.dump(data, f, indent=1, sort_keys=False, allow_nan=False)
+        f.write("\n")
+    return None
