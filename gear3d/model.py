@@ -161,16 +161,20 @@ def _cusps(chain: np.ndarray, tol: float) -> np.ndarray:
 def build_profile(family: str, params: dict, pieces, teeth: int, pitch_radius: float, *,
                   internal: bool, tolerance: float, rim_radius: float | None = None,
                   clip_radius=None, extra_report: dict | None = None,
-                  names=None, nominal_tip_radius: float | None = None) -> Profile:
+                  names=None, nominal_tip_radius: float | None = None,
+                  flank_pieces=None) -> Profile:
     """Tessellate, pattern, trim and measure one family's tooth period.
 
     ``pieces``: exact evaluators G(t) (mm) of one period, in order, tooth 0 at angle 0.
+    ``flank_pieces``: indices of the pieces that form the working flank (default: all);
+    the undercut depth is how far the cutter went into them.
     Raises :class:`GearError` naming ``addendum_coeff`` when the trimmed result has no
     proper teeth.
     """
     tol = tolerance
     fs = [_finite(G) for G in pieces]
-    tess = [tessellate(f, tol) for f in fs]
+    # Clipper rounds every vertex to 1e-8 mm: keep that inside the budget
+    tess = [tessellate(f, tol - CLIPPER_ROUNDING) for f in fs]
     ts = [x.t for x in tess]
     minv = float(sum(x.min_vertices for x in tess))
     # the blank is decided from the first tessellation
@@ -197,7 +201,7 @@ def build_profile(family: str, params: dict, pieces, teeth: int, pitch_radius: f
     if clip_binding:
         # the turned tip circle joins the corner machinery as one more exact piece
         fs.append(_arc_piece(rb, teeth))
-        ts.append(tessellate(fs[-1], tol).t)
+        ts.append(tessellate(fs[-1], tol - CLIPPER_ROUNDING).t)
     for it in range(5):
         pts_list = [f(t) for f, t in zip(fs, ts)]
         chain, label = _chain(fs[:nraw], ts[:nraw], pts_list[:nraw])
@@ -258,11 +262,14 @@ def build_profile(family: str, params: dict, pieces, teeth: int, pitch_radius: f
     dist = loops_distance([tl], chain)
     removed = dist > 4 * tol + 1e-9
     tip_side = (rc < pitch_radius) if internal else (rc > pitch_radius)
-    under = removed & ~tip_side
+    cusp_idx = _cusps(chain, tol)
+    on_flank = _working_branches(chain, label, cusp_idx,
+                                 range(len(pieces)) if flank_pieces is None else flank_pieces)
+    under = removed & ~tip_side & on_flank
+    root_cusp = bool(np.any(~tip_side[cusp_idx])) if len(cusp_idx) else False
     # pointed: the flanks cross before the tooth reaches the tip circle it was cut for
     shortfall = (tip - nominal_tip_radius) if internal else (nominal_tip_radius - tip)
     pointed = bool(shortfall > 4 * tol + 1e-9)
-    cusp_idx = _cusps(chain, tol)
     land = 0.0
     if not pointed:
         land = arc_thickness(tl, tip + (tol if internal else -tol))
@@ -279,8 +286,13 @@ def build_profile(family: str, params: dict, pieces, teeth: int, pitch_radius: f
         "rim_radius": rim_radius,
         "thickness_at_pitch": s_pitch,
         "space_at_pitch": float(2 * math.pi * pitch_radius / teeth - s_pitch) if math.isfinite(s_pitch) else math.nan,
-        "undercut": bool(under.any()),
-        "undercut_depth": float(dist[under].max()) if under.any() else 0.0,
+        # undercut (external gears): the flank has a singular point (Litvin) on the root
+        # side, or trimming cut into the flank there. Rings report what trimming took
+        # off the root side as root_trim_depth instead (a rack-generated ring is defined
+        # by the local envelope only; real rings are cut by shapers, see gear3d.mate).
+        "undercut": (not internal) and bool(under.any() or root_cusp),
+        "undercut_depth": float(dist[under].max()) if under.any() and not internal else 0.0,
+        "root_trim_depth": float(dist[under].max()) if under.any() and internal else 0.0,
         "pointed": pointed,
         "tip_shortfall": float(max(shortfall, 0.0)),
         "tip_land_width": float(land),
@@ -309,6 +321,27 @@ def _chain(fs, ts, pts_list=None):
     chains = [p if i == 0 else p[1:] for i, p in enumerate(pts_list)]
     labels = [np.full(len(c), i) for i, c in enumerate(chains)]
     return np.concatenate(chains), np.concatenate(labels)
+
+
+def _working_branches(chain, label, cusp_idx, flank_pieces):
+    """Mask of chain points on the working flank: for each flank piece, the branch between
+    singular points that reaches the largest radius (the flank proper, not the swallowtail
+    beyond its cusp)."""
+    mask = np.zeros(len(chain), bool)
+    r = np.hypot(chain[:, 0], chain[:, 1])
+    cuts = set(int(i) for i in cusp_idx)
+    for pc in flank_pieces:
+        idx = np.nonzero(label == pc)[0]
+        if not len(idx):
+            continue
+        bounds = [idx[0]] + sorted(c for c in cuts if idx[0] < c <= idx[-1]) + [idx[-1] + 1]
+        best, best_r = None, -1.0
+        for a, b in zip(bounds[:-1], bounds[1:]):
+            if b > a and r[a:b].max() > best_r:
+                best, best_r = (a, b), r[a:b].max()
+        if best:
+            mask[best[0]:best[1]] = True
+    return mask
 
 
 def _arc_piece(radius, teeth):

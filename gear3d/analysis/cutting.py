@@ -30,7 +30,7 @@ def rack_outline(rack: Rack, periods: int, samples: int = 200) -> np.ndarray:
 
 
 def simulate_cut(rack: Rack, teeth: int, module: float, shift_coeff: float = 0.0,
-                 internal: bool = False, positions: int = 2000, rolls: float = 3.0,
+                 internal: bool = False, positions: int = 2000, rolls: float | None = None,
                  samples: int = 200, window: float | None = None):
     """Gear region (shapely geometry, mm) left by a rack rolled on the pitch circle.
 
@@ -44,6 +44,16 @@ def simulate_cut(rack: Rack, teeth: int, module: float, shift_coeff: float = 0.0
     r = module * teeth / 2
     xm = shift_coeff * module
     sigma = -1.0 if internal else 1.0
+    if rolls is None:
+        # tooth 0 (angle within +-pi/z) is within the rack's reach only while
+        # rho cos(theta) >= r + xm - h_tool for some rho <= blank radius: a geometric bound
+        blank_r = r + xm + rack.dedendum if not internal else r - xm + rack.addendum
+        inner = (r + xm - rack.addendum) if not internal else (r - xm - rack.dedendum)
+        c = max(min(inner / blank_r, 1.0), -1.0) if not internal else 1.0
+        theta = math.acos(c) + math.pi / teeth
+        rolls = max(theta * r / rack.pitch, 1.0) + 0.25
+        if internal:
+            rolls = 1.6
     per = int(math.ceil(rolls)) + 2
     uv = rack_outline(rack, per, samples)
     # rack body behind its root line; a ring's rack also covers the centre

@@ -53,7 +53,9 @@ def involute(teeth=20, module=1.0, pressure_angle_deg=20.0, addendum_coeff=1.0,
     rb = r * math.cos(math.radians(a))
     return build_profile("involute", params, [p for p, _ in pieces], z, r, internal=bool(internal),
                          tolerance=tol, rim_radius=rim, clip_radius=clip,
-                         names=[n for _, n in pieces], nominal_tip_radius=_nominal(tip_gen, clip, internal),
+                         names=[n for _, n in pieces],
+                         flank_pieces=[i for i, (_, n) in enumerate(pieces) if n == "rack-flank"],
+                         nominal_tip_radius=_nominal(tip_gen, clip, internal),
                          extra_report={"base_radius": rb, "generated_tip_radius": tip_gen})
 
 
