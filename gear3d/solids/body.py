@@ -31,7 +31,7 @@ import numpy as np
 
 from ..envelope import circle_loop
 from ..errors import GearError, ToleranceError, check_choice, check_number
-from .features import (apply_features, check_chamfer, miter_vectors, offset_loops,
+from .features import (apply_features, chamfer_vectors, offset_loops,
                        plan_features, subdivide)
 from .twist import KINDS, TwistLaw, default_arch_radius
 
@@ -276,9 +276,8 @@ def _build(prof, law, W, tol, delta, e_off, cb, ct, ef_bottom, skip):
                              f"{est:.3g} triangles, limit {MAX_TRIANGLES:.3g})")
     vecs = None
     if cb or ct:
-        vecs = miter_vectors(polys)
-        check_chamfer(polys, vecs, cb, "elephant_foot" if ef_bottom else "chamfer")
-        check_chamfer(polys, vecs, ct, "chamfer")
+        vecs = (chamfer_vectors(polys, cb, "elephant_foot" if ef_bottom else "chamfer") if cb else None,
+                chamfer_vectors(polys, ct, "chamfer") if ct else None)
 
     man = Manifold.extrude(cs, W, len(knots) - 2)
     man = man.warp_batch(_warp(law, W, knots, polys, vecs, cb, ct))
@@ -357,11 +356,12 @@ def _plan(law: TwistLaw, W: float, rho: float, loops, e_z: float, chamfers):
 def _warp(law, W, knots, polys, vecs, cb, ct):
     """The vectorised warp: uniform layer -> planned height, chamfer inset, turn by θ(z)."""
     K = len(knots)
-    tree = vec = None
+    tree = None
     if vecs is not None:
         from scipy.spatial import cKDTree
         tree = cKDTree(np.concatenate(polys))
-        vec = np.concatenate(vecs)
+        vb = np.concatenate(vecs[0]) if vecs[0] is not None else None
+        vt = np.concatenate(vecs[1]) if vecs[1] is not None else None
 
     def warp(P):
         P = np.asarray(P, float)
@@ -369,16 +369,15 @@ def _warp(law, W, knots, polys, vecs, cb, ct):
         z = knots[j]
         xy = P[:, :2]
         if tree is not None:
-            inset = np.zeros(len(P))
-            if cb:
-                inset = np.maximum(inset, cb * np.clip(1 - z / cb, 0, 1))
-            if ct:
-                inset = np.maximum(inset, ct * np.clip(1 - (W - z) / ct, 0, 1))
-            sel = inset > 0
-            if sel.any():
-                _, idx = tree.query(xy[sel])
-                xy = xy.copy()
-                xy[sel] -= inset[sel, None] * vec[idx]
+            xy = xy.copy()
+            for c, vec, depth in ((cb, vb, z), (ct, vt, W - z)):
+                if not c:
+                    continue
+                inset = c * np.clip(1 - depth / c, 0, 1)
+                sel = inset > 0
+                if sel.any():
+                    _, idx = tree.query(xy[sel])
+                    xy[sel] -= inset[sel, None] * vec[idx]
         th = law(z)
         c, s = np.cos(th), np.sin(th)
         return np.stack([c * xy[:, 0] - s * xy[:, 1], s * xy[:, 0] + c * xy[:, 1], z], axis=1)
