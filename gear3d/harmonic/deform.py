@@ -320,6 +320,7 @@ def mesh_figure(check: dict, path, *, window_deg=6.0, dpi=150):
     os.close(fd)
     try:
         fig.savefig(tmp, dpi=dpi)
+        os.chmod(tmp, 0o644)
         os.replace(tmp, path)
     finally:
         plt.close(fig)
