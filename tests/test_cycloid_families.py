@@ -182,7 +182,7 @@ def test_epitrochoid_equidistant_cusp_check():
 
 def _epi_hypo_curves(z, m, rho):
     r = m * z / 2
-    th = np.linspace(-1, 1, 40_001) * math.pi / z      # centre angle: one pitch either way
+    th = np.linspace(-1, 1, 40_001) * math.pi * rho / r  # half a turn of the rolling circle
     out = []
     for j in (0,):                                        # tooth 0's two flanks
         for b0 in (math.pi / (2 * z), -math.pi / (2 * z)):
