@@ -114,7 +114,15 @@ def signed_area(loop: np.ndarray) -> float:
 
 
 def pattern(chain: np.ndarray, teeth: int) -> np.ndarray:
-    """Repeat one period's open chain ``teeth`` times around the origin into a closed loop."""
+    """Repeat one period's open chain ``teeth`` times around the origin into a closed loop.
+
+    The chain must end where its start lands after one pitch (either way round).
+    """
+    if teeth > 1:
+        back = _rot(chain[-1:], -2 * math.pi / teeth)[0]
+        fwd = _rot(chain[-1:], 2 * math.pi / teeth)[0]
+        if np.hypot(*(fwd - chain[0])) < np.hypot(*(back - chain[0])):
+            chain = chain[::-1]
     ang = 2 * math.pi * np.arange(teeth) / teeth
     reps = _rot(chain[None, :-1, :], ang[:, None])
     return reps.reshape(-1, 2)

@@ -38,6 +38,7 @@ class Profile:
     report: dict
     pieces: list = field(repr=False, default_factory=list)
     raw_chain: np.ndarray | None = field(repr=False, default=None)
+    piece_params: list = field(repr=False, default_factory=list)
     _ref: "Profile | None" = field(repr=False, default=None)
 
     # ---------------------------------------------------------------- accessors
@@ -252,7 +253,8 @@ def build_profile(family: str, params: dict, pieces, teeth: int, pitch_radius: f
                         "a value that leaves separate teeth on a single body",
                         f"trimming gave {len(loops)} loop(s) instead of {expected}")
     rc = np.hypot(chain[:, 0], chain[:, 1])
-    prof = Profile(family, dict(params), teeth, pitch_radius, internal, tol, loops, {}, list(pieces), chain)
+    prof = Profile(family, dict(params), teeth, pitch_radius, internal, tol, loops, {}, list(pieces), chain,
+                   [np.array(t) for t in ts])
     tl = prof.tooth_loop
     rr = np.hypot(tl[:, 0], tl[:, 1])
     tip, root = (rr.min(), rr.max()) if internal else (rr.max(), rr.min())

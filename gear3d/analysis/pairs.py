@@ -1,0 +1,377 @@
+"""Pair checks by rolling (issue #3): interference, clearance, contact, transmission error.
+
+Two profiles are placed at their centre distance in mesh phase and rolled through at
+least one full tooth cycle, the step chosen from the tolerance. Geometry is checked with
+shapely/GEOS on the placed polygons (independent of the Clipper trimming that built them).
+
+Frames: wheel 1 at the origin, its tooth 0 on +x facing the pitch point (r1, 0).
+External: wheel 2 centred at (r1 + r2, 0). Internal: the ring centred at (r1 - r2, 0)
+when wheel 2 is the ring (or wheel 1 is the ring, with the pinion inside). Wheel 1 turns
+by phi1 (CCW positive), wheel 2 by phi2 = -phi1 r1/r2 (external) or +phi1 r1/r2 (internal).
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..errors import GearError, check_number
+from .mate import mate  # noqa: F401  (public: gear3d.mate)
+
+
+def _rot(p, a):
+    c, s = math.cos(a), math.sin(a)
+    return np.stack([c * p[..., 0] - s * p[..., 1], s * p[..., 0] + c * p[..., 1]], axis=-1)
+
+
+class _Placed:
+    """A profile's polygon placed by rotation ``ang`` about its centre ``c``."""
+
+    def __init__(self, prof, centre):
+        self.prof = prof
+        self.c = np.asarray(centre, float)
+        self.loops = [np.asarray(l, float) for l in prof.loops]
+
+    def polygon(self, ang):
+        import shapely
+        ls = [_rot(l, ang) + self.c for l in self.loops]
+        outer = max(ls, key=lambda l: abs(_area(l)))
+        holes = [l for l in ls if l is not outer]
+        return shapely.Polygon(outer, holes)
+
+
+def _area(l):
+    x, y = l[:, 0], l[:, 1]
+    return 0.5 * float(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1)))
+
+
+def _penetration(A, B):
+    """Max depth (mm) of A's boundary inside B or B's inside A, and where (point)."""
+    import shapely
+    best, where = 0.0, None
+    if not A.intersects(B):
+        return 0.0, None, float(A.distance(B))
+    inter = A.intersection(B)
+    if inter.area <= 0:
+        return 0.0, None, 0.0
+    for P, Q in ((A, B), (B, A)):
+        pts = shapely.get_coordinates(P.boundary)
+        inside = shapely.contains_xy(Q, pts[:, 0], pts[:, 1])
+        if inside.any():
+            d = shapely.distance(shapely.points(pts[inside]), Q.boundary)
+            i = int(np.argmax(d))
+            if d[i] > best:
+                best, where = float(d[i]), pts[inside][i]
+    return best, where, 0.0
+
+
+def _setup(p1, p2, internal, center_distance):
+    r1, r2 = p1.pitch_radius, p2.pitch_radius
+    if internal is None:
+        internal = bool(p1.internal or p2.internal)
+    if internal and not (p1.internal or p2.internal):
+        raise GearError("internal", True, "a pair where one profile is a ring (internal=True)")
+    if p1.internal and p2.internal:
+        raise GearError("p2", "ring", "a pinion: both profiles are rings")
+    m1, m2 = 2 * r1 / p1.teeth, 2 * r2 / p2.teeth
+    if abs(m1 - m2) > 1e-9 * max(m1, m2):
+        raise GearError("p2.module", m2, f"the module of p1 ({m1:g} mm)")
+    if internal:
+        a0 = abs(r2 - r1)
+    else:
+        a0 = r1 + r2
+    a = a0 if center_distance is None else check_number("center_distance", center_distance, 0, None, lo_open=True, unit="mm")
+    # wheel 2's centre, and the phase that puts a space of wheel 2 on the pitch point
+    if not internal:
+        c2 = (a, 0.0)
+        phase2 = math.pi + math.pi / p2.teeth
+        ratio = -r1 / r2
+    else:
+        c2 = (r1 - r2, 0.0) if p2.internal else (r1 + a if False else -(r1 - r2), 0.0)
+        if p1.internal:  # ring at the origin, pinion inside: pitch point (r1, 0) ; pinion centre (r1 - r2, 0)
+            c2 = (r1 - r2, 0.0)
+        phase2 = math.pi / p2.teeth if p2.internal else math.pi / p2.teeth
+        ratio = r1 / r2
+    return internal, a, c2, phase2, ratio
+
+
+def check_pair(p1, p2, internal=None, tolerance=None, center_distance=None, cycles: float = 1.0,
+               backlash_phases: int = 8):
+    """Roll ``p1`` against ``p2`` and report interference, clearance and contact (mm, deg).
+
+    ``tolerance`` (mm) sets the rolling step and the contact threshold (default: the larger
+    of the two profiles' tolerances). Returns a dict, see the keys below.
+    """
+    import shapely
+    import shapely.affinity
+    internal, a, c2, phase2, ratio = _setup(p1, p2, internal, center_distance)
+    tol = max(p1.tolerance, p2.tolerance) if tolerance is None else check_number(
+        "tolerance", tolerance, 1e-7, None, lo_open=True, unit="mm")
+    z1 = p1.teeth
+    A = _Placed(p1, (0.0, 0.0))
+    B = _Placed(p2, c2)
+    rmax = max(np.hypot(*np.concatenate(p1.loops).T).max(), 1e-9)
+    # step: relative motion of a tip point between steps sags at most ~tol on its path
+    pitch_ang = 2 * math.pi / z1
+    step = min(pitch_ang / 24, math.sqrt(8 * tol / rmax) * 4)
+    # at least one full tooth cycle for interference; wide enough to see tooth 0's whole
+    # contact (contact ratios up to ~3) for the path of contact
+    span = max(cycles, 3.2) * pitch_ang
+    n = int(math.ceil(span / step)) + 1
+    phis = np.linspace(-span / 2, span / 2, n)
+    contact_tol = 1.5 * tol
+    pen_max, pen_at, gap_min = 0.0, None, math.inf
+    contact_pts = []
+    tooth0_contact = []
+    track = []   # (phi1, contact point in frame 1, in frame 2, in the fixed frame)
+    t0_poly = _tooth0_region(p1)
+    for ph in phis:
+        PA = A.polygon(ph)
+        PB = B.polygon(phase2 + ratio * ph)
+        pen, where, gap = _penetration(PA, PB)
+        if pen > pen_max:
+            pen_max, pen_at = pen, (float(ph), where)
+        gap_min = min(gap_min, gap)
+        # contact points: boundary vertices of A within contact_tol of B's boundary
+        bA = shapely.get_coordinates(PA.boundary)
+        near = bA[np.asarray(shapely.dwithin(shapely.points(bA), PB.boundary, contact_tol))]
+        contact_pts.append(near)
+        # tooth 0 of wheel 1 (in its own frame: angle within half a pitch of 0)
+        # tooth 0's drive flank (wheel 1 turns CCW: the leading flank, angle 0..pitch/2)
+        T0 = shapely.intersection(PA.boundary, shapely.affinity.rotate(t0_poly, ph, origin=(0, 0), use_radians=True))
+        touching = (not T0.is_empty) and float(shapely.distance(T0, PB.boundary)) <= contact_tol
+        tooth0_contact.append(touching)
+        if touching:
+            line = shapely.shortest_line(T0, PB.boundary)
+            cp = np.asarray(line.coords).mean(axis=0)
+            track.append((ph, _rot(cp[None], -ph)[0], _rot((cp - np.asarray(c2))[None], -(phase2 + ratio * ph))[0], cp))
+    interference = pen_max > tol
+    where = None
+    if pen_at is not None and pen_at[1] is not None:
+        ph, pt = pen_at
+        w1 = _rot(np.asarray(pt)[None, :], -ph)[0]
+        w2 = _rot((np.asarray(pt) - np.asarray(c2))[None, :], -(phase2 + ratio * ph))[0]
+        where = {"phi1_deg": math.degrees(ph), "point": [float(pt[0]), float(pt[1])],
+                 "radius1": float(np.hypot(*w1)), "angle1_deg": math.degrees(math.atan2(w1[1], w1[0])),
+                 "radius2": float(np.hypot(*w2)), "angle2_deg": math.degrees(math.atan2(w2[1], w2[0])),
+                 "opposite_pitch_point": bool(pt[0] < (c2[0] if internal else 0.0))}
+    # contact ratio: fraction of the rolling in which tooth 0 of wheel 1 touches, in pitches
+    tc = np.array(tooth0_contact)
+    contact_ratio, sliding = 0.0, [None, None]
+    if tc.any() and len(phis) > 1:
+        probe = _ContactProbe(A, B, t0_poly, c2, phase2, ratio, contact_tol)
+
+        i0, i1 = int(np.argmax(tc)), len(tc) - 1 - int(np.argmax(tc[::-1]))
+        lo = phis[i0 - 1] if i0 > 0 else phis[i0]
+        start = probe.edge(lo, phis[i0]) if i0 > 0 else phis[0]
+        hi = phis[i1 + 1] if i1 + 1 < len(phis) else phis[i1]
+        end = probe.edge(hi, phis[i1]) if i1 + 1 < len(phis) else phis[-1]
+        contact_ratio = float((end - start) / pitch_ang)
+        # windows of 4 % of the path at each end, starting 1 % inside (flank on flank)
+        w = 0.04 * (end - start)
+        sliding = [probe.sliding(start + 0.01 * (end - start), w, p1),
+                   probe.sliding(end - 0.01 * (end - start) - w, w, p1)]
+    # clearance on each flank: how far wheel 2 may turn each way before touching (mm on r2)
+    drive, coast, te = [], [], []
+    for ph in np.linspace(-pitch_ang / 2, pitch_ang / 2, backlash_phases, endpoint=False):
+        PA = A.polygon(ph)
+        g_plus = _play(A, B, ph, phase2 + ratio * ph, +1, p2.pitch_radius, tol)
+        g_minus = _play(A, B, ph, phase2 + ratio * ph, -1, p2.pitch_radius, tol)
+        drive.append(g_plus)
+        coast.append(g_minus)
+        del PA
+    drive, coast = np.array(drive), np.array(coast)
+    # transmission error: the drive-side play turns wheel 2 through (signed, mm on r2)
+    te = drive
+    rep = {
+        "internal": internal,
+        "center_distance": a,
+        "teeth": [p1.teeth, p2.teeth],
+        "ratio": (p2.teeth / p1.teeth) * (1 if internal else -1),
+        "tolerance": tol,
+        "steps": int(n),
+        "step_deg": math.degrees(phis[1] - phis[0]) if n > 1 else 0.0,
+        "interference": bool(interference),
+        "max_penetration": float(pen_max),
+        "interference_at": where,
+        "min_gap": float(gap_min if math.isfinite(gap_min) else 0.0),
+        "drive_flank_clearance": float(drive.min()),
+        "coast_flank_clearance": float(coast.min()),
+        "backlash": float(drive.min() + coast.min()),
+        "tip_root_clearance": _tip_root(p1, p2, a, internal),
+        "contact_ratio": contact_ratio,
+        "transmission_error_pp": float(te.max() - te.min()),
+        "contact_points": int(sum(len(c) for c in contact_pts)),
+        "path_of_contact": [[float(x), float(y)] for *_, (x, y) in track],
+        "path_length": float(sum(np.hypot(*(track[i + 1][3] - track[i][3])) for i in range(len(track) - 1))),
+        "sliding_start": sliding[0],
+        "sliding_end": sliding[1],
+    }
+    return rep
+
+
+def _tooth0_region(p1):
+    """The wedge (shapely) of tooth 0's drive side (0 to half a pitch), in wheel 1's frame."""
+    import shapely
+    R = 2 * max(np.hypot(*np.concatenate(p1.loops).T).max(), 1.0)
+    w = math.pi / p1.teeth if p1.teeth > 1 else math.pi * 0.999
+    a = np.linspace(0.0, w, 64)
+    return shapely.Polygon(np.vstack([[0, 0], np.stack([R * np.cos(a), R * np.sin(a)], 1)]))
+
+
+class _ContactProbe:
+    """Contact of tooth 0's drive flank at any wheel-1 angle: edges and sliding."""
+
+    def __init__(self, A, B, wedge, c2, phase2, ratio, contact_tol):
+        self.A, self.B, self.wedge, self.c2 = A, B, wedge, np.asarray(c2, float)
+        self.phase2, self.ratio, self.tol = phase2, ratio, contact_tol
+
+    def point(self, ph):
+        import shapely
+        import shapely.affinity
+        PA, PB = self.A.polygon(ph), self.B.polygon(self.phase2 + self.ratio * ph)
+        T0 = shapely.intersection(PA.boundary, shapely.affinity.rotate(self.wedge, ph, origin=(0, 0), use_radians=True))
+        if T0.is_empty or shapely.distance(T0, PB.boundary) > self.tol:
+            return None
+        cp = np.asarray(shapely.shortest_line(T0, PB.boundary).coords).mean(axis=0)
+        return cp
+
+    def edge(self, off, on, iters=30):
+        """Bisect the wheel-1 angle (rad) where contact begins/ends between ``off`` and ``on``."""
+        for _ in range(iters):
+            mid = 0.5 * (off + on)
+            if self.point(mid) is None:
+                off = mid
+            else:
+                on = mid
+        return on
+
+    def sliding(self, ph, w, p1):
+        """Specific sliding zeta_i = (v_i - v_j)/v_i near the wheel-1 angle ``ph`` (rad).
+
+        The contact point is found exactly on wheel 1's trimmed tooth (its exact pieces):
+        the point whose normal passes through the pitch point, nearest the polygon
+        contact. Its positions in both wheel frames over a small turn give v_1, v_2 (the
+        contact travels along each profile; wheel 2's frame points lie on wheel 2's flank).
+        Reported at the contact radii on both wheels.
+        """
+        from .mate import tool_elements
+        if not hasattr(self, "_els"):
+            self._els = tool_elements(p1)
+        r1 = p1.pitch_radius
+        d = max(w / 40, 1e-7)
+        pts = []
+        for x in (ph, ph + d):
+            hint = self.point(x)
+            if hint is None:
+                return None
+            I1 = _rot(np.array([[r1, 0.0]]), -x)[0]
+            q = _exact_contact(self._els, I1, _rot(hint[None], -x)[0])
+            if q is None:
+                return None
+            cp = _rot(q[None], x)[0]
+            pts.append((_rot(cp[None], -x)[0], _rot((cp - self.c2)[None], -(self.phase2 + self.ratio * x))[0]))
+        ds1 = float(np.hypot(*(pts[1][0] - pts[0][0])))
+        ds2 = float(np.hypot(*(pts[1][1] - pts[0][1])))
+        if ds1 <= 0 or ds2 <= 0:
+            return None
+        return {"zeta1": (ds1 - ds2) / ds1, "zeta2": (ds2 - ds1) / ds2,
+                "radius1": float(np.hypot(*pts[0][0])), "radius2": float(np.hypot(*pts[0][1]))}
+
+
+def _exact_contact(els, I1, hint, n=400):
+    """Point of the exact elements whose normal passes through ``I1``, nearest ``hint``."""
+    best = None
+    for pn in els:
+        t = np.linspace(0.0, 1.0, n)
+        p, nn = pn(t)
+        f = (p[:, 0] - I1[0]) * nn[:, 1] - (p[:, 1] - I1[1]) * nn[:, 0]
+        for j in np.nonzero(np.sign(f[:-1]) * np.sign(f[1:]) < 0)[0]:
+            a, b, fa = t[j], t[j + 1], f[j]
+            for _ in range(60):
+                m = 0.5 * (a + b)
+                pm, nm = pn(np.array([m]))
+                fm = (pm[0, 0] - I1[0]) * nm[0, 1] - (pm[0, 1] - I1[1]) * nm[0, 0]
+                if np.sign(fm) == np.sign(fa):
+                    a, fa = m, fm
+                else:
+                    b = m
+            q = pn(np.array([0.5 * (a + b)]))[0][0]
+            dq = float(np.hypot(*(q - hint)))
+            if best is None or dq < best[0]:
+                best = (dq, q)
+    return None if best is None else best[1]
+
+
+def _play(A, B, ph1, ph2, sign, r2, tol, max_deg=None):
+    """Signed arc (mm on r2) wheel 2 can turn by ``sign`` before touching wheel 1.
+
+    Negative when the wheels already overlap (it is then the turn that frees them).
+    """
+    PA = A.polygon(ph1)
+
+    def overlap(d):
+        PB = B.polygon(ph2 + sign * d)
+        return _penetration(PA, PB)[0] > tol
+
+    lim = (2 * math.pi / B.prof.teeth) / 2
+    step_tol = tol / r2 / 4
+    if overlap(0.0):
+        # free it the other way: find the smallest turn against sign that clears
+        lo, hi = 0.0, -lim
+        if overlap(hi):
+            return -lim * r2
+        for _ in range(60):
+            mid = 0.5 * (lo + hi)
+            if overlap(mid):
+                lo = mid
+            else:
+                hi = mid
+            if abs(hi - lo) < step_tol:
+                break
+        return hi * r2
+    lo, hi = 0.0, lim
+    if not overlap(hi):
+        return lim * r2
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        if overlap(mid):
+            hi = mid
+        else:
+            lo = mid
+        if abs(hi - lo) < step_tol:
+            break
+    return lo * r2
+
+
+def _tip_root(p1, p2, a, internal):
+    r1, r2 = p1.report, p2.report
+    if not internal:
+        return {"tip1_root2": a - r1["tip_radius"] - r2["root_radius"],
+                "tip2_root1": a - r2["tip_radius"] - r1["root_radius"]}
+    ring, pin = (p2, p1) if p2.internal else (p1, p2)
+    return {"pinion_tip_ring_root": ring.report["root_radius"] - (a + pin.report["tip_radius"]),
+            "ring_tip_pinion_root": ring.report["tip_radius"] - (a + pin.report["root_radius"])}
+
+
+def largest_addendum(family: str, teeth1: int, teeth2: int, internal: bool = False,
+                     precision: float = 1e-3, lo: float = 0.05, hi: float = 1.5, **params):
+    """Largest ``addendum_coeff`` (to ``precision``) for which the pair of ``family`` wheels
+    with the same coefficient rolls without interference. Bisection on :func:`check_pair`."""
+    from ..profiles import profile
+
+    def ok(c):
+        a = profile(family, teeth=teeth1, addendum_coeff=c, **params)
+        b = profile(family, teeth=teeth2, addendum_coeff=c, internal=internal, **params)
+        return not check_pair(a, b, internal=internal)["interference"]
+    if not ok(lo):
+        raise GearError("addendum_coeff", lo, "a lower bound that meshes", "the pair interferes even there")
+    if ok(hi):
+        return hi
+    while hi - lo > precision:
+        mid = 0.5 * (lo + hi)
+        if ok(mid):
+            lo = mid
+        else:
+            hi = mid
+    return lo
