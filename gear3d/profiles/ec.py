@@ -35,9 +35,9 @@ def ec_design(teeth, mate_teeth, eccentricity, tooth_radius, center_distance, to
     z_self = check_number("teeth", teeth, 1, 10_000, integer=True)
     z_mate = check_number("mate_teeth", mate_teeth, 1, 10_000, integer=True)
     z1, z2 = (z_self, z_mate) if pinion_is_self else (z_mate, z_self)
-    if z2 < 2:
+    if z2 < 2 or z2 <= z1:
         raise GearError("teeth" if not pinion_is_self else "mate_teeth", z2,
-                        "an integer >= 2 for the EC wheel")
+                        f"an integer >= max(2, {z1 + 1}): the EC wheel has more teeth than its pinion")
     rho = check_number("tooth_radius", tooth_radius, 0, 1e5, lo_open=True, unit="mm")
     eps = check_number("eccentricity", eccentricity, 0, rho, lo_open=True, hi_open=True,
                        unit=f"mm (below tooth_radius = {rho:g}: the axis stays inside the tooth circle)")
