@@ -220,3 +220,28 @@ def test_moineau_sections():
     with pytest.raises(GearError) as ei:
         gear3d.profile("moineau-rotor", eccentricity=3, tooth_radius=2.5)
     assert ei.value.param == "eccentricity"
+
+
+# ------------------------------------------------------- the #3 rolling check
+
+@pytest.mark.parametrize("a,b,kw1,kw2,internal", [
+    ("cycloid-disc", "cycloid-pins", {}, {}, True),
+    ("gerotor-inner", "gerotor-outer", {}, {}, True),
+    ("gerotor-inner", "gerotor-outer", {"variant": "hypo"}, {"variant": "hypo"}, True),
+    ("moineau-rotor", "moineau-stator", {}, {}, True),
+    ("ec-pinion", "ec-wheel", {"teeth": 1, "mate_teeth": 20}, {"teeth": 20, "mate_teeth": 1}, False),
+    ("ec-pinion", "ec-wheel", {"teeth": 3, "mate_teeth": 20}, {"teeth": 20, "mate_teeth": 3}, False),
+])
+def test_pairs_pass_rolling_check(a, b, kw1, kw2, internal):
+    pairs = pytest.importorskip("gear3d.analysis.pairs")
+    A, B = gear3d.profile(a, **kw1), gear3d.profile(b, **kw2)
+    r = pairs.check_pair(A, B, internal=internal)
+    assert r["interference"] is False
+    assert r["max_penetration"] <= A.tolerance + B.tolerance
+
+
+def test_oversized_disc_interferes():
+    pairs = pytest.importorskip("gear3d.analysis.pairs")
+    A = gear3d.profile("cycloid-disc", offset_correction=-0.05)   # disc 0.05 mm too fat
+    r = pairs.check_pair(A, gear3d.profile("cycloid-pins"), internal=True)
+    assert r["interference"] is True and r["max_penetration"] >= 0.04
