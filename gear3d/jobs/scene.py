@@ -1,0 +1,396 @@
+"""Scene runner: parts, pairs and assemblies of a validated scene -> files + a JSON report.
+
+Stages per part (see :mod:`.graph`): ``profile`` at each tolerance an output needs,
+``body`` at each mesh tolerance (only when a mesh output asks for it), one ``write`` per
+output file. A pair adds a ``check`` (:func:`gear3d.analysis.pairs.check_pair` on the two
+profiles at the ``check`` tolerance) and a placed multi-body ``write`` per mesh kind
+(:func:`gear3d.solids.place_pair`; the second wheel of a twisted pair is a
+``[part.body] mate = "<first>"`` body). A harmonic assembly builds the seed 002 parts.
+The scene report ``<scene>.report.json`` lists every measured max error (profiles,
+bodies, DXF fits), the pair checks, each file's sha256 and the stage counts.
+"""
+from __future__ import annotations
+
+import hashlib
+import json
+import os
+
+from ..errors import GearError
+from .graph import Graph
+from .template import MESH_KINDS, TemplateError, tolerance_for
+
+EXT = {k: "." + k for k in ("dxf", "svg", "png", "json", "stl", "3mf", "step", "obj", "ply", "vtu")}
+
+
+# ------------------------------------------------------------------- file helpers
+
+def out_path(out_dir, fname, file="", key="name") -> str:
+    """``out_dir/fname``, refused unless it stays inside ``out_dir``."""
+    base = os.path.realpath(out_dir)
+    p = os.path.realpath(os.path.join(base, fname))
+    if os.path.dirname(p) != base or os.path.isabs(fname) or os.sep in fname or ".." in fname:
+        raise TemplateError(file, key, fname, f"a file name inside the output folder {out_dir}")
+    return p
+
+
+def sha256(path) -> str:
+    h = hashlib.sha256()
+    with open(path, "rb") as f:
+        for chunk in iter(lambda: f.read(1 << 20), b""):
+            h.update(chunk)
+    return h.hexdigest()
+
+
+def write_json(path, data):
+    """Deterministic JSON (NaN/inf -> null), atomically."""
+    from ..export import atomic_path
+    from ..export.json_format import clean
+    with atomic_path(path) as tmp:
+        with open(tmp, "w", encoding="utf-8") as f:
+            json.dump(clean(data), f, indent=1, allow_nan=False)
+            f.write("\n")
+
+
+def _file_info(path, out_dir, **extra) -> dict:
+    return {"file": os.path.relpath(path, out_dir), "sha256": sha256(path),
+            "bytes": os.path.getsize(path), **extra}
+
+
+# ---------------------------------------------------------------- stage functions
+
+def _wrap(stage, e: GearError):
+    """A GearError from a family / body builder, re-raised naming the template file and key."""
+    if isinstance(e, TemplateError):
+        return e
+    file, prefix = stage.ctx.get("file", ""), stage.ctx.get("prefix", stage.label)
+    p = getattr(e, "param", None)
+    key = f"{prefix}.{p}" if p and p in stage.ctx.get("keys", ()) else f"{prefix} ({p})"
+    return TemplateError(file, key, getattr(e, "value", None), getattr(e, "allowed", str(e)),
+                         getattr(e, "why", ""))
+
+
+def run_profile(stage):
+    from .. import profile
+    i = stage.inputs
+    try:
+        return profile(i["family"], tolerance=i["tolerance"], **i["params"])
+    except GearError as e:
+        raise _wrap(stage, e) from None
+
+
+def run_body(stage, prof, like=None):
+    from ..solids import body, mate_body
+    kw = dict(stage.inputs["body"])
+    kw.pop("mate", None)
+    try:
+        if like is not None:
+            for k in ("kind", "width", "helix_angle_deg", "hand", "gap", "arch_radius"):
+                kw.pop(k, None)
+            return mate_body(prof, like, **kw)
+        return body(prof, tolerance=stage.inputs["tolerance"], **kw)
+    except GearError as e:
+        raise _wrap(stage, e) from None
+
+
+def run_write(stage, obj):
+    """Write one file (profile kinds from a Profile, mesh kinds from a Body or list)."""
+    from ..export import atomic_path, write
+    i = stage.inputs
+    path, out_dir, kind = stage.ctx["path"], stage.ctx["out_dir"], i["kind"]
+    extra = {}
+    if kind == "dxf":
+        from ..export.dxf import write_dxf
+        with atomic_path(path) as tmp:
+            r = write_dxf(obj, tmp, tolerance=i["tolerance"], **i.get("options", {}))
+        extra = {"max_error": r["max_error"], "arcs": r.get("arcs"), "lines": r.get("lines")}
+    elif kind == "json" and isinstance(obj, dict):
+        write_json(path, obj)
+    else:
+        if kind in MESH_KINDS:
+            name = i.get("name")
+            if isinstance(obj, list):
+                obj = [b.placed(b.transform, name=n) for b, n in zip(obj, i["names"])]
+            elif name:
+                obj = obj.placed(obj.transform, name=name)
+        write(obj, path)
+    if kind in MESH_KINDS:
+        bodies = obj if isinstance(obj, list) else [obj]
+        extra["triangles"] = int(sum(len(b.mesh.faces) for b in bodies))
+        extra["volume"] = float(sum(b.report["volume"] for b in bodies))
+    return _file_info(path, out_dir, kind=kind, tolerance=i.get("tolerance"), **extra)
+
+
+def run_check(stage, p1, p2):
+    from ..analysis.pairs import check_pair
+    try:
+        return check_pair(p1, p2, internal=stage.inputs["internal"], tolerance=stage.inputs["tolerance"])
+    except GearError as e:
+        raise _wrap(stage, e) from None
+
+
+def run_place(stage, b1, b2):
+    from ..solids import place_pair
+    try:
+        return place_pair(b1, b2, internal=bool(stage.inputs["internal"]))
+    except GearError as e:
+        raise _wrap(stage, e) from None
+
+
+def run_harmonic(stage):
+    from ..harmonic import build_parts, seed002_design
+    from ..harmonic.synthesis import double_harmonic
+    i = stage.inputs
+    try:
+        d = seed002_design(**i["design"]) if i["seed002"] else double_harmonic(**i["design"])
+        parts = build_parts(d, tooth=i["tooth"], tolerance=i["tolerance"],
+                            bearing_thickness=i["bearing_thickness"])
+    except GearError as e:
+        raise _wrap(stage, e) from None
+    return d, parts
+
+
+def run_assembly(stage, built):
+    from ..harmonic import assembly
+    d, parts = built
+    return assembly(d, parts=parts, deformed=stage.inputs["deformed"])
+
+
+# ------------------------------------------------------------------- stage builders
+
+def profile_stage(g: Graph, job, part, tol, prefix) -> str:
+    p = part["params"]
+    label = f"{part['family']} " + " ".join(f"{k}={v}" for k, v in sorted(p.items())) + f" @ {tol:g} mm"
+    return g.add("profile", {"family": part["family"], "params": p, "tolerance": tol}, fn=run_profile,
+                 label=label, file=job["file"], prefix=prefix, keys=tuple(p))
+
+
+def body_stage(g: Graph, job, part, tol, prefix, parts_by_name=None) -> str:
+    b = part["body"]
+    prof = profile_stage(g, job, part, tol, prefix)
+    deps = [prof]
+    if b.get("mate"):
+        other = parts_by_name[b["mate"]]
+        deps.append(body_stage(g, job, other, tol, f"part[{other['name']}]", parts_by_name))
+    label = f"{b.get('kind', 'spur')} {part['family']} z={part['params'].get('teeth', '')} " + \
+        " ".join(f"{k}={v}" for k, v in sorted(b.items()) if k != "kind") + f" @ {tol:g} mm"
+    return g.add("body", {"body": b, "tolerance": tol}, deps, fn=run_body, label=label,
+                 file=job["file"], prefix=prefix + ".body", keys=tuple(b))
+
+
+def part_targets(g: Graph, job, part, out_dir, parts_by_name=None) -> dict:
+    """Add one part's stages; return {kind: write-stage key}."""
+    prefix = part.get("prefix") or f"part[{part['name']}]"
+    targets = {}
+    for kind in part["outputs"]:
+        tol = tolerance_for(job, kind)
+        fname = part["name"] + EXT[kind]
+        path = out_path(out_dir, fname, job["file"], f"{prefix}.name")
+        if kind in MESH_KINDS:
+            src = body_stage(g, job, part, tol, prefix, parts_by_name)
+        else:
+            src = profile_stage(g, job, part, tol, prefix)
+        inputs = {"kind": kind, "file": fname, "tolerance": tol, "name": part["name"]}
+        if kind == "dxf" and job["options"].get("dxf"):
+            inputs["options"] = job["options"]["dxf"]
+        targets[kind] = g.add("write", inputs, [src], fn=run_write, label=fname, phase=1,
+                              path=path, out_dir=out_dir)
+    return targets
+
+
+def _scene_graph(scene, out_dir, only=None):
+    g = Graph()
+    by = {p["name"]: p for p in scene["parts"]}
+    sel = set(only) if only else None
+    if sel:
+        known = set(by) | {p["name"] for p in scene["pairs"]} | {a["name"] for a in scene["assemblies"]}
+        for n in sel:
+            if n not in known:
+                raise TemplateError(scene["file"], "--only", n, "one of " + ", ".join(sorted(known)))
+    files = {}
+    owners = {"parts": {}, "pairs": {}, "assemblies": {}}
+
+    def claim(fname, who):
+        if fname in files and files[fname] != who:
+            raise TemplateError(scene["file"], f"{who}.name", fname,
+                                f"a name whose files do not collide with {files[fname]}'s")
+        files[fname] = who
+
+    for part in scene["parts"]:
+        if sel and part["name"] not in sel:
+            continue
+        t = part_targets(g, scene, part, out_dir, by)
+        for k in t:
+            claim(part["name"] + EXT[k], f"part[{part['name']}]")
+        owners["parts"][part["name"]] = t
+    for pair in scene["pairs"]:
+        if sel and pair["name"] not in sel:
+            continue
+        label = f"pair[{pair['name']}]"
+        t = {}
+        a, b = by[pair["parts"][0]], by[pair["parts"][1]]
+        if pair["check"] or "json" in pair["outputs"]:
+            tc = tolerance_for(scene, "check")
+            p1 = profile_stage(g, scene, a, tc, f"part[{a['name']}]")
+            p2 = profile_stage(g, scene, b, tc, f"part[{b['name']}]")
+            t["check"] = g.add("check", {"internal": pair["internal"], "tolerance": tc}, [p1, p2],
+                               fn=run_check, label=f"{pair['name']}: {a['name']} x {b['name']} @ {tc:g} mm",
+                               file=scene["file"], prefix=label, keys=())
+        for kind in pair["outputs"]:
+            fname = pair["name"] + EXT[kind]
+            path = out_path(out_dir, fname, scene["file"], f"{label}.name")
+            claim(fname, label)
+            if kind == "json":
+                src = t["check"]
+                inputs = {"kind": "json", "file": fname}
+            else:
+                tol = tolerance_for(scene, kind)
+                b1 = body_stage(g, scene, a, tol, f"part[{a['name']}]", by)
+                b2 = body_stage(g, scene, b, tol, f"part[{b['name']}]", by)
+                src = g.add("place", {"internal": pair["internal"]}, [b1, b2], fn=run_place,
+                            label=f"{pair['name']} @ {tol:g} mm", file=scene["file"], prefix=label, keys=())
+                inputs = {"kind": kind, "file": fname, "tolerance": tol, "names": pair["parts"]}
+            t[kind] = g.add("write", inputs, [src], fn=run_write, label=fname, phase=1,
+                            path=path, out_dir=out_dir)
+        owners["pairs"][pair["name"]] = t
+    for asm in scene["assemblies"]:
+        if sel and asm["name"] not in sel:
+            continue
+        label = f"assembly[{asm['name']}]"
+        t = {}
+        for kind in asm["outputs"]:
+            tol = min(tolerance_for(scene, kind), 0.05)
+            h = g.add("harmonic", {k: asm[k] for k in ("design", "seed002", "tooth", "bearing_thickness")}
+                      | {"tolerance": tol}, fn=run_harmonic, label=f"{asm['name']} parts @ {tol:g} mm",
+                      file=scene["file"], prefix=label, keys=())
+            if kind == "json":
+                fname = asm["name"] + ".json"
+                src = g.add("design", {}, [h], fn=lambda s, built: {
+                    "design": built[0].report, "parts": {p.name: p.report for p in built[1]}},
+                    label=f"{asm['name']} report")
+                inputs = {"kind": "json", "file": fname}
+                claim(fname, label)
+                t[kind] = g.add("write", inputs, [src], fn=run_write, label=fname, phase=1,
+                                path=out_path(out_dir, fname, scene["file"], label), out_dir=out_dir)
+            elif kind == "3mf":
+                fname = asm["name"] + ".3mf"
+                claim(fname, label)
+                src = g.add("assembly", {"deformed": asm["deformed"]}, [h], fn=run_assembly,
+                            label=f"{asm['name']} placed")
+                t[kind] = g.add("write", {"kind": kind, "file": fname, "tolerance": tol}, [src],
+                                fn=run_write, label=fname, phase=1,
+                                path=out_path(out_dir, fname, scene["file"], label), out_dir=out_dir)
+            else:
+                from ..harmonic.synthesis import seed002_design
+                for pn in _harmonic_part_names(asm):
+                    fname = f"{asm['name']}_{pn}{EXT[kind]}"
+                    claim(fname, label)
+                    src = g.add("pick", {"part": pn}, [h], fn=lambda s, built: next(
+                        p for p in built[1] if p.name == s.inputs["part"]), label=f"{asm['name']}.{pn}")
+                    t[f"{kind}:{pn}"] = g.add("write", {"kind": kind, "file": fname, "tolerance": tol}, [src],
+                                              fn=run_write, label=fname, phase=1,
+                                              path=out_path(out_dir, fname, scene["file"], label), out_dir=out_dir)
+        owners["assemblies"][asm["name"]] = t
+    return g, owners
+
+
+def _harmonic_part_names(asm):
+    names = ["flexspline", "fixed", "mobile", "wave_generator"]
+    if asm["bearing_thickness"]:
+        names.append("bearing_ring")
+    return names
+
+
+# ------------------------------------------------------------------------ runner
+
+def build_scene(scene: dict, out_dir, only=None, dry_run=False, log=None) -> dict:
+    """Run a validated scene (:func:`gear3d.jobs.template.load_scene`) into ``out_dir``.
+
+    ``only``: part / pair / assembly names to build (default all). ``dry_run``: return the
+    plan (``{"stages": [lines]}``) and write nothing. Returns the scene report (also
+    written to ``out_dir/<scene>.report.json``), whose ``stages`` counts the stages run.
+    """
+    if not dry_run:
+        os.makedirs(out_dir, exist_ok=True)
+    g, owners = _scene_graph(scene, out_dir if not dry_run else (out_dir or "."), only)
+    targets = [k for grp in owners.values() for t in grp.values() for k in t.values()]
+    if dry_run:
+        return {"stages": g.plan(targets), "graph": g}
+    res = g.run(targets, on_stage=(lambda s: log(f"{s.kind:<9} {s.label}")) if log else None)
+    report = _report(scene, g, owners, res)
+    rpath = out_path(out_dir, scene["name"] + ".report.json", scene["file"], "scene.name")
+    write_json(rpath, report)
+    report["graph"] = g
+    return report
+
+
+def _first(g, key, kind):
+    """The result of the nearest upstream stage of ``kind``."""
+    stack = [key]
+    while stack:
+        k = stack.pop(0)
+        if g.stages[k].kind == kind:
+            return g.results.get(k)
+        stack.extend(g.stages[k].deps)
+    return None
+
+
+def _profile_summary(p) -> dict:
+    r = p.report
+    keep = ("teeth", "module", "pitch_radius", "tip_radius", "root_radius", "undercut", "pointed",
+            "area", "max_error", "tolerance", "vertices")
+    return {k: r.get(k) for k in keep if k in r}
+
+
+def _body_summary(b) -> dict:
+    r = b.report
+    keep = ("kind", "width", "helix_angle_deg", "volume", "triangles", "max_error", "max_error_bound",
+            "tolerance", "profile_max_error", "watertight", "genus")
+    return {k: r.get(k) for k in keep}
+
+
+def _report(scene, g, owners, res) -> dict:
+    parts = {}
+    errs = []
+    for name, t in owners["parts"].items():
+        d = {"profiles": {}, "bodies": {}, "outputs": {}}
+        for kind, key in t.items():
+            info = res[key]
+            d["outputs"][kind] = info
+            p = _first(g, key, "profile")
+            if p is not None:
+                d["profiles"][f"{p.tolerance:g}"] = _profile_summary(p)
+                errs.append(p.report["max_error"])
+            b = _first(g, key, "body")
+            if b is not None:
+                d["bodies"][f"{b.report['tolerance']:g}"] = _body_summary(b)
+                errs.append(b.report["max_error"])
+            if "max_error" in info:
+                errs.append(info["max_error"])
+        parts[name] = d
+    pairs = {}
+    for name, t in owners["pairs"].items():
+        d = {"outputs": {k: res[v] for k, v in t.items() if k != "check"}}
+        if "check" in t:
+            c = g.results[t["check"]]
+            d["check"] = {k: c[k] for k in ("internal", "center_distance", "teeth", "ratio", "tolerance",
+                                              "interference", "max_penetration", "min_gap", "backlash",
+                                              "tip_root_clearance", "contact_ratio", "transmission_error_pp")
+                          if k in c}
+        pairs[name] = d
+    asms = {}
+    for name, t in owners["assemblies"].items():
+        d = {"outputs": {k: res[v] for k, v in t.items()}}
+        for k in t:
+            built = _first(g, t[k], "harmonic")
+            if built is not None:
+                d["parts"] = {p.name: {kk: p.report.get(kk) for kk in
+                                       ("volume", "triangles", "genus", "profile_max_error", "tolerance")}
+                              for p in built[1]}
+                d["ratio"] = built[0].report.get("ratio")
+                break
+        asms[name] = d
+    return {"scene": scene["name"], "file": os.path.basename(scene["file"]),
+            "tolerance": scene["tolerance"], "tolerances": scene["tolerances"],
+            "max_error": max(errs) if errs else None,
+            "stages": dict(sorted(g.counts.items())),
+            "parts": parts, "pairs": pairs, "assemblies": asms}

@@ -1,0 +1,602 @@
+"""Scene and library templates: TOML data validated against a strict schema.
+
+Templates are data: nothing in them is evaluated (``tomllib`` parses them; file names come
+from ``str.format``-style patterns restricted to plain field names). Every problem -- a
+TOML syntax error, a wrong type, an unknown key, an out-of-range value, a missing or
+unknown family, an unsafe output name -- raises one :class:`TemplateError` (a
+:class:`~gear3d.errors.GearError`) whose message names the FILE, the KEY and the allowed
+values, before any file is written.
+
+Scene (``[scene]``, ``[[part]]``, ``[[pair]]``, ``[[assembly]]``)::
+
+    [scene]
+    name = "demo"                  # safe file name
+    outputs = ["dxf", "stl"]       # kinds written for every part (OUTPUT_KINDS)
+    tolerance = 0.001              # mm, default for every output kind
+    [scene.tolerances]             # mm per kind; also "check" (pair checks)
+    stl = 0.01
+    [scene.options.dxf]            # exporter options (dxf: kerf, lead_in, ...)
+    kerf = 0.0
+
+    [[part]]
+    name = "pinion"
+    family = "sine"                # gear3d.families()
+    teeth = 20                     # ... any parameter of that family but tolerance
+    outputs = ["dxf"]              # optional: this part's kinds instead of the scene's
+    [part.body]                    # optional: 3D body (gear3d.solids.body keywords)
+    kind = "helical"
+    width = 10
+    mate = "wheel"                 # optional: built by mate_body(.., like=<that part>)
+
+    [[pair]]                       # placed (place_pair) and checked (check_pair)
+    name = "mesh"
+    parts = ["pinion", "wheel"]
+    outputs = ["3mf", "json"]      # 3D kinds: the placed bodies; json: the check report
+
+    [[assembly]]                   # harmonic drives (seed 002)
+    name = "drive"
+    kind = "harmonic"
+    design = "seed002"             # or a table of double_harmonic() arguments
+    outputs = ["stl", "3mf", "json"]
+
+Library (``[library]`` with ``part`` and ``sweep`` tables)::
+
+    [library]
+    name = "sine-spur"
+    pattern = "sine_m{module}_z{teeth}"
+    outputs = ["stl"]
+    [library.part]
+    family = "sine"
+    body = { kind = "spur", width = 5 }
+    [library.sweep]                # lists, ranges {start, stop, step} (stop inclusive)
+    teeth = [8, 10, 12]            # cartesian product, or zip = true for zipped lists
+    module = [0.5, 1.0]
+    body = { width = [4, 6] }      # body parameters sweep too
+"""
+from __future__ import annotations
+
+import inspect
+import itertools
+import math
+import os
+import re
+import string
+
+from ..errors import GearError
+
+MESH_KINDS = ("stl", "3mf", "step", "obj", "ply", "vtu")
+PROFILE_KINDS = ("dxf", "svg", "png", "json")
+OUTPUT_KINDS = PROFILE_KINDS + MESH_KINDS
+#: tolerance keys: every output kind plus the pair check
+TOLERANCE_KEYS = OUTPUT_KINDS + ("check",)
+TOL_RANGE = (1e-7, 1.0)
+DEFAULT_TOLERANCE = 1e-3
+MAX_LIBRARY_PARTS = 1_000_000
+
+_NAME_RE = re.compile(r"^[A-Za-z0-9][A-Za-z0-9._+=@,-]{0,119}$")
+_SPEC_RE = re.compile(r"^[<>^=]?[+-]?0?\d{0,3}(\.\d{1,2})?[dfge]?$")
+
+
+class TemplateError(GearError):
+    """A bad template: ``file``, ``key`` (dotted path) and the allowed values."""
+
+    def __init__(self, file, key, value, allowed, why=""):
+        self.file, self.key = str(file), str(key)
+        super().__init__(f"{file}: {key}", value, allowed, why)
+
+
+def fail(file, key, value, allowed, why=""):
+    raise TemplateError(file, key, value, allowed, why)
+
+
+# ------------------------------------------------------------------- TOML + --set
+
+def read_toml(path) -> dict:
+    """Parse a TOML file (``tomllib``); a syntax error names the file and line."""
+    try:
+        import tomllib
+    except ModuleNotFoundError:  # Python < 3.11
+        import tomli as tomllib
+    path = str(path)
+    if not os.path.isfile(path):
+        fail(path, "file", path, "an existing TOML file")
+    try:
+        with open(path, "rb") as f:
+            return tomllib.load(f)
+    except tomllib.TOMLDecodeError as e:
+        fail(path, "toml", None, "valid TOML", str(e))
+    except UnicodeDecodeError as e:
+        fail(path, "toml", None, "UTF-8 TOML text", str(e))
+
+
+def parse_value(text: str):
+    """A ``--set`` value as a TOML value (``20``, ``0.5``, ``true``, ``"x"``, ``[1, 2]``);
+    anything TOML does not read is taken as a plain string."""
+    import tomllib
+    try:
+        return tomllib.loads(f"v = {text}")["v"]
+    except tomllib.TOMLDecodeError:
+        return text
+
+
+def apply_sets(data: dict, sets, file) -> dict:
+    """Apply ``key=value`` overrides: a dotted path into the TOML data. Arrays of tables are
+    addressed by a member's ``name`` or by index: ``part.pinion.teeth=24``,
+    ``part.0.body.width=8``, ``scene.tolerance=0.01``, ``library.sweep.teeth=[8, 9]``."""
+    for item in sets or ():
+        if "=" not in item:
+            fail(file, "--set", item, "key=value (a dotted key, a TOML value)")
+        key, text = item.split("=", 1)
+        parts = [p for p in key.strip().split(".")]
+        if not all(parts):
+            fail(file, "--set", item, "key=value with a dotted key like part.pinion.teeth")
+        node = data
+        for i, p in enumerate(parts[:-1]):
+            if isinstance(node, list):
+                node = _select(node, p, file, ".".join(parts[:i + 1]))
+            else:
+                node = node.setdefault(p, {})
+            if not isinstance(node, (dict, list)):
+                fail(file, "--set " + key, text, "a key inside a table", f"{'.'.join(parts[:i + 1])} is a value")
+        last = parts[-1]
+        if isinstance(node, list):
+            fail(file, "--set " + key, text, "a key of one member (e.g. part.NAME.teeth)")
+        node[last] = parse_value(text.strip())
+    return data
+
+
+def _select(items, p, file, key):
+    for it in items:
+        if isinstance(it, dict) and it.get("name") == p:
+            return it
+    if p.isdigit() and int(p) < len(items):
+        return items[int(p)]
+    names = [str(it.get("name")) for it in items if isinstance(it, dict)]
+    fail(file, "--set " + key, p, "a member name (" + ", ".join(names) + ") or an index")
+
+
+# ----------------------------------------------------------------- value checks
+
+def safe_name(file, key, name) -> str:
+    """An output name confined to the output folder: no path separators, no ``..``, not
+    absolute, not hidden; letters, digits and ``._+=@,-`` (at most 120 characters)."""
+    if not isinstance(name, str):
+        fail(file, key, name, "a string")
+    if (os.path.isabs(name) or "/" in name or "\\" in name or ".." in name
+            or not _NAME_RE.match(name)):
+        fail(file, key, name, "a file name inside the output folder: letters, digits and ._+=@,- "
+             "(no '/', no '..', not absolute, not starting with '.'), at most 120 characters")
+    return name
+
+
+def _number(file, key, v, lo=None, hi=None, lo_open=False, hi_open=False, integer=False, unit=""):
+    from ..errors import check_number
+    try:
+        if integer and isinstance(v, float):
+            raise GearError(key, v, "")
+        return check_number(key, v, lo, hi, lo_open=lo_open, hi_open=hi_open, integer=integer, unit=unit)
+    except GearError:
+        lo_b, hi_b = "(" if lo_open else "[", ")" if hi_open else "]"
+        rng = f"{lo_b}{'-inf' if lo is None else f'{lo:g}'}, {'inf' if hi is None else f'{hi:g}'}{hi_b}"
+        fail(file, key, v, ("an integer in " if integer else "a number in ") + rng + (f" {unit}" if unit else ""))
+
+
+def _bool(file, key, v):
+    if not isinstance(v, bool):
+        fail(file, key, v, "true or false")
+    return v
+
+
+def _str(file, key, v, choices=None):
+    if not isinstance(v, str):
+        fail(file, key, v, "a string" if choices is None else "one of " + ", ".join(map(str, choices)))
+    if choices is not None and v not in choices:
+        fail(file, key, v, "one of " + ", ".join(map(str, choices)))
+    return v
+
+
+def _table(file, key, v):
+    if not isinstance(v, dict):
+        fail(file, key, v, "a table")
+    return v
+
+
+def _unknown(file, prefix, table, allowed):
+    for k in table:
+        if k not in allowed:
+            fail(file, f"{prefix}.{k}", table[k], "a key among " + ", ".join(sorted(allowed)))
+
+
+def _kinds(file, key, v, allowed=OUTPUT_KINDS):
+    if not isinstance(v, list):
+        fail(file, key, v, "a list of " + ", ".join(allowed))
+    for i, x in enumerate(v):
+        _str(file, f"{key}[{i}]", x, allowed)
+    if len(set(v)) != len(v):
+        fail(file, key, v, "a list without repeats")
+    return list(v)
+
+
+# ---------------------------------------------------------------- families, bodies
+
+def family_signature(family):
+    """{parameter: default} of a registered family builder (tolerance excluded)."""
+    from ..profiles import FAMILIES, _load
+    _load()
+    sig = inspect.signature(FAMILIES[family])
+    return {n: p.default for n, p in sig.parameters.items()
+            if p.kind not in (p.VAR_KEYWORD, p.VAR_POSITIONAL) and n != "tolerance"}
+
+
+def check_family(file, key, family):
+    from .. import families
+    fams = families()
+    if family is None:
+        fail(file, key, None, "required: one of " + ", ".join(fams))
+    return _str(file, key, family, fams)
+
+
+def check_param(file, key, family, name, value, sig):
+    """One family parameter: known name, type by the builder's default, a few ranges."""
+    if name == "tolerance":
+        fail(file, key, value, "not a part key: set [scene] tolerance / [scene.tolerances] "
+             "([library] tolerance / [library.tolerances])")
+    if name not in sig:
+        fail(file, key, value, f"a parameter of the {family} family: " + ", ".join(sorted(sig)) +
+             ", or name, family, outputs, body")
+    d = sig[name]
+    if name == "teeth":
+        return _number(file, key, value, 1, 100_000, integer=True)
+    if name == "module":
+        return _number(file, key, value, 0, 1000, lo_open=True, unit="mm")
+    if isinstance(d, bool):
+        return _bool(file, key, value)
+    if isinstance(d, int):
+        return _number(file, key, value, integer=True)
+    if isinstance(d, str):
+        return _str(file, key, value)
+    return _number(file, key, value)
+
+
+def body_signature():
+    from ..solids import body
+    sig = inspect.signature(body)
+    out = {n: p.default for n, p in sig.parameters.items()
+           if n not in ("profile", "_law", "tolerance", "name")}
+    out["mate"] = None
+    return out
+
+
+def check_body(file, key, table, *, names=None):
+    """A ``[part.body]`` table (gear3d.solids.body keywords plus ``mate``)."""
+    from ..solids import KINDS
+    _table(file, key, table)
+    sig = body_signature()
+    _unknown(file, key, table, sig)
+    out = {}
+    for k, v in table.items():
+        kk = f"{key}.{k}"
+        if k == "kind":
+            out[k] = _str(file, kk, v, KINDS)
+        elif k == "hand":
+            out[k] = _str(file, kk, v, ("right", "left"))
+        elif k == "keyway":
+            out[k] = _bool(file, kk, v)
+        elif k == "lightening_holes":
+            out[k] = _number(file, kk, v, 0, 64, integer=True)
+        elif k == "mate":
+            out[k] = _str(file, kk, v, names) if names is not None else _str(file, kk, v)
+        elif k == "width":
+            out[k] = _number(file, kk, v, 0, 100_000, lo_open=True, unit="mm")
+        elif k == "helix_angle_deg":
+            out[k] = _number(file, kk, v, 0, 90, hi_open=True, unit="deg")
+        elif k == "xy_offset":
+            out[k] = _number(file, kk, v, unit="mm")
+        else:
+            out[k] = _number(file, kk, v, 0, None, unit="mm")
+    if "width" not in out and "mate" not in out:
+        fail(file, f"{key}.width", None, "required: a number > 0 mm")
+    return out
+
+
+def check_tolerances(file, key, top):
+    tol = _number(file, f"{key}.tolerance", top.get("tolerance", DEFAULT_TOLERANCE), *TOL_RANGE, unit="mm")
+    tols = {}
+    t = _table(file, f"{key}.tolerances", top.get("tolerances", {}))
+    for k, v in t.items():
+        _str(file, f"{key}.tolerances.{k}", k, TOLERANCE_KEYS)
+        if k not in TOLERANCE_KEYS:
+            fail(file, f"{key}.tolerances.{k}", v, "a key among " + ", ".join(TOLERANCE_KEYS))
+        tols[k] = _number(file, f"{key}.tolerances.{k}", v, *TOL_RANGE, unit="mm")
+    return tol, tols
+
+
+def check_options(file, key, table):
+    """Exporter options per kind; only DXF takes options (kerf, lead_in, ...)."""
+    from ..export.dxf import write_dxf
+    _table(file, key, table)
+    out = {}
+    dxf_keys = [n for n in inspect.signature(write_dxf).parameters
+                if n not in ("profile", "path", "tolerance", "extra")]
+    for kind, opts in table.items():
+        if kind != "dxf":
+            fail(file, f"{key}.{kind}", opts, "dxf (the only exporter with options)")
+        _table(file, f"{key}.dxf", opts)
+        _unknown(file, f"{key}.dxf", opts, dxf_keys)
+        out["dxf"] = dict(opts)
+    return out
+
+
+def check_part(file, key, raw, *, default_outputs, names=None, require_name=True):
+    """A part table -> {name, family, params, body, outputs}."""
+    _table(file, key, raw)
+    raw = dict(raw)
+    name = raw.pop("name", None)
+    if require_name:
+        if name is None:
+            fail(file, f"{key}.name", None, "required: a file name (letters, digits, ._+=@,-)")
+        name = safe_name(file, f"{key}.name", name)
+    fam = check_family(file, f"{key}.family", raw.pop("family", None))
+    body = raw.pop("body", None)
+    outs = raw.pop("outputs", None)
+    sig = family_signature(fam)
+    params = {k: check_param(file, f"{key}.{k}", fam, k, v, sig) for k, v in raw.items()}
+    b = check_body(file, f"{key}.body", body, names=names) if body is not None else None
+    if outs is None:
+        outs = [k for k in default_outputs if b is not None or k in PROFILE_KINDS]
+    else:
+        outs = _kinds(file, f"{key}.outputs", outs)
+        if b is None:
+            for k in outs:
+                if k in MESH_KINDS:
+                    fail(file, f"{key}.outputs", outs, "profile kinds (" + ", ".join(PROFILE_KINDS) +
+                         ") for a part without a [part.body] table")
+    return {"name": name, "family": fam, "params": params, "body": b, "outputs": outs}
+
+
+# -------------------------------------------------------------------------- scene
+
+SCENE_KEYS = ("name", "description", "outputs", "tolerance", "tolerances", "options")
+PAIR_KEYS = ("name", "parts", "internal", "check", "outputs")
+ASSEMBLY_KEYS = ("name", "kind", "design", "tooth", "bearing_thickness", "deformed", "outputs")
+
+
+def load_scene(path, sets=()) -> dict:
+    """Read and validate a scene file; ``sets``: ``key=value`` overrides (see :func:`apply_sets`)."""
+    file = str(path)
+    data = apply_sets(read_toml(file), sets, file)
+    _unknown(file, "(top level)", data, ("scene", "part", "pair", "assembly"))
+    top = _table(file, "scene", data.get("scene", None) if "scene" in data else
+                 fail(file, "scene", None, "required: a [scene] table"))
+    _unknown(file, "scene", top, SCENE_KEYS)
+    name = safe_name(file, "scene.name", top.get("name", None) or fail(file, "scene.name", None, "required"))
+    outputs = _kinds(file, "scene.outputs", top.get("outputs", ["json"]))
+    tol, tols = check_tolerances(file, "scene", top)
+    options = check_options(file, "scene.options", top.get("options", {}))
+    raw_parts = data.get("part", [])
+    if not isinstance(raw_parts, list):
+        fail(file, "part", raw_parts, "an array of tables [[part]]")
+    names = [p.get("name") for p in raw_parts if isinstance(p, dict)]
+    parts = []
+    for i, rp in enumerate(raw_parts):
+        label = f"part[{rp.get('name', i) if isinstance(rp, dict) else i}]"
+        parts.append(check_part(file, label, rp, default_outputs=outputs, names=names))
+    seen = set()
+    for p in parts:
+        if p["name"] in seen:
+            fail(file, f"part[{p['name']}].name", p["name"], "a name used once")
+        seen.add(p["name"])
+        if p["body"] and p["body"].get("mate") == p["name"]:
+            fail(file, f"part[{p['name']}].body.mate", p["name"], "another part's name")
+    by = {p["name"]: p for p in parts}
+    pairs = [_pair(file, i, rp, by, seen) for i, rp in enumerate(_array(file, data, "pair"))]
+    assemblies = [_assembly(file, i, ra, seen) for i, ra in enumerate(_array(file, data, "assembly"))]
+    if not parts and not assemblies:
+        fail(file, "part", None, "at least one [[part]] or [[assembly]]")
+    return {"file": file, "name": name, "description": top.get("description", ""), "outputs": outputs,
+            "tolerance": tol, "tolerances": tols, "options": options, "parts": parts,
+            "pairs": pairs, "assemblies": assemblies}
+
+
+def _array(file, data, key):
+    v = data.get(key, [])
+    if not isinstance(v, list) or not all(isinstance(x, dict) for x in v):
+        fail(file, key, v, f"an array of tables [[{key}]]")
+    return v
+
+
+def _pair(file, i, rp, by, seen):
+    label = f"pair[{rp.get('name', i)}]"
+    _unknown(file, label, rp, PAIR_KEYS)
+    name = safe_name(file, f"{label}.name", rp.get("name") or fail(file, f"{label}.name", None, "required"))
+    if name in seen:
+        fail(file, f"{label}.name", name, "a name not used by another part, pair or assembly")
+    seen.add(name)
+    ps = rp.get("parts")
+    if not isinstance(ps, list) or len(ps) != 2:
+        fail(file, f"{label}.parts", ps, "a list of two part names")
+    for j, n in enumerate(ps):
+        _str(file, f"{label}.parts[{j}]", n, sorted(by))
+    outs = _kinds(file, f"{label}.outputs", rp.get("outputs", ["json"]), ("json",) + MESH_KINDS)
+    if any(k in MESH_KINDS for k in outs):
+        for n in ps:
+            if by[n]["body"] is None:
+                fail(file, f"{label}.outputs", outs, f"json only, unless both parts have a body ({n} has none)")
+    internal = rp.get("internal", None)
+    if internal is not None:
+        _bool(file, f"{label}.internal", internal)
+    return {"name": name, "parts": list(ps), "internal": internal,
+            "check": _bool(file, f"{label}.check", rp.get("check", True)), "outputs": outs}
+
+
+def _assembly(file, i, ra, seen):
+    label = f"assembly[{ra.get('name', i)}]"
+    _unknown(file, label, ra, ASSEMBLY_KEYS)
+    name = safe_name(file, f"{label}.name", ra.get("name") or fail(file, f"{label}.name", None, "required"))
+    if name in seen:
+        fail(file, f"{label}.name", name, "a name not used by another part, pair or assembly")
+    seen.add(name)
+    _str(file, f"{label}.kind", ra.get("kind", None), ("harmonic",))
+    design = ra.get("design", "seed002")
+    if isinstance(design, str):
+        _str(file, f"{label}.design", design, ("seed002",))
+        design = {}
+    else:
+        from ..harmonic.synthesis import double_harmonic
+        _table(file, f"{label}.design", design)
+        allowed = [n for n in inspect.signature(double_harmonic).parameters]
+        _unknown(file, f"{label}.design", design, allowed)
+        for k, v in design.items():
+            _number(file, f"{label}.design.{k}", v, integer=k.startswith("z"))
+    from ..harmonic.parts import TOOTH_FAMILIES
+    return {"name": name, "kind": "harmonic", "design": dict(design),
+            "seed002": isinstance(ra.get("design", "seed002"), str),
+            "tooth": _str(file, f"{label}.tooth", ra.get("tooth", "triangular"), TOOTH_FAMILIES),
+            "bearing_thickness": _number(file, f"{label}.bearing_thickness", ra.get("bearing_thickness", 0.0),
+                                         0, None, unit="mm"),
+            "deformed": _bool(file, f"{label}.deformed", ra.get("deformed", True)),
+            "outputs": _kinds(file, f"{label}.outputs", ra.get("outputs", ["stl", "json"]),
+                              ("json", "stl", "3mf", "step", "obj", "ply", "vtu"))}
+
+
+# ------------------------------------------------------------------------ library
+
+LIBRARY_KEYS = ("name", "description", "pattern", "outputs", "tolerance", "tolerances", "options",
+                "part", "sweep")
+
+
+def check_pattern(file, key, pattern, fields):
+    """A naming pattern: literal text and ``{field}`` / ``{field:spec}`` with plain field
+    names only (no attribute or index access, no conversions)."""
+    _str(file, key, pattern)
+    try:
+        items = list(string.Formatter().parse(pattern))
+    except ValueError as e:
+        fail(file, key, pattern, "a pattern like sine_m{module}_z{teeth}", str(e))
+    used = []
+    for lit, field, spec, conv in items:
+        if field is None:
+            continue
+        if field not in fields:
+            fail(file, key, pattern, "fields among " + ", ".join(sorted(fields)),
+                 f"{{{field}}} is not one")
+        if conv is not None or (spec and not _SPEC_RE.match(spec)) or "{" in (spec or ""):
+            fail(file, key, pattern, "plain fields {name} or {name:spec} with a numeric spec like .2f")
+        used.append(field)
+    return pattern
+
+
+def expand_range(file, key, r):
+    """``{start, stop, step}`` -> list, stop inclusive (floats rounded to 12 digits)."""
+    _unknown(file, key, r, ("start", "stop", "step"))
+    for k in ("start", "stop", "step"):
+        if k not in r:
+            fail(file, f"{key}.{k}", None, "required: start, stop, step numbers")
+    integer = all(isinstance(r[k], int) and not isinstance(r[k], bool) for k in r)
+    a = _number(file, f"{key}.start", r["start"])
+    b = _number(file, f"{key}.stop", r["stop"])
+    s = _number(file, f"{key}.step", r["step"], 0, None, lo_open=True)
+    n = int(math.floor((b - a) / s + 1e-9)) + 1
+    if n < 1:
+        fail(file, f"{key}.stop", b, f"a number >= start ({a:g})")
+    if n > MAX_LIBRARY_PARTS:
+        fail(file, f"{key}.step", s, f"a step giving at most {MAX_LIBRARY_PARTS} values")
+    if integer:
+        return [int(a + i * s) for i in range(n)]
+    return [float(f"{a + i * s:.12g}") for i in range(n)]
+
+
+def _sweep_values(file, key, v):
+    if isinstance(v, dict):
+        return expand_range(file, key, v)
+    if isinstance(v, list):
+        if not v:
+            fail(file, key, v, "a non-empty list or a range {start, stop, step}")
+        return list(v)
+    return [v]
+
+
+def load_library(path, sets=()) -> dict:
+    """Read and validate a library file; expand the sweep into ``parts`` (in order)."""
+    file = str(path)
+    data = apply_sets(read_toml(file), sets, file)
+    _unknown(file, "(top level)", data, ("library",))
+    top = _table(file, "library", data.get("library") if "library" in data
+                 else fail(file, "library", None, "required: a [library] table"))
+    _unknown(file, "library", top, LIBRARY_KEYS)
+    name = safe_name(file, "library.name", top.get("name") or fail(file, "library.name", None, "required"))
+    outputs = _kinds(file, "library.outputs", top.get("outputs", ["stl"]))
+    tol, tols = check_tolerances(file, "library", top)
+    options = check_options(file, "library.options", top.get("options", {}))
+    tpl = dict(_table(file, "library.part", top.get("part") if "part" in top
+                      else fail(file, "library.part", None, "required: a [library.part] table")))
+    if "name" in tpl:
+        fail(file, "library.part.name", tpl["name"], "no name: [library] pattern names the parts")
+    base = check_part(file, "library.part", tpl, default_outputs=outputs, require_name=False)
+    sweep = dict(_table(file, "library.sweep", top.get("sweep", {})))
+    zipped = _bool(file, "library.sweep.zip", sweep.pop("zip", False))
+    fam = base["family"]
+    sig = family_signature(fam)
+    axes = []   # (key path tuple, values)
+    for k, v in sweep.items():
+        if k == "body":
+            _table(file, "library.sweep.body", v)
+            for bk, bv in v.items():
+                vals = _sweep_values(file, f"library.sweep.body.{bk}", bv)
+                for j, x in enumerate(vals):
+                    check_body(file, f"library.sweep.body[{j}]", {**(base["body"] or {}), bk: x})
+                axes.append((("body", bk), vals))
+        else:
+            if k in ("family", "name", "outputs"):
+                fail(file, f"library.sweep.{k}", v, "family parameters or body = {...}")
+            vals = _sweep_values(file, f"library.sweep.{k}", v)
+            vals = [check_param(file, f"library.sweep.{k}[{j}]", fam, k, x, sig) for j, x in enumerate(vals)]
+            axes.append(((k,), vals))
+    if base["body"] is None and any(a[0][0] == "body" for a in axes):
+        fail(file, "library.sweep.body", sweep.get("body"), "a [library.part] body table to sweep")
+    if zipped:
+        lens = {len(vals) for _, vals in axes}
+        if len(lens) > 1:
+            fail(file, "library.sweep", {".".join(k): len(v) for k, v in axes}, "lists of one length (zip = true)")
+        combos = list(zip(*[vals for _, vals in axes])) if axes else [()]
+    else:
+        total = math.prod(len(v) for _, v in axes)
+        if total > MAX_LIBRARY_PARTS:
+            fail(file, "library.sweep", total, f"at most {MAX_LIBRARY_PARTS} parts")
+        combos = list(itertools.product(*[vals for _, vals in axes]))
+    fields = set(sig) | set(body_signature()) | {"family", "index", "name"} | set(base["params"])
+    pattern = check_pattern(file, "library.pattern", top.get("pattern", name + "_{index}"), fields)
+    parts, seen = [], {}
+    for i, combo in enumerate(combos):
+        params = dict(base["params"])
+        body = dict(base["body"]) if base["body"] is not None else None
+        for (kp, _), x in zip(axes, combo):
+            if kp[0] == "body":
+                body[kp[1]] = x
+            else:
+                params[kp[0]] = x
+        values = {k: d for k, d in body_signature().items()}
+        values.update(body or {})
+        values.update({k: d for k, d in sig.items()})
+        values.update(params)
+        values.update(family=fam, index=i)
+        try:
+            pname = pattern.format(**values)
+        except (ValueError, TypeError) as e:
+            fail(file, "library.pattern", pattern, "a pattern whose specs fit the values", str(e))
+        safe_name(file, f"library.pattern -> part {i}", pname)
+        if pname in seen:
+            fail(file, "library.pattern", pattern, "a pattern giving every part its own name",
+                 f"parts {seen[pname]} and {i} are both {pname!r}")
+        seen[pname] = i
+        parts.append({"name": pname, "family": fam, "params": params, "body": body,
+                      "outputs": base["outputs"],
+                      "values": {".".join(kp): x for (kp, _), x in zip(axes, combo)}})
+    return {"file": file, "name": name, "description": top.get("description", ""), "pattern": pattern,
+            "outputs": outputs, "tolerance": tol, "tolerances": tols, "options": options,
+            "zip": zipped, "parts": parts}
+
+
+def tolerance_for(job: dict, kind: str) -> float:
+    """The tolerance (mm) of an output kind (or "check") in a scene/library."""
+    return job["tolerances"].get(kind, job["tolerance"])
