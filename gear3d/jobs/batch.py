@@ -1,0 +1,306 @@
+"""Part libraries: a part template swept over parameters, built in parallel, with a
+manifest and resume.
+
+* Engines: a local :class:`concurrent.futures.ProcessPoolExecutor` (``workers`` processes,
+  forkserver start so that no manifold/TBB thread state is forked; ``workers=0`` runs in
+  this process) or Dask distributed (``engine="dask"``: a ``LocalCluster`` when no
+  ``scheduler`` address is given, else that cluster; its workers must see ``out_dir``).
+  Workers write the part's files themselves (atomically) and return a plain dict record
+  (arrays/paths/numbers, never manifold objects).
+* Each finished part leaves a record ``out_dir/.records/<name>.json`` (written after its
+  files). ``manifest.json`` / ``manifest.csv`` are assembled from the records in library
+  order: per part its parameters, files with sha256, volume, triangles and measured max
+  errors, or its error. Wall-clock times go to ``timings.json`` only, so a batch killed
+  (SIGINT/SIGKILL) and re-run ends with byte-identical manifests.
+* Resume: a part whose record matches its spec and whose files still hash as recorded
+  is skipped. A failed part records its error and the batch goes on (it is retried on a
+  re-run).
+"""
+from __future__ import annotations
+
+import csv
+import io
+import json
+import os
+import sys
+import time
+
+from ..errors import GearError
+from .graph import Graph, canonical
+from .scene import part_targets, profile_stage, body_stage, sha256, write_json
+from .template import MESH_KINDS, tolerance_for
+
+RECORDS = ".records"
+
+
+def job_header(lib: dict) -> dict:
+    """The picklable part of a library every worker needs."""
+    return {k: lib[k] for k in ("file", "name", "tolerance", "tolerances", "options")}
+
+
+def spec_of(job: dict, part: dict) -> str:
+    """A hash of everything that decides a part's files (resume compares it)."""
+    import hashlib
+    d = {"family": part["family"], "params": part["params"], "body": part["body"],
+         "outputs": {k: tolerance_for(job, k) for k in part["outputs"]}, "options": job["options"]}
+    return hashlib.sha256(canonical(d).encode()).hexdigest()[:20]
+
+
+def build_part(job: dict, part: dict, out_dir: str) -> dict:
+    """Build one library part (in a worker): its files, then its record. Returns
+    ``{"record": ..., "seconds": ..., "stages": {...}}``; errors are recorded, not raised."""
+    t0 = time.perf_counter()
+    g = Graph()
+    rec = {"name": part["name"], "values": part["values"], "family": part["family"],
+           "params": part["params"], "body": part["body"], "spec": spec_of(job, part)}
+    try:
+        targets = part_targets(g, job, dict(part, prefix=f"part {part['name']}"), out_dir)
+        res = g.run(list(targets.values()))
+        files, errs = [], {}
+        for kind, key in targets.items():
+            info = res[key]
+            files.append({"kind": kind, "file": info["file"], "sha256": info["sha256"], "bytes": info["bytes"]})
+            if "max_error" in info:
+                errs[kind] = info["max_error"]
+        profs = [r for k, r in g.results.items() if g.stages[k].kind == "profile"]
+        bodies = [r for k, r in g.results.items() if g.stages[k].kind == "body"]
+        rec.update(status="ok", error=None, files=files,
+                   volume=bodies[0].report["volume"] if bodies else None,
+                   triangles=bodies[0].report["triangles"] if bodies else None,
+                   max_error={"profile": max(p.report["max_error"] for p in profs) if profs else None,
+                              "body": max(b.report["max_error"] for b in bodies) if bodies else None,
+                              **errs})
+    except Exception as e:  # noqa: BLE001 -- a failed part is recorded, the batch goes on
+        rec.update(status="failed", error=f"{type(e).__name__}: {e}", files=[], volume=None,
+                   triangles=None, max_error=None)
+    os.makedirs(os.path.join(out_dir, RECORDS), exist_ok=True)
+    write_json(os.path.join(out_dir, RECORDS, part["name"] + ".json"), rec)
+    return {"record": _jsonable(rec), "seconds": time.perf_counter() - t0, "stages": dict(g.counts),
+            "cache_hits": dict(g.cache_hits)}
+
+
+def _jsonable(rec):
+    from ..export.json_format import clean
+    return clean(rec)
+
+
+def _done_record(out_dir, part, spec):
+    """The stored record of a complete part (files present with their hashes), else None."""
+    p = os.path.join(out_dir, RECORDS, part["name"] + ".json")
+    try:
+        with open(p, encoding="utf-8") as f:
+            rec = json.load(f)
+    except (OSError, ValueError):
+        return None
+    if rec.get("spec") != spec or rec.get("status") != "ok":
+        return None
+    for fi in rec.get("files", []):
+        fp = os.path.join(out_dir, fi["file"])
+        if not os.path.isfile(fp) or sha256(fp) != fi["sha256"]:
+            return None
+    return rec
+
+
+def _clean_stale(out_dir, lib):
+    """Remove temporary files a killed run left behind (only this library's names)."""
+    names = {p["name"] + "." + k for p in lib["parts"] for k in p["outputs"]}
+    names |= {"manifest.json", "manifest.csv", "timings.json"}
+    recs = {p["name"] + ".json" for p in lib["parts"]}
+    for folder, known in ((out_dir, names), (os.path.join(out_dir, RECORDS), recs)):
+        if not os.path.isdir(folder):
+            continue
+        for f in os.listdir(folder):
+            if f.startswith(".") and ".tmp" in f and any(f.startswith("." + n + ".") for n in known):
+                os.remove(os.path.join(folder, f))
+
+
+def preflight(lib: dict):
+    """Build the first part's profile (and body, when a mesh output needs it) in memory so
+    that a bad value that is not swept stops the batch with exit 2 before any file."""
+    if not lib["parts"]:
+        return
+    part = lib["parts"][0]
+    swept = {k.split(".")[-1] for k in part["values"]}
+    g = Graph()
+    targets = []
+    for kind in part["outputs"]:
+        tol = tolerance_for(lib, kind)
+        if kind in MESH_KINDS and part["body"] is not None:
+            targets.append(body_stage(g, lib, part, tol, "library.part"))
+        else:
+            targets.append(profile_stage(g, lib, part, tol, "library.part"))
+    try:
+        g.run(targets)
+    except GearError as e:
+        p = getattr(e, "key", "") or ""
+        leaf = p.rsplit(".", 1)[-1].split(" ")[0]
+        if leaf not in swept and not any(s in p for s in swept):
+            raise
+
+
+def run_library(lib: dict, out_dir, workers: int = 2, engine: str = "local", scheduler=None,
+                processes: bool = True, progress: bool = True) -> dict:
+    """Build a validated library (:func:`gear3d.jobs.template.load_library`) into ``out_dir``.
+
+    Returns ``{"manifest": ..., "built": n, "skipped": n, "failed": n, "seconds": s,
+    "parts_per_s": r}``. ``engine``: local | dask; ``workers``: processes (local, 0 = in
+    this process) or Dask workers of a LocalCluster (``processes`` picks process or thread
+    workers); ``scheduler``: an existing Dask scheduler address.
+    """
+    from ..errors import check_choice, check_number
+    engine = check_choice("engine", engine, ("local", "dask"))
+    workers = check_number("workers", workers, 0, 1024, integer=True)
+    preflight(lib)
+    os.makedirs(out_dir, exist_ok=True)
+    _clean_stale(out_dir, lib)
+    job = job_header(lib)
+    records, todo = {}, []
+    for part in lib["parts"]:
+        rec = _done_record(out_dir, part, spec_of(job, part))
+        if rec is not None:
+            records[part["name"]] = rec
+        else:
+            todo.append(part)
+    skipped = len(records)
+    timings = _read_timings(out_dir)
+    t0 = time.perf_counter()
+    bar = _bar(len(lib["parts"]), skipped, progress)
+    failed = 0
+    last_manifest = time.perf_counter()
+
+    def done(res):
+        nonlocal failed, last_manifest
+        rec = res["record"]
+        records[rec["name"]] = rec
+        timings["parts"][rec["name"]] = round(res["seconds"], 4)
+        if rec["status"] != "ok":
+            failed += 1
+        if bar is not None:
+            bar.update(1)
+            bar.set_postfix(done=len(records), failed=failed, refresh=False)
+        if time.perf_counter() - last_manifest > 5.0:   # a partial manifest now and then
+            _write_manifest(out_dir, lib, records)
+            last_manifest = time.perf_counter()
+
+    try:
+        if todo:
+            if engine == "dask":
+                _run_dask(job, todo, out_dir, workers, scheduler, processes, done)
+            elif workers == 0:
+                for part in todo:
+                    done(build_part(job, part, out_dir))
+            else:
+                _run_pool(job, todo, out_dir, workers, done)
+    finally:
+        if bar is not None:
+            bar.close()
+        manifest = _write_manifest(out_dir, lib, records)
+        dt = time.perf_counter() - t0
+        timings.update(engine=engine, workers=workers, last_run_seconds=round(dt, 3),
+                       last_run_built=len(records) - skipped,
+                       last_run_parts_per_s=round((len(records) - skipped) / dt, 3) if dt > 0 else None)
+        write_json(os.path.join(out_dir, "timings.json"), timings)
+    built = len(records) - skipped
+    return {"manifest": manifest, "built": built, "skipped": skipped,
+            "failed": sum(1 for r in records.values() if r["status"] != "ok"),
+            "seconds": dt, "parts_per_s": built / dt if dt > 0 else None}
+
+
+def _bar(total, initial, progress):
+    if not progress:
+        return None
+    from tqdm import tqdm
+    return tqdm(total=total, initial=initial, unit="part", file=sys.stderr, dynamic_ncols=True,
+                smoothing=0.1, bar_format="{l_bar}{bar}| {n_fmt}/{total_fmt} [{elapsed}<{remaining}, "
+                "{rate_fmt}{postfix}]")
+
+
+def _run_pool(job, todo, out_dir, workers, done):
+    import multiprocessing as mp
+    from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
+    ctx = mp.get_context("forkserver")
+    ctx.set_forkserver_preload(["gear3d.jobs.batch", "gear3d.jobs.scene", "numpy"])
+    ex = ProcessPoolExecutor(max_workers=workers, mp_context=ctx)
+    try:
+        # keep a bounded window of futures in flight so an interrupt loses little work
+        it = iter(todo)
+        pending = set()
+        for part in it:
+            pending.add(ex.submit(build_part, job, part, out_dir))
+            if len(pending) >= 4 * workers:
+                break
+        while pending:
+            fin, pending = wait(pending, return_when=FIRST_COMPLETED)
+            for f in fin:
+                done(f.result())
+                nxt = next(it, None)
+                if nxt is not None:
+                    pending.add(ex.submit(build_part, job, nxt, out_dir))
+    except BaseException:
+        ex.shutdown(wait=False, cancel_futures=True)
+        raise
+    ex.shutdown(wait=True)
+
+
+def _run_dask(job, todo, out_dir, workers, scheduler, processes, done):
+    from dask.distributed import Client, LocalCluster, as_completed
+    cluster = None
+    if scheduler:
+        client = Client(scheduler)
+    else:
+        cluster = LocalCluster(n_workers=max(workers, 1), threads_per_worker=1, processes=processes,
+                               dashboard_address=None)
+        client = Client(cluster)
+    try:
+        futs = client.map(build_part, [job] * len(todo), todo, [os.path.abspath(out_dir)] * len(todo),
+                          pure=False)
+        for f in as_completed(futs):
+            done(f.result())
+    finally:
+        client.close()
+        if cluster is not None:
+            cluster.close()
+
+
+def _read_timings(out_dir):
+    try:
+        with open(os.path.join(out_dir, "timings.json"), encoding="utf-8") as f:
+            t = json.load(f)
+        if isinstance(t.get("parts"), dict):
+            return t
+    except (OSError, ValueError):
+        pass
+    return {"parts": {}}
+
+
+def _write_manifest(out_dir, lib, records) -> dict:
+    parts = [records[p["name"]] for p in lib["parts"] if p["name"] in records]
+    ok = sum(1 for r in parts if r["status"] == "ok")
+    manifest = {
+        "library": lib["name"], "file": os.path.basename(lib["file"]), "pattern": lib["pattern"],
+        "tolerance": lib["tolerance"], "tolerances": lib["tolerances"], "zip": lib["zip"],
+        "summary": {"parts": len(lib["parts"]), "recorded": len(parts), "ok": ok,
+                    "failed": len(parts) - ok, "files": sum(len(r["files"]) for r in parts)},
+        "timings": "timings.json",
+        "parts": parts,
+    }
+    write_json(os.path.join(out_dir, "manifest.json"), manifest)
+    keys = sorted({k for r in parts for k in r["values"]})
+    buf = io.StringIO()
+    w = csv.writer(buf, lineterminator="\n")
+    w.writerow(["name", "status", "family", *keys, "params", "body", "files", "sha256", "volume_mm3",
+                "triangles", "max_error_mm", "error"])
+    for r in parts:
+        me = r["max_error"] or {}
+        w.writerow([r["name"], r["status"], r["family"], *[r["values"].get(k, "") for k in keys],
+                    json.dumps(r["params"], sort_keys=True), json.dumps(r["body"], sort_keys=True),
+                    " ".join(f["file"] for f in r["files"]), " ".join(f["sha256"] for f in r["files"]),
+                    "" if r["volume"] is None else repr(r["volume"]),
+                    "" if r["triangles"] is None else r["triangles"],
+                    "" if not me else repr(max(v for v in me.values() if v is not None)),
+                    r["error"] or ""])
+    from ..export import atomic_path
+    with atomic_path(os.path.join(out_dir, "manifest.csv")) as tmp:
+        with open(tmp, "w", encoding="utf-8", newline="") as f:
+            f.write(buf.getvalue())
+    return manifest
