@@ -46,6 +46,25 @@ def rack_element_uvn(el, t):
     return el.uv(t)
 
 
+class EnvelopePiece:
+    """Exact evaluator ``G(t) -> (N, 2)`` (mm, generated wheel's frame) of one tool element's
+    envelope, with ``tool_tangent(t)``: the tool's tangent at the contact, in the same frame
+    (None for corners, whose normal sweeps). On a regular branch the envelope runs the
+    same way as the tool (dG/dt . tangent > 0); past a singular point it runs backwards,
+    and that branch lies inside the tool: the builder drops it before trimming.
+    """
+
+    def __init__(self, evaluate, smooth: bool):
+        self._evaluate = evaluate
+        self.smooth = smooth
+
+    def __call__(self, t):
+        return self._evaluate(np.asarray(t, float))[0]
+
+    def tool_tangent(self, t):
+        return self._evaluate(np.asarray(t, float))[1] if self.smooth else None
+
+
 def rack_envelope_piece(el, radius: float, shift: float, internal: bool):
     """Exact evaluator ``G(t)`` (mm, gear frame) of the envelope of one rack element.
 
@@ -55,7 +74,7 @@ def rack_envelope_piece(el, radius: float, shift: float, internal: bool):
     """
     sigma = -1.0 if internal else 1.0
 
-    def G(t):
+    def evaluate(t):
         u, v, du, dv = rack_element_uvn(el, t)
         with np.errstate(divide="ignore", invalid="ignore"):
             slope = np.where(np.abs(du) > 1e-300, dv / du, np.nan)
@@ -65,8 +84,9 @@ def rack_envelope_piece(el, radius: float, shift: float, internal: bool):
         d = ycon - u                            # rack translation at contact
         X = radius - sigma * h
         phi = d / radius
-        return _rot(np.stack([X, ycon], axis=-1), -phi)
-    return G
+        tang = _rot(np.stack([-sigma * dv, du], axis=-1), -phi)
+        return _rot(np.stack([X, ycon], axis=-1), -phi), tang
+    return EnvelopePiece(evaluate, not isinstance(el, Corner))
 
 
 def rack_envelope(rack: Rack, radius: float, shift: float = 0.0, internal: bool = False):
@@ -74,19 +94,21 @@ def rack_envelope(rack: Rack, radius: float, shift: float = 0.0, internal: bool 
     return [(rack_envelope_piece(el, radius, shift, internal), el.name) for el in rack.elements]
 
 
-def wheel_envelope_piece(point_normal, r1: float, r2: float, internal: bool, tool_is_ring: bool = False):
+def wheel_envelope_piece(point_normal, r1: float, r2: float, internal: bool, smooth: bool = True):
     """Exact evaluator of the envelope of a wheel tool on the generated wheel's frame.
 
-    ``point_normal(t) -> (p, n)`` gives tool points and normals (mm) in the tool frame
+    ``point_normal(t) -> (p, n)`` gives tool points and normals (mm) in the tool frame,
+    n = (dp_y, -dp_x) for smooth pieces (the tangent dp/dt turned clockwise)
     (tool centre at its origin, in reference phase). The tool's pitch circle r1 rolls on
     the generated wheel's pitch circle r2. External pairs: centre distance r1 + r2;
     internal: |r2 - r1| (the ring is the larger one). The generated wheel's centre is the
-    origin and the pitch point sits at (r2, 0).
+    origin and the pitch point sits at (r2, 0). ``smooth=False`` marks a corner fan (its
+    points do not move, so it has no tangent).
     """
     k = 1.0 if internal else -1.0          # direction from tool centre to pitch point is k*x
     o1 = r2 - k * r1
 
-    def G(t):
+    def evaluate(t):
         p, n = point_normal(t)
         pn = np.einsum("ij,ij->i", p, n)
         nn = np.einsum("ij,ij->i", n, n)
@@ -101,8 +123,9 @@ def wheel_envelope_piece(point_normal, r1: float, r2: float, internal: bool, too
         phi1 = np.arctan2(-k * w[:, 1], k * w[:, 0])
         phi2 = k * r1 * phi1 / r2
         q = _rot(p, phi1) + np.array([o1, 0.0])
-        return _rot(q, -phi2)
-    return G
+        tang = _rot(_rot(np.stack([-n[:, 1], n[:, 0]], axis=1), phi1), -phi2)
+        return _rot(q, -phi2), tang
+    return EnvelopePiece(evaluate, smooth)
 
 
 # ----------------------------------------------------------------------------- trimming
@@ -168,5 +191,33 @@ def trim(raw_loop: np.ndarray, internal: bool, rim_radius: float | None, tol: fl
     if not parts:
         return [], abs(area)
     main = max(parts, key=lambda c: c.area())
-    polys = [np.asarray(p, float) for p in main.to_polygons()]
+    polys = [prune_spikes(np.asarray(p, float)) for p in main.to_polygons()]
     return polys, abs(area)
+
+
+def prune_spikes(loop: np.ndarray, max_angle_deg: float = 3.0) -> np.ndarray:
+    """Remove needle spikes: vertices where the outline folds back on itself (interior
+    angle below ``max_angle_deg``). They are chord-level leftovers of swallowtails next to a
+    singular point (zero material in the exact geometry); no gear feature is that sharp."""
+    cmin = math.cos(math.radians(max_angle_deg))
+    for _ in range(100):
+        if len(loop) < 4:
+            return loop
+        a = np.roll(loop, 1, axis=0) - loop
+        b = np.roll(loop, -1, axis=0) - loop
+        na, nb = np.hypot(*a.T), np.hypot(*b.T)
+        ok = (na > 0) & (nb > 0)
+        cos = np.where(ok, np.einsum("ij,ij->i", a, b) / np.where(ok, na * nb, 1), 1.0)
+        spike = (cos > cmin) | ~ok
+        if not spike.any():
+            return loop
+        # remove non-adjacent spike vertices this round
+        idx = np.nonzero(spike)[0]
+        keep = np.ones(len(loop), bool)
+        last = -2
+        for i in idx:
+            if i != last + 1:
+                keep[i] = False
+                last = i
+        loop = loop[keep]
+    return loop

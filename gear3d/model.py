@@ -178,6 +178,8 @@ def build_profile(family: str, params: dict, pieces, teeth: int, pitch_radius: f
     tess = [tessellate(f, tol - CLIPPER_ROUNDING) for f in fs]
     ts = [x.t for x in tess]
     minv = float(sum(x.min_vertices for x in tess))
+    # singular points become samples, so the physical branches end exactly there
+    ts = [_with_transitions(G, t) for G, t in zip(pieces, ts)]
     # the blank is decided from the first tessellation
     chain, label = _chain(fs, ts)
     rc = np.hypot(chain[:, 0], chain[:, 1])
@@ -246,6 +248,10 @@ def build_profile(family: str, params: dict, pieces, teeth: int, pitch_radius: f
     max_err = max(float(chord_deviation(f, t).max(initial=0.0)) for f, t in zip(fs, ts))
     corner_errs = _measure_corners(fs, ts, corners, teeth)
     max_err = max([max_err, *corner_errs]) + CLIPPER_ROUNDING
+    if internal:
+        # the rim is a polygon inscribed in its circle: its sag counts too
+        n_rim = len(circle_loop(rim_radius, tol))
+        max_err = max(max_err, rim_radius * (1 - math.cos(math.pi / n_rim)) + CLIPPER_ROUNDING)
     fs, ts = fs[:nraw], ts[:nraw]
     expected = 2 if internal else 1
     if len(loops) != expected or any(len(l) < 3 for l in loops):
@@ -262,12 +268,14 @@ def build_profile(family: str, params: dict, pieces, teeth: int, pitch_radius: f
         raise GearError("addendum_coeff", params.get("addendum_coeff"), "a smaller value", "no tooth is left")
     # ---- what trimming removed from tooth 0: undercut (root side) and pointing (tip side)
     dist = loops_distance([tl], chain)
-    removed = dist > 4 * tol + 1e-9
+    removed = dist > 2 * tol + 1e-9
     tip_side = (rc < pitch_radius) if internal else (rc > pitch_radius)
     cusp_idx = _cusps(chain, tol)
-    on_flank = _working_branches(chain, label, cusp_idx,
-                                 range(len(pieces)) if flank_pieces is None else flank_pieces)
-    under = removed & ~tip_side & on_flank
+    # undercut: points on regular (physical) branches of the working flank that another
+    # part of the tool cut away; branches past singular points never were material
+    phys = np.concatenate([_physical(pieces[i], ts[i])[(0 if i == 0 else 1):] for i in range(len(pieces))])
+    on_flank = np.isin(label, list(range(len(pieces)) if flank_pieces is None else list(flank_pieces)))
+    under = removed & ~tip_side & on_flank & phys
     root_cusp = bool(np.any(~tip_side[cusp_idx])) if len(cusp_idx) else False
     # pointed: the flanks cross before the tooth reaches the tip circle it was cut for
     shortfall = (tip - nominal_tip_radius) if internal else (nominal_tip_radius - tip)
@@ -314,6 +322,47 @@ def build_profile(family: str, params: dict, pieces, teeth: int, pitch_radius: f
         rep.update(extra_report)
     prof.report = rep
     return prof
+
+
+def _regularity(piece, t):
+    """dG/dt . (tool tangent) (normalised) at ``t``: > 0 on a regular branch, < 0 past a cusp."""
+    t = np.asarray(t, float)
+    h = 1e-7
+    dG = (piece(t + h) - piece(t - h)) / (2 * h)
+    T = piece.tool_tangent(t)
+    scale = np.hypot(*dG.T) * np.hypot(*T.T)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return np.einsum("ij,ij->i", dG, T) / np.where(scale > 0, scale, 1.0)
+
+
+def _with_transitions(piece, t):
+    """Add the parameters where a piece's envelope turns back (singular points) to ``t``."""
+    if getattr(piece, "tool_tangent", None) is None or not getattr(piece, "smooth", False):
+        return t
+    g = _regularity(piece, t)
+    flips = np.nonzero(np.sign(g[:-1]) * np.sign(g[1:]) < 0)[0]
+    if not len(flips):
+        return t
+    extra = []
+    for j in flips:
+        a, b, ga = t[j], t[j + 1], g[j]
+        for _ in range(50):
+            m = 0.5 * (a + b)
+            gm = _regularity(piece, np.array([m]))[0]
+            if np.sign(gm) == np.sign(ga):
+                a, ga = m, gm
+            else:
+                b = m
+        extra.append(a if ga >= 0 else b)   # the sample on the regular side
+    return np.unique(np.concatenate([t, extra]))
+
+
+def _physical(piece, t):
+    """Mask of samples on a regular branch: the envelope runs the same way as the tool."""
+    tt = getattr(piece, "tool_tangent", None)
+    if tt is None or not getattr(piece, "smooth", False):
+        return np.ones(len(t), bool)
+    return ~(_regularity(piece, t) < -1e-9)
 
 
 def _chain(fs, ts, pts_list=None):

@@ -89,9 +89,16 @@ def test_undercut_limit_2_over_sin2():
                 if s["piece"] == "rack-flank" and s["radius"] < 9]
 
 
-def test_default_tool_z18_and_z12():
-    """The issue's statement with the default tool: z = 18 is not undercut, z = 12 is."""
-    assert not gear3d.profile("involute", teeth=18, tolerance=1e-3).report["undercut"]
+def test_default_tool_undercut_limit():
+    """With the default tool (tip radius 0.25 m, dedendum 1.25 m) the straight flank reaches
+    h = 1.25 - 0.25 (1 - sin a) = 1.0855 m above the datum, so the limit is
+    z = 2 h / sin^2 a = 18.56: z = 19 is clean, z = 18 is (barely) undercut, z = 12 clearly."""
+    a = math.radians(20)
+    h = 1.25 - 0.25 * (1 - math.sin(a))
+    assert 18 < 2 * h / math.sin(a) ** 2 < 19
+    assert not gear3d.profile("involute", teeth=19, tolerance=1e-4).report["undercut"]
+    p18 = gear3d.profile("involute", teeth=18, tolerance=1e-4).report
+    assert p18["undercut"] and p18["undercut_depth"] < 1e-3
     assert gear3d.profile("involute", teeth=12, tolerance=1e-3).report["undercut"]
 
 

@@ -49,8 +49,9 @@ def _project(G, q, ta, tb, rot=0.0):
 def tool_elements(prof):
     """Exact elements of one period of ``prof``'s trimmed tooth boundary, in boundary order.
 
-    Returns a list of ``point_normal(t) -> (points (N,2), normals (N,2))`` callables (mm),
-    tooth 0 at angle 0 of the tool frame.
+    Returns a list of ``(point_normal, smooth)``: ``point_normal(t) -> (points (N,2),
+    normals (N,2))`` (mm; normal = tangent turned clockwise for smooth runs), ``smooth``
+    False for the corner fans. Tooth 0 at angle 0 of the tool frame.
     """
     from scipy.spatial import cKDTree
     z = prof.teeth
@@ -133,13 +134,13 @@ def tool_elements(prof):
         els.append((("smooth", i, k, ta, tb), end_pt))
     out = []
     for r_i, ((_, i, k, ta, tb), end_pt) in enumerate(els):
-        out.append(_smooth_pn(prof.pieces[i], ta, tb, 2 * math.pi * k / z))
+        out.append((_smooth_pn(prof.pieces[i], ta, tb, 2 * math.pi * k / z), True))
         if r_i + 1 < len(els):
             na = _normal(prof.pieces[i], tb, 2 * math.pi * k / z)
             i2, k2, ta2, _ = runs[r_i + 1]
             nb = _normal(prof.pieces[i2], ta2, 2 * math.pi * k2 / z)
             if abs(np.cross(na, nb)) > 1e-9 or np.dot(na, nb) < 0:
-                out.append(_fan_pn(end_pt, na, nb))
+                out.append((_fan_pn(end_pt, na, nb), False))
     return out
 
 
@@ -205,7 +206,7 @@ def mate(tool, teeth: int, internal: bool | None = None, tolerance: float | None
             p, nn = pn(t)
             return _rot(p, beta0), _rot(nn, beta0)
         return f
-    pieces = [wheel_envelope_piece(rotated(pn), r1, r2, pair_internal) for pn in els]
+    pieces = [wheel_envelope_piece(rotated(pn), r1, r2, pair_internal, smooth) for pn, smooth in els]
     rt = tool.report
     if gen_internal:
         nominal = a + rt["root_radius"]         # ring tip: reached by the pinion's root

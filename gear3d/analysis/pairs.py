@@ -282,7 +282,7 @@ class _ContactProbe:
 def _exact_contact(els, I1, hint, n=400):
     """Point of the exact elements whose normal passes through ``I1``, nearest ``hint``."""
     best = None
-    for pn in els:
+    for pn, _smooth in els:
         t = np.linspace(0.0, 1.0, n)
         p, nn = pn(t)
         f = (p[:, 0] - I1[0]) * nn[:, 1] - (p[:, 1] - I1[1]) * nn[:, 0]
