@@ -108,9 +108,9 @@ def run_write(stage, obj):
     else:
         if kind in MESH_KINDS:
             name = i.get("name")
-            if isinstance(obj, list):
+            if isinstance(obj, list) and "names" in i:
                 obj = [b.placed(b.transform, name=n) for b, n in zip(obj, i["names"])]
-            elif name:
+            elif name and not isinstance(obj, list):
                 obj = obj.placed(obj.transform, name=name)
         write(obj, path)
     if kind in MESH_KINDS:
@@ -387,6 +387,7 @@ def _report(scene, g, owners, res) -> dict:
                                        ("volume", "triangles", "genus", "profile_max_error", "tolerance")}
                               for p in built[1]}
                 d["ratio"] = built[0].report.get("ratio")
+                errs.extend(p.report["profile_max_error"] for p in built[1] if p.report.get("profile_max_error") is not None)
                 break
         asms[name] = d
     return {"scene": scene["name"], "file": os.path.basename(scene["file"]),
