@@ -11,7 +11,9 @@ Scene (``[scene]``, ``[[part]]``, ``[[pair]]``, ``[[assembly]]``)::
 
     [scene]
     name = "demo"                  # safe file name
-    outputs = ["dxf", "stl"]       # kinds written for every part (OUTPUT_KINDS)
+    outputs = ["dxf", "stl"]       # kinds written for every part (OUTPUT_KINDS): dxf, svg,
+                                   # png, json (the profile: figure / loops + report) from the
+                                   # profile; stl, 3mf, step, obj, ply, vtu from the body
     tolerance = 0.001              # mm, default for every output kind
     [scene.tolerances]             # mm per kind; also "check" (pair checks)
     stl = 0.01
