@@ -191,33 +191,48 @@ def trim(raw_loop: np.ndarray, internal: bool, rim_radius: float | None, tol: fl
     if not parts:
         return [], abs(area)
     main = max(parts, key=lambda c: c.area())
-    polys = [prune_spikes(np.asarray(p, float)) for p in main.to_polygons()]
-    return polys, abs(area)
+    pruned = [prune_spikes(np.asarray(p, float), tol) for p in main.to_polygons()]
+    trim.moved = max([m for _, m in pruned], default=0.0)
+    return [p for p, _ in pruned], abs(area)
 
 
-def prune_spikes(loop: np.ndarray, max_angle_deg: float = 3.0) -> np.ndarray:
-    """Remove needle spikes: vertices where the outline folds back on itself (interior
-    angle below ``max_angle_deg``). They are chord-level leftovers of swallowtails next to a
-    singular point (zero material in the exact geometry); no gear feature is that sharp."""
+def prune_spikes(loop: np.ndarray, tol: float = 0.0, max_angle_deg: float = 3.0):
+    """Remove needle spikes and micro-notches left next to singular points.
+
+    * a vertex where the outline folds back on itself (interior angle below
+      ``max_angle_deg``): chord-level leftovers of a swallowtail, zero material in the
+      exact geometry, no gear feature is that sharp;
+    * a sharp vertex (interior angle below 60 deg) lying within ``tol/4`` of the chord of
+      its neighbours: a swallowtail smaller than the tolerance.
+    Returns (loop, max distance moved by the second kind), which the caller adds to the
+    error budget.
+    """
     cmin = math.cos(math.radians(max_angle_deg))
-    for _ in range(100):
+    c60 = 0.5
+    moved = 0.0
+    for _ in range(200):
         if len(loop) < 4:
-            return loop
-        a = np.roll(loop, 1, axis=0) - loop
-        b = np.roll(loop, -1, axis=0) - loop
+            return loop, moved
+        prv, nxt = np.roll(loop, 1, axis=0), np.roll(loop, -1, axis=0)
+        a, b = prv - loop, nxt - loop
         na, nb = np.hypot(*a.T), np.hypot(*b.T)
         ok = (na > 0) & (nb > 0)
         cos = np.where(ok, np.einsum("ij,ij->i", a, b) / np.where(ok, na * nb, 1), 1.0)
-        spike = (cos > cmin) | ~ok
-        if not spike.any():
-            return loop
-        # remove non-adjacent spike vertices this round
-        idx = np.nonzero(spike)[0]
+        from .tessellate import point_segment_distance
+        dev = point_segment_distance(loop, prv, nxt)
+        needle = (cos > cmin) | ~ok
+        notch = (cos > c60) & (dev < tol / 4)
+        bad = needle | notch
+        if not bad.any():
+            return loop, moved
+        idx = np.nonzero(bad)[0]
         keep = np.ones(len(loop), bool)
         last = -2
         for i in idx:
             if i != last + 1:
                 keep[i] = False
+                if notch[i] and not needle[i]:
+                    moved = max(moved, float(dev[i]))
                 last = i
         loop = loop[keep]
-    return loop
+    return loop, moved

@@ -247,7 +247,7 @@ def build_profile(family: str, params: dict, pieces, teeth: int, pitch_radius: f
             break
     max_err = max(float(chord_deviation(f, t).max(initial=0.0)) for f, t in zip(fs, ts))
     corner_errs = _measure_corners(fs, ts, corners, teeth)
-    max_err = max([max_err, *corner_errs]) + CLIPPER_ROUNDING
+    max_err = max([max_err, *corner_errs]) + CLIPPER_ROUNDING + getattr(trim, "moved", 0.0)
     if internal:
         # the rim is a polygon inscribed in its circle: its sag counts too
         n_rim = len(circle_loop(rim_radius, tol))

@@ -274,6 +274,18 @@ def chamfer_vectors(loops, amount: float, name: str) -> list:
     import shapely
     out = []
     for l, v in zip(loops, miter_vectors(loops)):
+        # a micro-notch (edges shorter than the inset, miter at its limit) left within
+        # tolerance next to a singular point: move it with its neighbours, not along its
+        # own extreme miter
+        v = v.copy()
+        e_prev = np.hypot(*(l - np.roll(l, 1, axis=0)).T)
+        e_next = np.hypot(*(np.roll(l, -1, axis=0) - l).T)
+        micro = (np.hypot(*v.T) > 2.5) & (np.minimum(e_prev, e_next) < amount)
+        for _ in range(10):
+            if not micro.any():
+                break
+            v[micro] = 0.5 * (np.roll(v, 1, axis=0)[micro] + np.roll(v, -1, axis=0)[micro])
+            micro = micro & (np.hypot(*v.T) > 2.5)
         q = l - amount * v
         e0 = np.roll(l, -1, axis=0) - l
         for _ in range(200):
