@@ -136,6 +136,15 @@ def signed_area(loop: np.ndarray) -> float:
     return 0.5 * float(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1)))
 
 
+def winding_number(loop: np.ndarray, point) -> int:
+    """How many times the closed polyline ``loop`` turns counter-clockwise about ``point``."""
+    d = np.asarray(loop, float) - np.asarray(point, float)
+    a = np.arctan2(d[:, 1], d[:, 0])
+    da = np.diff(np.concatenate([a, a[:1]]))
+    da = (da + np.pi) % (2 * np.pi) - np.pi
+    return int(round(da.sum() / (2 * np.pi)))
+
+
 def pattern(chain: np.ndarray, teeth: int) -> np.ndarray:
     """Repeat one period's open chain ``teeth`` times around the origin into a closed loop.
 
@@ -175,7 +184,11 @@ def trim(raw_loop: np.ndarray, internal: bool, rim_radius: float | None, tol: fl
 
     loop = raw_loop
     area = signed_area(loop)
-    if (area < 0) != internal:
+    # orientation from the winding about the centre (material for a gear, the bore of a
+    # ring); the signed area can mislead when a few-tooth envelope wraps round (z = 1)
+    w0 = winding_number(loop, (0.0, 0.0))
+    ccw = (w0 > 0) if w0 != 0 else (area > 0)
+    if ccw == internal:
         loop = loop[::-1]
     paths = [loop]
     if internal:
@@ -191,7 +204,17 @@ def trim(raw_loop: np.ndarray, internal: bool, rim_radius: float | None, tol: fl
     if not parts:
         return [], abs(area)
     main = max(parts, key=lambda c: c.area())
-    pruned = [prune_spikes(np.asarray(p, float), tol) for p in main.to_polygons()]
+    polys = [np.asarray(p, float) for p in main.to_polygons()]
+    # a cutter coming from outside leaves no enclosed cavity: a hole other than a ring's
+    # bore (the one around the centre) is a winding artefact of crossed branches
+    outer = max(polys, key=signed_area)
+    if internal:
+        import shapely
+        holes = [p for p in polys if p is not outer and shapely.Polygon(p).contains(shapely.Point(0, 0))]
+        polys = [outer] + holes[:1]
+    else:
+        polys = [outer]
+    pruned = [prune_spikes(p, tol) for p in polys]
     trim.moved = max([m for _, m in pruned], default=0.0)
     return [p for p, _ in pruned], abs(area)
 
