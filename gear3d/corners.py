@@ -12,7 +12,7 @@ import math
 
 import numpy as np
 
-from .tessellate import chord_deviation, point_segment_distance
+from .tessellate import MAX_VERTICES, chord_deviation, point_segment_distance
 
 
 def _rot(p, a):
@@ -64,8 +64,8 @@ def refine(f, t: np.ndarray, chords, target: float, max_iter: int = 40) -> np.nd
         bad = dev > target
         if not bad.any():
             break
-        if np.any(np.diff(tt)[bad] < 1e-15):
-            break
+        if np.any(np.diff(tt)[bad] < 1e-15) or len(t) > MAX_VERTICES:
+            break      # the measured corner error then tells (the builder refuses if > tol)
         t = np.sort(np.concatenate([t, 0.5 * (tt[:-1][bad] + tt[1:][bad])]))
     return t
 

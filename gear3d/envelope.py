@@ -170,7 +170,7 @@ def circle_loop(radius: float, tol: float, ccw: bool = True, phase: float = 0.0)
 
 
 def trim(raw_loop: np.ndarray, internal: bool, rim_radius: float | None, tol: float,
-         blank: tuple | None = None):
+         blank: tuple | None = None, prune: bool = True):
     """Cut the raw envelope loop down to what a cutter leaves. Returns (loops, raw_area).
 
     The raw loop is oriented so that the material lies on its left (CCW for a gear,
@@ -179,6 +179,7 @@ def trim(raw_loop: np.ndarray, internal: bool, rim_radius: float | None, tol: fl
     turned blank the cutter works on: material beyond it never existed, which removes
     the flank overshoots past the tip circle. Of what is left, the one connected body
     (the largest component) is the gear: detached slivers are envelope artefacts.
+    ``prune`` removes swallowtail needles (envelopes only: a closed-form cusp is real).
     """
     from manifold3d import CrossSection, FillRule
 
@@ -192,7 +193,7 @@ def trim(raw_loop: np.ndarray, internal: bool, rim_radius: float | None, tol: fl
         loop = loop[::-1]
     paths = [loop]
     if internal:
-        paths.append(circle_loop(rim_radius, tol, ccw=True))
+        paths.append(circle_loop(rim_radius, 0.9 * tol, ccw=True))   # 10 % left for rounding
     cs = CrossSection(paths, FillRule.Positive)
     if blank is not None:
         rmin, rmax = (b if b is None or np.ndim(b) else circle_loop(b, tol) for b in blank)
@@ -214,7 +215,7 @@ def trim(raw_loop: np.ndarray, internal: bool, rim_radius: float | None, tol: fl
         polys = [outer] + holes[:1]
     else:
         polys = [outer]
-    pruned = [prune_spikes(p, tol) for p in polys]
+    pruned = [prune_spikes(p, tol) if prune else (p, 0.0) for p in polys]
     trim.moved = max([m for _, m in pruned], default=0.0)
     return [p for p, _ in pruned], abs(area)
 
@@ -225,8 +226,8 @@ def prune_spikes(loop: np.ndarray, tol: float = 0.0, max_angle_deg: float = 3.0)
     * a vertex where the outline folds back on itself (interior angle below
       ``max_angle_deg``): chord-level leftovers of a swallowtail, zero material in the
       exact geometry, no gear feature is that sharp;
-    * a sharp vertex (interior angle below 60 deg) lying within ``tol/4`` of the chord of
-      its neighbours: a swallowtail smaller than the tolerance.
+    * a sharp vertex (interior angle below 60 deg) lying close to the chord of
+      its neighbours (within tol/50): a swallowtail far below the tolerance.
     Returns (loop, max distance moved by the second kind), which the caller adds to the
     error budget.
     """
@@ -244,7 +245,7 @@ def prune_spikes(loop: np.ndarray, tol: float = 0.0, max_angle_deg: float = 3.0)
         from .tessellate import point_segment_distance
         dev = point_segment_distance(loop, prv, nxt)
         needle = (cos > cmin) | ~ok
-        notch = (cos > c60) & (dev < tol / 4)
+        notch = (cos > c60) & (dev < tol / 50)
         bad = needle | notch
         if not bad.any():
             return loop, moved

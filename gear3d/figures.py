@@ -227,3 +227,35 @@ def mesh_preview(body, path=None, *, elev: float = 30.0, azim: float = -60.0, ma
     ax.set_zlabel("z (mm)")
     ax.set_title(", ".join(str(getattr(b, "name", "") or f"part{i + 1}") for i, b in enumerate(bodies)))
     return _save(fig, path)
+
+
+def pair_figure(p1, p2, report: dict, path=None):
+    """The pair placed at its centre distance in mesh phase (as :func:`check_pair` rolls it),
+    with the pitch circles and the deepest interference point (if any) marked."""
+    import math as _m
+    plt = _plt()
+    from .analysis.pairs import _setup, _Placed
+    internal, a, c2, phase2, ratio = _setup(p1, p2, report.get("internal"), report.get("center_distance"))
+    fig, ax = plt.subplots(figsize=(7, 7))
+    at = report.get("interference_at") or {}
+    ph = _m.radians(at.get("phi1_deg", 0.0))
+    for placed, ang, col, gid in ((_Placed(p1, (0, 0)), ph, "tab:blue", "wheel1"),
+                                  (_Placed(p2, c2), phase2 + ratio * ph, "tab:orange", "wheel2")):
+        for l in placed.loops:
+            c, s = _m.cos(ang), _m.sin(ang)
+            q = l @ np.array([[c, s], [-s, c]]) + placed.c
+            q = np.vstack([q, q[:1]])
+            (ln,) = ax.plot(q[:, 0], q[:, 1], color=col, lw=0.7)
+            ln.set_gid(gid)
+    for r, c in ((p1.pitch_radius, (0, 0)), (p2.pitch_radius, c2)):
+        t = np.linspace(0, 2 * np.pi, 361)
+        ax.plot(c[0] + r * np.cos(t), c[1] + r * np.sin(t), color="0.6", ls="--", lw=0.5)
+    if at.get("point"):
+        (pt,) = ax.plot(*at["point"], "o", color="red", ms=8, mfc="none")
+        pt.set_gid("interference")
+    ax.set_aspect("equal")
+    ax.set_title(f"z={p1.teeth}/{p2.teeth} {'internal' if internal else 'external'}: "
+                 f"interference={report['interference']} "
+                 f"(max {report['max_penetration'] * 1000:.1f} um), contact ratio {report['contact_ratio']:.3f}",
+                 fontsize=9)
+    return _save(fig, path)

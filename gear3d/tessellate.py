@@ -16,7 +16,7 @@ from .errors import ToleranceError
 
 #: interior parameters (fractions of a chord's t-interval) used to measure a chord
 _PROBE = np.array([0.0625, 0.1875, 0.3125, 0.4375, 0.5, 0.5625, 0.6875, 0.8125, 0.9375])
-MAX_VERTICES = 4_000_000
+MAX_VERTICES = 400_000  # per piece; beyond it the curve jumps or the tolerance is unreasonable
 MIN_TOLERANCE = 1e-7  # mm; below this double precision on a 1 m part cannot certify the result
 
 
@@ -59,6 +59,10 @@ def _equal_sag_params(f, tol: float, n0: int) -> np.ndarray:
     # segment of length ds with turning dpsi: ds*sqrt(k/(8 tol)) = sqrt(dpsi*ds/(8 tol))
     need = np.sqrt(tseg * ds / (8.0 * tol))
     cum = np.concatenate([[0.0], np.cumsum(need)])
+    if not np.isfinite(cum[-1]) or cum[-1] > MAX_VERTICES:
+        raise ToleranceError("tolerance", tol, "a coarser value",
+                             f"more than {MAX_VERTICES} vertices per piece would be needed: the curve "
+                             "jumps or the tolerance is far too fine for the part")
     n = max(int(np.ceil(cum[-1])), 1)
     levels = np.linspace(0.0, cum[-1], n + 1)
     tt = np.interp(levels, cum, t)
@@ -76,7 +80,7 @@ class Tessellation:
 
 def tessellate(f, tol: float, n0: int = 512) -> Tessellation:
     """Sample piece ``f`` so that every chord is within ``tol`` (mm) of it, measured."""
-    if tol < MIN_TOLERANCE:
+    if tol < 0.9 * MIN_TOLERANCE:   # builders keep ~7e-9 mm of the budget for Clipper's rounding
         raise ToleranceError("tolerance", tol, f"a number >= {MIN_TOLERANCE:g} mm",
                              "finer than double precision can certify on parts up to 1 m")
     t = _equal_sag_params(f, tol, n0)
@@ -94,5 +98,7 @@ def tessellate(f, tol: float, n0: int = 512) -> Tessellation:
         t = np.sort(np.concatenate([t, mids]))
         if len(t) > MAX_VERTICES:
             raise ToleranceError("tolerance", tol, "a coarser value",
-                                 f"more than {MAX_VERTICES} vertices would be needed")
+                                 f"more than {MAX_VERTICES} vertices per piece would be needed: the "
+                                 "curve jumps (a tool normal that never meets the pitch circle) or the "
+                                 "tolerance is far too fine for the part")
     raise ToleranceError("tolerance", tol, "a coarser value", "refinement did not converge")

@@ -139,7 +139,7 @@ def tool_elements(prof):
             na = _normal(prof.pieces[i], tb, 2 * math.pi * k / z)
             i2, k2, ta2, _ = runs[r_i + 1]
             nb = _normal(prof.pieces[i2], ta2, 2 * math.pi * k2 / z)
-            if abs(np.cross(na, nb)) > 1e-9 or np.dot(na, nb) < 0:
+            if abs(na[0] * nb[1] - na[1] * nb[0]) > 1e-9 or np.dot(na, nb) < 0:
                 out.append((_fan_pn(end_pt, na, nb), False))
     return out
 
@@ -158,9 +158,16 @@ def _normal(G, t, rot):
 
 def _smooth_pn(G, ta, tb, rot):
     def pn(t):
-        tt = ta + (tb - ta) * np.asarray(t, float)
+        t = np.asarray(t, float)
+        tt = ta + (tb - ta) * t
         p = _rot(G(tt), rot)
         d = _deriv(G, tt, rot)
+        # a run may end exactly on a singular point (dG/dt = 0): take the tangent's limit
+        # from inside the run there
+        stall = np.hypot(d[:, 0], d[:, 1]) < 1e-9
+        if stall.any():
+            inward = np.where(t[stall] < 0.5, 1.0, -1.0) * 1e-5 * (tb - ta if tb != ta else 1.0)
+            d[stall] = _deriv(G, tt[stall] + inward, rot)
         return p, np.stack([d[:, 1], -d[:, 0]], axis=1)
     return pn
 
@@ -224,8 +231,8 @@ def mate(tool, teeth: int, internal: bool | None = None, tolerance: float | None
         clip = (tr, None) if gen_internal else (None, tr)
         nominal = max(nominal, tr) if gen_internal else min(nominal, tr)
     params = dict(tool=tool, teeth=z2, internal=bool(internal), tolerance=tol, tip_radius=tip_radius,
-                  rim_radius=rim_radius, module=m)
-    return build_profile(f"mate({tool.family})", params, pieces, z2, r2, internal=gen_internal,
+                  rim_radius=rim_radius)
+    return build_profile("mate", params, pieces, z2, r2, internal=gen_internal,
                          tolerance=tol, rim_radius=rim, clip_radius=clip, nominal_tip_radius=nominal,
                          names=[f"tool-element-{i}" for i in range(len(pieces))],
                          extra_report={"tool_family": tool.family, "tool_teeth": z1,

@@ -119,7 +119,8 @@ def check_pair(p1, p2, internal=None, tolerance=None, center_distance=None, cycl
     span = max(cycles, 3.2) * pitch_ang
     n = int(math.ceil(span / step)) + 1
     phis = np.linspace(-span / 2, span / 2, n)
-    contact_tol = 1.5 * tol
+    # both polygons are inscribed within their tolerance: touching flanks show gaps up to 2 tol
+    contact_tol = 2.5 * tol
     pen_max, pen_at, gap_min = 0.0, None, math.inf
     contact_pts = []
     tooth0_contact = []
@@ -145,7 +146,9 @@ def check_pair(p1, p2, internal=None, tolerance=None, center_distance=None, cycl
             line = shapely.shortest_line(T0, PB.boundary)
             cp = np.asarray(line.coords).mean(axis=0)
             track.append((ph, _rot(cp[None], -ph)[0], _rot((cp - np.asarray(c2))[None], -(phase2 + ratio * ph))[0], cp))
-    interference = pen_max > tol
+    # inscribed polygons bulge by up to their tolerance at concave flanks: a penetration
+    # counts as interference once it exceeds what the two tolerances can explain
+    interference = pen_max > 2 * tol
     where = None
     if pen_at is not None and pen_at[1] is not None:
         ph, pt = pen_at
@@ -181,7 +184,8 @@ def check_pair(p1, p2, internal=None, tolerance=None, center_distance=None, cycl
         coast.append(g_minus)
         del PA
     drive, coast = np.array(drive), np.array(coast)
-    # transmission error: the drive-side play turns wheel 2 through (signed, mm on r2)
+    # transmission error: the drive-side play turns wheel 2 through (signed, mm on r2);
+    # meaningful while the pair stays in contact (contact ratio >= 1)
     te = drive
     rep = {
         "internal": internal,
@@ -195,12 +199,12 @@ def check_pair(p1, p2, internal=None, tolerance=None, center_distance=None, cycl
         "max_penetration": float(pen_max),
         "interference_at": where,
         "min_gap": float(gap_min if math.isfinite(gap_min) else 0.0),
-        "drive_flank_clearance": float(drive.min()),
-        "coast_flank_clearance": float(coast.min()),
-        "backlash": float(drive.min() + coast.min()),
+        "drive_flank_clearance": _nanmin(drive),
+        "coast_flank_clearance": _nanmin(coast),
+        "backlash": (None if _nanmin(drive) is None or _nanmin(coast) is None else _nanmin(drive) + _nanmin(coast)),
         "tip_root_clearance": _tip_root(p1, p2, a, internal),
         "contact_ratio": contact_ratio,
-        "transmission_error_pp": float(te.max() - te.min()),
+        "transmission_error_pp": (None if np.isnan(te).any() else float(te.max() - te.min())),
         "contact_points": int(sum(len(c) for c in contact_pts)),
         "path_of_contact": [[float(x), float(y)] for *_, (x, y) in track],
         "path_length": float(sum(np.hypot(*(track[i + 1][3] - track[i][3])) for i in range(len(track) - 1))),
@@ -208,6 +212,11 @@ def check_pair(p1, p2, internal=None, tolerance=None, center_distance=None, cycl
         "sliding_end": sliding[1],
     }
     return rep
+
+
+def _nanmin(a):
+    """Smallest value, or None when the wheels are locked at some phase (NaN)."""
+    return None if np.isnan(a).any() else float(a.min())
 
 
 def _tooth0_region(p1):
@@ -260,16 +269,21 @@ class _ContactProbe:
             self._els = tool_elements(p1)
         r1 = p1.pitch_radius
         d = max(w / 40, 1e-7)
+        import shapely
         pts = []
         for x in (ph, ph + d):
-            hint = self.point(x)
-            if hint is None:
-                return None
             I1 = _rot(np.array([[r1, 0.0]]), -x)[0]
-            q = _exact_contact(self._els, I1, _rot(hint[None], -x)[0])
-            if q is None:
+            PB = self.B.polygon(self.phase2 + self.ratio * x)
+            cands = _exact_contacts(self._els, I1)
+            if not cands:
                 return None
-            cp = _rot(q[None], x)[0]
+            fixed = [_rot(q[None], x)[0] for q in cands]
+            # the root that lies on wheel 2 (within the contact band) on the drive side
+            dist = [float(shapely.distance(shapely.Point(*f), PB.boundary)) for f in fixed]
+            best = int(np.argmin(dist))
+            if dist[best] > self.tol:
+                return None
+            cp = fixed[best]
             pts.append((_rot(cp[None], -x)[0], _rot((cp - self.c2)[None], -(self.phase2 + self.ratio * x))[0]))
         ds1 = float(np.hypot(*(pts[1][0] - pts[0][0])))
         ds2 = float(np.hypot(*(pts[1][1] - pts[0][1])))
@@ -279,9 +293,9 @@ class _ContactProbe:
                 "radius1": float(np.hypot(*pts[0][0])), "radius2": float(np.hypot(*pts[0][1]))}
 
 
-def _exact_contact(els, I1, hint, n=400):
-    """Point of the exact elements whose normal passes through ``I1``, nearest ``hint``."""
-    best = None
+def _exact_contacts(els, I1, n=400):
+    """All points of the exact elements whose normal passes through ``I1`` (tool frame)."""
+    out = []
     for pn, _smooth in els:
         t = np.linspace(0.0, 1.0, n)
         p, nn = pn(t)
@@ -296,11 +310,8 @@ def _exact_contact(els, I1, hint, n=400):
                     a, fa = m, fm
                 else:
                     b = m
-            q = pn(np.array([0.5 * (a + b)]))[0][0]
-            dq = float(np.hypot(*(q - hint)))
-            if best is None or dq < best[0]:
-                best = (dq, q)
-    return None if best is None else best[1]
+            out.append(pn(np.array([0.5 * (a + b)]))[0][0])
+    return out
 
 
 def _play(A, B, ph1, ph2, sign, r2, tol, max_deg=None):
@@ -320,7 +331,7 @@ def _play(A, B, ph1, ph2, sign, r2, tol, max_deg=None):
         # free it the other way: find the smallest turn against sign that clears
         lo, hi = 0.0, -lim
         if overlap(hi):
-            return -lim * r2
+            return math.nan      # locked: no turn within half a pitch frees the wheels
         for _ in range(60):
             mid = 0.5 * (lo + hi)
             if overlap(mid):
@@ -375,3 +386,48 @@ def largest_addendum(family: str, teeth1: int, teeth2: int, internal: bool = Fal
         else:
             hi = mid
     return lo
+
+
+def tip_correction(family: str, teeth1: int, teeth2: int, internal: bool = True,
+                   addendum_coeff: float = 1.0, precision: float = 0.005, tolerance: float = 1e-3,
+                   **params):
+    """Seed 001 Fig. 20-21: turn the wheels' tips until the pair rolls without interference.
+
+    Both wheels are generated with ``addendum_coeff``; then the outer wheel's tip radius
+    is lowered and the ring's raised (equally, ``a*m`` from the pitch circle) and ``a`` is
+    bisected to ``precision`` (in modules). Returns the corrected tip radii (mm), ``a``,
+    and the contact ratio before and after (the lost contact).
+    """
+    from ..profiles import profile
+    kw = dict(addendum_coeff=addendum_coeff, tolerance=tolerance, **params)
+    p1 = profile(family, teeth=teeth1, **kw)
+    p2 = profile(family, teeth=teeth2, internal=internal, **kw)
+    m = 2 * p1.pitch_radius / teeth1
+    before = check_pair(p1, p2, internal=internal)
+
+    def build(a):
+        q1 = profile(family, teeth=teeth1, tip_radius=p1.pitch_radius + a * m, **kw)
+        t2 = p2.pitch_radius - a * m if internal else p2.pitch_radius + a * m
+        q2 = profile(family, teeth=teeth2, internal=internal, tip_radius=t2, **kw)
+        return q1, q2, check_pair(q1, q2, internal=internal)
+    if not before["interference"]:
+        return {"a": addendum_coeff, "tip_radius1": p1.report["tip_radius"], "tip_radius2": p2.report["tip_radius"],
+                "contact_ratio_before": before["contact_ratio"], "contact_ratio_after": before["contact_ratio"],
+                "lost_contact": 0.0, "interference_before": False}
+    lo, hi = 0.0, addendum_coeff
+    best = None
+    while hi - lo > precision:
+        mid = 0.5 * (lo + hi)
+        q1, q2, rep = build(mid)
+        if rep["interference"]:
+            hi = mid
+        else:
+            lo, best = mid, (q1, q2, rep)
+    if best is None:
+        q1, q2, rep = build(lo)
+        best = (q1, q2, rep)
+    q1, q2, rep = best
+    return {"a": lo, "tip_radius1": q1.report["tip_radius"], "tip_radius2": q2.report["tip_radius"],
+            "contact_ratio_before": before["contact_ratio"], "contact_ratio_after": rep["contact_ratio"],
+            "lost_contact": before["contact_ratio"] - rep["contact_ratio"], "interference_before": True,
+            "max_penetration_before": before["max_penetration"], "check_after": rep}

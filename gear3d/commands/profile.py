@@ -29,6 +29,25 @@ PROFILE_FLAGS = [
     ("--tooth-radius", float, "EC: tooth circle radius rho (mm)"),
     ("--center-distance", float, "centre distance (mm)"),
     ("--lobes", int, "gerotor: lobes of the inner rotor"),
+    ("--variant", str, "gerotor: epi | hypo (seed 000's two variants)"),
+    ("--offset-correction", float, "cycloid disc: equidistant correction for clearance (mm)"),
+    ("--radial-correction", float, "cycloid disc: pin-circle radius correction (mm)"),
+    ("--output-holes", int, "cycloid disc: number of output holes"),
+    ("--output-hole-radius", float, "cycloid disc: output hole radius (mm)"),
+    ("--output-circle-radius", float, "cycloid disc: output hole circle radius (mm)"),
+    ("--bore-radius", float, "cycloid disc: central bore radius (mm)"),
+    ("--rotor-lead", float, "Moineau: rotor lead (mm)"),
+    ("--rolling-radius-coeff", float, "cycloidal rack: rolling circle radius (x m)"),
+    ("--half-angle", float, "triangular teeth: tooth half-angle (deg)", "half_angle_deg"),
+    ("--thickness-coeff", float, "triangular teeth: tooth thickness on the pitch circle (x p)"),
+]
+
+#: DXF writer options of ``gear3d profile ... -o x.dxf``
+DXF_FLAGS = [
+    ("--kerf", float, "wire/kerf compensation: signed offset of the exact curve (mm, + = more material)", "kerf"),
+    ("--lead-in", float, "wire lead-in length (mm)", "lead_in"),
+    ("--start-angle", float, "polar angle of the wire start point (deg)", "start_angle_deg"),
+    ("--dxf-version", str, "DXF version: R2000 (default), R12 (LINE/ARC), R2004, R2010, R2013, R2018", "dxf_version"),
 ]
 
 
@@ -60,6 +79,10 @@ def add_parser(sub):
     p = sub.add_parser("profile", help="a 2D gear profile -> .json .dxf .svg .png .stl")
     add_profile_flags(p)
     p.add_argument("--width", type=float, default=None, help="extrusion width for .stl (mm)")
+    for flag, typ, hlp, dest in DXF_FLAGS:
+        p.add_argument(flag, type=typ, dest=dest, default=None, help=hlp)
+    p.add_argument("--spline", action="store_true", help="DXF: SPLINE entities (control points) instead of arcs")
+    p.add_argument("--no-pitch-circle", action="store_true", help="DXF: leave the pitch circle off")
     p.add_argument("-o", "--output", default=None, help="output file; extension picks the format")
     return p
 
@@ -80,8 +103,16 @@ def run(args) -> int:
     opts = {}
     if args.width is not None:
         opts["width"] = args.width
-    elif out.lower().endswith(".stl"):
-        raise GearError("width", None, "a number > 0 mm for an .stl output")
+    elif out.lower().endswith((".stl", ".3mf", ".step", ".stp", ".obj", ".ply", ".vtu")):
+        raise GearError("width", None, "a number > 0 mm for a 3D output (--width)")
+    dxf_opts = {dest: getattr(args, dest) for *_, dest in DXF_FLAGS if getattr(args, dest) is not None}
+    if args.spline:
+        dxf_opts["spline"] = True
+    if args.no_pitch_circle:
+        dxf_opts["pitch_circle"] = False
+    if dxf_opts and not out.lower().endswith(".dxf"):
+        raise GearError(next(iter(dxf_opts)), next(iter(dxf_opts.values())), "only with a .dxf output")
+    opts.update(dxf_opts)
     info = write(prof, out, **opts)
     r = prof.report
     sys.stdout.write(f"wrote {out}: {args.family} z={r['teeth']} max_error={r['max_error']:.3g} mm "

@@ -32,7 +32,7 @@ def families() -> list:
 
 #: modules that register families (a module not shipped yet is skipped)
 FAMILY_MODULES = ["involute", "sine", "sine_circular", "cycloid", "gerotor", "ec", "moineau",
-                  "triangular"]
+                  "triangular", "conjugate"]
 
 
 def _load():
@@ -47,10 +47,15 @@ def _load():
 
 def common(teeth, module, tolerance, *, max_teeth=100_000):
     """Validate the parameters every family shares; return (teeth, module, tolerance)."""
+    from ..errors import ToleranceError
     from ..tessellate import MIN_TOLERANCE
     z = check_number("teeth", teeth, 1, max_teeth, integer=True)
     m = check_number("module", module, 0, 1000, lo_open=True, unit="mm")
-    tol = check_number("tolerance", tolerance, MIN_TOLERANCE, m / 4, unit="mm (at most module/4)")
+    t = check_number("tolerance", tolerance, 0, m / 4, lo_open=True, unit="mm (at most module/4)")
+    if t < MIN_TOLERANCE:
+        raise ToleranceError("tolerance", tolerance, f"a number in [{MIN_TOLERANCE:g}, {m / 4:g}] mm",
+                             "finer than double precision can certify")
+    tol = t
     return z, m, tol
 
 

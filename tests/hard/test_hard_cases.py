@@ -56,11 +56,7 @@ FEW_TEETH = [
 
 #: (family, params, teeth) combinations with a known bug in the builder (lead: remove the
 #: entry once fixed; the strict xfail then turns red as a reminder)
-FEW_TEETH_BUGS = {
-    ("hypocycloid", (), 3): "cusped hypocycloid (eccentricity = module/2, z=3): the cusp tip at r=3 "
-    "is cut short by a build-dependent amount (1.6e-3 mm for the 2e-5 build, 2.4e-3 mm at 1e-4) "
-    "while report max_error stays <= tolerance",
-}
+FEW_TEETH_BUGS: dict = {}
 
 
 def _few_teeth_params():
@@ -278,9 +274,6 @@ def test_mate_generated_ring_difference_one():
     assert not check_pair(a, ring, internal=True)["interference"]
 
 
-@pytest.mark.xfail(strict=True, reason=(
-    "Profile.at_tolerance()/reference()/exact_distance() fail on a mate-generated profile: "
-    "its family is 'mate(sine)', which profiles.profile() does not know -> GearError('family')"))
 def test_mate_profile_exact_distance():
     from gear3d.analysis.mate import mate
     a = gear3d.profile("sine", teeth=20, addendum_coeff=0.5, tolerance=2e-3)
@@ -446,18 +439,11 @@ def test_tolerance_below_1e7_is_refused():
         gear3d.profile("sine", tolerance=1e-9)
 
 
-@pytest.mark.xfail(strict=True, reason=(
-    "profiles.common() refuses tolerance < MIN_TOLERANCE with a plain GearError (check_number), "
-    "not the ToleranceError that errors.py documents for 'too fine for double precision'"))
 def test_tolerance_below_1e7_is_tolerance_error():
     with pytest.raises(ToleranceError):
         gear3d.profile("involute", tolerance=5e-8)
 
 
-@pytest.mark.xfail(strict=True, reason=(
-    "profile(tolerance=1e-7) passes common() (range [1e-7, m/4]) but build_profile tessellates at "
-    "tol - CLIPPER_ROUNDING = 9.29e-8 < MIN_TOLERANCE, so tessellate() raises ToleranceError naming "
-    "tolerance = 9.29e-08, a value the user never gave; every tolerance in [1e-7, 1.0707e-7) fails so"))
 def test_tolerance_at_documented_minimum():
     try:
         p = gear3d.profile("involute", tolerance=1e-7)
