@@ -289,6 +289,11 @@ def build_profile(family: str, params: dict, pieces, teeth: int, pitch_radius: f
         raise GearError("addendum_coeff", params.get("addendum_coeff"), "a smaller value", "no tooth is left")
     # ---- what trimming removed from tooth 0: undercut (root side) and pointing (tip side)
     dist = loops_distance([tl], chain)
+    # tip and root radii of the exact curve, not of the polygon's vertices: refine the
+    # extreme surviving sample on its exact piece (a trimmed corner stays as it is)
+    keep = dist <= 2 * tol + 1e-9
+    tip = _exact_extreme(fs, ts, label, chain, keep, tip, largest=not internal)
+    root = _exact_extreme(fs, ts, label, chain, keep, root, largest=internal)
     removed = dist > 2 * tol + 1e-9
     tip_side = (rc < pitch_radius) if internal else (rc > pitch_radius)
     cusp_idx = _cusps(chain, tol)
@@ -414,6 +419,40 @@ def _working_branches(chain, label, cusp_idx, flank_pieces):
         if best:
             mask[best[0]:best[1]] = True
     return mask
+
+
+def _exact_extreme(fs, ts, label, chain, keep, polygon_value, largest):
+    """Largest (or smallest) radius (mm) of the exact curve near the polygon's extreme.
+
+    Starts from the surviving raw sample with the extreme radius and maximises |G(t)| on
+    its piece between the neighbouring samples (golden section). Keeps the polygon value
+    when that is more extreme (a trimmed corner) or the sample is not a vertex there.
+    """
+    r = np.hypot(chain[:, 0], chain[:, 1])
+    if not keep.any():
+        return float(polygon_value)
+    idx = np.nonzero(keep)[0]
+    j = idx[np.argmax(r[idx]) if largest else np.argmin(r[idx])]
+    if abs(r[j] - polygon_value) > 1e-6 * max(1.0, abs(polygon_value)):
+        return float(polygon_value)           # the extreme is a trimmed corner
+    pc = int(label[j])
+    t = ts[pc]
+    k = int(np.argmin(np.abs(fs[pc](t) - chain[j]).sum(axis=1)))
+    a, b = t[max(k - 1, 0)], t[min(k + 1, len(t) - 1)]
+    sgn = 1.0 if largest else -1.0
+
+    def f(x):
+        return sgn * float(np.hypot(*fs[pc](np.array([x]))[0]))
+    g = (math.sqrt(5) - 1) / 2
+    c, d = b - g * (b - a), a + g * (b - a)
+    for _ in range(60):
+        if f(c) > f(d):
+            b = d
+        else:
+            a = c
+        c, d = b - g * (b - a), a + g * (b - a)
+    best = sgn * max(f(0.5 * (a + b)), sgn * polygon_value)
+    return float(best)
 
 
 def _arc_piece(radius, teeth):
