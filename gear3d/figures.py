@@ -229,33 +229,50 @@ def mesh_preview(body, path=None, *, elev: float = 30.0, azim: float = -60.0, ma
     return _save(fig, path)
 
 
-def pair_figure(p1, p2, report: dict, path=None):
-    """The pair placed at its centre distance in mesh phase (as :func:`check_pair` rolls it),
-    with the pitch circles and the deepest interference point (if any) marked."""
+def pair_figure(p1, p2, report: dict, path=None, *, positions: int = 60):
+    """Seed 001 Figs. 16-19: wheel 1 rolled through a full turn of positions, drawn in wheel
+    2's frame (wheel 2 fixed, black), with every overlap (interference) filled red."""
     import math as _m
+
+    import shapely
     plt = _plt()
-    from .analysis.pairs import _setup, _Placed
+    from .analysis.pairs import _Placed, _setup
     internal, a, c2, phase2, ratio = _setup(p1, p2, report.get("internal"), report.get("center_distance"))
     fig, ax = plt.subplots(figsize=(7, 7))
-    at = report.get("interference_at") or {}
-    ph = _m.radians(at.get("phi1_deg", 0.0))
-    for placed, ang, col, gid in ((_Placed(p1, (0, 0)), ph, "tab:blue", "wheel1"),
-                                  (_Placed(p2, c2), phase2 + ratio * ph, "tab:orange", "wheel2")):
-        for l in placed.loops:
-            c, s = _m.cos(ang), _m.sin(ang)
-            q = l @ np.array([[c, s], [-s, c]]) + placed.c
+    B = _Placed(p2, (0.0, 0.0))           # wheel 2 in its own frame
+    PB = B.polygon(0.0)
+    for l in p2.loops:
+        q = np.vstack([l, l[:1]])
+        (ln,) = ax.plot(q[:, 0], q[:, 1], color="black", lw=0.9)
+        ln.set_gid("wheel2")
+    A = _Placed(p1, (0.0, 0.0))
+    span = 2 * _m.pi * p2.pitch_radius / p1.pitch_radius      # wheel 1 turn for one turn of wheel 2
+    n_hit = 0
+    for k, ph in enumerate(np.linspace(0.0, span, positions, endpoint=False)):
+        ang2 = phase2 + ratio * ph
+        c, s_ = _m.cos(-ang2), _m.sin(-ang2)
+        R = np.array([[c, -s_], [s_, c]])
+        loops = []
+        for l in p1.loops:
+            cc, ss = _m.cos(ph), _m.sin(ph)
+            fixed = l @ np.array([[cc, ss], [-ss, cc]]) - np.asarray(c2)
+            loops.append(fixed @ R.T)
+        for q in loops:
             q = np.vstack([q, q[:1]])
-            (ln,) = ax.plot(q[:, 0], q[:, 1], color=col, lw=0.7)
-            ln.set_gid(gid)
-    for r, c in ((p1.pitch_radius, (0, 0)), (p2.pitch_radius, c2)):
-        t = np.linspace(0, 2 * np.pi, 361)
-        ax.plot(c[0] + r * np.cos(t), c[1] + r * np.sin(t), color="0.6", ls="--", lw=0.5)
-    if at.get("point"):
-        (pt,) = ax.plot(*at["point"], "o", color="red", ms=8, mfc="none")
-        pt.set_gid("interference")
+            (ln,) = ax.plot(q[:, 0], q[:, 1], color="tab:blue", lw=0.3, alpha=0.5)
+            ln.set_gid(f"wheel1-position-{k}")
+        outer = max(loops, key=lambda l: abs(float(shapely.Polygon(l).area)))
+        PA = shapely.Polygon(outer, [l for l in loops if l is not outer])
+        inter = PA.intersection(PB)
+        if inter.area > (2 * report["tolerance"]) ** 2:
+            for g in getattr(inter, "geoms", [inter]):
+                if g.geom_type == "Polygon" and g.area > 0:
+                    xy = np.asarray(g.exterior.coords)
+                    (pt,) = ax.fill(xy[:, 0], xy[:, 1], color="red", alpha=0.8)
+                    pt.set_gid("interference")
+                    n_hit += 1
     ax.set_aspect("equal")
-    ax.set_title(f"z={p1.teeth}/{p2.teeth} {'internal' if internal else 'external'}: "
-                 f"interference={report['interference']} "
-                 f"(max {report['max_penetration'] * 1000:.1f} um), contact ratio {report['contact_ratio']:.3f}",
-                 fontsize=9)
+    ax.set_title(f"z={p1.teeth} rolled in z={p2.teeth} ({'internal' if internal else 'external'}): "
+                 f"interference={report['interference']} (max {report['max_penetration'] * 1000:.1f} um), "
+                 f"contact ratio {report['contact_ratio']:.3f}", fontsize=9)
     return _save(fig, path)

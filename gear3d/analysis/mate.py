@@ -136,9 +136,9 @@ def tool_elements(prof):
     for r_i, ((_, i, k, ta, tb), end_pt) in enumerate(els):
         out.append((_smooth_pn(prof.pieces[i], ta, tb, 2 * math.pi * k / z), True))
         if r_i + 1 < len(els):
-            na = _normal(prof.pieces[i], tb, 2 * math.pi * k / z)
-            i2, k2, ta2, _ = runs[r_i + 1]
-            nb = _normal(prof.pieces[i2], ta2, 2 * math.pi * k2 / z)
+            na = _normal(prof.pieces[i], tb, 2 * math.pi * k / z, inward=-1e-5 * np.sign(tb - ta or 1))
+            i2, k2, ta2, tb2 = runs[r_i + 1]
+            nb = _normal(prof.pieces[i2], ta2, 2 * math.pi * k2 / z, inward=1e-5 * np.sign(tb2 - ta2 or 1))
             if abs(na[0] * nb[1] - na[1] * nb[0]) > 1e-9 or np.dot(na, nb) < 0:
                 out.append((_fan_pn(end_pt, na, nb), False))
     return out
@@ -150,8 +150,11 @@ def _deriv(G, t, rot):
     return _rot((G(t + h) - G(t - h)) / (2 * h), rot)
 
 
-def _normal(G, t, rot):
+def _normal(G, t, rot, inward=0.0):
+    """Unit normal of piece G at t; at a singular point (dG/dt = 0) the limit from inside."""
     d = _deriv(G, np.array([t]), rot)[0]
+    if np.hypot(*d) < 1e-9:
+        d = _deriv(G, np.array([t + (inward or 1e-5)]), rot)[0]
     n = np.array([d[1], -d[0]])
     return n / np.hypot(*n)
 

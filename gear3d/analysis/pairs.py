@@ -169,6 +169,12 @@ def check_pair(p1, p2, internal=None, tolerance=None, center_distance=None, cycl
         start = probe.edge(lo, phis[i0]) if i0 > 0 else phis[0]
         hi = phis[i1 + 1] if i1 + 1 < len(phis) else phis[i1]
         end = probe.edge(hi, phis[i1]) if i1 + 1 < len(phis) else phis[-1]
+        # conjugate action (the exact contact point of tooth 0's flank lies on wheel 2)
+        # bounds the path more sharply than the contact band: use it when it exists
+        mid = 0.5 * (start + end)
+        if probe.action(mid, p1):
+            start = probe.edge(start - 0.05 * pitch_ang, mid, test=lambda x: probe.action(x, p1))
+            end = probe.edge(end + 0.05 * pitch_ang, mid, test=lambda x: probe.action(x, p1))
         contact_ratio = float((end - start) / pitch_ang)
         # windows of 4 % of the path at each end, starting 1 % inside (flank on flank)
         w = 0.04 * (end - start)
@@ -201,6 +207,8 @@ def check_pair(p1, p2, internal=None, tolerance=None, center_distance=None, cycl
         "min_gap": float(gap_min if math.isfinite(gap_min) else 0.0),
         "drive_flank_clearance": _nanmin(drive),
         "coast_flank_clearance": _nanmin(coast),
+        "min_clearance": (None if _nanmin(drive) is None or _nanmin(coast) is None
+                          else min(_nanmin(drive), _nanmin(coast))),
         "backlash": (None if _nanmin(drive) is None or _nanmin(coast) is None else _nanmin(drive) + _nanmin(coast)),
         "tip_root_clearance": _tip_root(p1, p2, a, internal),
         "contact_ratio": contact_ratio,
@@ -245,11 +253,29 @@ class _ContactProbe:
         cp = np.asarray(shapely.shortest_line(T0, PB.boundary).coords).mean(axis=0)
         return cp
 
-    def edge(self, off, on, iters=30):
+    def action(self, ph, p1):
+        """True when tooth 0's drive flank has an exact contact point (normal through the
+        pitch point, on the exact pieces) that lies on wheel 2 (within the contact band)."""
+        import shapely
+        from .mate import tool_elements
+        if not hasattr(self, "_els"):
+            self._els = tool_elements(p1)
+        w = math.pi / p1.teeth if p1.teeth > 1 else math.pi
+        I1 = _rot(np.array([[p1.pitch_radius, 0.0]]), -ph)[0]
+        PB = self.B.polygon(self.phase2 + self.ratio * ph)
+        for q in _exact_contacts(self._els, I1):
+            a = math.atan2(q[1], q[0])
+            if 0 <= a <= w:
+                f = _rot(q[None], ph)[0]
+                if shapely.distance(shapely.Point(*f), PB.boundary) <= self.tol:
+                    return True
+        return False
+
+    def edge(self, off, on, iters=30, test=None):
         """Bisect the wheel-1 angle (rad) where contact begins/ends between ``off`` and ``on``."""
         for _ in range(iters):
             mid = 0.5 * (off + on)
-            if self.point(mid) is None:
+            if (not test(mid)) if test else (self.point(mid) is None):
                 off = mid
             else:
                 on = mid
