@@ -212,3 +212,19 @@ def test_cli_harmonic_alias():
                        capture_output=True, text=True)
     assert r.returncode == 0, r.stderr
     assert "48.4" in r.stdout
+
+
+def test_difference_five_meshes_difference_three_needs_less_addendum():
+    """Seed 001 Fig. 11: Z = 20 in Z' = 25 with c_h = 1 meshes (the tips are (Z'-Z) m/2 - 2 c_h m
+    apart opposite the pitch point); with Z'-Z = 3 (Z = 12) c_h = 1 fouls and the largest
+    safe addendum lies between those of differences 2 and 5."""
+    a = gear3d.profile("sine", teeth=20, addendum_coeff=1.0, tolerance=1e-3)
+    b = gear3d.profile("sine", teeth=25, addendum_coeff=1.0, internal=True, tolerance=1e-3)
+    r = check_pair(a, b)
+    assert not r["interference"] and r["center_distance"] == pytest.approx(2.5)
+    a3 = gear3d.profile("sine", teeth=12, addendum_coeff=1.0, tolerance=1e-3)
+    b3 = gear3d.profile("sine", teeth=15, addendum_coeff=1.0, internal=True, tolerance=1e-3)
+    assert check_pair(a3, b3)["interference"]
+    c2 = largest_addendum("sine", 12, 14, internal=True, precision=0.04, tolerance=1e-3)
+    c3 = largest_addendum("sine", 12, 15, internal=True, precision=0.04, tolerance=1e-3)
+    assert c2 < c3 < 1.0
