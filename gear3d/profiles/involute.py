@@ -7,7 +7,7 @@ from ..envelope import rack_envelope
 from ..errors import check_number
 from ..model import build_profile
 from ..racks import involute_rack
-from . import common, register, reject_unknown
+from . import blank_and_rim, common, register, reject_unknown
 
 
 @register("involute")
@@ -41,14 +41,7 @@ def involute(teeth=20, module=1.0, pressure_angle_deg=20.0, addendum_coeff=1.0,
     params = dict(teeth=z, module=m, pressure_angle_deg=a, addendum_coeff=ha, dedendum_coeff=hf,
                   tip_radius_coeff=rho, shift_coeff=x, backlash=b, internal=bool(internal),
                   tolerance=tol, tip_radius=tip_radius, rim_radius=rim_radius)
-    clip = None
-    if tip_radius is not None:
-        tr = check_number("tip_radius", tip_radius, 0, None, lo_open=True, unit="mm")
-        clip = (tr, None) if internal else (None, tr)
-    rim = None
-    if internal:
-        rim = rim_radius if rim_radius is not None else root + 2 * m
-        check_number("rim_radius", rim, root + tol, None, unit="mm (beyond the root circle)")
+    clip, rim = blank_and_rim(bool(internal), tip_radius, rim_radius, root, m, tol)
     pieces = rack_envelope(rack, r, x * m, bool(internal))
     rb = r * math.cos(math.radians(a))
     return build_profile("involute", params, [p for p, _ in pieces], z, r, internal=bool(internal),

@@ -11,7 +11,7 @@ from ..errors import GearError, check_choice, check_number
 from ..model import build_profile
 from .involute import _nominal
 from ..racks import sine_rack
-from . import common, register, reject_unknown
+from . import blank_and_rim, common, register, reject_unknown
 
 
 @register("sine")
@@ -46,14 +46,7 @@ def sine(teeth=20, module=None, addendum_coeff=None, shift_coeff=0.0, internal=F
                         "the rack would reach the gear centre")
     params = dict(teeth=z, module=m, addendum_coeff=c, shift_coeff=x, internal=bool(internal),
                   tolerance=tol, tip_radius=tip_radius, rim_radius=rim_radius, form=form)
-    clip = None
-    if tip_radius is not None:
-        tr = check_number("tip_radius", tip_radius, 0, None, lo_open=True, unit="mm")
-        clip = (tr, None) if internal else (None, tr)
-    rim = None
-    if internal:
-        rim = rim_radius if rim_radius is not None else r - x * m + ha + 2 * m
-        check_number("rim_radius", rim, r - x * m + ha + tol, None, unit="mm (beyond the root circle)")
+    clip, rim = blank_and_rim(bool(internal), tip_radius, rim_radius, r - x * m + ha, m, tol)
     rack = sine_rack(m, ha, hypo=(form == "hypo"))
     pieces = rack_envelope(rack, r, x * m, bool(internal))
     return build_profile("sine", params, [p for p, _ in pieces], z, r, internal=bool(internal),
