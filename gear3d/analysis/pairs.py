@@ -87,10 +87,10 @@ def _setup(p1, p2, internal, center_distance):
         phase2 = math.pi + math.pi / p2.teeth
         ratio = -r1 / r2
     else:
-        c2 = (r1 - r2, 0.0) if p2.internal else (r1 + a if False else -(r1 - r2), 0.0)
-        if p1.internal:  # ring at the origin, pinion inside: pitch point (r1, 0) ; pinion centre (r1 - r2, 0)
-            c2 = (r1 - r2, 0.0)
-        phase2 = math.pi / p2.teeth if p2.internal else math.pi / p2.teeth
+        # the ring's pitch circle passes through the pitch point (r1, 0): the other centre
+        # lies on the x axis, on the ring side (a = |r2 - r1| unless given)
+        c2 = (-a, 0.0) if p2.internal else (a, 0.0)
+        phase2 = math.pi / p2.teeth
         ratio = r1 / r2
     return internal, a, c2, phase2, ratio
 
