@@ -354,31 +354,26 @@ def _play(A, B, ph1, ph2, sign, r2, tol, max_deg=None):
     lim = (2 * math.pi / B.prof.teeth) / 2
     step_tol = tol / r2 / 4
     if overlap(0.0):
-        # free it the other way: find the smallest turn against sign that clears
-        lo, hi = 0.0, -lim
-        if overlap(hi):
+        # free it the other way: the smallest turn against ``sign`` that clears
+        if overlap(-lim):
             return math.nan      # locked: no turn within half a pitch frees the wheels
-        for _ in range(60):
-            mid = 0.5 * (lo + hi)
-            if overlap(mid):
-                lo = mid
-            else:
-                hi = mid
-            if abs(hi - lo) < step_tol:
-                break
-        return hi * r2
-    lo, hi = 0.0, lim
-    if not overlap(hi):
+        return _bisect(overlap, 0.0, -lim, step_tol) * r2
+    if not overlap(lim):
         return lim * r2
+    return _bisect(overlap, lim, 0.0, step_tol) * r2
+
+
+def _bisect(pred, bad, good, step):
+    """Shrink [bad, good] (pred(bad) True, pred(good) False) to ``step``; return ``good``."""
     for _ in range(60):
-        mid = 0.5 * (lo + hi)
-        if overlap(mid):
-            hi = mid
+        mid = 0.5 * (bad + good)
+        if pred(mid):
+            bad = mid
         else:
-            lo = mid
-        if abs(hi - lo) < step_tol:
+            good = mid
+        if abs(good - bad) < step:
             break
-    return lo * r2
+    return good
 
 
 def _tip_root(p1, p2, a, internal):
