@@ -407,13 +407,19 @@ def _array(file, data, key):
     return v
 
 
-def _pair(file, i, rp, by, seen):
-    label = f"pair[{rp.get('name', i)}]"
-    _unknown(file, label, rp, PAIR_KEYS)
-    name = safe_name(file, f"{label}.name", rp.get("name") or fail(file, f"{label}.name", None, "required"))
+def _unique_name(file, label, raw, seen):
+    """The table's required, path-safe ``name``, unique among parts, pairs and assemblies."""
+    name = safe_name(file, f"{label}.name", raw.get("name") or fail(file, f"{label}.name", None, "required"))
     if name in seen:
         fail(file, f"{label}.name", name, "a name not used by another part, pair or assembly")
     seen.add(name)
+    return name
+
+
+def _pair(file, i, rp, by, seen):
+    label = f"pair[{rp.get('name', i)}]"
+    _unknown(file, label, rp, PAIR_KEYS)
+    name = _unique_name(file, label, rp, seen)
     ps = rp.get("parts")
     if not isinstance(ps, list) or len(ps) != 2:
         fail(file, f"{label}.parts", ps, "a list of two part names")
@@ -434,10 +440,7 @@ def _pair(file, i, rp, by, seen):
 def _assembly(file, i, ra, seen):
     label = f"assembly[{ra.get('name', i)}]"
     _unknown(file, label, ra, ASSEMBLY_KEYS)
-    name = safe_name(file, f"{label}.name", ra.get("name") or fail(file, f"{label}.name", None, "required"))
-    if name in seen:
-        fail(file, f"{label}.name", name, "a name not used by another part, pair or assembly")
-    seen.add(name)
+    name = _unique_name(file, label, ra, seen)
     _str(file, f"{label}.kind", ra.get("kind", None), ("harmonic",))
     design = ra.get("design", "seed002")
     if isinstance(design, str):
