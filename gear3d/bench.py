@@ -61,7 +61,10 @@ BODY_KINDS = ("spur", "helical")
 WIDTH_MM = 10.0
 HELIX_DEG = 20.0
 #: parameters per family (empty: the family's defaults)
-FAMILY_PARAMS = {"involute": dict(teeth=20, module=1.0)}
+FAMILY_PARAMS = {"involute": dict(teeth=20, module=1.0), "mate": dict(teeth=30)}
+#: ``mate`` has no tool at its defaults: the wheel conjugate to this cutter (built at the
+#: row's tolerance, outside the timed build) with ``FAMILY_PARAMS["mate"]["teeth"]`` teeth
+MATE_TOOL = dict(family="involute", teeth=20, module=1.0)
 #: brute-force rack positions (samples per rack element grow with them)
 BRUTE_POSITIONS = [25, 50, 100, 200, 400, 800, 1600]
 QUICK_BRUTE_POSITIONS = [25, 50, 100, 200]
@@ -187,6 +190,18 @@ def min_body_vertices(b) -> float:
 
 
 # ------------------------------------------------------------------ the rows
+
+def family_params(family: str, tol: float) -> dict:
+    """The keyword parameters of ``family``'s benchmark build at tolerance ``tol`` (mm):
+    :data:`FAMILY_PARAMS`, plus for ``mate`` its cutter (:data:`MATE_TOOL`, a Profile built
+    here at ``tol`` so that its time is not charged to the mate's row)."""
+    params = dict(FAMILY_PARAMS.get(family, {}))
+    if family == "mate":
+        from . import profile
+        tool = dict(MATE_TOOL)
+        params["tool"] = profile(tool.pop("family"), tolerance=tol, **tool)
+    return params
+
 
 def _err_row(base, e):
     row = dict(base)
@@ -414,9 +429,22 @@ def plot(rows, path: Path):
 
 
 def _atomic_text(path: Path, text: str):
-    tmp = path.with_name(path.name + ".tmp")
-    tmp.write_text(text)
-    os.replace(tmp, path)
+    """Write ``text`` to ``path`` through a temporary file in the same folder (created with
+    its parents when missing); nothing is left behind on error."""
+    path.parent.mkdir(parents=True, exist_ok=True)
+    tmp = path.with_name("." + path.name + ".tmp")
+    try:
+        tmp.write_text(text)
+        os.replace(tmp, path)
+    finally:
+        if tmp.exists():
+            tmp.unlink()
+
+
+def _strict_json(data) -> str:
+    """Strict JSON (non-finite numbers -> null, ``allow_nan=False``)."""
+    from .export.json_format import clean
+    return json.dumps(clean(data), indent=1, allow_nan=False)
 
 
 # ------------------------------------------------------------------ the run
@@ -425,6 +453,7 @@ def run(quick: bool = False, json_path=None, out_dir="out/bench", families=None,
     """Run the benchmark; write the table, plot and JSON rows to ``out_dir`` (and the rows
     to ``json_path`` if given). Returns the rows (list of dicts, errors in mm)."""
     from . import families as registered
+    from .errors import GearError
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     t_start = time.perf_counter()
@@ -446,7 +475,11 @@ def run(quick: bool = False, json_path=None, out_dir="out/bench", families=None,
     from tqdm import tqdm
     rows = []
     for what, f, kind, tol in tqdm(jobs, desc="bench", disable=not progress, file=sys.stderr):
-        params = FAMILY_PARAMS.get(f, {})
+        try:
+            params = family_params(f, tol)
+        except GearError as e:
+            rows.append(_err_row({"family": f, "body": kind or "none", "tolerance": tol}, e))
+            continue
         if what == "profile":
             rows.append(profile_row(f, tol, params)[0])
         else:
@@ -456,11 +489,10 @@ def run(quick: bool = False, json_path=None, out_dir="out/bench", families=None,
     total = time.perf_counter() - t_start
     mach = machine()
     _atomic_text(out / "speed_vs_error.md", markdown(rows, mach, quick, total))
-    doc = json.dumps({"machine": mach, "quick": quick, "total_seconds": total, "rows": rows},
-                     indent=1, default=float)
+    doc = _strict_json({"machine": mach, "quick": quick, "total_seconds": total, "rows": rows})
     _atomic_text(out / "speed_vs_error.json", doc + "\n")
     if json_path is not None:
-        _atomic_text(Path(json_path), json.dumps(rows, indent=1, default=float) + "\n")
+        _atomic_text(Path(json_path), _strict_json(rows) + "\n")
     plot(rows, out / "speed_vs_error.png")
     return rows
 
