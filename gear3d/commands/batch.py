@@ -1,9 +1,14 @@
 """``gear3d batch LIBRARY.toml [--out DIR] [--workers N] [--engine local|dask] [--scheduler ADDR]``.
 
 Builds a part library (see :mod:`gear3d.jobs.batch`): a process pool by default, Dask
-distributed with ``--engine dask`` (a LocalCluster, or ``--scheduler`` for an existing
-cluster whose workers see ``--out``). Writes the parts' files, ``manifest.json``,
-``manifest.csv`` and ``timings.json``; a re-run resumes (complete parts are skipped).
+distributed with ``--engine dask`` (the ``gear3d[dask]`` extra; a LocalCluster, or
+``--scheduler tcp://HOST:PORT`` for an existing cluster whose workers see ``--out`` and
+import gear3d). Writes the parts' files, ``manifest.json``, ``manifest.csv`` and
+``timings.json``; a re-run resumes (complete parts are skipped).
+
+Exit codes: 0 every part built; 1 some parts failed (recorded in the manifest, one summary
+line on stderr); 2 bad input, an unwritable ``--out``, Dask not installed or a scheduler
+that does not answer (one line on stderr, nothing written); 130 interrupted.
 """
 from __future__ import annotations
 
@@ -17,14 +22,22 @@ def add_parser(sub):
     p.add_argument("--out", default=None, help="output folder (default out/<library name>)")
     p.add_argument("--workers", type=int, default=None,
                    help="worker processes (default: CPU count; 0 = in this process)")
-    p.add_argument("--engine", default="local", choices=["local", "dask"], help="process pool or Dask distributed")
-    p.add_argument("--scheduler", default=None, help="Dask scheduler address (default: a LocalCluster)")
+    p.add_argument("--engine", default="local", choices=["local", "dask"],
+                   help="process pool, or Dask distributed (needs: pip install 'gear3d[dask]')")
+    p.add_argument("--scheduler", default=None, metavar="ADDR",
+                   help="Dask scheduler address, e.g. tcp://HOST:8786 (default: a LocalCluster)")
     p.add_argument("--threads", action="store_true", help="Dask LocalCluster with thread workers (processes=False)")
     p.add_argument("--set", action="append", default=[], metavar="KEY=VALUE", dest="sets",
                    help="override a template value, e.g. library.tolerance=0.01 (repeatable)")
     p.add_argument("--dry-run", action="store_true", help="list the parts it would build; write nothing")
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
     return p
+
+
+def _one_line(text: str, limit: int = 300) -> str:
+    """``text`` on one line: newlines and control characters escaped, length bounded."""
+    s = "".join(c if c.isprintable() else repr(c)[1:-1] for c in str(text))
+    return s if len(s) <= limit else s[:limit - 3] + "..."
 
 
 def run(args) -> int:
@@ -45,6 +58,12 @@ def run(args) -> int:
     r = run_library(lib, out, workers=workers, engine=args.engine, scheduler=args.scheduler,
                     processes=not args.threads, progress=not args.no_progress)
     rate = f"{r['parts_per_s']:.2f} parts/s" if r["parts_per_s"] else "-"
+    manifest = os.path.join(out, "manifest.json")
     sys.stdout.write(f"{lib['name']}: {r['built']} built, {r['skipped']} already complete, {r['failed']} failed "
-                     f"({rate}, {r['seconds']:.1f} s) -> {os.path.join(out, 'manifest.json')}\n")
-    return 1 if r["failed"] else 0
+                     f"({rate}, {r['seconds']:.1f} s) -> {manifest}\n")
+    if r["failed"]:
+        first = r["first_failure"]
+        sys.stderr.write(_one_line(f"gear3d: batch: {r['failed']} of {len(lib['parts'])} parts failed "
+                                   f"(first: {first['name']}: {first['error']}); see {manifest}") + "\n")
+        return 1
+    return 0

@@ -23,37 +23,11 @@ def add_parser(sub):
     return p
 
 
-def check_writable(param: str, path: str, folder: bool):
-    """Refuse (GearError) a path that cannot be written: ``folder`` a directory to create or
-    reuse, else a file (missing parent folders are created when the results are written).
-    The nearest existing ancestor must be a writable directory; nothing is created here."""
-    import os
-    from ..errors import GearError
-    allowed = "a writable folder" if folder else "a file path in a writable folder (missing folders are created)"
-    p = os.path.abspath(path)
-    if not folder and (os.path.isdir(p) or path.endswith(os.sep)):
-        raise GearError(param, path, allowed, "it is a folder")
-    if folder and os.path.exists(p) and not os.path.isdir(p):
-        raise GearError(param, path, allowed, "it is a file")
-    anc = p if folder else os.path.dirname(p)
-    while not os.path.exists(anc):
-        anc = os.path.dirname(anc)
-    if not os.path.isdir(anc):
-        raise GearError(param, path, allowed, f"{anc} is a file")
-    import tempfile
-    try:                                   # a real probe: permissions alone miss /proc and read-only mounts
-        fd, probe = tempfile.mkstemp(prefix=".gear3d-probe-", dir=anc)
-    except OSError as e:
-        raise GearError(param, path, allowed, f"{anc} is not writable: {e.strerror}") from None
-    os.close(fd)
-    os.remove(probe)
-
-
 def run(args) -> int:
-    import os
     from .. import families
     from ..bench import headline, run as bench_run
     from ..errors import GearError
+    from ..paths import check_writable
     if args.json is not None:
         check_writable("json", args.json, folder=False)
     check_writable("out_dir", args.out_dir, folder=True)

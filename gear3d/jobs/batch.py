@@ -1,20 +1,33 @@
 """Part libraries: a part template swept over parameters, built in parallel, with a
 manifest and resume.
 
-* Engines: a local :class:`concurrent.futures.ProcessPoolExecutor` (``workers`` processes,
-  forkserver start so that no manifold/TBB thread state is forked; ``workers=0`` runs in
-  this process) or Dask distributed (``engine="dask"``: a ``LocalCluster`` when no
-  ``scheduler`` address is given, else that cluster; its workers must see ``out_dir``).
-  Workers write the part's files themselves (atomically) and return a plain dict record
-  (arrays/paths/numbers, never manifold objects).
+* Engines: a local process pool (``workers`` processes, forkserver start so that no
+  manifold/TBB thread state is forked; ``workers=0`` runs in this process) or Dask
+  distributed (``engine="dask"``, the ``gear3d[dask]`` extra: a ``LocalCluster`` when no
+  ``scheduler`` address is given, else that cluster; its workers must see ``out_dir`` and
+  import gear3d). Workers write the part's files themselves (atomically) and return plain
+  dict records (arrays/paths/numbers, never manifold objects).
+* Cheap workers: parts go out in chunks (:func:`chunked`: about 8 chunks per worker, at
+  most :data:`CHUNK_MAX` parts each), so one task carries several parts; the forkserver
+  preloads the modules the library's outputs need (:func:`worker_modules`, nothing more:
+  an STL library never imports trimesh, ezdxf or matplotlib there), so each worker starts
+  by a fork, not by re-importing.
+* Orphans: every pool worker watches a pipe whose only write end this process holds
+  (:func:`_watch_parent`); when this process dies, even by SIGKILL, the pipe reads EOF and
+  the worker exits at once, which in turn lets the forkserver and the resource tracker
+  exit. A part in flight may still land (atomically, complete), no new one starts.
 * Each finished part leaves a record ``out_dir/.records/<name>.json`` (written after its
   files). ``manifest.json`` / ``manifest.csv`` are assembled from the records in library
   order: per part its parameters, files with sha256, volume, triangles and measured max
   errors, or its error. Wall-clock times go to ``timings.json`` only, so a batch killed
-  (SIGINT/SIGKILL) and re-run ends with byte-identical manifests.
+  (SIGINT/SIGKILL) and re-run ends with byte-identical manifests, whichever engine or
+  worker count built it.
 * Resume: a part whose record matches its spec and whose files still hash as recorded
   is skipped. A failed part records its error and the batch goes on (it is retried on a
   re-run).
+* Refusals before any file: a bad value, an output folder that cannot be written, Dask
+  not installed (``pip install 'gear3d[dask]'``) or a scheduler that does not answer
+  raise :class:`~gear3d.errors.GearError` before the folder is created.
 """
 from __future__ import annotations
 
@@ -76,7 +89,18 @@ def build_part(job: dict, part: dict, out_dir: str) -> dict:
     os.makedirs(os.path.join(out_dir, RECORDS), exist_ok=True)
     write_json(os.path.join(out_dir, RECORDS, part["name"] + ".json"), rec)
     return {"record": _jsonable(rec), "seconds": time.perf_counter() - t0, "stages": dict(g.counts),
-            "cache_hits": dict(g.cache_hits)}
+            "cache_hits": dict(g.cache_hits), "worker": worker_id(),
+            "heavy_imports": [m for m in HEAVY_MODULES if m in sys.modules]}
+
+
+#: libraries a worker should import only when an output needs them (seconds each)
+HEAVY_MODULES = ("trimesh", "scipy", "shapely", "matplotlib", "ezdxf", "lxml")
+
+
+def worker_id() -> str:
+    """``host:pid`` of the process building a part (timings.json counts parts per worker)."""
+    import socket
+    return f"{socket.gethostname()}:{os.getpid()}"
 
 
 def _jsonable(rec):
@@ -138,6 +162,73 @@ def preflight(lib: dict):
             raise
 
 
+#: most parts in one worker task (a chunk): fewer round trips, a bounded loss on interrupt
+CHUNK_MAX = 8
+#: chunks per worker aimed at (load balance against per-task overhead)
+CHUNKS_PER_WORKER = 8
+#: seconds to wait for a Dask scheduler to answer
+CONNECT_TIMEOUT_S = 20.0
+DASK_HINT = "pip install 'gear3d[dask]'"
+
+
+def require_dask():
+    """Import ``dask.distributed`` or refuse: GearError naming the extra to install."""
+    try:
+        import dask.distributed  # noqa: F401
+    except ImportError:
+        raise GearError("engine", "dask", f"local, or dask after: {DASK_HINT}",
+                        "Dask is not installed") from None
+
+
+def chunked(todo: list, workers: int) -> list:
+    """Split ``todo`` into consecutive chunks: about :data:`CHUNKS_PER_WORKER` per worker,
+    each of 1 to :data:`CHUNK_MAX` parts."""
+    size = max(1, min(CHUNK_MAX, len(todo) // (CHUNKS_PER_WORKER * max(workers, 1))))
+    return [todo[i:i + size] for i in range(0, len(todo), size)]
+
+
+def build_chunk(job: dict, parts: list, out_dir: str) -> list:
+    """Build several parts in one task (see :func:`build_part`); returns their results."""
+    return [build_part(job, p, out_dir) for p in parts]
+
+
+def worker_modules(lib: dict) -> list:
+    """The modules a worker needs for this library's outputs (the forkserver preloads
+    them once): the batch and stage code, the family registry, manifold3d and the solids
+    for mesh outputs, and each output's exporter module."""
+    from ..export import FORMATS
+    from ..profiles import FAMILY_MODULES
+    from .scene import EXT
+    kinds = {k for p in lib["parts"] for k in p["outputs"]}
+    mods = ["numpy", "gear3d.jobs.batch", "gear3d.jobs.scene", "gear3d.export", "gear3d.export.json_format"]
+    mods += [f"gear3d.profiles.{m}" for m in FAMILY_MODULES]
+    if kinds & set(MESH_KINDS) and any(p["body"] is not None for p in lib["parts"]):
+        mods += ["manifold3d", "gear3d.solids"]
+    for k in sorted(kinds):
+        fmt = FORMATS.get(EXT[k])
+        if fmt is not None:
+            mods.append(f"gear3d.export.{fmt.module}")
+    return list(dict.fromkeys(mods))
+
+
+def _watch_parent(conn):
+    """Pool worker initializer: exit as soon as the batch process is gone.
+
+    ``conn`` is the read end of a pipe whose only write end the batch process holds and
+    never writes to: ``recv_bytes`` blocks until that process exits (EOF), however it dies.
+    A daemon thread waits on it and ends this worker with ``os._exit``."""
+    import threading
+
+    def watch():
+        try:
+            conn.recv_bytes()
+        except (EOFError, OSError):
+            pass
+        os._exit(70)
+
+    threading.Thread(target=watch, name="gear3d-parent-watch", daemon=True).start()
+
+
 def run_library(lib: dict, out_dir, workers: int = 2, engine: str = "local", scheduler=None,
                 processes: bool = True, progress: bool = True) -> dict:
     """Build a validated library (:func:`gear3d.jobs.template.load_library`) into ``out_dir``.
@@ -145,14 +236,21 @@ def run_library(lib: dict, out_dir, workers: int = 2, engine: str = "local", sch
     Returns ``{"manifest": ..., "built": n, "skipped": n, "failed": n, "seconds": s,
     "parts_per_s": r}``. ``engine``: local | dask; ``workers``: processes (local, 0 = in
     this process) or Dask workers of a LocalCluster (``processes`` picks process or thread
-    workers); ``scheduler``: an existing Dask scheduler address.
+    workers); ``scheduler``: an existing Dask scheduler address (``tcp://HOST:PORT``).
+    Bad input, an unwritable ``out_dir``, Dask missing or an unreachable scheduler raise
+    GearError before anything is written.
     """
     from ..errors import check_choice, check_number
+    from ..paths import check_writable
     engine = check_choice("engine", engine, ("local", "dask"))
     workers = check_number("workers", workers, 0, 1024, integer=True)
+    if scheduler is not None and engine != "dask":
+        raise GearError("scheduler", scheduler, "only with engine dask")
+    if engine == "dask":
+        require_dask()
     preflight(lib)
-    os.makedirs(out_dir, exist_ok=True)
-    _clean_stale(out_dir, lib)
+    out_dir = str(out_dir)
+    check_writable("out", out_dir, folder=True)
     job = job_header(lib)
     records, todo = {}, []
     for part in lib["parts"]:
@@ -162,17 +260,33 @@ def run_library(lib: dict, out_dir, workers: int = 2, engine: str = "local", sch
         else:
             todo.append(part)
     skipped = len(records)
+    runner = None
+    if todo and engine == "dask":
+        runner = _DaskRunner(workers, scheduler, processes)     # connects before any file
+    elif todo and workers > 0:
+        runner = _PoolRunner(workers, worker_modules(lib))
+    try:
+        os.makedirs(out_dir, exist_ok=True)
+    except OSError as e:
+        if runner is not None:
+            runner.close()
+        raise GearError("out", out_dir, "a writable folder", e.strerror or str(e)) from None
+    _clean_stale(out_dir, lib)
     timings = _read_timings(out_dir)
     t0 = time.perf_counter()
     bar = _bar(len(lib["parts"]), skipped, progress)
     failed = 0
     last_manifest = time.perf_counter()
 
+    used, heavy = {}, set()
+
     def done(res):
         nonlocal failed, last_manifest
         rec = res["record"]
         records[rec["name"]] = rec
         timings["parts"][rec["name"]] = round(res["seconds"], 4)
+        used[res["worker"]] = used.get(res["worker"], 0) + 1
+        heavy.update(res["heavy_imports"])
         if rec["status"] != "ok":
             failed += 1
         if bar is not None:
@@ -183,26 +297,28 @@ def run_library(lib: dict, out_dir, workers: int = 2, engine: str = "local", sch
             last_manifest = time.perf_counter()
 
     try:
-        if todo:
-            if engine == "dask":
-                _run_dask(job, todo, out_dir, workers, scheduler, processes, done)
-            elif workers == 0:
-                for part in todo:
-                    done(build_part(job, part, out_dir))
-            else:
-                _run_pool(job, todo, out_dir, workers, done)
+        if runner is not None:
+            runner.run(job, chunked(todo, max(workers, 1)), out_dir, done)
+        else:
+            for part in todo:
+                done(build_part(job, part, out_dir))
     finally:
+        if runner is not None:
+            runner.close()
         if bar is not None:
             bar.close()
         manifest = _write_manifest(out_dir, lib, records)
         dt = time.perf_counter() - t0
         timings.update(engine=engine, workers=workers, last_run_seconds=round(dt, 3),
                        last_run_built=len(records) - skipped,
-                       last_run_parts_per_s=round((len(records) - skipped) / dt, 3) if dt > 0 else None)
+                       last_run_parts_per_s=round((len(records) - skipped) / dt, 3) if dt > 0 else None,
+                       last_run_workers=dict(sorted(used.items())), last_run_heavy_imports=sorted(heavy))
         write_json(os.path.join(out_dir, "timings.json"), timings)
     built = len(records) - skipped
-    return {"manifest": manifest, "built": built, "skipped": skipped,
-            "failed": sum(1 for r in records.values() if r["status"] != "ok"),
+    bad = [records[p["name"]] for p in lib["parts"]
+           if p["name"] in records and records[p["name"]]["status"] != "ok"]
+    return {"manifest": manifest, "built": built, "skipped": skipped, "failed": len(bad),
+            "first_failure": bad[0] if bad else None,
             "seconds": dt, "parts_per_s": built / dt if dt > 0 else None}
 
 
@@ -215,51 +331,86 @@ def _bar(total, initial, progress):
                 "{rate_fmt}{postfix}]")
 
 
-def _run_pool(job, todo, out_dir, workers, done):
-    import multiprocessing as mp
-    from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
-    ctx = mp.get_context("forkserver")
-    ctx.set_forkserver_preload(["gear3d.jobs.batch", "gear3d.jobs.scene", "numpy"])
-    ex = ProcessPoolExecutor(max_workers=workers, mp_context=ctx)
-    try:
-        # keep a bounded window of futures in flight so an interrupt loses little work
-        it = iter(todo)
+class _PoolRunner:
+    """A local process pool (forkserver where available) whose workers exit when this
+    process dies (:func:`_watch_parent`)."""
+
+    def __init__(self, workers: int, modules: list):
+        import multiprocessing as mp
+        from concurrent.futures import ProcessPoolExecutor
+        method = "forkserver" if "forkserver" in mp.get_all_start_methods() else "spawn"
+        ctx = mp.get_context(method)
+        if method == "forkserver":
+            ctx.set_forkserver_preload(modules)
+        self.workers = workers
+        # the write end stays here and is never written: EOF in a worker = this process died
+        self._watch_r, self._watch_w = ctx.Pipe(duplex=False)
+        self.ex = ProcessPoolExecutor(max_workers=workers, mp_context=ctx, initializer=_watch_parent,
+                                      initargs=(self._watch_r,))
+
+    def run(self, job, chunks, out_dir, done):
+        from concurrent.futures import FIRST_COMPLETED, wait
+        # a bounded window of chunks in flight, so an interrupt loses little work
+        it = iter(chunks)
         pending = set()
-        for part in it:
-            pending.add(ex.submit(build_part, job, part, out_dir))
-            if len(pending) >= 4 * workers:
-                break
-        while pending:
-            fin, pending = wait(pending, return_when=FIRST_COMPLETED)
-            for f in fin:
-                done(f.result())
-                nxt = next(it, None)
-                if nxt is not None:
-                    pending.add(ex.submit(build_part, job, nxt, out_dir))
-    except BaseException:
-        ex.shutdown(wait=False, cancel_futures=True)
-        raise
-    ex.shutdown(wait=True)
+        try:
+            for ch in it:
+                pending.add(self.ex.submit(build_chunk, job, ch, out_dir))
+                if len(pending) >= 2 * self.workers:
+                    break
+            while pending:
+                fin, pending = wait(pending, return_when=FIRST_COMPLETED)
+                for f in fin:
+                    for res in f.result():
+                        done(res)
+                    nxt = next(it, None)
+                    if nxt is not None:
+                        pending.add(self.ex.submit(build_chunk, job, nxt, out_dir))
+        except BaseException:
+            self.ex.shutdown(wait=False, cancel_futures=True)
+            raise
+
+    def close(self):
+        self.ex.shutdown(wait=True, cancel_futures=True)
+        self._watch_w.close()
+        self._watch_r.close()
 
 
-def _run_dask(job, todo, out_dir, workers, scheduler, processes, done):
-    from dask.distributed import Client, LocalCluster, as_completed
-    cluster = None
-    if scheduler:
-        client = Client(scheduler)
-    else:
-        cluster = LocalCluster(n_workers=max(workers, 1), threads_per_worker=1, processes=processes,
-                               dashboard_address=None)
-        client = Client(cluster)
-    try:
-        futs = client.map(build_part, [job] * len(todo), todo, [os.path.abspath(out_dir)] * len(todo),
-                          pure=False)
-        for f in as_completed(futs):
-            done(f.result())
-    finally:
-        client.close()
-        if cluster is not None:
-            cluster.close()
+class _DaskRunner:
+    """Dask distributed: a LocalCluster, or the cluster behind ``scheduler``."""
+
+    def __init__(self, workers, scheduler, processes):
+        require_dask()
+        from dask.distributed import Client, LocalCluster
+        self.cluster = None
+        if scheduler:
+            try:
+                self.client = Client(scheduler, timeout=CONNECT_TIMEOUT_S)
+            except Exception as e:  # noqa: BLE001 -- OSError, TimeoutError, ValueError (bad address)
+                why = " ".join(f"{type(e).__name__}: {e}".split())[:200]
+                raise GearError("scheduler", scheduler,
+                                "the address of a running Dask scheduler, e.g. tcp://HOST:8786", why) from None
+        else:
+            self.cluster = LocalCluster(n_workers=max(workers, 1), threads_per_worker=1, processes=processes,
+                                        dashboard_address=None)
+            self.client = Client(self.cluster)
+
+    def run(self, job, chunks, out_dir, done):
+        from dask.distributed import as_completed
+        out = os.path.abspath(out_dir)
+        futs = self.client.map(build_chunk, [job] * len(chunks), chunks, [out] * len(chunks), pure=False)
+        try:
+            for f in as_completed(futs):
+                for res in f.result():
+                    done(res)
+        except BaseException:
+            self.client.cancel(futs)
+            raise
+
+    def close(self):
+        self.client.close()
+        if self.cluster is not None:
+            self.cluster.close()
 
 
 def _read_timings(out_dir):

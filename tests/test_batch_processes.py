@@ -1,0 +1,165 @@
+"""Batch processes and exit codes (issue 13 item 8): no orphans after SIGKILL of the parent,
+Dask missing refused with exit 2 and no manifest, failed parts exit 1 with one stderr line."""
+from __future__ import annotations
+
+import json
+import os
+import signal
+import subprocess
+import sys
+import textwrap
+import time
+
+import pytest
+
+from gear3d.cli import main
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+
+def _lib(tmp_path, teeth, extra_sweep="", tolerance=0.01):
+    p = tmp_path / "lib.toml"
+    p.write_text(textwrap.dedent(f'''
+        [library]
+        name = "t"
+        pattern = "g_z{{teeth}}_c{{addendum_coeff}}"
+        outputs = ["stl"]
+        tolerance = {tolerance}
+        [library.part]
+        family = "involute"
+        module = 1.0
+        body = {{ kind = "spur", width = 3 }}
+        [library.sweep]
+        teeth = {list(teeth)}
+        {extra_sweep}
+    '''))
+    return str(p)
+
+
+# ------------------------------------------------------------------ /proc helpers (Linux)
+
+def _stat(pid):
+    """(state, ppid, starttime) of ``pid`` from /proc, or None when it is gone."""
+    try:
+        with open(f"/proc/{pid}/stat") as f:
+            s = f.read()
+    except OSError:
+        return None
+    rest = s[s.rindex(")") + 2:].split()      # after "pid (comm) "
+    return rest[0], int(rest[1]), int(rest[19])
+
+
+def _descendants(root):
+    """{pid: starttime} of every live process below ``root``."""
+    kids = {}
+    for d in os.listdir("/proc"):
+        if d.isdigit():
+            st = _stat(int(d))
+            if st is not None:
+                kids.setdefault(st[1], []).append((int(d), st[2]))
+    out, stack = {}, [root]
+    while stack:
+        for pid, start in kids.get(stack.pop(), []):
+            out[pid] = start
+            stack.append(pid)
+    return out
+
+
+def _alive(pid, start):
+    """The same process (pid and start time) still exists and is not a zombie."""
+    st = _stat(pid)
+    return st is not None and st[2] == start and st[0] != "Z"
+
+
+def _parts(out):
+    return {f for f in os.listdir(out) if f.endswith(".stl") and not f.startswith(".")}
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="reads /proc")
+def test_workers_exit_within_5_s_of_parent_sigkill(tmp_path):
+    """SIGKILL the batch process once its first part is recorded: its forkserver, workers
+    and resource tracker must all be gone within 5 s, and no part may start after it."""
+    n = 40
+    f = _lib(tmp_path, range(10, 10 + n))
+    out = tmp_path / "o"
+    cmd = [sys.executable, "-m", "gear3d.cli", "batch", f, "--out", str(out), "--workers", "2", "--no-progress"]
+    env = dict(os.environ, PYTHONPATH=ROOT + os.pathsep + os.environ.get("PYTHONPATH", ""))
+    proc = subprocess.Popen(cmd, start_new_session=True, stdout=subprocess.DEVNULL,
+                            stderr=subprocess.DEVNULL, env=env)
+    recs = out / ".records"
+    try:
+        t0 = time.monotonic()
+        while time.monotonic() - t0 < 120:
+            if recs.is_dir() and any(x.endswith(".json") and not x.startswith(".") for x in os.listdir(recs)):
+                break
+            assert proc.poll() is None, "the batch ended before its first part was recorded"
+            time.sleep(0.02)
+        else:
+            pytest.fail("no part recorded within 120 s")
+        family = _descendants(proc.pid)
+        # forkserver, two workers and the resource tracker (at least the workers)
+        assert len(family) >= 3, f"expected the pool's processes below the batch, found {family}"
+        proc.send_signal(signal.SIGKILL)
+        t_kill = time.monotonic()
+        proc.wait()
+        before = _parts(out)
+        while time.monotonic() - t_kill < 5.0 and any(_alive(p, s) for p, s in family.items()):
+            time.sleep(0.02)
+        left = [p for p, s in family.items() if _alive(p, s)]
+        assert not left, f"processes outlived the killed batch by 5 s: {left}"
+        after = _parts(out)
+        # a part already in flight may land (atomically); nothing beyond one per worker
+        assert len(after - before) <= 2 and len(after) < n
+        time.sleep(1.0)
+        assert _parts(out) == after, "part files kept appearing after the workers were gone"
+    finally:
+        try:
+            os.killpg(proc.pid, signal.SIGKILL)     # safety net for a failing run
+        except ProcessLookupError:
+            pass
+        proc.wait()
+
+
+def test_dask_missing_exits_2_with_the_extra_and_writes_nothing(tmp_path, capsys, monkeypatch):
+    for m in ("dask", "distributed", "dask.distributed"):
+        monkeypatch.setitem(sys.modules, m, None)     # "import dask.distributed" now fails
+    f = _lib(tmp_path, [10, 11])
+    out = tmp_path / "o"
+    rc = main(["batch", f, "--out", str(out), "--engine", "dask", "--workers", "1", "--no-progress"])
+    err = capsys.readouterr().err
+    assert rc == 2
+    assert err.count("\n") == 1 and err.startswith("gear3d: error: engine = 'dask'")
+    assert "pip install 'gear3d[dask]'" in err
+    assert not out.exists() and sorted(os.listdir(tmp_path)) == ["lib.toml"]
+
+
+def test_failed_parts_exit_1_with_one_summary_line(tmp_path, capsys):
+    # addendum 9 m on a 10-tooth gear is refused by the family: that part fails, the other builds
+    f = _lib(tmp_path, [10], extra_sweep="addendum_coeff = [1.0, 9.0]")
+    out = tmp_path / "o"
+    rc = main(["batch", f, "--out", str(out), "--workers", "0", "--no-progress"])
+    cap = capsys.readouterr()
+    assert rc == 1
+    lines = cap.err.splitlines()
+    assert len(lines) == 1 and cap.err.endswith("\n")
+    assert lines[0].startswith("gear3d: batch: 1 of 2 parts failed (first: g_z10_c9.0: ")
+    assert "addendum_coeff" in lines[0] and lines[0].endswith(f"see {out / 'manifest.json'}")
+    man = json.loads((out / "manifest.json").read_text())
+    assert man["summary"]["ok"] == 1 and man["summary"]["failed"] == 1
+    assert [p["status"] for p in man["parts"]] == ["ok", "failed"]
+    # all parts fine -> 0, and stderr stays empty
+    f = _lib(tmp_path, [10, 11])
+    assert main(["batch", f, "--out", str(tmp_path / "ok"), "--workers", "0", "--no-progress"]) == 0
+    assert capsys.readouterr().err == ""
+
+
+@pytest.mark.parametrize("bad", ["file", "/proc/gear3d-out"])
+def test_unwritable_out_exits_2_and_writes_nothing(tmp_path, capsys, bad):
+    f = _lib(tmp_path, [10])
+    target = tmp_path / "afile" if bad == "file" else bad
+    if bad == "file":
+        target.write_text("x")
+    rc = main(["batch", f, "--out", str(target), "--workers", "0", "--no-progress"])
+    err = capsys.readouterr().err
+    assert rc == 2 and err.count("\n") == 1 and err.startswith(f"gear3d: error: out = '{target}'")
+    assert sorted(os.listdir(tmp_path)) == sorted(["lib.toml"] + (["afile"] if bad == "file" else []))
