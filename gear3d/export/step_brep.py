@@ -88,31 +88,46 @@ def nearest_on_piece(G, samples_t, pts, lo, hi, iters=8):
     """Distance (mm) from points (N,2) to the exact piece G on [lo, hi] (parameter):
     start at the nearest of ``samples_t`` (sorted), then Newton on (G - p)·G' = 0,
     clipped to the interval. Returns (distance, t)."""
+    from scipy.spatial import cKDTree
     pts = np.asarray(pts, float)
     st = np.asarray(samples_t, float)
-    st = st[(st >= lo) & (st <= hi)]
-    st = np.unique(np.concatenate([st, [lo, hi], np.linspace(lo, hi, 9)]))
+    st = np.unique(np.concatenate([[lo, hi], st[(st >= lo) & (st <= hi)]]))
+    # dense samples (8 per sample interval, at least 512): the start is then a fine chord
+    st = np.unique(np.concatenate([(st[:-1, None] + np.diff(st)[:, None] * np.arange(8) / 8).ravel(),
+                                   np.linspace(lo, hi, 513), [hi]]))
     S = G(st)
-    # nearest chord: project on every chord (vectorised, chords are few)
-    a, b = S[:-1], S[1:]
-    d = b - a
-    L2 = np.maximum(np.einsum("ij,ij->i", d, d), 1e-300)
-    w = np.clip(np.einsum("nij,ij->ni", pts[:, None, :] - a[None], d) / L2, 0, 1)
-    proj = a[None] + w[..., None] * d[None]
-    dist2 = ((pts[:, None, :] - proj) ** 2).sum(-1)
-    j = np.argmin(dist2, axis=1)
-    t = st[j] + w[np.arange(len(pts)), j] * (st[j + 1] - st[j])
+    _, j = cKDTree(S).query(pts)
+    # project on the two chords at the nearest sample; keep the nearer
+    t = st[j].copy()
+    bestd = np.hypot(*(S[j] - pts).T)
+    for a_i in (np.maximum(j - 1, 0), j):
+        b_i = np.minimum(a_i + 1, len(st) - 1)
+        a, d = S[a_i], S[b_i] - S[a_i]
+        L2 = np.maximum(np.einsum("ij,ij->i", d, d), 1e-300)
+        w = np.clip(np.einsum("ij,ij->i", pts - a, d) / L2, 0, 1)
+        dd = np.hypot(*(a + w[:, None] * d - pts).T)
+        take = dd < bestd
+        bestd[take] = dd[take]
+        t[take] = st[a_i][take] + w[take] * (st[b_i] - st[a_i])[take]
     h = max((hi - lo) * 1e-5, 1e-9)
+    best = np.full(len(pts), np.inf)
+    tb = t.copy()
     for _ in range(iters):
         P, D1, D2 = _deriv(G, t, h)
         r = P - pts
+        d = np.hypot(r[:, 0], r[:, 1])
+        better = d < best                 # keep the best iterate: Newton may overshoot
+        best[better], tb[better] = d[better], t[better]
         f = np.einsum("ij,ij->i", r, D1)
         fp = np.einsum("ij,ij->i", D1, D1) + np.einsum("ij,ij->i", r, D2)
         step = np.where(fp > 0, -f / np.where(fp > 0, fp, 1), 0.0)
-        t = np.clip(t + step, lo, hi)
-    best = np.hypot(*(G(t) - pts).T)
-    # never worse than the chord start (Newton can only be accepted if it improved)
-    return best, t
+        # never step further than a tenth of the interval at once
+        lim = 0.1 * (hi - lo)
+        t = np.clip(t + np.clip(step, -lim, lim), lo, hi)
+    d = np.hypot(*(G(t) - pts).T)
+    better = d < best
+    best[better], tb[better] = d[better], t[better]
+    return best, tb
 
 
 def _corner_params(Ga, ka, ta, Gb, kb, tb, q, ang):
@@ -450,7 +465,12 @@ def _plane_face(z, outer, inner=()):
     mf = BRepBuilderAPI_MakeFace(gp_Pln(gp_Pnt(0, 0, z), gp_Dir(0, 0, 1)), outer, True)
     for w in inner:
         mf.Add(w)
-    return mf.Face()
+    if not inner:
+        return mf.Face()
+    from OCP.ShapeFix import ShapeFix_Face
+    fix = ShapeFix_Face(mf.Face())
+    fix.FixOrientation()            # holes run against the outer wire
+    return fix.Face()
 
 
 def _cylinder_face(radius, za, zb):
@@ -486,6 +506,10 @@ def _check_body(b):
         raise GearError("step", "brep", "'faceted' for this part",
                         "only spur, helical, herringbone, chevron-arch gear and ring bodies have exact "
                         "B-rep output; strain-wave and Moineau parts stay faceted")
+    if len(prof.loops) != (2 if prof.internal else 1):
+        raise GearError("step", "brep", "'faceted' for this part",
+                        "profiles with extra holes (output holes, bores in the profile) are not "
+                        "made exact yet; use the body's bore option")
     rep = b.report
     for k in ("xy_offset", "chamfer", "elephant_foot"):
         v = rep.get(k) or 0.0
@@ -634,13 +658,12 @@ def _features(shape, rep, W, tol):
     from OCP.BRepAlgoAPI import BRepAlgoAPI_Cut, BRepAlgoAPI_Fuse
     from OCP.BRepPrimAPI import BRepPrimAPI_MakeBox, BRepPrimAPI_MakeCylinder
     from OCP.gp import gp_Ax2, gp_Dir, gp_Pnt
-    from OCP.TopTools import TopTools_ListOfShape
-
+    
     def cyl(r, z0, h, x=0.0, y=0.0, d=(0, 0, 1)):
         return BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(x, y, z0), gp_Dir(*d)), r, h).Shape()
 
     def boolean(op, a, tools):
-        lst_a, lst_t = TopTools_ListOfShape(), TopTools_ListOfShape()
+        lst_a, lst_t = _shape_list(), _shape_list()
         lst_a.Append(a)
         for t in tools:
             lst_t.Append(t)
@@ -681,6 +704,15 @@ def _features(shape, rep, W, tol):
     return shape
 
 
+def _shape_list():
+    try:
+        from OCP.collections import List_TopoDS_Shape
+        return List_TopoDS_Shape()
+    except ImportError:  # OCP 7.x
+        from OCP.TopTools import TopTools_ListOfShape
+        return TopTools_ListOfShape()
+
+
 def _transformed(shape, T):
     from OCP.BRepBuilderAPI import BRepBuilderAPI_Transform
     from OCP.gp import gp_Trsf
@@ -706,7 +738,7 @@ def volume(shape) -> float:
     from OCP.BRepGProp import BRepGProp
     from OCP.GProp import GProp_GProps
     p = GProp_GProps()
-    BRepGProp.VolumeProperties_s(shape, p)
+    _static(BRepGProp, "VolumeProperties")(shape, p, 1e-9, True)   # adaptive Gauss integration
     return float(p.Mass())
 
 
