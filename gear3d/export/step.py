@@ -137,7 +137,21 @@ def step_text(parts, product: str = "gear") -> str:
     return "\n".join(head + w.lines + ["ENDSEC;", "END-ISO-10303-21;", ""])
 
 
-def write(obj, path, **opts):
+#: the two STEP flavours: ``faceted`` (this module, no CAD kernel) and ``brep`` (exact
+#: surfaces through OpenCascade, :mod:`gear3d.export.step_brep`, extra ``gear3d[cad]``)
+STEP_KINDS = ("faceted", "brep")
+
+
+def write(obj, path, step: str = "faceted", **opts):
+    """Write ``obj`` as STEP: ``step="faceted"`` (default, planar facets) or ``step="brep"``
+    (exact B-spline flanks; needs ``pip install 'gear3d[cad]'``, else GearError naming
+    ``step``)."""
+    from ..errors import check_choice
+    check_choice("step", step, STEP_KINDS)
+    if step == "brep":
+        from . import step_brep
+        step_brep.require_occ()
+        return step_brep.write(obj, path, **opts)
     from . import as_bodies, body_mesh, body_name
     bodies = as_bodies(obj, **opts)
     parts = []
