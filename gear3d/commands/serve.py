@@ -1,0 +1,69 @@
+"""``gear3d serve [--host H] [--port P]``: the local web page (design, preview, check, download).
+
+Needs the web extra: ``pip install 'gear3d[web]'`` (Starlette and uvicorn). Binds to
+127.0.0.1:8000 by default, prints the URL and logs each request in one line on stderr.
+``--port 0`` picks a free port (the printed URL tells which).
+"""
+from __future__ import annotations
+
+import sys
+
+
+def add_parser(sub):
+    p = sub.add_parser("serve", help="local web page: design a gear, see it, check it, download it")
+    p.add_argument("--host", default="127.0.0.1", help="address to bind (default 127.0.0.1: this machine only)")
+    p.add_argument("--port", type=int, default=8000, help="TCP port (default 8000; 0 = any free port)")
+    p.add_argument("--max-builds", type=int, default=2, help="concurrent builds before the server answers busy (503)")
+    return p
+
+
+def _socket(host: str, port: int):
+    """A listening socket on host:port, or GearError naming the one that cannot be bound."""
+    import socket
+
+    from ..errors import GearError
+    try:
+        infos = socket.getaddrinfo(host, port, type=socket.SOCK_STREAM)
+    except OSError as e:
+        raise GearError("host", host, "an address or name of this machine", str(e)) from None
+    family, _, _, _, addr = infos[0]
+    s = socket.socket(family, socket.SOCK_STREAM)
+    s.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
+    try:
+        s.bind(addr)
+    except OSError as e:
+        s.close()
+        raise GearError("port", port, "a free TCP port in [0, 65535]", f"{host}:{port}: {e.strerror}") from None
+    s.listen(128)
+    s.set_inheritable(True)
+    return s
+
+
+def run(args) -> int:
+    from ..errors import GearError, check_number
+    port = check_number("port", args.port, 0, 65535, integer=True)
+    check_number("max_builds", args.max_builds, 1, 64, integer=True)
+    try:
+        import starlette  # noqa: F401
+        import uvicorn
+    except ImportError as e:
+        raise GearError("serve", e.name, "available with the web extra: pip install 'gear3d[web]'",
+                        f"{e.name} is not installed") from None
+    from ..web.app import create_app
+    app = create_app(max_builds=args.max_builds)
+    sock = _socket(args.host, port)
+    _warm_up()
+    host, bound = sock.getsockname()[:2]
+    shown = f"[{host}]" if ":" in host else host
+    sys.stdout.write(f"gear3d serve: http://{shown}:{bound}/  (Ctrl+C to stop)\n")
+    sys.stdout.flush()
+    config = uvicorn.Config(app, log_level="warning", access_log=False, lifespan="off")
+    uvicorn.Server(config).run(sockets=[sock])
+    return 0
+
+
+def _warm_up():
+    """Import what a preview needs and build one profile, so the page's first answer is fast."""
+    from .. import profile
+    from ..web.svg import profile_svg
+    profile_svg(profile("involute", teeth=20))

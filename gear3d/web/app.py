@@ -1,0 +1,285 @@
+"""The ``gear3d serve`` web application (Starlette): a page and a small JSON API.
+
+Endpoints (GET, query parameters only: ``family``, the profile's parameters by name,
+body parameters as ``b.<name>``, pair parameters as ``pair.<name>``; never paths):
+
+* ``/``, ``/static/...``                  the page and its vendored scripts (no CDN)
+* ``/api/families``                       family names, download formats, limits
+* ``/api/schema/{family}``                :func:`gear3d.web.schema.form_schema`
+* ``/api/profile``                        ``{"svg", "report", "neck", "ms"}``: the 2D preview
+* ``/api/body``                           binary mesh (:mod:`gear3d.web.meshdata`) at the print
+                                          tolerance 0.01 mm; its report in ``X-Gear3d-Report``
+* ``/api/pair``                           ``{"report", "summary", "animation"}`` (check_pair)
+* ``/api/download?fmt=stl|3mf|step|dxf|svg``  the file ``gear3d.export.write`` makes, the same
+                                          bytes as ``gear3d body``/``gear3d profile -o``
+
+Parameters become keywords exactly as the CLI makes them (:mod:`gear3d.web.formargs`).
+Every JSON answer is strict (no NaN/Infinity). Bad input answers 400
+``{"error", "param", "value", "allowed"}`` (the ``GearError``); a build over the budget is
+refused the same way before it starts; when ``max_builds`` builds are running, 503
+``{"error": "busy ..."}``; anything else 500 ``{"error": message}``, never a traceback.
+Each request is logged in one line.
+"""
+from __future__ import annotations
+
+import os
+import sys
+import threading
+import time
+
+from ..errors import GearError, check_number
+from . import budget, formargs, strict
+from .schema import form_schema, parse_form
+
+STATIC = os.path.join(os.path.dirname(__file__), "static")
+
+#: the 3D preview's tolerance (mm): plenty for a print, fast to build
+PREVIEW_TOLERANCE = 0.01
+
+#: download format -> (object built, media type)
+DOWNLOADS = {"stl": ("body", "model/stl"), "3mf": ("body", "model/3mf"), "step": ("body", "model/step"),
+             "dxf": ("profile", "image/vnd.dxf"), "svg": ("profile", "image/svg+xml")}
+
+MAX_QUERY_ITEMS = 80
+
+
+class Busy(Exception):
+    """All build slots are taken."""
+
+
+def _json(obj, status: int = 200):
+    from starlette.responses import Response
+    return Response(strict.dumps(obj), status_code=status, media_type="application/json")
+
+
+def _gear_error(e: GearError):
+    return _json({"error": str(e), "param": e.param, "value": str(e.value), "allowed": e.allowed}, 400)
+
+
+class _Slots:
+    """A bound on concurrent builds: ``with slots:`` or :class:`Busy` at once (never waits)."""
+
+    def __init__(self, n: int):
+        self.n = n
+        self.sem = threading.BoundedSemaphore(n)
+
+    def __enter__(self):
+        if not self.sem.acquire(blocking=False):
+            raise Busy(f"busy: {self.n} build(s) already running, try again in a moment")
+        return self
+
+    def __exit__(self, *exc):
+        self.sem.release()
+        return False
+
+
+# ------------------------------------------------------------------ building blocks
+
+def _request(query) -> dict:
+    """``{"family", "profile", "body", "pair"}`` texts of a query (only the form's fields)."""
+    items = list(query.multi_items())
+    if len(items) > MAX_QUERY_ITEMS:
+        raise GearError("query", f"{len(items)} parameters", f"at most {MAX_QUERY_ITEMS}")
+    family = query.get("family", "involute")
+    form = parse_form(form_schema(family), items)
+    form["family"] = family
+    return form
+
+
+def _budget(form, kind: str, output=None):
+    """Keywords of the build (as the CLI makes them), refused before building when over budget.
+
+    Returns ``(profile_kw, body_kw or None, pair or None)``."""
+    if kind == "body":
+        pk, bk = formargs.body_kwargs(form, output)
+        budget.check("body", pk, bk)
+        return pk, bk, None
+    if kind == "pair":
+        kw, z2, internal, mate = formargs.pair_kwargs(form)
+        budget.check("pair", kw, pair={"mate_teeth": z2})
+        return kw, None, (z2, internal, mate)
+    pk = formargs.profile_kwargs(form, output)
+    budget.check("profile", pk)
+    return pk, None, None
+
+
+def _preview_body(family, pk, bk):
+    """The 3D preview: the CLI's body at the print tolerance (coarser of 0.01 mm and the form's)."""
+    from .. import profile
+    from ..solids import body
+    user = pk.get("tolerance", PREVIEW_TOLERANCE)
+    tol = max(user, PREVIEW_TOLERANCE)
+    try:
+        prof = profile(family, **dict(pk, tolerance=tol))
+    except GearError as e:        # 0.01 mm too coarse for this module: the form's own tolerance
+        if e.param != "tolerance" or tol == user:
+            raise
+        prof, tol = profile(family, **pk), user
+    return body(prof, **dict(bk, tolerance=max(bk.get("tolerance") or tol, tol)))
+
+
+# ------------------------------------------------------------------ endpoint bodies (run in a thread)
+
+def _do_profile(form, built):
+    from .. import profile
+    from .svg import neck, profile_svg
+    t0 = time.perf_counter()
+    p = profile(form["family"], **built[0])
+    svg = profile_svg(p)
+    return _json({"svg": svg, "report": p.report, "neck": neck(p),
+                  "ms": round(1000 * (time.perf_counter() - t0), 1)})
+
+
+def _do_body(form, built):
+    from starlette.responses import Response
+    from .meshdata import encode
+    b = _preview_body(form["family"], built[0], built[1])
+    rep = {k: v for k, v in b.report.items() if not isinstance(v, (list, dict))}
+    return Response(encode(b), media_type="application/octet-stream",
+                    headers={"X-Gear3d-Report": strict.dumps(rep), "Cache-Control": "no-store"})
+
+
+def _do_pair(form, built):
+    from ..analysis.pairs import check_pair
+    from ..commands.check import build_pair, summary
+    from .pairview import pair_animation
+    z2, internal, mate = built[2]
+    p1, p2 = build_pair(form["family"], dict(built[0]), z2, internal, mate)
+    rep = check_pair(p1, p2, internal=internal)
+    return _json({"report": rep, "summary": summary(rep), "animation": pair_animation(p1, p2, rep)})
+
+
+def _download_name(form, fmt):
+    teeth = form["profile"].get("teeth", "")
+    stem = form["family"] + (f"-z{teeth}" if teeth.isdigit() else "")
+    return f"{stem}{'-body' if DOWNLOADS[fmt][0] == 'body' else ''}.{fmt}"
+
+
+def _do_download(form, built, fmt):
+    import tempfile
+
+    from starlette.responses import Response
+
+    from .. import profile
+    from ..export import write
+    from ..solids import body
+    kind, media = DOWNLOADS[fmt]
+    prof = profile(form["family"], **built[0])
+    obj = body(prof, **built[1]) if kind == "body" else prof
+    name = _download_name(form, fmt)
+    with tempfile.TemporaryDirectory(prefix="gear3d-web-") as d:
+        path = os.path.join(d, name)
+        write(obj, path)
+        with open(path, "rb") as fh:
+            data = fh.read()
+    return Response(data, media_type=media,
+                    headers={"Content-Disposition": f'attachment; filename="{name}"', "Cache-Control": "no-store"})
+
+
+# ------------------------------------------------------------------ the app
+
+def create_app(max_builds: int = 2, log=None):
+    """The Starlette app. ``max_builds``: concurrent builds before 503; ``log``: a stream for
+    the one-line request log (default stderr)."""
+    from starlette.applications import Starlette
+    from starlette.concurrency import run_in_threadpool
+    from starlette.responses import FileResponse
+    from starlette.routing import Mount, Route
+    from starlette.staticfiles import StaticFiles
+
+    slots = _Slots(int(check_number("max_builds", max_builds, 1, 64, integer=True)))
+
+    def endpoint(what, fn):
+        async def handler(request):
+            try:
+                q = request.query_params
+                form = _request(q)
+                extra, kind, output = (), what, None
+                if what == "download":
+                    fmt = q.get("fmt", "")
+                    if fmt not in DOWNLOADS:
+                        raise GearError("fmt", fmt, "one of " + ", ".join(DOWNLOADS))
+                    extra, kind, output = (fmt,), DOWNLOADS[fmt][0], _download_name(form, fmt)
+                built = _budget(form, kind, output)
+
+                def run():
+                    with slots:
+                        return fn(form, built, *extra)
+                return await run_in_threadpool(run)
+            except GearError as e:
+                return _gear_error(e)
+            except Busy as e:
+                return _json({"error": str(e)}, 503)
+            except Exception as e:      # never a traceback: the message
+                return _json({"error": f"{type(e).__name__}: {e}"}, 500)
+        return handler
+
+    async def families(request):
+        from .schema import families as names
+        return _json({"families": names(), "downloads": list(DOWNLOADS), "limits": budget.LIMITS,
+                      "preview_tolerance": PREVIEW_TOLERANCE, "max_builds": slots.n})
+
+    async def schema(request):
+        try:
+            return _json(form_schema(request.path_params["family"]))
+        except GearError as e:
+            return _gear_error(e)
+
+    async def index(request):
+        return FileResponse(os.path.join(STATIC, "index.html"), headers={"Cache-Control": "no-store"})
+
+    routes = [
+        Route("/", index),
+        Route("/api/families", families),
+        Route("/api/schema/{family}", schema),
+        Route("/api/profile", endpoint("profile", _do_profile)),
+        Route("/api/body", endpoint("body", _do_body)),
+        Route("/api/pair", endpoint("pair", _do_pair)),
+        Route("/api/download", endpoint("download", _do_download)),
+        Mount("/static", StaticFiles(directory=STATIC), name="static"),
+    ]
+    app = Starlette(routes=routes)
+    app.state.slots = slots
+    return RequestLog(app, log)
+
+
+class RequestLog:
+    """ASGI middleware: one line a request (client, method, path?query, status, ms), and a
+    last-resort 500 with the message (never a traceback) if anything escapes."""
+
+    def __init__(self, app, stream=None):
+        self.app, self.stream = app, stream
+        self.state = app.state
+
+    async def __call__(self, scope, receive, send):
+        if scope["type"] != "http":
+            return await self.app(scope, receive, send)
+        t0 = time.perf_counter()
+        status, started = [0], [False]
+
+        async def send2(msg):
+            if msg["type"] == "http.response.start":
+                status[0], started[0] = msg["status"], True
+            await send(msg)
+        try:
+            await self.app(scope, receive, send2)
+        except Exception as e:
+            if not started[0]:
+                body = strict.dumps({"error": f"{type(e).__name__}: {e}"}).encode()
+                await send2({"type": "http.response.start", "status": 500,
+                             "headers": [(b"content-type", b"application/json")]})
+                await send({"type": "http.response.body", "body": body})
+        finally:
+            q = scope.get("query_string", b"").decode("latin-1")
+            path = scope.get("path", "") + (("?" + q) if q else "")
+            if len(path) > 300:
+                path = path[:297] + "..."
+            client = scope.get("client") or ("-", 0)
+            line = (f"{time.strftime('%H:%M:%S')} {client[0]} {scope.get('method', '-')} {path} "
+                    f"{status[0]} {1000 * (time.perf_counter() - t0):.0f} ms\n")
+            stream = self.stream or sys.stderr
+            try:
+                stream.write(line)
+                stream.flush()
+            except Exception:
+                pass

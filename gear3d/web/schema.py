@@ -1,0 +1,182 @@
+"""Parameter forms of the web page.
+
+There is no single parameter table per family yet, so :func:`form_schema` assembles one
+from what exists: the family builder's signature (``gear3d.profiles.FAMILIES[name]``:
+names and defaults) and the CLI's own argument parsers (``gear3d profile`` / ``body`` /
+``check pair``, built from ``PROFILE_FLAGS`` and ``BODY_FLAGS``: flag, type, help, choices,
+and the range the flag's type states when it refuses a value). A later redesign can swap
+this one function's source for the real table.
+
+Validation stays the CLI's and the builders' own (see :mod:`gear3d.web.formargs`): a
+``GearError`` naming the parameter, shown next to that field.
+"""
+from __future__ import annotations
+
+import argparse
+import functools
+import inspect
+import re
+
+from ..errors import GearError
+
+#: parameters a section needs even when left at their default (the CLI requires them)
+REQUIRED = {"body": ("width",), "pair": ("mate_teeth",)}
+
+#: parameters whose default the CLI picks by the output (tolerance: 0.001 mm, 0.01 mm for meshes)
+CLI_PICKS = ("tolerance",)
+
+#: longest text a field may carry
+MAX_TEXT = 64
+
+SECTIONS = ("profile", "body", "pair")
+
+_UNIT = re.compile(r"\((mm|deg|x m|x p)\b")
+_CHOICES = re.compile(r"(\w[\w-]*(?:\s*\|\s*\w[\w-]*)+)")
+_PROBE = "\x00"      # a text no number type accepts: its refusal states the range
+
+
+@functools.lru_cache(maxsize=None)
+def cli_parsers() -> dict:
+    """``{section: (parser, {name: action})}`` read off the CLI's own parsers.
+
+    ``profile``: ``gear3d profile``; ``body``: ``gear3d body`` (profile flags too; body flags
+    under their ``b_`` dests, keyed here by their keyword); ``pair``: ``gear3d check pair``.
+    """
+    from ..commands import body as cbody
+    from ..commands import check as ccheck
+    from ..commands import profile as cprof
+    sub = argparse.ArgumentParser(add_help=False).add_subparsers()
+    prof = cprof.add_parser(sub)
+    bod = cbody.add_parser(sub)
+    pair = argparse.ArgumentParser(add_help=False)
+    ccheck.add_pair_flags(pair)
+    body_only = {a.dest for a in bod._actions} - {a.dest for a in prof._actions}
+    return {
+        "profile": (prof, {a.dest: a for a in prof._actions}),
+        "body": (bod, {(a.dest[2:] if a.dest.startswith("b_") else a.dest): a
+                       for a in bod._actions if a.dest in body_only}),
+        "pair": (pair, {a.dest: a for a in pair._actions}),
+    }
+
+
+def is_flag(action) -> bool:
+    """A ``store_true`` switch."""
+    return action.nargs == 0 and action.const is True
+
+
+def number_kind(action):
+    """"int", "float" or None: what the CLI's ``type=`` of ``action`` reads."""
+    t = action.type
+    if t is int or getattr(t, "__name__", "") == "integer":
+        return "int"
+    if t is float or getattr(t, "__name__", "") == "number":
+        return "float"
+    return None
+
+
+def _range(action):
+    """The range a flag's type states when it refuses a value ("an integer in [1, 100000]"), or None."""
+    if action.type in (None, int, float, str) or not callable(action.type):
+        return None
+    try:
+        action.type(_PROBE)
+    except argparse.ArgumentTypeError as e:
+        msg = str(e)
+        return msg.split("is not allowed: ", 1)[1] if "is not allowed: " in msg else None
+    except Exception:
+        return None
+    return None
+
+
+def _field(name: str, default, action, required: bool = False) -> dict:
+    """One form field: name, CLI flag, type (int|float|str|bool), default, unit, help, choices, range."""
+    hlp = (action.help or "") if action is not None else ""
+    if action is not None and is_flag(action):
+        typ = "bool"
+    elif action is not None and number_kind(action):
+        typ = number_kind(action)
+    elif isinstance(default, bool):
+        typ = "bool"
+    elif isinstance(default, (int, float)):
+        typ = type(default).__name__
+    else:
+        typ = "str"
+    choices = list(action.choices) if action is not None and action.choices else None
+    if choices is None and typ == "str":
+        m = _CHOICES.search(hlp)
+        if m:
+            choices = [c.strip() for c in m.group(1).split("|")]
+    unit = _UNIT.search(hlp)
+    flag = next((o for o in action.option_strings if o.startswith("--")), None) if action is not None else None
+    if default is inspect.Parameter.empty or name in CLI_PICKS:
+        default = None
+    return {"name": name, "flag": flag, "type": typ, "default": default, "help": hlp,
+            "unit": unit.group(1).replace("x ", "\u00d7 ") if unit else None,
+            "choices": choices, "range": _range(action) if action is not None else None,
+            "required": required}
+
+
+def families() -> list:
+    """Families a form can build: those whose builder takes only CLI parameters (not ``mate``)."""
+    from ..profiles import FAMILIES, _load
+    _load()
+    acts = cli_parsers()["profile"][1]
+    return [name for name in sorted(FAMILIES)
+            if all(p.kind is p.VAR_KEYWORD or p.name in acts
+                   for p in inspect.signature(FAMILIES[name]).parameters.values())]
+
+
+def _body_fields() -> list:
+    from ..solids import body
+    acts = cli_parsers()["body"][1]
+    return [_field(p.name, p.default, acts.get(p.name), p.name in REQUIRED["body"])
+            for p in inspect.signature(body).parameters.values()
+            if p.name != "profile" and not p.name.startswith("_")]
+
+
+def _pair_fields() -> list:
+    acts = cli_parsers()["pair"][1]
+    return [_field("mate_teeth", None, acts["mate_teeth"], True),
+            _field("mate", acts["mate"].default, acts["mate"])]
+
+
+def form_schema(family: str) -> dict:
+    """The parameter form of ``family``: ``{"family", "profile": [...], "body": [...], "pair": [...]}``.
+
+    Each field is ``{name, flag, type, default, unit, help, choices, range, required}``;
+    ``default`` is the builder's (None: the builder or the CLI picks it), ``unit`` is "mm",
+    "deg", "\u00d7 m" or "\u00d7 p" where the help says so, ``range`` the text the CLI's flag
+    states ("an integer in [1, 100000]"), or None where only the builder knows it.
+    Raises ``GearError("family", ...)`` for a family no form can build.
+    """
+    names = families()
+    if family not in names:
+        raise GearError("family", family, "one of " + ", ".join(names))
+    from ..profiles import FAMILIES
+    acts = cli_parsers()["profile"][1]
+    prof = [_field(p.name, p.default, acts.get(p.name))
+            for p in inspect.signature(FAMILIES[family]).parameters.values() if p.kind is not p.VAR_KEYWORD]
+    return {"family": family, "profile": prof, "body": _body_fields(), "pair": _pair_fields()}
+
+
+def parse_form(schema: dict, query) -> dict:
+    """Sort a request's ``(key, text)`` pairs into ``{"profile": {...}, "body": {...}, "pair": {...}}``
+    of texts (``name`` profile, ``b.name`` body, ``pair.name`` pair; empty texts left out).
+
+    Only the form's parameters are accepted, never paths: anything else is a ``GearError``.
+    """
+    fields = {sec: {f["name"] for f in schema[sec]} for sec in SECTIONS}
+    out = {sec: {} for sec in SECTIONS}
+    for key, raw in query:
+        if key in ("family", "fmt"):
+            continue
+        sec, name = ("body", key[2:]) if key.startswith("b.") else (
+            ("pair", key[5:]) if key.startswith("pair.") else ("profile", key))
+        if name not in fields[sec]:
+            raise GearError(key, raw[:40], f"a parameter of the {schema['family']} form")
+        text = raw.strip()
+        if len(text) > MAX_TEXT:
+            raise GearError(name, text[:20] + "...", f"at most {MAX_TEXT} characters")
+        if text:
+            out[sec][name] = text
+    return out

@@ -1,0 +1,451 @@
+// gear3d serve: the page. Forms come from /api/schema/<family>; every build is the server's.
+// Requests carry parameters only; a field left at its default is not sent (as with the CLI).
+// Errors come back as {error, param}: shown next to that field, never a traceback.
+
+const $ = (s) => document.querySelector(s);
+const SCOPES = ["profile", "body", "pair"];
+const PREFIX = { profile: "", body: "b.", pair: "pair." };
+let schema = null;            // current family's form schema
+const state = { anim: null, frame: 0, playing: true, timer: null };
+
+function setStatus(text) { $("#status").textContent = text; }
+
+// ------------------------------------------------------------------ forms
+
+function fieldId(scope, name) { return `${scope}-${name.replace(/[^\w-]/g, "_")}`; }
+
+function fmtDefault(v) { return v === null || v === undefined ? "" : String(v); }
+
+function buildForm(scope, fields) {
+  const form = $(`#form-${scope}`);
+  form.innerHTML = "";
+  for (const f of fields) {
+    const id = fieldId(scope, f.name);
+    const row = document.createElement("div");
+    row.className = "field";
+    row.id = `field-${id}`;
+    row.dataset.name = f.name;
+    const label = document.createElement("label");
+    label.htmlFor = `in-${id}`;
+    label.textContent = f.name;
+    label.title = (f.flag ? f.flag + ": " : "") + (f.help || "");
+    let input;
+    if (f.type === "bool") {
+      input = document.createElement("input");
+      input.type = "checkbox";
+      input.checked = !!f.default;
+    } else if (f.choices) {
+      input = document.createElement("select");
+      if (f.default === null || f.default === undefined) input.add(new Option("(default)", ""));
+      for (const c of f.choices) input.add(new Option(c, c));
+      input.value = fmtDefault(f.default);
+    } else {
+      input = document.createElement("input");
+      input.type = "text";
+      if (f.type !== "str") input.inputMode = "decimal";
+      input.value = fmtDefault(f.default);
+      input.placeholder = f.required ? "required" : (f.default === null ? "auto" : "");
+    }
+    input.id = `in-${id}`;
+    input.name = f.name;
+    input.dataset.scope = scope;
+    input.dataset.default = f.type === "bool" ? String(!!f.default) : fmtDefault(f.default);
+    input.dataset.required = f.required ? "1" : "";
+    input.title = label.title;
+    const unit = document.createElement("span");
+    unit.className = "unit";
+    unit.textContent = f.unit || "";
+    const help = document.createElement("div");
+    help.className = "help";
+    help.textContent = (f.flag ? f.flag + ": " : "") + (f.help || "");
+    const err = document.createElement("div");
+    err.className = "error";
+    err.id = `err-${id}`;
+    row.append(label, input, unit, help, err);
+    form.append(row);
+    const ev = f.type === "bool" || f.choices ? "change" : "input";
+    input.addEventListener(ev, () => onChange(scope));
+  }
+  form.addEventListener("submit", (e) => e.preventDefault());
+}
+
+function value(input) { return input.type === "checkbox" ? String(input.checked) : input.value.trim(); }
+
+// query of the given scopes: family + changed or required fields
+function query(scopes, extra = {}) {
+  const q = new URLSearchParams({ family: $("#family").value });
+  for (const scope of scopes) {
+    for (const input of document.querySelectorAll(`#form-${scope} [name]`)) {
+      const v = value(input);
+      if (v === "" || (v === input.dataset.default && !input.dataset.required)) continue;
+      q.append(PREFIX[scope] + input.name, v);
+    }
+  }
+  for (const [k, v] of Object.entries(extra)) q.append(k, v);
+  return q.toString();
+}
+
+function clearErrors(scopes) {
+  for (const scope of scopes) {
+    for (const el of document.querySelectorAll(`#form-${scope} .error`)) el.textContent = "";
+    for (const el of document.querySelectorAll(`#form-${scope} .field.invalid`)) el.classList.remove("invalid");
+  }
+}
+
+// show a {error, param} next to its field: the first scope where the field was sent, else
+// the first where it exists, else the panel's general line
+function showError(scopes, general, res) {
+  const name = res.param;
+  let target = null;
+  if (name) {
+    const cands = scopes.map((s) => document.getElementById(`in-${fieldId(s, name)}`)).filter(Boolean);
+    target = cands.find((i) => value(i) !== "" && value(i) !== i.dataset.default) || cands[0] || null;
+  }
+  if (target) {
+    const id = target.id.slice(3);
+    $(`#err-${id}`).textContent = res.error;
+    $(`#field-${id}`).classList.add("invalid");
+  } else {
+    $(general).textContent = res.error || "error";
+  }
+}
+
+// ------------------------------------------------------------------ requests
+
+async function getJSON(url) {
+  const r = await fetch(url, { cache: "no-store" });
+  let body;
+  try { body = await r.json(); } catch (e) { body = { error: `HTTP ${r.status}` }; }
+  return { status: r.status, body };
+}
+
+// latest-wins runner: one request in flight per task; a change while it runs reruns it once
+function task(fn, delay) {
+  let timer = null, running = false, again = false;
+  const run = async () => {
+    if (running) { again = true; return; }
+    running = true;
+    try { await fn(); } finally {
+      running = false;
+      if (again) { again = false; run(); }
+    }
+  };
+  return () => { clearTimeout(timer); timer = setTimeout(run, delay); };
+}
+
+async function retrying(fetcher) {   // 503 (server busy): retry, bounded
+  for (let i = 0; i < 40; i++) {
+    const res = await fetcher();
+    if (res.status !== 503) return res;
+    setStatus("server busy, retrying...");
+    await new Promise((ok) => setTimeout(ok, 250 + 50 * i));
+  }
+  return { status: 503, body: { error: "server busy" } };
+}
+
+// ------------------------------------------------------------------ 2D preview + report
+
+const fmt = (v, unit = "") => {
+  if (v === null || v === undefined) return "-";
+  if (typeof v === "number") return (Number.isInteger(v) ? String(v) : v.toPrecision(5).replace(/\.?0+$/, "")) + unit;
+  if (typeof v === "boolean") return v ? "yes" : "no";
+  return String(v);
+};
+
+function table(el, rows) {
+  el.innerHTML = "";
+  for (const [k, v, flag] of rows) {
+    const tr = el.insertRow();
+    tr.insertCell().textContent = k;
+    const td = tr.insertCell();
+    td.textContent = v;
+    if (flag) td.className = "flag";
+  }
+}
+
+async function preview() {
+  const q = query(["profile"]);
+  const t0 = performance.now();
+  const res = await retrying(() => getJSON(`/api/profile?${q}`));
+  clearErrors(["profile"]);
+  $("#err-profile-general").textContent = "";
+  if (res.status !== 200) {
+    showError(["profile"], "#err-profile-general", res.body);
+    setStatus("profile: " + (res.body.param ? `${res.body.param}: invalid` : "error"));
+    return;
+  }
+  const { svg, report: r, neck } = res.body;
+  $("#preview").innerHTML = svg;
+  $("#preview-info").textContent = `built in ${res.body.ms} ms, shown in ${Math.round(performance.now() - t0)} ms`;
+  table($("#report"), [
+    ["max_error (measured)", fmt(r.max_error * 1000, " um")], ["tolerance", fmt(r.tolerance * 1000, " um")],
+    ["undercut", fmt(r.undercut) + (r.undercut ? ` (depth ${fmt(r.undercut_depth, " mm")})` : ""), r.undercut],
+    ["pointed", fmt(r.pointed) + (r.pointed ? ` (tip shortfall ${fmt(r.tip_shortfall, " mm")})` : ""), r.pointed],
+    ["neck", neck ? `at r=${fmt(neck.radius, " mm")}: ${fmt(neck.thickness, " mm")} < ${fmt(neck.thicker_outside, " mm")}` : "no", !!neck],
+    ["tip_radius", fmt(r.tip_radius, " mm")], ["root_radius", fmt(r.root_radius, " mm")],
+    ["pitch_radius", fmt(r.pitch_radius, " mm")], ["base_radius", fmt(r.base_radius, " mm")],
+    ["thickness_at_pitch", fmt(r.thickness_at_pitch, " mm")], ["tip_land_width", fmt(r.tip_land_width, " mm")],
+    ["vertices", fmt(r.vertices)],
+  ]);
+  setStatus(`preview ${res.body.ms} ms`);
+}
+
+// ------------------------------------------------------------------ 3D body (three.js)
+
+let three = null;   // {THREE, renderer, scene, camera, controls, mesh}
+
+async function initThree() {
+  if (three) return three;
+  const el = $("#view3d");
+  const THREE = await import("three");
+  const { OrbitControls } = await import("three/addons/OrbitControls.js");
+  let renderer;
+  try {
+    renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+  } catch (e) {
+    el.innerHTML = '<div class="note">WebGL is not available in this browser: no 3D preview (downloads still work)</div>';
+    three = { failed: true };
+    return three;
+  }
+  renderer.setPixelRatio(window.devicePixelRatio || 1);
+  renderer.setSize(el.clientWidth, el.clientHeight);
+  el.innerHTML = "";
+  el.append(renderer.domElement);
+  const scene = new THREE.Scene();
+  scene.background = new THREE.Color(0xeef1f6);
+  scene.add(new THREE.HemisphereLight(0xffffff, 0x8090a0, 1.6));
+  const camera = new THREE.PerspectiveCamera(35, el.clientWidth / el.clientHeight, 0.01, 1e5);
+  camera.up.set(0, 0, 1);
+  const sun = new THREE.DirectionalLight(0xffffff, 1.8);
+  camera.add(sun);
+  sun.position.set(1, 2, 3);
+  scene.add(camera);
+  const controls = new OrbitControls(camera, renderer.domElement);
+  const render = () => renderer.render(scene, camera);
+  controls.addEventListener("change", render);
+  window.addEventListener("resize", () => {
+    renderer.setSize(el.clientWidth, el.clientHeight);
+    camera.aspect = el.clientWidth / el.clientHeight;
+    camera.updateProjectionMatrix();
+    render();
+  });
+  three = { THREE, renderer, scene, camera, controls, render, mesh: null };
+  return three;
+}
+
+async function body3d() {
+  const q = query(["profile", "body"]);
+  const res = await retrying(async () => {
+    const r = await fetch(`/api/body?${q}`, { cache: "no-store" });
+    if (r.ok) return { status: 200, buf: await r.arrayBuffer(), report: JSON.parse(r.headers.get("X-Gear3d-Report") || "{}") };
+    let body;
+    try { body = await r.json(); } catch (e) { body = { error: `HTTP ${r.status}` }; }
+    return { status: r.status, body };
+  });
+  clearErrors(["body"]);
+  $("#err-body-general").textContent = "";
+  if (res.status !== 200) {
+    showError(["body", "profile"], "#err-body-general", res.body);
+    return;
+  }
+  const t = await initThree();
+  const r = res.report;
+  table($("#body-report"), [
+    ["kind", fmt(r.kind)], ["triangles", fmt(r.triangles)], ["max_error (measured)", fmt(r.max_error * 1000, " um")],
+    ["tolerance", fmt(r.tolerance * 1000, " um")], ["volume", fmt(r.volume, " mm3")], ["watertight", fmt(r.watertight)],
+    ["layers", fmt(r.layers)], ["total_twist_deg", fmt(r.total_twist_deg, " deg")],
+  ]);
+  if (t.failed) return;
+  const { THREE } = t;
+  const head = new Uint32Array(res.buf, 0, 2);
+  const nv = head[0], nf = head[1];
+  const pos = new Float32Array(res.buf, 8, nv * 3);
+  const idx = new Uint32Array(res.buf, 8 + 12 * nv, nf * 3);
+  const geo = new THREE.BufferGeometry();
+  geo.setAttribute("position", new THREE.BufferAttribute(pos, 3));
+  geo.setIndex(new THREE.BufferAttribute(idx, 1));
+  geo.computeVertexNormals();
+  geo.computeBoundingSphere();
+  if (t.mesh) { t.scene.remove(t.mesh); t.mesh.geometry.dispose(); }
+  const mat = new THREE.MeshStandardMaterial({ color: 0x5b7fb8, metalness: 0.15, roughness: 0.55, flatShading: true });
+  t.mesh = new THREE.Mesh(geo, mat);
+  t.scene.add(t.mesh);
+  const s = geo.boundingSphere;
+  const fresh = !t.fitted;
+  if (fresh) {
+    const d = s.radius / Math.sin((t.camera.fov * Math.PI) / 360) * 1.05;
+    t.camera.position.set(s.center.x + 0.45 * d, s.center.y - 0.65 * d, s.center.z + 0.6 * d);
+    t.controls.target.copy(s.center);
+    t.fitted = true;
+  }
+  t.camera.near = s.radius / 100;
+  t.camera.far = s.radius * 100;
+  t.camera.updateProjectionMatrix();
+  t.controls.update();
+  t.render();
+  $("#view3d").dataset.triangles = String(nf);
+}
+
+// ------------------------------------------------------------------ pair check + animation
+
+const SVGNS = "http://www.w3.org/2000/svg";
+const pathOf = (loops) => loops.map((l) => "M" + l.map((p) => `${p[0]},${p[1]}`).join("L") + "Z").join("");
+
+function drawPair(a) {
+  // the wheels turn: bound by circles about their centres
+  let xmin = Infinity, xmax = -Infinity, ymin = Infinity, ymax = -Infinity;
+  for (const w of [a.wheel1, a.wheel2]) {
+    let R = 0;
+    for (const l of w.loops) for (const p of l) R = Math.max(R, Math.hypot(p[0], p[1]));
+    xmin = Math.min(xmin, w.centre[0] - R); xmax = Math.max(xmax, w.centre[0] + R);
+    ymin = Math.min(ymin, w.centre[1] - R); ymax = Math.max(ymax, w.centre[1] + R);
+  }
+  const m = 0.03 * (xmax - xmin);
+  const full = [xmin - m, -(ymax + m), xmax - xmin + 2 * m, ymax - ymin + 2 * m];
+  const focus = a.worst || a.pitch_point;
+  const zw = 4 * (2 * a.wheel1.pitch_radius / Math.max(a.teeth1 || 1, 1));
+  const zoom = [focus[0] - zw / 2, -focus[1] - zw / 2, zw, zw];
+  const scene = `
+    <defs><g id="pair-scene"><g transform="scale(1,-1)">
+      <g id="pair-w2" transform=""><path class="wheel2" d="${pathOf(a.wheel2.loops)}" fill="#e8e8e8" fill-rule="evenodd" stroke="#222" stroke-width="1" vector-effect="non-scaling-stroke"/></g>
+      <g id="pair-w1" transform=""><path class="wheel1" d="${pathOf(a.wheel1.loops)}" fill="#c9d8f0" fill-opacity="0.8" fill-rule="evenodd" stroke="#1f3b73" stroke-width="1" vector-effect="non-scaling-stroke"/></g>
+      <g id="pair-int"></g>
+      ${a.worst ? `<circle class="worst" cx="${a.worst[0]}" cy="${a.worst[1]}" r="${zw / 40}" fill="none" stroke="#000" stroke-width="1.5" vector-effect="non-scaling-stroke"/>` : ""}
+    </g></g></defs>`;
+  $("#pair-view").innerHTML = `<svg xmlns="${SVGNS}" viewBox="0 0 960 480" id="pair-svg">${scene}
+    <svg x="0" y="0" width="480" height="480" viewBox="${full.join(" ")}"><use href="#pair-scene"/></svg>
+    <svg x="480" y="0" width="480" height="480" viewBox="${zoom.join(" ")}"><use href="#pair-scene"/></svg>
+    <text x="8" y="18" font-size="14" font-family="sans-serif">the pair</text>
+    <text x="488" y="18" font-size="14" font-family="sans-serif">${a.worst ? "at the worst interference" : "at the pitch point"}</text>
+    <rect x="480" y="0" width="480" height="480" fill="none" stroke="#ccd"/></svg>`;
+}
+
+function showFrame(k) {
+  const a = state.anim;
+  if (!a) return;
+  state.frame = k;
+  const f = a.frames[k];
+  $("#pair-w1").setAttribute("transform", `translate(${a.wheel1.centre[0]},${a.wheel1.centre[1]}) rotate(${f.angle1_deg})`);
+  $("#pair-w2").setAttribute("transform", `translate(${a.wheel2.centre[0]},${a.wheel2.centre[1]}) rotate(${f.angle2_deg})`);
+  $("#pair-int").innerHTML = f.interference.map((poly) =>
+    `<path class="interference" d="${pathOf([poly])}" fill="#ff0000" fill-opacity="0.85" stroke="#ff0000" stroke-width="2" vector-effect="non-scaling-stroke"/>`).join("");
+  $("#pair-frame").value = String(k);
+  $("#pair-frame-label").textContent = `frame ${k + 1}/${a.frames.length}, wheel 1 at ${f.angle1_deg.toFixed(2)} deg` +
+    (f.interference.length ? ", interference" : "");
+}
+
+function play(on) {
+  state.playing = on;
+  $("#pair-play").textContent = on ? "pause" : "play";
+  clearInterval(state.timer);
+  if (on && state.anim) state.timer = setInterval(() => showFrame((state.frame + 1) % state.anim.frames.length), 110);
+}
+
+async function checkPair() {
+  const q = query(["profile", "pair"]);
+  $("#pair-summary").textContent = "rolling the pair...";
+  $("#pair-summary").className = "";
+  const res = await retrying(() => getJSON(`/api/pair?${q}`));
+  clearErrors(["pair"]);
+  $("#err-pair-general").textContent = "";
+  if (res.status !== 200) {
+    $("#pair-summary").textContent = "";
+    showError(["pair", "profile"], "#err-pair-general", res.body);
+    return;
+  }
+  const { report: r, summary, animation } = res.body;
+  $("#pair-summary").textContent = summary;
+  $("#pair-summary").className = r.interference ? "bad" : "";
+  const at = r.interference_at || {};
+  table($("#pair-report"), [
+    ["interference", fmt(r.interference), r.interference],
+    ["max_penetration", fmt(r.max_penetration * 1000, " um"), r.interference],
+    ["interference at", r.interference ? `wheel 1 r=${fmt(at.radius1, " mm")}, wheel 2 r=${fmt(at.radius2, " mm")}` +
+      (at.opposite_pitch_point ? " (opposite the pitch point)" : "") : "-"],
+    ["contact_ratio", fmt(r.contact_ratio)], ["min_clearance", fmt(r.min_clearance === null ? null : r.min_clearance * 1000, " um")],
+    ["backlash", fmt(r.backlash, " mm")], ["center_distance", fmt(r.center_distance, " mm")],
+    ["transmission_error_pp", fmt(r.transmission_error_pp, " mm")], ["tolerance", fmt(r.tolerance * 1000, " um")],
+  ]);
+  animation.teeth1 = r.teeth[0];
+  state.anim = animation;
+  drawPair(animation);
+  $("#pair-controls").hidden = false;
+  $("#pair-frame").max = String(animation.frames.length - 1);
+  showFrame(0);
+  play(state.playing);
+}
+
+// ------------------------------------------------------------------ downloads
+
+async function download(fmtName) {
+  const scopes = ["stl", "3mf", "step"].includes(fmtName) ? ["profile", "body"] : ["profile"];
+  const q = query(scopes, { fmt: fmtName });
+  $("#err-download-general").textContent = "";
+  setStatus(`building ${fmtName.toUpperCase()}...`);
+  const res = await retrying(async () => {
+    const r = await fetch(`/api/download?${q}`, { cache: "no-store" });
+    if (r.ok) return { status: 200, blob: await r.blob(), disp: r.headers.get("Content-Disposition") || "" };
+    let body;
+    try { body = await r.json(); } catch (e) { body = { error: `HTTP ${r.status}` }; }
+    return { status: r.status, body };
+  });
+  clearErrors(scopes);
+  if (res.status !== 200) {
+    showError(scopes.slice().reverse(), "#err-download-general", res.body);
+    setStatus(`${fmtName.toUpperCase()}: not built`);
+    return;
+  }
+  const m = /filename="([^"]+)"/.exec(res.disp);
+  const a = document.createElement("a");
+  a.href = URL.createObjectURL(res.blob);
+  a.download = m ? m[1] : `gear.${fmtName}`;
+  document.body.append(a);
+  a.click();
+  a.remove();
+  setTimeout(() => URL.revokeObjectURL(a.href), 60000);
+  setStatus(`${a.download}: ${res.blob.size} bytes`);
+}
+
+// ------------------------------------------------------------------ wiring
+
+const schedulePreview = task(preview, 60);
+const scheduleBody = task(body3d, 500);
+
+function onChange(scope) {
+  if (scope === "profile") { schedulePreview(); scheduleBody(); }
+  if (scope === "body") scheduleBody();
+}
+
+async function loadFamily(name) {
+  const res = await getJSON(`/api/schema/${encodeURIComponent(name)}`);
+  if (res.status !== 200) { setStatus(res.body.error); return; }
+  schema = res.body;
+  for (const s of SCOPES) buildForm(s, schema[s]);
+  document.body.dataset.family = name;
+  schedulePreview();
+  scheduleBody();
+}
+
+async function main() {
+  const res = await getJSON("/api/families");
+  const sel = $("#family");
+  for (const f of res.body.families) sel.add(new Option(f, f));
+  sel.value = res.body.families.includes("involute") ? "involute" : res.body.families[0];
+  sel.addEventListener("change", () => loadFamily(sel.value));
+  const dl = $("#downloads");
+  for (const f of res.body.downloads) {
+    const b = document.createElement("button");
+    b.type = "button";
+    b.id = `download-${f}`;
+    b.textContent = f.toUpperCase();
+    b.addEventListener("click", () => download(f));
+    dl.append(b);
+  }
+  $("#check-pair").addEventListener("click", checkPair);
+  $("#pair-play").addEventListener("click", () => play(!state.playing));
+  $("#pair-frame").addEventListener("input", (e) => { play(false); showFrame(Number(e.target.value)); });
+  await loadFamily(sel.value);
+  document.body.dataset.ready = "1";
+}
+
+main().catch((e) => setStatus(`page error: ${e.message}`));
