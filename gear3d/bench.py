@@ -420,7 +420,8 @@ def plot(rows, path: Path):
         ax.set_title(title)
         ax.invert_xaxis()
         ax.grid(True, which="both", alpha=0.3)
-    axes[1].legend(fontsize=7, loc="upper left", ncol=1, bbox_to_anchor=(1.01, 1.0))
+    if axes[1].get_legend_handles_labels()[0]:
+        axes[1].legend(fontsize=7, loc="upper left", ncol=1, bbox_to_anchor=(1.01, 1.0))
     fig.tight_layout()
     tmp = path.with_name(path.stem + ".tmp.png")
     fig.savefig(tmp, dpi=110, metadata={"Software": None})
