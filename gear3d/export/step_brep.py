@@ -491,10 +491,78 @@ def _turn(coefs2, c, s):
 @dataclass
 class _FaceRec:
     surface: object
-    flank: int
-    k: int
+    group: "_Group"
     za: float
     zb: float
+
+
+@dataclass
+class _Group:
+    """Consecutive runs joined tangentially, as one cubic B-spline in the loop's direction:
+    ``knots`` (scipy form, C0 knots of multiplicity 3 at the joints), ``ctrl`` (n,2) mm in
+    place (tooth copies applied), ``segs``: (u0, u1, flank index, copy k, reversed)."""
+    knots: np.ndarray
+    ctrl: np.ndarray
+    segs: list
+
+
+#: joints whose tangents differ by less than this (rad) are merged into one face
+SMOOTH_JOINT = 1e-3
+
+
+def _oriented(f, r, ang):
+    """(knots on [0, span], control points in place) of run ``r`` fitted as flank ``f``,
+    in the loop's direction; the span is the control polygon's length (mm)."""
+    P = _rot2(f.coefs, r.k * ang)
+    t = (f.knots - f.lo) / (f.hi - f.lo)
+    rev = r.t0 > r.t1
+    if rev:
+        P, t = P[::-1], (1 - t)[::-1]
+    span = max(float(np.hypot(*np.diff(P, axis=0).T).sum()), 1e-9)
+    return t * span, P, span, rev
+
+
+def _merge_runs(runs, which, flanks, ang, pieces):
+    """Join tangent-continuous consecutive runs into groups (one face each). Breaks at real
+    corners; a loop with no corner breaks where the tooth copy changes."""
+    n = len(runs)
+    ors = [_oriented(flanks[w], r, ang) for r, w in zip(runs, which)]
+
+    def tangent(r, end):
+        """Unit tangent (loop direction) of the exact piece at the run's start or end."""
+        G = pieces[r.piece]
+        t = r.t1 if end else r.t0
+        sgn = 1.0 if r.t1 >= r.t0 else -1.0
+        h = 1e-7 * sgn
+        q = G(np.array([t - h, t]) if end else np.array([t, t + h]))
+        d = _rot2(q[1] - q[0], r.k * ang)
+        return d / max(float(np.hypot(*d)), 1e-300)
+
+    smooth = []
+    for i in range(n):
+        c = float(np.clip(tangent(runs[i], True) @ tangent(runs[(i + 1) % n], False), -1, 1))
+        smooth.append(math.acos(c) < SMOOTH_JOINT)
+    if all(smooth):
+        smooth = [runs[i].k == runs[(i + 1) % n].k for i in range(n)]
+        if all(smooth):
+            smooth = [False] * n
+    first = next(i for i in range(n) if not smooth[i]) + 1     # a group starts after a break
+    groups, cur = [], None
+    for s_ in range(n):
+        i = (first + s_) % n
+        kn, P, span, rev = ors[i]
+        if cur is None:
+            cur = [kn.copy(), P.copy(), [(0.0, span, which[i], runs[i].k, rev)], span]
+        else:
+            off = cur[3]
+            cur[0] = np.concatenate([cur[0][:-1], kn[4:] + off])
+            cur[1] = np.concatenate([cur[1], P[1:]])
+            cur[2].append((off, off + span, which[i], runs[i].k, rev))
+            cur[3] = off + span
+        if not smooth[i]:
+            groups.append(_Group(cur[0], cur[1], cur[2]))
+            cur = None
+    return groups
 
 
 def _check_body(b):
@@ -543,10 +611,8 @@ def brep_solid(b, measure: bool = True):
     gap = float(rep.get("gap") or 0.0)
     lp = _law_pieces(law, gap)
     faces, recs = [], []
-    # turned control points of every run (tooth copy applied)
-    base = [_rot2(flanks[w].coefs, r.k * ang) for r, w in zip(runs, which)]
-    sections = {}        # z -> list of section curves (loop order)
-    from scipy.interpolate import make_interp_spline  # noqa: F401  (scipy already loaded by the fit)
+    groups = _merge_runs(runs, which, flanks, ang, prof.pieces)
+    sections = {}        # z -> list of section control points (loop order, one per group)
     law_bound = 0.0
     for za, zb, in_gap in lp:
         if in_gap:
@@ -555,21 +621,21 @@ def brep_solid(b, measure: bool = True):
         law_bound = max(law_bound, bound)
         for end, jj in ((za, 0), (zb, -1)):
             if end not in sections:
-                sections[end] = [np.column_stack([_turn(P, cc[jj], ss[jj]), np.full(len(P), zc[jj])])
-                                 for P in base]
-        for r, w, P in zip(runs, which, base):
-            f = flanks[w]
+                sections[end] = [np.column_stack([_turn(g.ctrl, cc[jj], ss[jj]), np.full(len(g.ctrl), zc[jj])])
+                                 for g in groups]
+        for g in groups:
+            P = g.ctrl
             net = np.empty((len(P), len(cc), 3))
             net[:, :, 0] = P[:, :1] * cc[None] - P[:, 1:] * ss[None]
             net[:, :, 1] = P[:, :1] * ss[None] + P[:, 1:] * cc[None]
             net[:, :, 2] = zc[None]
-            surf = bspline_surface(net, f.knots, vk, 3, vdeg)
+            surf = bspline_surface(net, g.knots, vk, 3, vdeg)
             faces.append(BRepBuilderAPI_MakeFace(surf, 1e-9).Face())
-            recs.append(_FaceRec(surf, w, r.k, za, zb))
+            recs.append(_FaceRec(surf, g, za, zb))
     n_flank = len(faces)
 
     def tooth_wire(zz):
-        return _section_wire([bspline_curve(c, flanks[w].knots, 3) for c, w in zip(sections[zz], which)])
+        return _section_wire([bspline_curve(c, g.knots, 3) for c, g in zip(sections[zz], groups)])
 
     internal = bool(prof.internal)
     rim = float(rep.get("rim_radius") or prof.report.get("rim_radius") or 0.0)
@@ -768,20 +834,24 @@ def _measure(prof, law, flanks, recs, tol):
     ang = 2 * math.pi / prof.teeth
     by_flank = {}
     for rec in recs:
-        f = flanks[rec.flank]
-        s = rec.surface
-        ku = np.unique(f.knots)
+        g, s = rec.group, rec.surface
+        ku = np.unique(g.knots)
         us = np.unique(np.concatenate([ku, (ku[:-1, None] + np.diff(ku)[:, None] *
                                             np.array([0.25, 0.5, 0.75])).ravel()]))
-        kv = [s.VKnot(i) for i in range(1, s.NbVKnots() + 1)]
-        kv = np.asarray(kv)
+        kv = np.asarray([s.VKnot(i) for i in range(1, s.NbVKnots() + 1)])
         vs = np.unique(np.concatenate([kv, (kv[:-1, None] + np.diff(kv)[:, None] *
                                             np.array([0.2, 0.4, 0.6, 0.8])).ravel()]))
         P = np.array([[p.X(), p.Y(), p.Z()] for p in (s.Value(float(u), float(v)) for u in us for v in vs)])
-        th = law(P[:, 2]) + rec.k * ang
-        c, sn = np.cos(-th), np.sin(-th)
-        xy = np.stack([c * P[:, 0] - sn * P[:, 1], sn * P[:, 0] + c * P[:, 1]], axis=1)
-        by_flank.setdefault(rec.flank, []).append(xy)
+        seg = np.clip(np.searchsorted([sg[1] for sg in g.segs], us), 0, len(g.segs) - 1)
+        seg = np.repeat(seg, len(vs))
+        for i, (_u0, _u1, w, k, _rev) in enumerate(g.segs):
+            m = seg == i
+            if not m.any():
+                continue
+            th = law(P[m, 2]) + k * ang
+            c, sn = np.cos(-th), np.sin(-th)
+            xy = np.stack([c * P[m, 0] - sn * P[m, 1], sn * P[m, 0] + c * P[m, 1]], axis=1)
+            by_flank.setdefault(w, []).append(xy)
     worst = 0.0
     for w, pts in by_flank.items():
         f = flanks[w]
