@@ -41,6 +41,8 @@ def add_parser(sub):
     for flag, typ, hlp, dest in BODY_FLAGS:
         p.add_argument(flag, type=typ, dest="b_" + dest, default=None, help=hlp)
     p.add_argument("-o", "--output", default=None, help="output file; extension picks the format")
+    p.add_argument("--step", default=None, choices=["faceted", "brep"],
+                   help="STEP flavour: faceted (default) or brep (exact B-spline surfaces, needs pip install 'gear3d[cad]')")
     return p
 
 
@@ -72,7 +74,8 @@ def run(args) -> int:
         sys.stdout.write("\n")
         return 0
     from ..export import write
-    info = write(b, out)
+    step_opts = {"step": args.step} if args.step and out.lower().endswith((".step", ".stp")) else {}
+    info = write(b, out, **step_opts)
     r = b.report
     sys.stdout.write(f"wrote {out}: {r['kind']} {r['family']} z={r['teeth']} {r['triangles']} triangles, "
                      f"max_error={r['max_error']:.3g} mm (tolerance {r['tolerance']:g} mm)"
