@@ -149,10 +149,10 @@ def _do_pair(form, built):
     return _json({"report": rep, "summary": summary(rep), "animation": pair_animation(p1, p2, rep)})
 
 
-def _download_name(form, fmt):
-    teeth = form["profile"].get("teeth", "")
-    stem = form["family"] + (f"-z{teeth}" if teeth.isdigit() else "")
-    return f"{stem}{'-body' if DOWNLOADS[fmt][0] == 'body' else ''}.{fmt}"
+def _download_name(family: str, teeth, fmt: str) -> str:
+    """``involute-z20-body.stl``: the family, the teeth and what it is (no user text in it)."""
+    z = f"-z{teeth}" if isinstance(teeth, int) else ""
+    return f"{family}{z}{'-body' if DOWNLOADS[fmt][0] == 'body' else ''}.{fmt}"
 
 
 def _do_download(form, built, fmt):
@@ -166,7 +166,7 @@ def _do_download(form, built, fmt):
     kind, media = DOWNLOADS[fmt]
     prof = profile(form["family"], **built[0])
     obj = body(prof, **built[1]) if kind == "body" else prof
-    name = _download_name(form, fmt)
+    name = _download_name(form["family"], prof.teeth, fmt)
     with tempfile.TemporaryDirectory(prefix="gear3d-web-") as d:
         path = os.path.join(d, name)
         write(obj, path)
@@ -199,7 +199,7 @@ def create_app(max_builds: int = 2, log=None):
                     fmt = q.get("fmt", "")
                     if fmt not in DOWNLOADS:
                         raise GearError("fmt", fmt, "one of " + ", ".join(DOWNLOADS))
-                    extra, kind, output = (fmt,), DOWNLOADS[fmt][0], _download_name(form, fmt)
+                    extra, kind, output = (fmt,), DOWNLOADS[fmt][0], "download." + fmt
                 built = _budget(form, kind, output)
 
                 def run():

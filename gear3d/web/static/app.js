@@ -65,6 +65,9 @@ function buildForm(scope, fields) {
     form.append(row);
     const ev = f.type === "bool" || f.choices ? "change" : "input";
     input.addEventListener(ev, () => onChange(scope));
+    input.addEventListener("focus", () => {
+      $(`#help-${scope}`).textContent = help.textContent + (f.range ? ` [${f.range}]` : "");
+    });
   }
   form.addEventListener("submit", (e) => e.preventDefault());
 }
@@ -409,7 +412,7 @@ async function download(fmtName) {
 // ------------------------------------------------------------------ wiring
 
 const schedulePreview = task(preview, 60);
-const scheduleBody = task(body3d, 500);
+const scheduleBody = task(body3d, 800);
 
 function onChange(scope) {
   if (scope === "profile") { schedulePreview(); scheduleBody(); }

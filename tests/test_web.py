@@ -1,0 +1,359 @@
+"""``gear3d serve``: the JSON API (in-process ASGI calls) and the page in a real browser.
+
+The browser tests drive Debian's Chromium (``/usr/bin/chromium``; CI's ``.ci/run`` installs
+it) with Playwright against ``gear3d serve`` started as a subprocess on a free port. They
+fail (never skip) when Chromium or Playwright is missing. Oracles: the CLI's own bytes and
+messages, the involute tip radius m(z/2 + 1), trimesh's watertightness, seed 001's area B.
+"""
+from __future__ import annotations
+
+import asyncio
+import functools
+import io
+import json
+import os
+import re
+import socket
+import subprocess
+import sys
+import time
+import urllib.error
+import urllib.request
+from pathlib import Path
+
+import pytest
+
+CHROMIUM = "/usr/bin/chromium"
+CHROMIUM_ARGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-background-networking",
+                 "--disable-component-update", "--no-first-run", "--disable-sync"]
+ROOT = Path(__file__).resolve().parents[1]
+OUT = ROOT / "out" / "web"
+TIMEOUT_MS = 60_000
+
+
+# ------------------------------------------------------------------ in-process API (no server)
+
+def _asgi_get(app, path: str, query: str = ""):
+    """(status, headers dict, body bytes) of one GET through the ASGI app."""
+    sent = []
+
+    async def receive():
+        return {"type": "http.request", "body": b"", "more_body": False}
+
+    async def send(msg):
+        sent.append(msg)
+
+    scope = {"type": "http", "asgi": {"version": "3.0"}, "http_version": "1.1", "method": "GET",
+             "scheme": "http", "path": path, "raw_path": path.encode(), "query_string": query.encode(),
+             "root_path": "", "headers": [(b"host", b"test")], "client": ("127.0.0.1", 1),
+             "server": ("test", 80)}
+    asyncio.run(app(scope, receive, send))
+    start = next(m for m in sent if m["type"] == "http.response.start")
+    body = b"".join(m.get("body", b"") for m in sent if m["type"] == "http.response.body")
+    return start["status"], {k.decode().lower(): v.decode() for k, v in start["headers"]}, body
+
+
+def _strict(body: bytes):
+    def bad(c):
+        raise AssertionError(f"non-strict JSON constant {c}")
+    return json.loads(body, parse_constant=bad)
+
+
+@pytest.fixture(scope="module")
+def app():
+    from gear3d.web.app import create_app
+    return create_app(max_builds=1, log=io.StringIO())
+
+
+def test_schema_from_signatures_and_cli_flags(app):
+    import inspect
+
+    from gear3d.profiles import FAMILIES
+    st, _, body = _asgi_get(app, "/api/families")
+    fams = _strict(body)["families"]
+    assert st == 200 and "involute" in fams and "sine" in fams and "mate" not in fams   # mate takes a Profile
+    for fam in ("involute", "sine", "cycloid-disc"):
+        st, _, body = _asgi_get(app, f"/api/schema/{fam}")
+        sch = _strict(body)
+        sig = {k: p.default for k, p in inspect.signature(FAMILIES[fam]).parameters.items() if p.kind is not p.VAR_KEYWORD}
+        assert [f["name"] for f in sch["profile"]] == list(sig)
+        for f in sch["profile"]:
+            if f["name"] != "tolerance":           # the CLI picks it by output
+                assert f["default"] == sig[f["name"]]
+    inv = {f["name"]: f for f in _strict(_asgi_get(app, "/api/schema/involute")[2])["profile"]}
+    assert inv["teeth"]["flag"] == "--teeth" and inv["teeth"]["type"] == "int"
+    assert inv["module"]["unit"] == "mm" and inv["pressure_angle_deg"]["unit"] == "deg"
+    assert inv["internal"]["type"] == "bool"
+    body = {f["name"]: f for f in _strict(_asgi_get(app, "/api/schema/involute")[2])["body"]}
+    assert body["kind"]["choices"] == ["spur", "helical", "herringbone", "chevron-arch"]
+    assert body["width"]["required"] is True
+    assert _asgi_get(app, "/api/schema/nope")[0] == 400
+
+
+def test_bad_input_is_the_clis_message_and_never_a_path(app, capsys):
+    from gear3d.cli import main
+    st, _, body = _asgi_get(app, "/api/profile", "family=involute&teeth=0")
+    err = _strict(body)
+    assert st == 400 and err["param"] == "teeth" and "teeth" in err["error"]
+    assert main(["profile", "involute", "--teeth", "0"]) == 2
+    cli_line = capsys.readouterr().err.strip()
+    assert "\n" not in cli_line and err["allowed"] in cli_line       # the CLI states the same range
+    st, _, body = _asgi_get(app, "/api/download", "family=involute&fmt=stl&output=/etc/passwd")
+    assert st == 400 and _strict(body)["param"] == "output"
+    st, _, body = _asgi_get(app, "/api/download", "family=involute&fmt=exe")
+    assert st == 400 and _strict(body)["param"] == "fmt"
+    st, _, body = _asgi_get(app, "/api/profile", "family=involute&teeth=abc")
+    assert st == 400 and _strict(body)["param"] == "teeth"
+    assert b"Traceback" not in body
+
+
+def test_busy_answers_503_and_the_budget_refuses_before_building(app, monkeypatch):
+    import gear3d.solids
+    slots = app.state.slots
+    assert slots.sem.acquire(blocking=False)          # one build running (max_builds=1)
+    try:
+        st, _, body = _asgi_get(app, "/api/profile", "family=involute&teeth=20")
+        assert st == 503 and "busy" in _strict(body)["error"]
+    finally:
+        slots.sem.release()
+    st, _, body = _asgi_get(app, "/api/profile", "family=involute&teeth=20")
+    assert st == 200
+    calls, real = [], gear3d.solids.body
+
+    @functools.wraps(real)
+    def spy(*a, **k):
+        calls.append(1)
+        return real(*a, **k)
+    monkeypatch.setattr(gear3d.solids, "body", spy)
+    st, _, body = _asgi_get(app, "/api/download", "family=involute&teeth=5000&b.width=100&tolerance=0.001&fmt=stl")
+    err = _strict(body)
+    assert st == 400 and err["param"] == "tolerance" and "budget" in err["error"] and not calls
+
+
+def test_strict_json_and_binary_mesh():
+    from types import SimpleNamespace
+
+    from gear3d.web import strict
+    from gear3d.web.meshdata import decode, encode
+    assert _strict(strict.dumps({"a": float("nan"), "b": [float("inf"), 1.5]}).encode()) == {"a": None, "b": [None, 1.5]}
+    tet = SimpleNamespace(mesh=SimpleNamespace(vertices=[[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]],
+                                               faces=[[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]]))
+    V, F = decode(encode([tet, tet]))
+    assert V.shape == (8, 3) and F.shape == (8, 3) and F[4:].min() == 4 and V[5, 0] == 1.0
+
+
+@pytest.mark.parametrize("kind, extra", [("spur", ""), ("helical", "&b.helix_angle_deg=20"),
+                                         ("herringbone", "&b.helix_angle_deg=20"),
+                                         ("chevron-arch", "&b.helix_angle_deg=30&b.arch_radius=4")])
+def test_body_preview_every_kind_is_a_closed_mesh(app, kind, extra):
+    import numpy as np
+    import trimesh
+
+    from gear3d.web.meshdata import decode
+    st, head, blob = _asgi_get(app, "/api/body", f"family=involute&teeth=20&tolerance=0.05&b.width=6&b.kind={kind}{extra}")
+    assert st == 200, blob[:300]
+    V, F = decode(blob)
+    rep = _strict(head["x-gear3d-report"].encode())
+    assert rep["kind"] == kind and rep["triangles"] == len(F) and rep["tolerance"] >= 0.01
+    mesh = trimesh.Trimesh(np.asarray(V, float), np.asarray(F, np.int64), process=True)
+    assert mesh.is_watertight
+    assert abs(mesh.bounds[1, 2] - mesh.bounds[0, 2] - 6.0) < 1e-4
+    assert abs(np.hypot(V[:, 0], V[:, 1]).max() - 11.0) < 0.06      # tip radius m (z/2 + 1)
+
+
+def test_profile_svg_marks_undercut_and_pointing():
+    import gear3d
+    from gear3d.web.svg import neck, profile_svg
+    under = gear3d.profile("involute", teeth=8, tip_radius_coeff=0)       # z < 17: undercut
+    assert under.report["undercut"]
+    s = profile_svg(under)
+    assert 'class="undercut"' in s and 'class="neck"' in s and neck(under)["thickness"] < neck(under)["thicker_outside"]
+    pointed = gear3d.profile("sine", teeth=20, addendum_coeff=1.5)          # seed 001: pointed from 1.5
+    assert 'class="pointed-tip"' in profile_svg(pointed)
+    plain = profile_svg(gear3d.profile("involute", teeth=30))
+    for c in ("pitch-circle", "base-circle", "root-circle", "tip-circle"):
+        assert f'class="{c}"' in plain
+    assert 'class="undercut"' not in plain and "pointed-tip" not in plain
+
+
+def test_serve_refuses_a_busy_port_in_one_line(capsys):
+    from gear3d.cli import main
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        s.listen()
+        port = s.getsockname()[1]
+        assert main(["serve", "--port", str(port)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and f"port = {port} is not allowed" in err and "[0, 65535]" in err
+
+
+# ------------------------------------------------------------------ the page in Chromium
+
+def _free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+@pytest.fixture(scope="module")
+def server(tmp_path_factory):
+    """``gear3d serve`` on a free port (a subprocess); yields (base URL, its stderr log path)."""
+    d = tmp_path_factory.mktemp("serve")
+    port = _free_port()
+    log = d / "serve.log"
+    with open(log, "w") as err, open(d / "serve.out", "w") as out:
+        proc = subprocess.Popen([sys.executable, "-m", "gear3d.cli", "serve", "--port", str(port), "--max-builds", "3"],
+                                cwd=d, stdout=out, stderr=err)
+    url = f"http://127.0.0.1:{port}"
+    deadline = time.monotonic() + 90
+    try:
+        while True:
+            if proc.poll() is not None:
+                pytest.fail(f"gear3d serve exited with {proc.returncode}: {log.read_text()[-2000:]}")
+            try:
+                with urllib.request.urlopen(url + "/api/families", timeout=5) as r:
+                    if r.status == 200:
+                        break
+            except (urllib.error.URLError, ConnectionError, OSError):
+                pass
+            if time.monotonic() > deadline:
+                pytest.fail("gear3d serve did not answer within 90 s")
+            time.sleep(0.1)    # polling interval, bounded by the deadline above
+        assert f"http://127.0.0.1:{port}/" in (d / "serve.out").read_text()
+        yield url, log
+    finally:
+        proc.terminate()
+        try:
+            proc.wait(15)
+        except subprocess.TimeoutExpired:
+            proc.kill()
+            proc.wait(5)
+
+
+@pytest.fixture(scope="module")
+def browser():
+    if not os.path.exists(CHROMIUM):
+        pytest.fail(f"{CHROMIUM} not found: the browser tests need Debian's Chromium "
+                    "(apt-get install -y chromium; CI's .ci/run installs it)")
+    try:
+        from playwright.sync_api import sync_playwright
+    except ImportError:
+        pytest.fail("playwright is not installed: pip install -e '.[test]'")
+    with sync_playwright() as pw:
+        b = pw.chromium.launch(executable_path=CHROMIUM, args=CHROMIUM_ARGS)
+        try:
+            yield b
+        finally:
+            b.close()
+
+
+@pytest.fixture(scope="module")
+def page(browser, server):
+    """One page for the browser tests (in file order), page errors collected."""
+    ctx = browser.new_context(viewport={"width": 1400, "height": 1000}, accept_downloads=True)
+    pg = ctx.new_page()
+    pg.set_default_timeout(TIMEOUT_MS)
+    pg.errors = []
+    pg.on("pageerror", lambda e: pg.errors.append(str(e)))
+    pg.goto(server[0] + "/")
+    pg.wait_for_selector("body[data-ready='1'] #preview svg.gear3d-preview")
+    yield pg
+    ctx.close()
+
+
+def _profile_points(svg_d: str):
+    """(n, 2) points of the preview's profile path (mm; the SVG flips y)."""
+    import numpy as np
+    nums = [float(x) for x in re.findall(r"-?\d+\.?\d*(?:e-?\d+)?", svg_d)]
+    return np.array(nums).reshape(-1, 2)
+
+
+def test_page_preview_follows_the_teeth(page):
+    import numpy as np
+    before = page.get_attribute("#preview svg.gear3d-preview", "data-teeth")
+    assert before == "20"
+    page.fill("#in-profile-teeth", "13")
+    page.wait_for_selector("#preview svg.gear3d-preview[data-teeth='13']")
+    pts = _profile_points(page.get_attribute("#preview svg .full path.profile", "d"))
+    r = np.hypot(pts[:, 0], pts[:, 1])
+    assert abs(r.max() - 1.0 * (13 / 2 + 1)) < 2e-3          # involute tip radius m (z/2 + 1)
+    assert abs(float(page.get_attribute("#preview svg .full circle.pitch-circle", "r")) - 6.5) < 1e-6
+    # the report names what the SVG shows
+    assert "7.5 mm" in page.inner_text("#report")
+    page.fill("#in-profile-teeth", "20")
+    page.wait_for_selector("#preview svg.gear3d-preview[data-teeth='20']")
+    assert not page.errors
+
+
+def test_page_bad_value_shows_the_message_next_to_the_field(page):
+    page.fill("#in-profile-teeth", "0")
+    err = page.locator("#field-profile-teeth .error")
+    err.wait_for(state="visible")
+    text = err.inner_text()
+    assert "teeth" in text and "[1, 100000]" in text
+    assert "invalid" in page.get_attribute("#field-profile-teeth", "class")
+    assert "Traceback" not in page.content()
+    page.fill("#in-profile-teeth", "20")
+    page.wait_for_selector("#field-profile-teeth .error:empty", state="attached")
+    page.wait_for_selector("#preview svg.gear3d-preview[data-teeth='20']")
+
+
+def test_page_stl_download_is_the_clis_bytes(page, tmp_path, capsys):
+    import trimesh
+
+    from gear3d.cli import main
+    page.fill("#in-profile-tolerance", "0.01")
+    page.fill("#in-body-width", "5")
+    with page.expect_download(timeout=TIMEOUT_MS) as dl:
+        page.click("#download-stl")
+    web = tmp_path / "web.stl"
+    dl.value.save_as(web)
+    assert dl.value.suggested_filename == "involute-z20-body.stl"
+    cli = tmp_path / "cli.stl"
+    assert main(["body", "involute", "--teeth", "20", "--width", "5", "--tolerance", "0.01", "-o", str(cli)]) == 0
+    capsys.readouterr()
+    assert web.read_bytes() == cli.read_bytes()
+    mesh = trimesh.load(web, file_type="stl")
+    assert mesh.is_watertight and len(mesh.faces) > 1000
+    assert abs(mesh.bounds[1, 2] - mesh.bounds[0, 2] - 5.0) < 1e-4
+
+
+def test_page_pair_with_interference_drawn_red(page, server):
+    import numpy as np
+    from PIL import Image
+    page.select_option("#family", "sine")
+    page.wait_for_selector("body[data-family='sine'] #in-profile-addendum_coeff")
+    page.fill("#in-profile-addendum_coeff", "1")
+    page.fill("#in-profile-tolerance", "0.01")
+    page.check("#in-profile-internal")
+    page.fill("#in-pair-mate_teeth", "21")
+    page.click("#check-pair")
+    page.wait_for_selector("#pair-summary.bad", timeout=120_000)      # seed 001 area B: z20 in z21 at c_h = 1
+    summary = page.inner_text("#pair-summary")
+    assert summary.startswith("INTERFERENCE") and "opposite the pitch point" in summary
+    assert "opposite the pitch point" in page.inner_text("#pair-report")
+    page.click("#pair-play")                                          # pause on the worst frame
+    page.fill("#pair-frame", "0")
+    assert page.locator("#pair-view path.interference").count() > 0
+    png = page.locator("#pair-view").screenshot()
+    rgb = np.asarray(Image.open(io.BytesIO(png)).convert("RGB")).astype(int)
+    red = (rgb[..., 0] > 200) & (rgb[..., 1] < 70) & (rgb[..., 2] < 70)
+    assert red.sum() > 300, f"only {red.sum()} red pixels in the pair view"
+    # the screenshot people look at: wait for the 3D body of this ring too
+    page.wait_for_selector("#view3d[data-triangles]")
+    OUT.mkdir(parents=True, exist_ok=True)
+    page.screenshot(path=str(OUT / "page.png"), full_page=True)
+    assert (OUT / "page.png").stat().st_size > 10_000
+    assert not page.errors
+
+
+def test_server_logs_each_request_in_one_line(server):
+    url, log = server
+    with urllib.request.urlopen(url + "/api/profile?family=involute&teeth=17", timeout=30) as r:
+        assert r.status == 200
+    deadline = time.monotonic() + 10
+    pat = re.compile(r"^\d\d:\d\d:\d\d 127\.0\.0\.1 GET /api/profile\?family=involute&teeth=17 200 \d+ ms$", re.M)
+    while not pat.search(log.read_text()):
+        assert time.monotonic() < deadline, log.read_text()[-1000:]
+        time.sleep(0.05)    # polling interval, bounded by the deadline
+    assert "Traceback" not in log.read_text()
