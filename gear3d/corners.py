@@ -12,19 +12,45 @@ import math
 
 import numpy as np
 
-from .tessellate import MAX_VERTICES, chord_deviation, point_segment_distance
+from .geometry import point_segment_distance, rotate
+from .tessellate import MAX_VERTICES, chord_deviation
 
 
-def _rot(p, a):
-    c, s = math.cos(a), math.sin(a)
-    return np.stack([c * p[..., 0] - s * p[..., 1], s * p[..., 0] + c * p[..., 1]], axis=-1)
+_rot = rotate
 
 
-def new_vertices(loop: np.ndarray, raw: np.ndarray, eps: float = 1e-7) -> np.ndarray:
-    """Indices of ``loop`` vertices that are not (within ``eps`` mm) raw tessellation vertices."""
-    from scipy.spatial import cKDTree
-    d, _ = cKDTree(raw).query(loop, distance_upper_bound=eps * 10)
-    return np.nonzero(~(d <= eps))[0]
+def new_vertices(loop: np.ndarray, raw: np.ndarray, eps: float = 1e-7, sector: float | None = None) -> np.ndarray:
+    """Indices of ``loop`` vertices that are not (within ``eps`` mm) raw tessellation vertices.
+
+    ``sector`` (rad): only loop vertices with polar angle in [-sector, sector] are asked
+    about (tooth 0), and only raw vertices within twice that angle are searched."""
+    loop = np.asarray(loop, float)
+    raw = np.asarray(raw, float)
+    cand = np.arange(len(loop))
+    if sector is not None and sector < math.pi / 2:
+        al = np.abs(np.arctan2(loop[:, 1], loop[:, 0]))
+        cand = np.nonzero(al <= sector)[0]
+        ar = np.abs(np.arctan2(raw[:, 1], raw[:, 0]))
+        raw = raw[ar <= 2 * sector + 1e-9]
+    if not len(cand):
+        return cand
+    if not len(raw):
+        return cand
+    # sort the raw vertices by x; each candidate only looks at raw vertices within eps in x
+    order = np.argsort(raw[:, 0])
+    rx = raw[order]
+    q = loop[cand]
+    lo = np.searchsorted(rx[:, 0], q[:, 0] - eps, side="left")
+    hi = np.searchsorted(rx[:, 0], q[:, 0] + eps, side="right")
+    found = np.zeros(len(q), bool)
+    width = int((hi - lo).max(initial=0))
+    for o in range(width):
+        j = lo + o
+        ok = j < hi
+        jj = np.minimum(j, len(rx) - 1)
+        d = np.hypot(rx[jj, 0] - q[:, 0], rx[jj, 1] - q[:, 1])
+        found |= ok & (d <= eps)
+    return cand[~found]
 
 
 def corner_angle(loop: np.ndarray, i: int) -> float:
@@ -73,17 +99,20 @@ def refine(f, t: np.ndarray, chords, target: float, max_iter: int = 40) -> np.nd
 def exact_crossing(fa, ta0, ta1, fb, tb0, tb1, rot_b: float, q0: np.ndarray, iters: int = 30):
     """Crossing of exact curves fa (on [ta0, ta1]) and fb rotated by ``rot_b`` (on [tb0, tb1]).
 
-    Newton iteration in the two parameters from the chords' crossing; numeric Jacobian.
+    Newton iteration in the two parameters from the chords' crossing; the Jacobian comes
+    from central differences, each curve evaluated once per step (three parameters).
     Returns the point (mm) or None if it does not converge inside the intervals (widened x3).
     """
-    def A(s):
-        return fa(np.array([s]))[0]
+    def A3(s, h):
+        return fa(np.array([s, s + h, s - h]))
 
-    def B(s):
-        return _rot(fb(np.array([s])), rot_b)[0]
+    def B3(u, h):
+        return _rot(fb(np.array([u, u + h, u - h])), rot_b)
 
     # start from the chords' crossing parameters
-    pa0, pa1, pb0, pb1 = A(ta0), A(ta1), B(tb0), B(tb1)
+    pa = fa(np.array([ta0, ta1]))
+    pb = _rot(fb(np.array([tb0, tb1])), rot_b)
+    pa0, pa1, pb0, pb1 = pa[0], pa[1], pb[0], pb[1]
     da, db = pa1 - pa0, pb1 - pb0
     den = da[0] * (-db[1]) - da[1] * (-db[0])
     if abs(den) < 1e-300:
@@ -95,20 +124,24 @@ def exact_crossing(fa, ta0, ta1, fb, tb0, tb1, rot_b: float, q0: np.ndarray, ite
     ha = max(abs(ta1 - ta0), 1e-14) * 1e-4
     hb = max(abs(tb1 - tb0), 1e-14) * 1e-4
     for _ in range(iters):
-        F = A(s) - B(u)
-        Ja = (A(s + ha) - A(s - ha)) / (2 * ha)
-        Jb = -(B(u + hb) - B(u - hb)) / (2 * hb)
+        a3, b3 = A3(s, ha), B3(u, hb)
+        F = a3[0] - b3[0]
+        if np.hypot(*F) < 1e-13:
+            break
+        Ja = (a3[1] - a3[2]) / (2 * ha)
+        Jb = -(b3[1] - b3[2]) / (2 * hb)
         J = np.stack([Ja, Jb], axis=1)
         try:
             step = np.linalg.solve(J, -F)
         except np.linalg.LinAlgError:
             return None
+        if not np.all(np.isfinite(step)):
+            return None
         s, u = s + step[0], u + step[1]
-        if np.hypot(*F) < 1e-13:
-            break
     wa, wb = 3 * abs(ta1 - ta0), 3 * abs(tb1 - tb0)
     if not (min(ta0, ta1) - wa <= s <= max(ta0, ta1) + wa and min(tb0, tb1) - wb <= u <= max(tb0, tb1) + wb):
         return None
-    if np.hypot(*(A(s) - B(u))) > 1e-9:
+    pa = fa(np.array([s]))[0]
+    if np.hypot(*(pa - _rot(fb(np.array([u])), rot_b)[0])) > 1e-9:
         return None
-    return A(s)
+    return pa

@@ -23,13 +23,11 @@ import math
 
 import numpy as np
 
+from .geometry import point_segment_distance, rotate, signed_area
 from .racks import Corner, Rack, Smooth
 
 
-def _rot(pts: np.ndarray, ang) -> np.ndarray:
-    c, s = np.cos(ang), np.sin(ang)
-    x, y = pts[..., 0], pts[..., 1]
-    return np.stack([c * x - s * y, s * x + c * y], axis=-1)
+_rot = rotate
 
 
 def rack_element_uvn(el, t):
@@ -130,12 +128,6 @@ def wheel_envelope_piece(point_normal, r1: float, r2: float, internal: bool, smo
 
 # ----------------------------------------------------------------------------- trimming
 
-def signed_area(loop: np.ndarray) -> float:
-    """Shoelace area (mm^2): positive for counter-clockwise loops."""
-    x, y = loop[:, 0], loop[:, 1]
-    return 0.5 * float(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1)))
-
-
 def winding_number(loop: np.ndarray, point) -> int:
     """How many times the closed polyline ``loop`` turns counter-clockwise about ``point``."""
     d = np.asarray(loop, float) - np.asarray(point, float)
@@ -210,8 +202,7 @@ def trim(raw_loop: np.ndarray, internal: bool, rim_radius: float | None, tol: fl
     # bore (the one around the centre) is a winding artefact of crossed branches
     outer = max(polys, key=signed_area)
     if internal:
-        import shapely
-        holes = [p for p in polys if p is not outer and shapely.Polygon(p).contains(shapely.Point(0, 0))]
+        holes = [p for p in polys if p is not outer and winding_number(p, (0.0, 0.0)) != 0]
         polys = [outer] + holes[:1]
     else:
         polys = [outer]
@@ -242,7 +233,6 @@ def prune_spikes(loop: np.ndarray, tol: float = 0.0, max_angle_deg: float = 3.0)
         na, nb = np.hypot(*a.T), np.hypot(*b.T)
         ok = (na > 0) & (nb > 0)
         cos = np.where(ok, np.einsum("ij,ij->i", a, b) / np.where(ok, na * nb, 1), 1.0)
-        from .tessellate import point_segment_distance
         dev = point_segment_distance(loop, prv, nxt)
         needle = (cos > cmin) | ~ok
         notch = (cos > c60) & (dev < tol / 50)

@@ -13,15 +13,18 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .envelope import circle_loop, pattern, signed_area, trim
-from .errors import GearError
+from .errors import GearError, check_number
 from .corners import chords_near, corner_angle, exact_crossing, new_vertices, refine
-from .tessellate import chord_deviation, point_segment_distance, tessellate
+from .geometry import point_segment_distance, segment_foot
+from .tessellate import chord_deviation, tessellate
 
 #: Clipper2 (inside manifold3d) rounds to 1e-8 mm; half a unit in each axis
 CLIPPER_ROUNDING = 0.5e-8 * math.sqrt(2)
+#: rounds of the tip/root radius search: each keeps 2 of 32 intervals, 16^5 ~ 1e6 x narrower
+EXTREME_ROUNDS = 5
 
 
-@dataclass
+@dataclass(eq=False)
 class Profile:
     """A closed 2D gear profile in mm, gear centre at the origin, tooth 0 centred on +x.
 
@@ -40,6 +43,8 @@ class Profile:
     raw_chain: np.ndarray | None = field(repr=False, default=None)
     piece_params: list = field(repr=False, default_factory=list)
     _ref: "Profile | None" = field(repr=False, default=None)
+    #: the exact boundary (:class:`gear3d.exact.ExactBoundary`) the measurements use
+    boundary: object = field(repr=False, default=None)
 
     # ---------------------------------------------------------------- accessors
     @property
@@ -79,28 +84,59 @@ class Profile:
         return self._ref
 
     def exact_distance(self, points) -> np.ndarray:
-        """Distance (mm) from ``points`` to the exact profile boundary.
+        """Distance (mm) from ``points`` (N, 2) to the exact profile boundary.
 
-        Measured against a reference build 50x finer (its own error is at most
-        tolerance/50, which bounds the measurement's uncertainty).
+        Nearest points on the exact evaluators (Newton from the nearest surviving chord,
+        :mod:`gear3d.exact`); no finer rebuild. Profiles without a boundary (built by hand)
+        fall back to :meth:`reference_distance`.
         """
-        return loops_distance(self.reference().loops, np.asarray(points, float))
+        if self.boundary is None:
+            return self.reference_distance(points)
+        return self.boundary.distance(points)
+
+    def reference_distance(self, points) -> np.ndarray:
+        """Distance (mm) from ``points`` to a reference build 50x finer (an independent
+        check of :meth:`exact_distance` for tests and benchmarks; its own error is at most
+        ``reference().tolerance``)."""
+        pts = _check_points(points)
+        return loops_distance(self.reference().loops, pts)
 
     def thickness_at(self, radius: float) -> float:
-        """Arc tooth thickness (mm) of tooth 0 at ``radius`` (mm); NaN outside the teeth."""
-        return arc_thickness(self.tooth_loop, radius)
+        """Arc tooth thickness (mm) of tooth 0 at ``radius`` (mm, > 0); NaN where the
+        circle misses the tooth."""
+        r = check_number("radius", radius, 0, None, lo_open=True, unit="mm")
+        return arc_thickness(self.tooth_loop, r)
 
     def chordal_span(self, radius: float) -> tuple:
-        """Polar angles (rad) where tooth 0's flanks cross ``radius``: (left, right)."""
-        return tooth_crossings(self.tooth_loop, radius)
+        """Polar angles (rad) where tooth 0's flanks cross ``radius`` (mm, > 0): (left, right)."""
+        r = check_number("radius", radius, 0, None, lo_open=True, unit="mm")
+        return tooth_crossings(self.tooth_loop, r)
 
     def figure(self, path=None, **kw):
         """Render a PNG/SVG figure of the profile (see :mod:`gear3d.figures`)."""
+        if path is not None:
+            import os
+            folder = os.path.dirname(os.path.abspath(str(path)))
+            if not os.path.isdir(folder):
+                raise GearError("path", str(path), "a file in an existing folder", f"no folder {folder}")
         from .figures import profile_figure
         return profile_figure(self, path, **kw)
 
 
 # ------------------------------------------------------------------- measurements
+
+def _check_points(points) -> np.ndarray:
+    """``points`` as a finite (N, 2) float array (mm), or GearError naming ``points``."""
+    try:
+        q = np.asarray(points, float)
+    except (TypeError, ValueError):
+        raise GearError("points", type(points).__name__, "an (N, 2) array of numbers (mm)") from None
+    if q.ndim == 1 and q.shape == (2,):
+        q = q[None, :]
+    if q.ndim != 2 or q.shape[1] != 2 or not np.all(np.isfinite(q)):
+        raise GearError("points", f"array of shape {q.shape}", "a finite (N, 2) array of numbers (mm)")
+    return q
+
 
 def loops_distance(loops, pts: np.ndarray) -> np.ndarray:
     """Distance (mm) from points (N,2) to the boundary of closed loops, via an R-tree."""
@@ -235,10 +271,11 @@ def build_profile(family: str, params: dict, pieces, teeth: int, pitch_radius: f
             tl = _tooth_loop(loops, internal)
             corners, changed = [], False
             final = it == 4
-            nv = new_vertices(tl, raw_all)
+            nv = new_vertices(tl, raw_all, sector=math.pi / teeth + 1e-9 if teeth > 2 else None)
             if len(nv):
                 ang = np.arctan2(tl[nv, 1], tl[nv, 0])
                 nv = nv[np.abs(ang) <= math.pi / teeth + 1e-9] if teeth > 1 else nv
+            devs = {}          # chord deviations per piece, measured once per pass
             for i in nv:
                 q = tl[i]
                 theta = corner_angle(tl, i)
@@ -252,9 +289,13 @@ def build_profile(family: str, params: dict, pieces, teeth: int, pitch_radius: f
                     idx = [j for j, _ in ch]
                     if idx:
                         sub = np.unique(np.clip(np.concatenate([np.array(idx) + o for o in (-1, 0, 1)]), 0, len(ts[pi_]) - 2))
-                        dev = chord_deviation(f, ts[pi_])[sub]
+                        if pi_ not in devs:
+                            devs[pi_] = chord_deviation(f, ts[pi_], pts)
+                        dev = devs[pi_][sub]
                         if (dev > target).any() and not final:
                             ts[pi_] = refine(f, ts[pi_], idx, target)
+                            pts_list[pi_] = f(ts[pi_])
+                            devs.pop(pi_, None)
                             changed = True
                 corners.append((q, theta, near))
             if not changed:
@@ -264,6 +305,8 @@ def build_profile(family: str, params: dict, pieces, teeth: int, pitch_radius: f
             break
         shrink /= 4          # a corner missed the budget: tighten its chords and trim again
     max_err = max(float(chord_deviation(f, t).max(initial=0.0)) for f, t in zip(fs, ts))
+    arc_piece = fs[nraw] if clip_binding else None
+    arc_t = ts[nraw] if clip_binding else None
     max_err = max([max_err, *corner_errs]) + CLIPPER_ROUNDING + getattr(trim, "moved", 0.0)
     if internal:
         # the rim is a polygon inscribed in its circle: its sag counts too
@@ -288,7 +331,7 @@ def build_profile(family: str, params: dict, pieces, teeth: int, pitch_radius: f
     if tip <= 0 or not np.isfinite(tip):
         raise GearError("addendum_coeff", params.get("addendum_coeff"), "a smaller value", "no tooth is left")
     # ---- what trimming removed from tooth 0: undercut (root side) and pointing (tip side)
-    dist = loops_distance([tl], chain)
+    dist = _sector_distance(tl, chain, teeth)
     # tip and root radii of the exact curve, not of the polygon's vertices: refine the
     # extreme surviving sample on its exact piece (a trimmed corner stays as it is)
     keep = dist <= 2 * tol + 1e-9
@@ -347,7 +390,51 @@ def build_profile(family: str, params: dict, pieces, teeth: int, pitch_radius: f
     if extra_report:
         rep.update(extra_report)
     prof.report = rep
+    prof.boundary = _boundary(fs, ts, keep, tl, teeth, tol, internal, rim_radius, arc_piece, arc_t)
     return prof
+
+
+def _boundary(fs, ts, keep, tl, teeth, tol, internal, rim_radius, arc_piece, arc_t):
+    """The exact boundary of the trimmed profile: every piece with its samples that survived
+    trimming (within 2 tol of the trimmed polygon), the turned blank's arc, a ring's rim."""
+    from .exact import ExactBoundary
+    pieces = []
+    start = 0
+    for i, (f, t) in enumerate(zip(fs, ts)):
+        n = len(t)
+        k = keep[start:start + n] if i == 0 else keep[start - 1:start - 1 + n]
+        start += n if i == 0 else n - 1
+        pieces.append((f, t, k))
+    if arc_piece is not None:
+        pieces.append((arc_piece, arc_t, _sector_distance(tl, arc_piece(arc_t), teeth) <= 2 * tol + 1e-9))
+    circles = [rim_radius] if internal and rim_radius else []
+    a, b = _sector_edges(tl, teeth)
+    return ExactBoundary(pieces, teeth, circles, polygon=(a, b), tol=tol, polygon_error=tol)
+
+
+def _sector_edges(loop: np.ndarray, teeth: int):
+    """Edges (a, b) of ``loop`` that lie within 1.5 pitches of tooth 0 (all edges for gears
+    of 4 teeth or fewer)."""
+    loop = np.asarray(loop, float)
+    a, b = loop, np.roll(loop, -1, axis=0)
+    if teeth > 4:
+        w = 3 * math.pi / teeth
+        ang = np.abs(np.arctan2(loop[:, 1], loop[:, 0]))
+        sel = (ang <= w) | (np.roll(ang, -1) <= w)
+        a, b = a[sel], b[sel]
+    return a, b
+
+
+def _sector_distance(loop: np.ndarray, pts: np.ndarray, teeth: int) -> np.ndarray:
+    """Distance (mm) from points near tooth 0 to the edges of ``loop`` that lie within 1.5
+    pitches of tooth 0 (all edges for gears of 4 teeth or fewer)."""
+    a, b = _sector_edges(loop, teeth)
+    d = np.empty(len(pts))
+    step = max(1, 400_000 // max(len(a), 1))
+    for s0 in range(0, len(pts), step):
+        dd, _ = segment_foot(pts[s0:s0 + step, None, :], a[None], b[None])
+        d[s0:s0 + step] = dd.min(axis=1)
+    return d
 
 
 def _regularity(piece, t):
@@ -425,7 +512,7 @@ def _exact_extreme(fs, ts, label, chain, keep, polygon_value, largest):
     """Largest (or smallest) radius (mm) of the exact curve near the polygon's extreme.
 
     Starts from the surviving raw sample with the extreme radius and maximises |G(t)| on
-    its piece between the neighbouring samples (golden section). Keeps the polygon value
+    its piece between the neighbouring samples (a zooming grid search). Keeps the polygon value
     when that is more extreme (a trimmed corner) or the sample is not a vertex there.
     """
     r = np.hypot(chain[:, 0], chain[:, 1])
@@ -440,19 +527,15 @@ def _exact_extreme(fs, ts, label, chain, keep, polygon_value, largest):
     k = int(np.argmin(np.abs(fs[pc](t) - chain[j]).sum(axis=1)))
     a, b = t[max(k - 1, 0)], t[min(k + 1, len(t) - 1)]
     sgn = 1.0 if largest else -1.0
-
-    def f(x):
-        return sgn * float(np.hypot(*fs[pc](np.array([x]))[0]))
-    g = (math.sqrt(5) - 1) / 2
-    c, d = b - g * (b - a), a + g * (b - a)
-    for _ in range(60):
-        if f(c) > f(d):
-            b = d
-        else:
-            a = c
-        c, d = b - g * (b - a), a + g * (b - a)
-    best = sgn * max(f(0.5 * (a + b)), sgn * polygon_value)
-    return float(best)
+    # zoom in on the extreme of |G(t)|: each round keeps 2 of 32 intervals
+    best = sgn * polygon_value
+    for _ in range(EXTREME_ROUNDS):
+        x = np.linspace(a, b, 33)
+        r = sgn * np.hypot(*fs[pc](x).T)
+        i = int(np.argmax(r))
+        best = max(best, float(r[i]))
+        a, b = x[max(i - 1, 0)], x[min(i + 1, 32)]
+    return float(sgn * best)
 
 
 def _arc_piece(radius, teeth):

@@ -13,23 +13,12 @@ from dataclasses import dataclass
 import numpy as np
 
 from .errors import ToleranceError
+from .geometry import point_segment_distance
 
 #: interior parameters (fractions of a chord's t-interval) used to measure a chord
 _PROBE = np.array([0.0625, 0.1875, 0.3125, 0.4375, 0.5, 0.5625, 0.6875, 0.8125, 0.9375])
 MAX_VERTICES = 400_000  # per piece; beyond it the curve jumps or the tolerance is unreasonable
 MIN_TOLERANCE = 1e-7  # mm; below this double precision on a 1 m part cannot certify the result
-
-
-def point_segment_distance(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """Distance (mm) from points ``p`` to segments ``a``-``b``; all (..., 2), broadcast."""
-    ab = b - a
-    ap = p - a
-    den = np.einsum("...i,...i->...", ab, ab)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        s = np.where(den > 0, np.einsum("...i,...i->...", ap, ab) / np.where(den > 0, den, 1), 0.0)
-    s = np.clip(s, 0.0, 1.0)
-    d = ap - s[..., None] * ab
-    return np.hypot(d[..., 0], d[..., 1])
 
 
 def chord_deviation(f, t: np.ndarray, pts: np.ndarray | None = None) -> np.ndarray:

@@ -1,7 +1,7 @@
 """3D bodies: watertight, volume = area x width, slices vs the exactly turned profile.
 
 Oracles: closed-form twist laws written out here (helix, V, circle tangent to the V in the
-unrolled pitch cylinder), the exact profile (Profile.exact_distance, a 50x finer build),
+unrolled pitch cylinder), the exact profile (Profile.reference_distance, a 50x finer build),
 analytic feature volumes (circles, DIN 6885 table values), and manifold intersection
 volumes for meshing pairs.
 """
@@ -58,7 +58,7 @@ def slice_error(b, prof, theta, heights, delta=0.0):
                                (np.roll(p, -1, 0) - p)[:, None, :]).reshape(-1, 2) for p in polys])
         th = -float(theta(z))
         rot = np.array([[math.cos(th), math.sin(th)], [-math.sin(th), math.cos(th)]])
-        worst = max(worst, float(np.abs(prof.exact_distance(pts @ rot) - abs(delta)).max()))
+        worst = max(worst, float(np.abs(prof.reference_distance(pts @ rot) - abs(delta)).max()))
     return worst
 
 

@@ -30,6 +30,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from ..envelope import circle_loop
+from ..geometry import rotate
 from ..errors import GearError, ToleranceError, check_choice, check_number
 from .features import (apply_features, chamfer_vectors, offset_loops,
                        plan_features, subdivide)
@@ -37,8 +38,12 @@ from .twist import KINDS, TwistLaw, default_arch_radius
 
 #: refuse bodies that would need more triangles than this (memory: ~200 B per triangle)
 MAX_TRIANGLES = 40_000_000
-#: smallest body tolerance with a twist (half of it goes to the profile, whose floor is 1e-7 mm)
+#: smallest body tolerance with a twist (part of it goes to the profile, whose floor is 1e-7 mm)
 MIN_TWIST_TOLERANCE = 2e-7
+#: share of a twisted body's tolerance given to its profile polygon (the rest: twist terms)
+PROFILE_SHARE = 0.6
+#: attempts at a twisted body, each with half the previous twist budget, before refusing
+TWIST_RETRIES = 4
 
 
 @dataclass(eq=False)
@@ -161,23 +166,21 @@ def body(profile, kind="spur", width=10.0, helix_angle_deg=0.0, hand="right", ga
     sign = 1.0 if hand == "right" else -1.0
     law = _law if _law is not None else TwistLaw(kind, W, prof.pitch_radius, sign, beta, gap, R)
     e_off = tol / 8 if delta else 0.0
-    twist_share = 0.4 * tol if twisted else 0.0
-    if prof.report["max_error"] + e_off + twist_share > tol:
-        tp = (tol - e_off) * (0.5 if twisted else 0.9)
+    tp = profile_tolerance(tol, kind, bool(delta))
+    if prof.report["max_error"] > tp * (1 + 1e-9):
+        # the profile leaves too little room for the twist and offset terms: one rebuild
         if tp < 1e-7:
             raise ToleranceError("tolerance", tol, f"a number >= {tol_lo:g} mm for this body")
         prof = prof.at_tolerance(tp)
     skip = [(0.0, cb), (W - ct, W)] + ([(W / 2 - gap / 2, W / 2 + gap / 2)] if gap else [])
-    for attempt in range(2):
-        built = _build(prof, law, W, tol, delta, e_off, cb, ct, ef >= ch, skip)
+    share = 1.0
+    for _attempt in range(TWIST_RETRIES):
+        built = _build(prof, law, W, tol, delta, e_off, cb, ct, ef >= ch, skip, share)
         man, knots, max_len, bound, max_err, heights, e_p = built
         if max_err <= tol:
             break
-        # the profile polygon itself may miss the exact curve near trimmed corners:
-        # one retry with a 4x finer profile
-        if attempt == 0 and prof.tolerance / 4 >= 1e-7:
-            prof = prof.at_tolerance(prof.tolerance / 4)
-            continue
+        share *= 0.5        # the twist terms missed: halve their budget (more layers)
+    else:
         raise ToleranceError("tolerance", tol, "a coarser value",
                              f"measured body error {max_err:.3g} mm exceeds it (profile polygon "
                              f"{e_p:.3g} mm by its own measure)")
@@ -257,14 +260,26 @@ def place_pair(body1: Body, body2: Body, internal: bool = False) -> list:
 # ------------------------------------------------------------------------ internals
 
 
-def _build(prof, law, W, tol, delta, e_off, cb, ct, ef_bottom, skip):
-    """Extrude, warp and measure one attempt; returns (manifold, knots, max_len, bound,
-    max_error, heights, e_profile)."""
+def profile_tolerance(tol: float, kind: str = "spur", offset: bool = False) -> float:
+    """Tolerance (mm) to build a body's profile at, for a body tolerance ``tol`` (mm).
+
+    A spur body is the profile polygon extruded: the profile may use the whole budget
+    (less the round joins of an XY offset). A twisted body shares it with the twist
+    terms (the chord between layers and the zig-zag of split side quads):
+    :data:`PROFILE_SHARE` of it goes to the profile, which is the split with the fewest
+    vertices x layers on the reference helical gear (see benchmarks/peers.py)."""
+    t = tol - (tol / 8 if offset else 0.0)
+    return t * (PROFILE_SHARE if kind != "spur" else 1.0)
+
+
+def _build(prof, law, W, tol, delta, e_off, cb, ct, ef_bottom, skip, share=1.0):
+    """Extrude, warp and measure one attempt; ``share`` scales the twist budget.
+    Returns (manifold, knots, max_len, bound, max_error, heights, e_profile)."""
     from manifold3d import CrossSection, FillRule, Manifold
     e_p = float(prof.report["max_error"])
     loops = offset_loops(prof.loops, delta, e_off)
     rho = max(float(np.hypot(l[:, 0], l[:, 1]).max()) for l in loops)
-    e_z = max(tol - e_p - e_off, 0.0)
+    e_z = max(tol - e_p - e_off, 0.0) * share
     knots, max_len, bound = _plan(law, W, rho, loops, e_z, (cb, ct))
     loops = subdivide(loops, max_len)
     cs = CrossSection(loops, FillRule.Positive)
@@ -384,45 +399,69 @@ def _warp(law, W, knots, polys, vecs, cb, ct):
     return warp
 
 
-def _slice_heights(knots, skip):
-    """Layer and mid-layer heights to measure: the first, middle and last layer of every
-    run of equal layers, their mid-heights, outside the chamfer bands and the gap."""
+#: barycentric sample points on each measured side triangle: corners, edge midpoints and
+#: quarter points, the centroid and three interior points
+_BARY = np.array([[1, 0, 0], [0, 1, 0], [0, 0, 1], [.5, .5, 0], [0, .5, .5], [.5, 0, .5],
+                  [.75, .25, 0], [.25, .75, 0], [0, .75, .25], [0, .25, .75], [.25, 0, .75],
+                  [.75, 0, .25], [1 / 3, 1 / 3, 1 / 3], [.6, .2, .2], [.2, .6, .2], [.2, .2, .6]])
+
+
+def _measured_bands(knots, law, skip):
+    """Layer bands (index k: knots[k]..knots[k+1]) to measure: the first and last, and one
+    of every distinct shape (layer height, turn, curvature of the law), outside the chamfer
+    bands and the gap. Bands of the same shape are the same surface turned, so one of each
+    stands for all of them."""
     K = len(knots)
-    idx = sorted({0, 1, K // 4, K // 2 - 1, K // 2, (3 * K) // 4, K - 3, K - 2} & set(range(K - 1)))
     dz = np.diff(knots)
-    # where the layer spacing changes (law pieces): measure there too
-    changes = np.nonzero(np.abs(np.diff(dz)) > 1e-9 * max(dz.max(), 1e-300))[0]
-    idx = sorted(set(idx) | set(changes.tolist()) | set((changes + 1).tolist()))
-    hs = []
-    for i in idx:
-        for z in (knots[i], 0.5 * (knots[i] + knots[i + 1])):
-            if not any(a - 1e-12 <= z <= b + 1e-12 for a, b in skip if b > a):
-                hs.append(float(z))
-    return sorted(set(hs))
+    th = law(knots)
+    dth = np.diff(th)
+    mid = 0.5 * (knots[:-1] + knots[1:])
+    d2 = np.abs(law.d2theta(mid))
+    scale = max(float(np.abs(dz).max()), 1e-300)
+    sig = np.stack([np.round(dz / scale, 9), np.round(np.abs(dth), 12), np.round(d2, 9)], axis=1)
+    _, first = np.unique(sig, axis=0, return_index=True)
+    idx = sorted(set(first.tolist()) | {0, K - 2})
+    out = []
+    for k in idx:
+        a, b = knots[k], knots[k + 1]
+        if not any(lo - 1e-12 <= a and b <= hi + 1e-12 for lo, hi in skip if hi > lo):
+            out.append(int(k))
+    return out
 
 
 def measure(man, law, prof, knots, delta=0.0, skip=()):
-    """Max distance (mm) between slices of ``man`` turned back by -θ(z) and the exact profile
-    (offset by ``delta``); slice edges are sampled at 0, 1/4, 1/2, 3/4 of their length."""
-    heights = _slice_heights(np.asarray(knots), list(skip))
-    worst = 0.0
-    fr = np.array([0.0, 0.25, 0.5, 0.75])
-    for z in heights:
-        polys = man.slice(z).to_polygons()
-        if not polys:
-            raise GearError("width", None, "a body with material", f"empty slice at z={z:g} mm")
-        pts = []
-        for p in polys:
-            p = np.asarray(p, float)
-            d = np.roll(p, -1, axis=0) - p
-            pts.append((p[:, None, :] + fr[None, :, None] * d[:, None, :]).reshape(-1, 2))
-        pts = np.concatenate(pts)
-        th = -float(law(z))
-        c, s = math.cos(th), math.sin(th)
-        pts = pts @ np.array([[c, s], [-s, c]])
-        err = np.abs(prof.exact_distance(pts) - abs(delta))
-        worst = max(worst, float(err.max()))
-    return worst, heights
+    """Max distance (mm) of the body's tooth surface from the exactly turned profile.
+
+    The side triangles of tooth 0 in the measured layer bands (:func:`_measured_bands`)
+    are sampled at 16 barycentric points each; every point is turned back by -θ(z) at its
+    own height and its distance to the exact profile (offset by ``delta``) is found on the
+    exact evaluators (:meth:`Profile.exact_distance`, nearest points by Newton's method).
+    The end faces are the profile polygon itself, whose measured error the profile
+    reports. Returns (max error in mm, the measured band heights in mm)."""
+    knots = np.asarray(knots, float)
+    bands = _measured_bands(knots, law, list(skip))
+    if not bands:
+        return float(prof.report["max_error"]), []
+    m = man.to_mesh64()
+    V = np.asarray(m.vert_properties, float)[:, :3]
+    F = np.asarray(m.tri_verts, np.int64)
+    lay = np.clip(np.searchsorted(knots, V[:, 2] - 1e-9 * max(knots[-1], 1.0)), 0, len(knots) - 1)
+    tl = lay[F]
+    lo, hi = tl.min(axis=1), tl.max(axis=1)
+    sel = (hi - lo == 1) & np.isin(lo, bands)
+    tri = V[F[sel]]                                      # (T, 3, 3)
+    if prof.teeth > 2:                                   # tooth 0's sector only
+        c = tri.mean(axis=1)
+        a = np.arctan2(c[:, 1], c[:, 0]) - law(c[:, 2])
+        a = (a + math.pi) % (2 * math.pi) - math.pi
+        tri = tri[np.abs(a) <= math.pi / prof.teeth + 1e-9]
+    if not len(tri):
+        raise GearError("width", None, "a body with material", "no side surface to measure")
+    pts = np.einsum("bk,tkj->tbj", _BARY, tri).reshape(-1, 3)
+    xy = rotate(pts[:, :2], -law(pts[:, 2]))
+    err = np.abs(prof.exact_distance(xy) - abs(delta))
+    heights = sorted({float(knots[k]) for k in bands} | {float(knots[k + 1]) for k in bands})
+    return max(float(err.max()), float(prof.report["max_error"])), heights
 
 
 def _cut_gap(man, prof, W, gap, tol):

@@ -1,0 +1,257 @@
+"""Distance to the *exact* boundary of a profile: nearest points on the exact evaluators.
+
+A :class:`ExactBoundary` holds one tooth period's exact pieces ``G(t) -> (N, 2)`` (mm) and
+the sample chords that survived trimming. The distance of a point to the boundary is found
+in three vectorised steps, for all points at once:
+
+1. the point is turned into tooth 0's sector (the profile repeats every 2π/z);
+2. the three nearest surviving chords, among tooth 0's and its two neighbours' copies, give
+   the pieces and start parameters (the chords' own parameters at the foot points);
+3. from the nearest of nine exact points along the chord's parameter interval, Newton's
+   method on the piece's parameter, ``(G(t) - q)·G'(t) = 0``, with G' and G''
+   from central differences of the exact evaluator, moves each foot onto the exact curve; the nearest foot wins.
+
+The result is never worse than the nearest of the exact start points, which are on the
+curve, so a Newton step that does not converge can only overstate the distance (the safe
+side for a measurement that certifies a tolerance). Nothing here looks at a finer
+tessellation: the curve itself is evaluated.
+
+A foot may run up to one chord past a trimmed corner, along the curve that was cut away
+there. Such a foot (one not inside a chord whose both ends survived) is kept only if it
+lies on the trimmed polygon (within 2 tolerances); otherwise the distance is bounded by the
+distance to the polygon plus the polygon's measured error. Trimmed corners themselves are
+certified by the profile builder (Newton on the crossing of the two exact curves).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .geometry import rotate, segment_foot
+
+#: Newton iterations on the foot-point parameter (quadratic convergence from a chord start)
+NEWTON_STEPS = 3
+#: nearest chords followed to the exact curve per point (a corner joins two curves)
+CANDIDATES = 3
+#: start parameters probed along a chord's interval (fractions)
+_PROBES = np.linspace(0.0, 1.0, 9)
+#: gears with more teeth than this search chords by polar angle (fewer: all chords)
+WINDOW_MIN_TEETH = 6
+
+
+@dataclass
+class _Piece:
+    f: object              # exact evaluator G(t) -> (N, 2) mm, t in [0, 1]
+    t: np.ndarray          # sample parameters
+    p: np.ndarray          # G(t) (mm)
+    alive: np.ndarray      # (len(t),) bool: the sample survived trimming
+    keep: np.ndarray       # (len(t) - 1,) bool: the chord carries boundary
+    lo: np.ndarray         # (len(t) - 1,) the parameter range a foot point may use
+    hi: np.ndarray         #   around each chord
+
+
+def _piece(f, t, alive) -> _Piece:
+    """One piece's chords: a chord carries boundary when one of its ends survived trimming,
+    and its foot points may move one chord width beyond its ends (clipped to [0, 1])."""
+    t = np.asarray(t, float)
+    alive = np.asarray(alive, bool)
+    p = np.asarray(f(t), float)
+    t0, t1 = t[:-1], t[1:]
+    w = t1 - t0
+    keep = alive[:-1] | alive[1:]
+    return _Piece(f, t, p, alive, keep, np.clip(t0 - w, 0, 1), np.clip(t1 + w, 0, 1))
+
+
+class ExactBoundary:
+    """The exact boundary of a profile with ``teeth``-fold symmetry (mm).
+
+    ``pieces``: list of (evaluator, parameters, sample_alive_mask) for tooth 0;
+    ``circles``: radii (mm) of exact full circles that also bound the part (a ring's rim).
+    """
+
+    def __init__(self, pieces, teeth: int, circles=(), polygon=None, tol: float = 0.0,
+                 polygon_error: float = 0.0):
+        self.teeth = int(teeth)
+        #: the trimmed polygon's edges near tooth 0 (a, b), its tolerance and measured error
+        self.polygon = polygon
+        self.tol = float(tol)
+        self.polygon_error = float(polygon_error)
+        self.pitch = 2 * math.pi / self.teeth
+        self.pieces = []
+        for f, t, alive in pieces:
+            if len(t) < 2 or not np.any(alive):
+                continue
+            self.pieces.append(_piece(f, t, alive))
+        self.circles = [float(r) for r in circles]
+        a, b, owner, t0, t1 = [], [], [], [], []
+        copies = (-1, 0, 1) if self.teeth > 1 else (0,)
+        for i, pc in enumerate(self.pieces):
+            idx = np.nonzero(pc.keep)[0]
+            for k in copies:
+                q = rotate(pc.p, k * self.pitch) if k else pc.p
+                a.append(q[idx])
+                b.append(q[idx + 1])
+                owner.append(np.stack([np.full(len(idx), i), np.full(len(idx), k), idx], axis=1))
+        self._a = np.concatenate(a) if a else np.zeros((0, 2))
+        self._b = np.concatenate(b) if b else np.zeros((0, 2))
+        self._owner = np.concatenate(owner) if owner else np.zeros((0, 3), int)
+        # angular index of the chords (used for gears of more than WINDOW_MIN_TEETH teeth)
+        a1 = np.arctan2(self._a[:, 1], self._a[:, 0])
+        a2 = np.arctan2(self._b[:, 1], self._b[:, 0])
+        span = (a2 - a1 + np.pi) % (2 * np.pi) - np.pi
+        self._lo = np.minimum(a1, a1 + span)
+        self._hi = np.maximum(a1, a1 + span)
+        self._order = np.argsort(self._lo)
+        self._lo_sorted = self._lo[self._order]
+        ln = np.hypot(*(self._b - self._a).T)
+        self._cap = float(ln.max(initial=0.0))
+        self._rmin = float(np.hypot(*np.concatenate([self._a, self._b]).T).min(initial=0.0))
+
+    def _near_chords(self, q0: np.ndarray):
+        """Distances (P, W) and foot fractions from points in tooth 0's sector to candidate
+        chords, and the candidates' chord indices (P, W) (None: all chords, in order).
+
+        Candidates are the chords whose polar angle range, widened by what ``_cap`` (the
+        longest chord, mm) subtends at the point's radius, holds the point's angle; points
+        farther than ``_cap`` from all of them are measured against every chord instead."""
+        n_ch = len(self._a)
+        if self.teeth <= WINDOW_MIN_TEETH or n_ch <= 64:
+            d, s = segment_foot(q0[:, None, :], self._a[None], self._b[None])
+            return d, s, None
+        r = np.hypot(q0[:, 0], q0[:, 1])
+        ang = np.arctan2(q0[:, 1], q0[:, 0])
+        cap = self._cap
+        with np.errstate(divide="ignore", invalid="ignore"):
+            half = np.where(r > 2 * cap, np.arcsin(np.clip(cap / r, 0, 1)), np.pi)
+        span_max = float((self._hi - self._lo).max())
+        lo = np.searchsorted(self._lo_sorted, ang - half - span_max, side="left")
+        hi = np.searchsorted(self._lo_sorted, ang + half, side="right")
+        width = int((hi - lo).max(initial=0))
+        if width >= n_ch // 2 or width == 0:
+            d, s = segment_foot(q0[:, None, :], self._a[None], self._b[None])
+            return d, s, None
+        k = lo[:, None] + np.arange(width)[None, :]
+        valid = k < hi[:, None]
+        cols = self._order[np.minimum(k, n_ch - 1)]
+        d, s = segment_foot(q0[:, None, :], self._a[cols], self._b[cols])
+        d = np.where(valid, d, np.inf)
+        far = d.min(axis=1) > cap
+        if far.any():                      # rare: points far inside or outside the part
+            dd, ss = segment_foot(q0[far, None, :], self._a[None], self._b[None])
+            m = min(width, n_ch)
+            part = np.argpartition(dd, m - 1, axis=1)[:, :m]
+            rows = np.arange(far.sum())[:, None]
+            d[far], s[far], cols[far] = dd[rows, part], ss[rows, part], part
+        return d, s, cols
+
+    def distance(self, points, chunk: int = 4096) -> np.ndarray:
+        """Distance (mm) from ``points`` (N, 2) to the exact boundary."""
+        from .errors import GearError
+        try:
+            q = np.asarray(points, float)
+        except (TypeError, ValueError):
+            raise GearError("points", type(points).__name__, "an (N, 2) array of numbers (mm)") from None
+        if q.ndim == 1 and q.shape == (2,):
+            q = q[None, :]
+        if q.ndim != 2 or q.shape[1] != 2:
+            raise GearError("points", f"shape {q.shape}", "an (N, 2) array of numbers (mm)")
+        if not np.all(np.isfinite(q)):
+            raise GearError("points", "non-finite values", "finite coordinates (mm)")
+        out = np.empty(len(q))
+        for s in range(0, len(q), chunk):
+            out[s:s + chunk] = self._distance(q[s:s + chunk])
+        return out
+
+    # ------------------------------------------------------------------ internals
+    def _distance(self, q: np.ndarray) -> np.ndarray:
+        if len(q) == 0:
+            return np.zeros(0)
+        # turn every point into tooth 0's sector
+        k = np.rint(np.arctan2(q[:, 1], q[:, 0]) / self.pitch) if self.teeth > 1 else np.zeros(len(q))
+        q0 = rotate(q, -k * self.pitch)
+        best = np.full(len(q), np.inf)
+        if len(self._a):
+            d, s, cols = self._near_chords(q0)
+            m = min(CANDIDATES, d.shape[1])
+            cand = np.argpartition(d, m - 1, axis=1)[:, :m] if m < d.shape[1] else np.tile(np.arange(m), (len(q), 1))
+            rows = np.repeat(np.arange(len(q)), m)
+            jc = cand.ravel()
+            j = cols[rows, jc] if cols is not None else jc
+            sj = s[rows, jc]
+            piece, copy, chord = self._owner[j].T
+            qc = rotate(q0[rows], -copy * self.pitch)       # in the chord's own copy frame
+            dist = np.full(len(j), np.inf)
+            for i in np.unique(piece):
+                sel = np.nonzero(piece == i)[0]
+                pc = self.pieces[i]
+                d_i, foot, t_i = self._newton(pc, qc[sel], chord[sel], sj[sel])
+                # a foot off the chords whose both ends survived may lie on a branch that
+                # trimming cut away: keep it only if it lies on the trimmed polygon;
+                # otherwise bound the distance by the polygon's own (+ its measured error)
+                c = chord[sel]
+                inside = pc.alive[c] & pc.alive[c + 1] & (t_i >= pc.t[c]) & (t_i <= pc.t[c + 1])
+                sus = np.nonzero(~inside)[0]
+                if len(sus) and self.polygon is not None:
+                    on = self._poly_dist(foot[sus]) <= 2 * self.tol + 1e-9
+                    bad = sus[~on]
+                    if len(bad):
+                        d_i[bad] = self._poly_dist(qc[sel][bad]) + self.polygon_error
+                dist[sel] = d_i
+            best = dist.reshape(len(q), m).min(axis=1)
+        r = np.hypot(q[:, 0], q[:, 1])
+        for R in self.circles:
+            best = np.minimum(best, np.abs(r - R))
+        return best
+
+    def _poly_dist(self, pts: np.ndarray) -> np.ndarray:
+        a, b = self.polygon
+        out = np.empty(len(pts))
+        step = max(1, 200_000 // max(len(a), 1))
+        for s0 in range(0, len(pts), step):
+            d, _ = segment_foot(pts[s0:s0 + step, None, :], a[None], b[None])
+            out[s0:s0 + step] = d.min(axis=1)
+        return out
+
+    @staticmethod
+    def _newton(pc: _Piece, q: np.ndarray, chord: np.ndarray, s: np.ndarray):
+        """Distance (mm) from points ``q`` to piece ``pc`` near the given chords, the foot
+        points (mm) and their parameters."""
+        t0, t1 = pc.t[chord], pc.t[chord + 1]
+        w = t1 - t0
+        lo, hi = pc.lo[chord], pc.hi[chord]
+        n = len(q)
+        # start from the nearest of a few exact points along the chord's parameter interval
+        # (parametrisations can be far from uniform: near a pitch point G ~ t^2)
+        a, b = np.maximum(t0, lo), np.minimum(t1, hi)
+        b = np.maximum(a, b)
+        tp = a[:, None] + (b - a)[:, None] * _PROBES[None, :]
+        gp0 = pc.f(tp.ravel()).reshape(n, len(_PROBES), 2)
+        dp = np.hypot(gp0[..., 0] - q[:, None, 0], gp0[..., 1] - q[:, None, 1])
+        dp = np.where(np.isfinite(dp), dp, np.inf)
+        t = tp[np.arange(n), np.argmin(dp, axis=1)]
+        h = np.minimum(np.maximum(w * 1e-4, 1e-12), 0.25)
+        for _ in range(NEWTON_STEPS):
+            # a central stencil kept inside [0, 1] (derivatives at tc, a point within h of t)
+            tc = np.clip(t, h, 1 - h)
+            g = pc.f(np.concatenate([t, tc, tc + h, tc - h]))
+            g0, gc, gp, gm = g[:n], g[n:2 * n], g[2 * n:3 * n], g[3 * n:]
+            d1 = (gp - gm) / (2 * h)[:, None]
+            d2 = (gp - 2 * gc + gm) / (h * h)[:, None]
+            e = g0 - q
+            fval = np.einsum("ij,ij->i", e, d1)
+            fder = np.einsum("ij,ij->i", d1, d1) + np.einsum("ij,ij->i", e, d2)
+            ok = np.isfinite(fval) & np.isfinite(fder) & (fder > 0)
+            step = np.where(ok, fval / np.where(ok, fder, 1.0), 0.0)
+            t = np.clip(t - step, lo, hi)
+        g = pc.f(t)
+        d = np.hypot(*(g - q).T)
+        d = np.where(np.isfinite(d), d, np.inf)
+        # never worse than the best exact start point (inside the chord's own interval)
+        k = np.argmin(dp, axis=1)
+        dmin = dp[np.arange(n), k]
+        worse = ~(d <= dmin)
+        g = np.where(worse[:, None], gp0[np.arange(n), k], g)
+        t = np.where(worse, tp[np.arange(n), k], t)
+        return np.minimum(d, dmin), g, t
