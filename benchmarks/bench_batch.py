@@ -1,83 +1,204 @@
 """Batch throughput: a 1,000-part library of small spur gears on 1 and on 2 workers.
 
-The library: involute spur gears, module 0.5..2.0 mm (16 values) x 10..71 teeth (62
-values, 992 parts; ``--parts`` trims or the full sweep is used), width 4 mm, STL at
-0.01 mm. Each run starts from an empty folder on the local process pool
-(``gear3d.jobs.batch.run_library``). Reports parts/s and the parallel efficiency
-E = (rate on 2 workers) / (2 x rate on 1 worker); the two manifests must be identical.
-Writes out/bench/batch.md. Takes a few minutes on 2 cores.
+The library: involute spur gears, module 0.5..2.4 mm (20 values) x 10..59 teeth (50
+values) = 1,000 parts (``--parts`` trims the tooth range), width 4 mm, STL at 0.01 mm
+(10 µm). Each run starts from an empty folder on the local process pool
+(:func:`gear3d.jobs.batch.run_library`, wall time including pool start-up). Reported:
 
-    python benchmarks/bench_batch.py [--parts 1000] [--workers 1 2]
+* parts/s per worker count and the parallel efficiency E = rate(n) / (n x rate(1));
+* the plumbing overhead: rate on 1 pool worker / rate building the same first
+  ``--baseline`` parts in this process (``workers=0``; 1.00 = the pool costs nothing);
+* the 1-minute load average before and after each run (on a loaded machine the same
+  run reads several times slower, so figures without it mean little), cores, CPU;
+* which heavy libraries the workers imported (an STL library should need none);
+* whether the manifests of all runs are byte-identical (they must be).
+
+Writes ``out/bench/batch.md`` and ``batch.json``; ``--publish`` also replaces the batch
+section of BENCHMARKS.md (between its ``<!-- batch:begin -->``/``<!-- batch:end -->``
+markers, appended when missing). A full run takes minutes on 2 cores.
+
+    python benchmarks/bench_batch.py [--parts 1000] [--workers 1 2] [--baseline 100] [--publish]
 """
 from __future__ import annotations
 
 import argparse
+import json
 import os
 import platform
 import shutil
+import sys
 import tempfile
 import time
+from pathlib import Path
 
+ROOT = Path(__file__).resolve().parents[1]
+MODULES = [round(0.5 + 0.1 * i, 1) for i in range(20)]
+TEETH_FROM = 10
+#: the issue 12 figures this benchmark is compared with (160 spur parts, quiet machine)
+BEFORE = {1: 6.6, 2: 13.1}
+TARGET_RATE, TARGET_EFFICIENCY = 30.0, 0.9
+BEGIN, END = "<!-- batch:begin -->", "<!-- batch:end -->"
 
 LIBRARY = """
 [library]
 name = "bench-spur"
-pattern = "inv_m{module}_z{teeth}"
+pattern = "inv_m{{module}}_z{{teeth}}"
 outputs = ["stl"]
-tolerance = 0.01
+tolerance = {tolerance}
 [library.part]
 family = "involute"
-body = { kind = "spur", width = 4 }
+body = {{ kind = "spur", width = 4 }}
 [library.sweep]
-module = { start = 0.5, stop = 2.0, step = 0.1 }
-teeth = { start = 10, stop = %d, step = 1 }
+module = {modules}
+teeth = {{ start = {t0}, stop = {t1}, step = 1 }}
 """
+
+
+def cpu_model() -> str:
+    try:
+        for line in Path("/proc/cpuinfo").read_text().splitlines():
+            if line.startswith("model name"):
+                return line.split(":", 1)[1].strip()
+    except OSError:
+        pass
+    return platform.processor() or platform.machine()
+
+
+def load1() -> float | None:
+    try:
+        return round(os.getloadavg()[0], 2)
+    except OSError:
+        return None
+
+
+def timed_run(lib, out, workers, progress) -> dict:
+    """One batch from an empty folder; wall time, rate, load before/after, worker facts."""
+    from gear3d.jobs.batch import run_library
+    shutil.rmtree(out, ignore_errors=True)
+    la0 = load1()
+    t = time.perf_counter()
+    r = run_library(lib, str(out), workers=workers, progress=progress)
+    dt = time.perf_counter() - t
+    la1 = load1()
+    timings = json.loads((out / "timings.json").read_text())
+    n = r["built"]
+    return {"workers": workers, "parts": n, "failed": r["failed"], "seconds": dt, "parts_per_s": n / dt,
+            "load_before": la0, "load_after": la1,
+            "part_seconds_median": sorted(timings["parts"].values())[len(timings["parts"]) // 2],
+            "heavy_imports": timings.get("last_run_heavy_imports", []),
+            "processes": len(timings.get("last_run_workers", {}))}
+
+
+def markdown(res) -> str:
+    rows, base = res["runs"], res["baseline"]
+    r1 = next((r for r in rows if r["workers"] == 1), rows[0])
+    unit = r1["parts_per_s"] / r1["workers"]
+    lines = [
+        "## Batch throughput (`gear3d batch`, local process pool)", "",
+        f"{res['parts']:,} involute spur gears (module 0.5-2.4 mm x {res['tooth_counts']} tooth counts "
+        f"from {TEETH_FROM}), width 4 mm, STL at {res['tolerance'] * 1000:g} µm; {res['cpu']}, "
+        f"{res['cores']} cores, Python {res['python']}; `python benchmarks/bench_batch.py` "
+        f"({res['date']}). Wall time from an empty folder, pool start-up included.", "",
+        "| workers | parts | failed | wall time (s) | parts/s | efficiency | vs issue 12 before | "
+        "median s/part | load avg before / after |",
+        "|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
+    for r in rows:
+        eff = r["parts_per_s"] / (r["workers"] * unit)
+        before = BEFORE.get(r["workers"])
+        vs = "-" if before is None else f"{r['parts_per_s'] / before:.2f}x"
+        lines.append(f"| {r['workers']} | {r['parts']:,} | {r['failed']} | {r['seconds']:.1f} | "
+                     f"{r['parts_per_s']:.1f} | {eff:.2f} | "
+                     f"{vs} | "
+                     f"{r['part_seconds_median']:.3f} | {r['load_before']} / {r['load_after']} |")
+    two = next((r for r in rows if r["workers"] == 2), None)
+    lines += [""]
+    if two is not None:
+        eff2 = two["parts_per_s"] / (2 * unit)
+        lines.append(f"- 2 workers: {two['parts_per_s']:.1f} parts/s = {two['parts_per_s'] / TARGET_RATE:.2f}x "
+                     f"the target of {TARGET_RATE:g}; efficiency {eff2:.2f} "
+                     f"({'meets' if eff2 >= TARGET_EFFICIENCY else 'below'} the {TARGET_EFFICIENCY} target).")
+    if base is not None:
+        lines.append(f"- Plumbing overhead: 1 pool worker runs at {r1['parts_per_s'] / r1['workers'] / base['parts_per_s']:.2f}x "
+                     f"the rate of building the first {base['parts']} parts in one process "
+                     f"({base['parts_per_s']:.1f} parts/s, load {base['load_before']}).")
+    heavy = sorted({m for r in rows for m in r["heavy_imports"]})
+    lines.append(f"- Heavy libraries imported by the workers: {', '.join(heavy) if heavy else 'none'}.")
+    lines.append(f"- Manifests identical across worker counts: {'yes' if res['manifests_identical'] else 'NO'}.")
+    lines.append("- The load average is the machine's 1-minute figure; other jobs on the machine "
+                 "lower every rate and the efficiency.")
+    return "\n".join(lines) + "\n"
+
+
+def publish(section: str, path: Path = ROOT / "BENCHMARKS.md"):
+    """Replace (or append) the marked batch section of BENCHMARKS.md, atomically."""
+    text = path.read_text() if path.exists() else ""
+    block = f"{BEGIN}\n{section.rstrip()}\n\nRegenerate with `python benchmarks/bench_batch.py --publish`.\n{END}"
+    if BEGIN in text and END in text:
+        a, b = text.index(BEGIN), text.index(END) + len(END)
+        text = text[:a] + block + text[b:]
+    else:
+        text = text.rstrip("\n") + "\n\n" + block + "\n"
+    tmp = path.with_name("." + path.name + ".tmp")
+    tmp.write_text(text)
+    os.replace(tmp, path)
 
 
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--parts", type=int, default=1000, help="about this many parts (16 modules x N teeth)")
+    ap.add_argument("--parts", type=int, default=1000, help="about this many parts (20 modules x N teeth)")
     ap.add_argument("--workers", type=int, nargs="+", default=[1, 2])
-    ap.add_argument("--out", default="out/bench/batch.md")
+    ap.add_argument("--tolerance", type=float, default=0.01, help="mm (default 0.01 = 10 µm)")
+    ap.add_argument("--baseline", type=int, default=100, help="parts built in-process for the overhead ratio (0: skip)")
+    ap.add_argument("--out", default=str(ROOT / "out" / "bench" / "batch.md"))
+    ap.add_argument("--publish", action="store_true", help="also update the batch section of BENCHMARKS.md")
     a = ap.parse_args(argv)
-    from gear3d.jobs.batch import run_library
+    from gear3d.jobs.batch import build_part, job_header
     from gear3d.jobs.template import load_library
-    n_teeth = max(1, round(a.parts / 16))
-    tmp = tempfile.mkdtemp(prefix="bench_batch_")
+    n_teeth = max(1, round(a.parts / len(MODULES)))
+    tmp = Path(tempfile.mkdtemp(prefix="bench_batch_"))
+    progress = sys.stderr.isatty()
     try:
-        lib_path = os.path.join(tmp, "lib.toml")
-        with open(lib_path, "w") as f:
-            f.write(LIBRARY % (10 + n_teeth - 1))
-        lib = load_library(lib_path)
+        lib_path = tmp / "lib.toml"
+        lib_path.write_text(LIBRARY.format(tolerance=a.tolerance, modules=MODULES, t0=TEETH_FROM,
+                                           t1=TEETH_FROM + n_teeth - 1))
+        lib = load_library(str(lib_path))
         n = len(lib["parts"])
-        rows, manifests = [], []
-        for w in a.workers:
-            out = os.path.join(tmp, f"w{w}")
+        base = None
+        if a.baseline:
+            job, parts = job_header(lib), lib["parts"][:a.baseline]
+            out0 = tmp / "inproc"
+            out0.mkdir()
+            build_part(job, parts[0], str(out0))           # imports and first-call costs
+            la = load1()
             t = time.perf_counter()
-            r = run_library(lib, out, workers=w, progress=True)
+            for p in parts:
+                build_part(job, p, str(out0))
             dt = time.perf_counter() - t
-            with open(os.path.join(out, "manifest.json"), "rb") as f:
-                manifests.append(f.read())
-            rows.append((w, n, r["failed"], dt, n / dt))
-            print(f"{w} worker(s): {n} parts in {dt:.1f} s = {n / dt:.1f} parts/s, {r['failed']} failed", flush=True)
-        base = rows[0][4] / rows[0][0]
-        lines = ["# Batch throughput (gear3d batch, local process pool)", "",
-                 f"{n} involute spur gears (module 0.5-2.0 mm x {n_teeth} tooth counts from 10), width 4 mm, "
-                 f"STL at 0.01 mm; {platform.processor() or platform.machine()}, {os.cpu_count()} CPUs; "
-                 "wall time includes pool start-up.", "",
-                 "| workers | parts | failed | wall time (s) | parts/s | parallel efficiency |",
-                 "|---:|---:|---:|---:|---:|---:|"]
-        for w, nn, fl, dt, rate in rows:
-            lines.append(f"| {w} | {nn} | {fl} | {dt:.1f} | {rate:.1f} | {rate / (w * base):.2f} |")
-        same = all(m == manifests[0] for m in manifests)
-        lines += ["", f"Manifests identical across worker counts: {'yes' if same else 'NO'}.", ""]
-        text = "\n".join(lines)
+            base = {"parts": len(parts), "seconds": dt, "parts_per_s": len(parts) / dt, "load_before": la}
+            print(f"in-process: {len(parts)} parts, {base['parts_per_s']:.1f} parts/s (load {la})", flush=True)
+        runs, manifests = [], []
+        for w in a.workers:
+            out = tmp / f"w{w}"
+            r = timed_run(lib, out, w, progress)
+            manifests.append((out / "manifest.json").read_bytes())
+            runs.append(r)
+            print(f"{w} worker(s): {r['parts']} parts in {r['seconds']:.1f} s = {r['parts_per_s']:.1f} parts/s, "
+                  f"{r['failed']} failed (load {r['load_before']} -> {r['load_after']})", flush=True)
+        res = {"parts": n, "tooth_counts": n_teeth, "tolerance": a.tolerance, "cpu": cpu_model(),
+               "cores": os.cpu_count(), "python": platform.python_version(),
+               "date": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()), "baseline": base, "runs": runs,
+               "manifests_identical": all(m == manifests[0] for m in manifests)}
+        text = markdown(res)
         print(text)
-        os.makedirs(os.path.dirname(a.out) or ".", exist_ok=True)
         from gear3d.export import atomic_path
-        with atomic_path(a.out) as p:
-            with open(p, "w") as f:
-                f.write(text)
+        out_md = Path(a.out)
+        out_md.parent.mkdir(parents=True, exist_ok=True)
+        with atomic_path(out_md) as p:
+            Path(p).write_text(text)
+        with atomic_path(out_md.with_suffix(".json")) as p:
+            Path(p).write_text(json.dumps(res, indent=1, allow_nan=False) + "\n")
+        if a.publish:
+            publish(text)
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
 
