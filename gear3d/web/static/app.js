@@ -411,7 +411,7 @@ async function download(fmtName) {
 
 // ------------------------------------------------------------------ wiring
 
-const schedulePreview = task(preview, 60);
+const schedulePreview = task(preview, 30);
 const scheduleBody = task(body3d, 800);
 
 function onChange(scope) {
