@@ -340,7 +340,7 @@ def test_page_pair_with_interference_drawn_red(page, server):
     red = (rgb[..., 0] > 200) & (rgb[..., 1] < 70) & (rgb[..., 2] < 70)
     assert red.sum() > 300, f"only {red.sum()} red pixels in the pair view"
     # the screenshot people look at: wait for the 3D body of this ring too
-    page.wait_for_selector("#view3d[data-triangles]")
+    page.wait_for_selector("#view3d[data-family='sine'][data-internal='true']")
     OUT.mkdir(parents=True, exist_ok=True)
     page.screenshot(path=str(OUT / "page.png"), full_page=True)
     assert (OUT / "page.png").stat().st_size > 10_000

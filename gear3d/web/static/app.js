@@ -258,6 +258,10 @@ async function body3d() {
     ["tolerance", fmt(r.tolerance * 1000, " um")], ["volume", fmt(r.volume, " mm3")], ["watertight", fmt(r.watertight)],
     ["layers", fmt(r.layers)], ["total_twist_deg", fmt(r.total_twist_deg, " deg")],
   ]);
+  const view = $("#view3d");
+  view.dataset.family = r.family;
+  view.dataset.internal = String(r.internal);
+  view.dataset.triangles = String(r.triangles);     // set with or without WebGL (the report is shown either way)
   if (t.failed) return;
   const { THREE } = t;
   const head = new Uint32Array(res.buf, 0, 2);
@@ -286,7 +290,7 @@ async function body3d() {
   t.camera.updateProjectionMatrix();
   t.controls.update();
   t.render();
-  $("#view3d").dataset.triangles = String(nf);
+  view.dataset.rendered = String(nf);
 }
 
 // ------------------------------------------------------------------ pair check + animation
