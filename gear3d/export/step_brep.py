@@ -152,6 +152,38 @@ def _corner_params(Ga, ka, ta, Gb, kb, tb, q, ang):
     return s, u, 0.5 * (A + B), float(np.hypot(*(A - B)))
 
 
+def _closest_params(Ga, ka, ta, Gb, kb, tb, ang, iters=80):
+    """Parameters (s, u) in [0, 1] where piece a (copy ka) and piece b (copy kb) come closest
+    (a crossing when they cross): damped Gauss-Newton from (ta, tb). Returns
+    (s, u, midpoint, distance)."""
+    s, u = float(ta), float(tb)
+    h = 1e-7
+    lam = 1e-12
+
+    def res(s, u):
+        return (_rot2(Ga(np.array([s])), ka * ang)[0] - _rot2(Gb(np.array([u])), kb * ang)[0])
+    r = res(s, u)
+    for _ in range(iters):
+        A = _rot2(Ga(np.array([s + h, s - h])), ka * ang)
+        B = _rot2(Gb(np.array([u + h, u - h])), kb * ang)
+        J = np.stack([(A[0] - A[1]) / (2 * h), -(B[0] - B[1]) / (2 * h)], axis=1)
+        JtJ = J.T @ J
+        g = J.T @ r
+        step = -np.linalg.solve(JtJ + lam * np.trace(JtJ) * np.eye(2) + 1e-300 * np.eye(2), g)
+        s2, u2 = float(np.clip(s + step[0], 0, 1)), float(np.clip(u + step[1], 0, 1))
+        r2 = res(s2, u2)
+        if r2 @ r2 < r @ r:
+            s, u, r = s2, u2, r2
+            lam = max(lam / 10, 1e-15)
+        else:
+            lam *= 10
+            if lam > 1e6:
+                break
+    pa = _rot2(Ga(np.array([s])), ka * ang)[0]
+    pb = _rot2(Gb(np.array([u])), kb * ang)[0]
+    return s, u, 0.5 * (pa + pb), float(np.hypot(*(pa - pb)))
+
+
 def loop_runs(profile, loop) -> list:
     """Map a closed trimmed loop (vertices mm) onto the exact pieces: the list of
     :class:`Run` in loop order, each with exact end points. Raises GearError when a stretch
@@ -197,6 +229,9 @@ def loop_runs(profile, loop) -> list:
                         break
                 if best:
                     break
+        if best is None and cands[a] and cands[b]:
+            labels[i] = None      # a bridge: trimming pruned the samples (and corner) between
+            continue
         if best is None:
             # an edge to/from a corner: the chord of the matched end's piece that holds it
             m, other, sgn = (a, b, 1) if cands[a] else (b, a, -1)
@@ -220,29 +255,32 @@ def loop_runs(profile, loop) -> list:
                                 f"loop vertex near ({L[other][0]:.4g}, {L[other][1]:.4g}) lies on no "
                                 f"chord of the exact pieces ({dbest:.2g} mm off)")
         labels[i] = best
-    # group consecutive edges on the same (piece, copy, direction)
+    # group consecutive edges on the same (piece, copy, direction); bridges end a group
     def key(lb):
-        return (lb[0], lb[1], 1 if lb[3] > lb[2] else -1)
-    start = next((i for i in range(M) if key(labels[i]) != key(labels[i - 1])), None)
-    if start is None:  # the whole loop is one piece (a closed curve): split it at a vertex
+        return None if lb is None else (lb[0], lb[1], 1 if lb[3] > lb[2] else -1)
+    start = next((i for i in range(M) if labels[i] is not None and key(labels[i]) != key(labels[i - 1])),
+                 None)
+    if start is None:  # the whole loop is one piece (a closed curve)
         raise GearError("step", "brep", "'faceted' for this profile", "the loop is one periodic piece")
-    groups = []
-    for s in range(M):
-        i = (start + s) % M
-        if groups and key(labels[i]) == key(groups[-1][0]):
-            groups[-1].append(labels[i])
-        else:
-            groups.append([labels[i]])
+    groups = []          # [labels, first vertex]
+    prev = None
+    for s_ in range(M):
+        i = (start + s_) % M
+        lb = labels[i]
+        if lb is not None:
+            if groups and key(lb) == key(prev):
+                groups[-1][0].append(lb)
+            else:
+                groups.append([[lb], i])
+        prev = lb
     runs = []
-    vstart = start
-    for g in groups:
+    for g, ia in groups:
         j, k, _, _ = g[0]
-        ia, ib = vstart, (vstart + len(g)) % M
+        ib = (ia + len(g)) % M
         t = params[j]
         ta = t[g[0][2]] if cands[ia] else None
         tb = t[g[-1][3]] if cands[ib] else None
         runs.append([j, k, ta, tb, g[0][2], g[0][3], g[-1][2], g[-1][3], ia, ib])
-        vstart = ib
     # resolve the ends: corners by Newton, junctions by equal points
     out = []
     n = len(runs)
@@ -252,6 +290,22 @@ def loop_runs(profile, loop) -> list:
     for i in range(n):
         A, B = runs[i], runs[(i + 1) % n]
         ja, ka, jb, kb = A[0], A[1], B[0], B[1]
+        if A[9] != B[8]:
+            # a bridge edge between matched vertices: the exact crossing lies near it
+            # (or, where a sub-tolerance notch was pruned, the closest approach: its midpoint
+            # pins both ends, and the measurement below sees how far that moved the flank)
+            s, u, p, gap = _closest_params(pieces[ja], ka, params[ja][A[7]], pieces[jb], kb,
+                                           params[jb][B[4]], ang)
+            va, vb = L[A[9]], L[B[8]]
+            dv = vb - va
+            w = float(np.clip((p - va) @ dv / max(dv @ dv, 1e-300), 0, 1))
+            off = float(np.hypot(*(va + w * dv - p)))
+            if gap > profile.tolerance / 10 or off > 2 * profile.tolerance + 1e-9:
+                raise GearError("step", "brep", "'faceted' for this profile",
+                                f"no exact crossing of pieces {ja} and {jb} near "
+                                f"({va[0]:.4g}, {va[1]:.4g})")
+            t_end[i], t_start[(i + 1) % n], ends[i] = s, u, p
+            continue
         if A[3] is not None and B[2] is not None:
             # both matched at the shared vertex: a junction of pieces
             pa = pt(ja, A[7], ka)
@@ -804,7 +858,7 @@ def volume(shape) -> float:
     from OCP.BRepGProp import BRepGProp
     from OCP.GProp import GProp_GProps
     p = GProp_GProps()
-    _static(BRepGProp, "VolumeProperties")(shape, p, 1e-9, True)   # adaptive Gauss integration
+    _static(BRepGProp, "VolumeProperties")(shape, p, 1e-7, True)   # adaptive Gauss integration
     return float(p.Mass())
 
 
@@ -833,14 +887,22 @@ def _measure(prof, law, flanks, recs, tol):
     turned profile: turned back by -θ(z) and the tooth copy, then Newton on the piece."""
     ang = 2 * math.pi / prof.teeth
     by_flank = {}
+    per_tooth = max(1, round(len({id(r.group) for r in recs}) / prof.teeth))
+    first = set()
+    for rec in recs:                          # the first tooth's faces in loop order
+        if len(first) < per_tooth or id(rec.group) in first:
+            first.add(id(rec.group))
     for rec in recs:
         g, s = rec.group, rec.surface
+        # the first tooth densely (knots and quarter points in u, fifths in z); the other
+        # teeth (turned copies of the same control points) at span midpoints
+        dense = id(g) in first
+        fu = np.array([0.25, 0.5, 0.75]) if dense else np.array([0.5])
+        fv = np.array([0.2, 0.4, 0.6, 0.8]) if dense else np.array([0.5])
         ku = np.unique(g.knots)
-        us = np.unique(np.concatenate([ku, (ku[:-1, None] + np.diff(ku)[:, None] *
-                                            np.array([0.25, 0.5, 0.75])).ravel()]))
+        us = np.unique(np.concatenate([ku, (ku[:-1, None] + np.diff(ku)[:, None] * fu).ravel()]))
         kv = np.asarray([s.VKnot(i) for i in range(1, s.NbVKnots() + 1)])
-        vs = np.unique(np.concatenate([kv, (kv[:-1, None] + np.diff(kv)[:, None] *
-                                            np.array([0.2, 0.4, 0.6, 0.8])).ravel()]))
+        vs = np.unique(np.concatenate([kv, (kv[:-1, None] + np.diff(kv)[:, None] * fv).ravel()]))
         P = np.array([[p.X(), p.Y(), p.Z()] for p in (s.Value(float(u), float(v)) for u in us for v in vs)])
         seg = np.clip(np.searchsorted([sg[1] for sg in g.segs], us), 0, len(g.segs) - 1)
         seg = np.repeat(seg, len(vs))
