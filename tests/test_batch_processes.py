@@ -120,6 +120,49 @@ def test_workers_exit_within_5_s_of_parent_sigkill(tmp_path):
         proc.wait()
 
 
+def _cmdline(pid):
+    try:
+        with open(f"/proc/{pid}/cmdline", "rb") as f:
+            return f.read().replace(b"\0", b" ").decode(errors="replace")
+    except OSError:
+        return ""
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="reads /proc")
+def test_a_worker_killed_mid_batch_gives_exit_1_and_one_line(tmp_path):
+    """A pool worker SIGKILLed (as the OOM killer would): the batch stops with exit 1 and one
+    stderr line pointing at the manifest, which holds the parts finished so far."""
+    f = _lib(tmp_path, range(10, 40))
+    out = tmp_path / "o"
+    cmd = [sys.executable, "-m", "gear3d.cli", "batch", f, "--out", str(out), "--workers", "2", "--no-progress"]
+    env = dict(os.environ, PYTHONPATH=ROOT + os.pathsep + os.environ.get("PYTHONPATH", ""))
+    proc = subprocess.Popen(cmd, start_new_session=True, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                            env=env, text=True)
+    try:
+        t0 = time.monotonic()
+        victim = None
+        while victim is None and time.monotonic() - t0 < 120 and proc.poll() is None:
+            fam = _descendants(proc.pid)
+            # pool workers: forked by the forkserver, so grandchildren of the batch process
+            victim = next((p for p in fam if _stat(p) and _stat(p)[1] in fam and "forkserver" in _cmdline(p)), None)
+            time.sleep(0.02)
+        assert victim is not None, "no pool worker found"
+        os.kill(victim, signal.SIGKILL)
+        stdout, stderr = proc.communicate(timeout=120)
+    finally:
+        try:
+            os.killpg(proc.pid, signal.SIGKILL)
+        except ProcessLookupError:
+            pass
+        proc.wait()
+    assert proc.returncode == 1
+    lines = stderr.splitlines()
+    assert len(lines) == 1 and lines[0].startswith("gear3d: batch: a worker process died")
+    assert "Traceback" not in stderr and str(out / "manifest.json") in lines[0]
+    man = json.loads((out / "manifest.json").read_text())
+    assert man["summary"]["parts"] == 30 and man["summary"]["recorded"] < 30
+
+
 def test_dask_missing_exits_2_with_the_extra_and_writes_nothing(tmp_path, capsys, monkeypatch):
     for m in ("dask", "distributed", "dask.distributed"):
         monkeypatch.setitem(sys.modules, m, None)     # "import dask.distributed" now fails

@@ -7,8 +7,9 @@ import gear3d). Writes the parts' files, ``manifest.json``, ``manifest.csv`` and
 ``timings.json``; a re-run resumes (complete parts are skipped).
 
 Exit codes: 0 every part built; 1 some parts failed (recorded in the manifest, one summary
-line on stderr); 2 bad input, an unwritable ``--out``, Dask not installed or a scheduler
-that does not answer (one line on stderr, nothing written); 130 interrupted.
+line on stderr) or a worker process died (one line; re-run to resume); 2 bad input, an
+unwritable ``--out``, Dask not installed or a scheduler that does not answer (one line on
+stderr, nothing written); 130 interrupted.
 """
 from __future__ import annotations
 
@@ -55,8 +56,15 @@ def run(args) -> int:
         return 0
     from ..jobs.batch import run_library
     workers = args.workers if args.workers is not None else (os.cpu_count() or 1)
-    r = run_library(lib, out, workers=workers, engine=args.engine, scheduler=args.scheduler,
-                    processes=not args.threads, progress=not args.no_progress)
+    from concurrent.futures.process import BrokenProcessPool
+    try:
+        r = run_library(lib, out, workers=workers, engine=args.engine, scheduler=args.scheduler,
+                        processes=not args.threads, progress=not args.no_progress)
+    except BrokenProcessPool:
+        sys.stderr.write(_one_line(f"gear3d: batch: a worker process died (killed, or out of memory); the parts "
+                                   f"done so far are in {os.path.join(out, 'manifest.json')}: re-run to resume")
+                         + "\n")
+        return 1
     rate = f"{r['parts_per_s']:.2f} parts/s" if r["parts_per_s"] else "-"
     manifest = os.path.join(out, "manifest.json")
     sys.stdout.write(f"{lib['name']}: {r['built']} built, {r['skipped']} already complete, {r['failed']} failed "
