@@ -11,7 +11,7 @@ import importlib
 import sys
 
 #: sub-command modules, in help order; each defines ``add_parser(subparsers)`` and ``run(args)``
-COMMANDS = ["profile", "body", "pair", "check", "drive", "harmonic", "build", "batch", "bench", "families", "serve"]
+COMMANDS = ["profile", "inspect", "body", "pair", "check", "drive", "harmonic", "build", "batch", "bench", "families", "serve"]
 
 
 class _Parser(argparse.ArgumentParser):

@@ -3,7 +3,8 @@
 Every figure is deterministic (SVG ids salted with a constant, no dates) and its artists
 carry ids (``gid``) so that an SVG can be checked: ``pitch-circle``, ``tip-circle``,
 ``root-circle``, ``base-circle``, ``profile``, ``undercut``, ``pointed``,
-``singular-points``, ``rack-positions``, ``mesh``.
+``singular-points``, ``rack-positions``, ``mesh``; with an inspection overlay also
+``neck``, ``neck-bulge`` and ``pins``.
 """
 from __future__ import annotations
 
@@ -15,7 +16,8 @@ import numpy as np
 from .errors import GearError, check_choice
 
 COLORS = {"profile": "#1f3b73", "pitch": "#2ca02c", "tip": "#7f7f7f", "root": "#7f7f7f",
-          "base": "#9467bd", "undercut": "#d62728", "pointed": "#ff7f0e", "rack": "#8c564b"}
+          "base": "#9467bd", "undercut": "#d62728", "pointed": "#ff7f0e", "rack": "#8c564b",
+          "neck": "#e377c2", "pin": "#17becf"}
 
 
 def _plt():
@@ -60,13 +62,17 @@ def _removed(profile):
     return chain, gone & ~tip_side, gone & tip_side
 
 
-def profile_figure(profile, path=None, *, view: str = "both", title: str | None = None):
+def profile_figure(profile, path=None, *, view: str = "both", title: str | None = None,
+                   inspection=None):
     """PNG/SVG (by ``path``'s extension) of a profile: the loops, pitch/tip/root circles,
     the base circle when the report has ``base_radius``, and highlighted zones: the raw
     envelope that trimming removed (undercut in red on the root side, pointing in orange
     on the tip side), singular points (cusps, x markers) and a pointed tip.
 
     ``view``: "full" (whole gear), "tooth" (tooth 0 and its neighbours) or "both".
+    ``inspection``: an :class:`gear3d.analysis.inspection.Inspection` of this profile to
+    overlay: the neck (the narrowest chord and the wider chord above it, gids ``neck`` and
+    ``neck-bulge``) when the tooth is necked, and the two measuring pins (``pins``).
     Returns the path, or the matplotlib Figure when ``path`` is None.
     """
     view = check_choice("view", view, ("full", "tooth", "both"))
@@ -104,6 +110,8 @@ def profile_figure(profile, path=None, *, view: str = "both", title: str | None 
             sc = ax.scatter(r * np.cos(a), r * np.sin(a), marker="x", color=COLORS["undercut"], s=40,
                             zorder=5, label="singular points")
             sc.set_gid("singular-points")
+        if inspection is not None:
+            _inspection_overlay(ax, profile, inspection)
         if rep.get("pointed"):
             t = profile.tooth_loop
             rr = np.hypot(t[:, 0], t[:, 1])
@@ -128,6 +136,38 @@ def profile_figure(profile, path=None, *, view: str = "both", title: str | None 
         ax.grid(True, lw=0.3)
     fig.tight_layout()
     return _save(fig, path)
+
+
+def _chord(ax, r, w, axis, color, gid, label, lw=2.0):
+    """A chord of length ``w`` (mm) across the circle of radius ``r``, centred on the polar
+    angle ``axis`` (rad)."""
+    half = math.asin(min(1.0, w / (2 * r)))
+    a = np.array([axis - half, axis + half])
+    (ln,) = ax.plot(r * np.cos(a), r * np.sin(a), color=color, lw=lw, label=label, zorder=7)
+    ln.set_gid(gid)
+    return ln
+
+
+def _inspection_overlay(ax, profile, ins):
+    """Neck chords and measuring pins of an Inspection (mm)."""
+    axis = math.radians(ins.tooth_angle_deg)
+    if ins.necked and ins.neck_radius and ins.bulge_radius:
+        _chord(ax, ins.neck_radius, ins.neck_width, axis, COLORS["neck"], "neck",
+               f"neck: {ins.neck_depth * 1000:.1f} um deep per flank, r={ins.neck_radius:.4g}")
+        _chord(ax, ins.bulge_radius, ins.bulge_width, axis, COLORS["neck"], "neck-bulge",
+               f"wider above the neck, r={ins.bulge_radius:.4g}", lw=1.2)
+    if ins.pin_kind == "pin" and ins.pin_centre_radius and ins.pin_diameter and ins.pin_angle_deg is not None:
+        z = profile.teeth
+        a0 = math.radians(ins.pin_angle_deg)
+        other = a0 + math.pi - (math.pi / z if z % 2 else 0.0)
+        t = np.linspace(0, 2 * np.pi, 181)
+        rho = ins.pin_diameter / 2
+        for k, a in enumerate((a0, other)):
+            c = ins.pin_centre_radius * np.array([math.cos(a), math.sin(a)])
+            (ln,) = ax.plot(c[0] + rho * np.cos(t), c[1] + rho * np.sin(t), color=COLORS["pin"], lw=1.0,
+                            label=(f"pins d={ins.pin_diameter:g}, M={ins.over_pins:.4f}" if k == 0 and ins.over_pins
+                                   else None))
+            ln.set_gid("pins" if k == 0 else "pins-1")
 
 
 def _rack_for(prof):
