@@ -298,7 +298,7 @@ def run_library(lib: dict, out_dir, workers: int = 2, engine: str = "local", sch
 
     try:
         if runner is not None:
-            runner.run(job, chunked(todo, max(workers, 1)), out_dir, done)
+            runner.run(job, chunked(todo, runner.slots), out_dir, done)
         else:
             for part in todo:
                 done(build_part(job, part, out_dir))
@@ -342,7 +342,7 @@ class _PoolRunner:
         ctx = mp.get_context(method)
         if method == "forkserver":
             ctx.set_forkserver_preload(modules)
-        self.workers = workers
+        self.workers = self.slots = workers
         # the write end stays here and is never written: EOF in a worker = this process died
         self._watch_r, self._watch_w = ctx.Pipe(duplex=False)
         self.ex = ProcessPoolExecutor(max_workers=workers, mp_context=ctx, initializer=_watch_parent,
@@ -394,6 +394,9 @@ class _DaskRunner:
             self.cluster = LocalCluster(n_workers=max(workers, 1), threads_per_worker=1, processes=processes,
                                         dashboard_address=None)
             self.client = Client(self.cluster)
+        # parts run one per worker thread: chunk for the threads the cluster has now
+        info = self.client.scheduler_info()
+        self.slots = max(1, sum(w.get("nthreads", 1) for w in info.get("workers", {}).values()) or workers)
 
     def run(self, job, chunks, out_dir, done):
         from dask.distributed import as_completed
