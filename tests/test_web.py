@@ -130,6 +130,19 @@ def test_busy_answers_503_and_the_budget_refuses_before_building(app, monkeypatc
     assert st == 400 and err["param"] == "tolerance" and "budget" in err["error"] and not calls
 
 
+@pytest.mark.parametrize("fmt, cmd", [("3mf", "body"), ("dxf", "profile")])     # STL: in the browser below
+def test_downloads_are_the_clis_bytes(app, tmp_path, capsys, fmt, cmd):
+    from gear3d.cli import main
+    flags = ["--teeth", "18", "--tolerance", "0.01"] + (["--width", "4"] if cmd == "body" else [])
+    st, head, data = _asgi_get(app, "/api/download", f"family=involute&teeth=18&tolerance=0.01&b.width=4&fmt={fmt}")
+    assert st == 200, data[:300]
+    assert head["content-disposition"] == f'attachment; filename="involute-z18{"-body" if cmd == "body" else ""}.{fmt}"'
+    out = tmp_path / f"cli.{fmt}"
+    assert main([cmd, "involute", *flags, "-o", str(out)]) == 0
+    capsys.readouterr()
+    assert data == out.read_bytes()
+
+
 def test_strict_json_and_binary_mesh():
     from types import SimpleNamespace
 
@@ -195,39 +208,52 @@ def _free_port() -> int:
         return s.getsockname()[1]
 
 
-@pytest.fixture(scope="module")
-def server(tmp_path_factory):
-    """``gear3d serve`` on a free port (a subprocess); yields (base URL, its stderr log path)."""
-    d = tmp_path_factory.mktemp("serve")
-    port = _free_port()
-    log = d / "serve.log"
-    with open(log, "w") as err, open(d / "serve.out", "w") as out:
-        proc = subprocess.Popen([sys.executable, "-m", "gear3d.cli", "serve", "--port", str(port), "--max-builds", "3"],
-                                cwd=d, stdout=out, stderr=err)
-    url = f"http://127.0.0.1:{port}"
-    deadline = time.monotonic() + 90
-    try:
-        while True:
-            if proc.poll() is not None:
-                pytest.fail(f"gear3d serve exited with {proc.returncode}: {log.read_text()[-2000:]}")
+class _Server:
+    """``gear3d serve`` started as a subprocess on a free port; :meth:`ready` polls its port."""
+
+    def __init__(self, d: Path):
+        self.port = _free_port()
+        self.url = f"http://127.0.0.1:{self.port}"
+        self.log, self.out = d / "serve.log", d / "serve.out"
+        with open(self.log, "w") as err, open(self.out, "w") as out:
+            self.proc = subprocess.Popen([sys.executable, "-m", "gear3d.cli", "serve", "--port", str(self.port),
+                                          "--max-builds", "3"], cwd=d, stdout=out, stderr=err)
+        self._ready = False
+
+    def ready(self, timeout: float = 90.0) -> "_Server":
+        deadline = time.monotonic() + timeout
+        while not self._ready:
+            if self.proc.poll() is not None:
+                pytest.fail(f"gear3d serve exited with {self.proc.returncode}: {self.log.read_text()[-2000:]}")
             try:
-                with urllib.request.urlopen(url + "/api/families", timeout=5) as r:
-                    if r.status == 200:
-                        break
+                with urllib.request.urlopen(self.url + "/api/families", timeout=5) as r:
+                    self._ready = r.status == 200
             except (urllib.error.URLError, ConnectionError, OSError):
                 pass
-            if time.monotonic() > deadline:
-                pytest.fail("gear3d serve did not answer within 90 s")
-            time.sleep(0.1)    # polling interval, bounded by the deadline above
-        assert f"http://127.0.0.1:{port}/" in (d / "serve.out").read_text()
-        yield url, log
-    finally:
-        proc.terminate()
+            if not self._ready:
+                if time.monotonic() > deadline:
+                    pytest.fail(f"gear3d serve did not answer within {timeout:g} s")
+                time.sleep(0.1)    # polling interval, bounded by the deadline above
+        assert f"{self.url}/" in self.out.read_text()        # the URL it printed
+        return self
+
+    def stop(self):
+        self.proc.terminate()
         try:
-            proc.wait(15)
+            self.proc.wait(15)
         except subprocess.TimeoutExpired:
-            proc.kill()
-            proc.wait(5)
+            self.proc.kill()
+            self.proc.wait(5)
+
+
+@pytest.fixture(scope="module")
+def server(tmp_path_factory):
+    """The server process (started, not yet waited for: the browser starts meanwhile)."""
+    srv = _Server(tmp_path_factory.mktemp("serve"))
+    try:
+        yield srv
+    finally:
+        srv.stop()
 
 
 @pytest.fixture(scope="module")
@@ -248,14 +274,15 @@ def browser():
 
 
 @pytest.fixture(scope="module")
-def page(browser, server):
+def page(server, browser):
     """One page for the browser tests (in file order), page errors collected."""
+    server.ready()
     ctx = browser.new_context(viewport={"width": 1400, "height": 1000}, accept_downloads=True)
     pg = ctx.new_page()
     pg.set_default_timeout(TIMEOUT_MS)
     pg.errors = []
     pg.on("pageerror", lambda e: pg.errors.append(str(e)))
-    pg.goto(server[0] + "/")
+    pg.goto(server.url + "/")
     pg.wait_for_selector("body[data-ready='1'] #preview svg.gear3d-preview")
     yield pg
     ctx.close()
@@ -318,7 +345,7 @@ def test_page_stl_download_is_the_clis_bytes(page, tmp_path, capsys):
     assert abs(mesh.bounds[1, 2] - mesh.bounds[0, 2] - 5.0) < 1e-4
 
 
-def test_page_pair_with_interference_drawn_red(page, server):
+def test_page_pair_with_interference_drawn_red(page):
     import numpy as np
     from PIL import Image
     page.select_option("#family", "sine")
@@ -348,7 +375,7 @@ def test_page_pair_with_interference_drawn_red(page, server):
 
 
 def test_server_logs_each_request_in_one_line(server):
-    url, log = server
+    url, log = server.ready().url, server.log
     with urllib.request.urlopen(url + "/api/profile?family=involute&teeth=17", timeout=30) as r:
         assert r.status == 200
     deadline = time.monotonic() + 10

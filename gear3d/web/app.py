@@ -22,6 +22,7 @@ Each request is logged in one line.
 """
 from __future__ import annotations
 
+import math
 import os
 import sys
 import threading
@@ -86,36 +87,68 @@ def _request(query) -> dict:
     return form
 
 
-def _budget(form, kind: str, output=None):
-    """Keywords of the build (as the CLI makes them), refused before building when over budget.
-
-    Returns ``(profile_kw, body_kw or None, pair or None)``."""
+def _budget(form, kind: str, output=None) -> dict:
+    """What to build, as the CLI makes it, refused before building when over budget:
+    ``{"profile": kw, "body": kw, "pair": (z2, internal, mate), "ns": the CLI's Namespace}``."""
     if kind == "body":
-        pk, bk = formargs.body_kwargs(form, output)
+        pk, bk, ns = formargs.body_kwargs(form, output)
         budget.check("body", pk, bk)
-        return pk, bk, None
+        return {"profile": pk, "body": bk, "ns": ns}
     if kind == "pair":
         kw, z2, internal, mate = formargs.pair_kwargs(form)
         budget.check("pair", kw, pair={"mate_teeth": z2})
-        return kw, None, (z2, internal, mate)
-    pk = formargs.profile_kwargs(form, output)
+        return {"profile": kw, "pair": (z2, internal, mate)}
+    pk, ns = formargs.profile_kwargs(form, output)
     budget.check("profile", pk)
-    return pk, None, None
+    return {"profile": pk, "ns": ns}
 
 
 def _preview_body(family, pk, bk):
-    """The 3D preview: the CLI's body at the print tolerance (coarser of 0.01 mm and the form's)."""
+    """The 3D preview: the CLI's body at the print tolerance (the coarser of 0.01 mm and the
+    form's), its profile built at the share of it the CLI gives the profile."""
     from .. import profile
     from ..solids import body
-    user = pk.get("tolerance", PREVIEW_TOLERANCE)
+    user = min(pk.get("tolerance", PREVIEW_TOLERANCE), bk.get("tolerance") or math.inf)
     tol = max(user, PREVIEW_TOLERANCE)
-    try:
-        prof = profile(family, **dict(pk, tolerance=tol))
-    except GearError as e:        # 0.01 mm too coarse for this module: the form's own tolerance
-        if e.param != "tolerance" or tol == user:
-            raise
-        prof, tol = profile(family, **pk), user
-    return body(prof, **dict(bk, tolerance=max(bk.get("tolerance") or tol, tol)))
+    for t in ((tol, user) if user < tol else (tol,)):
+        try:
+            ptol = formargs.profile_tolerance(t, bk.get("kind", "spur"), bool(bk.get("xy_offset")))
+            return body(profile(family, **dict(pk, tolerance=ptol)), **dict(bk, tolerance=t))
+        except GearError as e:    # 0.01 mm too coarse for this module: the form's own tolerance
+            if e.param != "tolerance" or t == user:
+                raise
+
+
+class _Mute(threading.local):
+    on = False
+
+
+_MUTE = _Mute()
+
+
+class _MutedStdout:
+    """``sys.stdout`` that drops what threads inside :func:`_quiet` write (the CLI's
+    "wrote ..." line for a download) and passes everything else on."""
+
+    def __init__(self, stream):
+        self._stream = stream
+
+    def write(self, text):
+        return len(text) if _MUTE.on else self._stream.write(text)
+
+    def __getattr__(self, name):
+        return getattr(self._stream, name)
+
+
+class _quiet:
+    def __enter__(self):
+        if not isinstance(sys.stdout, _MutedStdout):
+            sys.stdout = _MutedStdout(sys.stdout)
+        _MUTE.on = True
+
+    def __exit__(self, *exc):
+        _MUTE.on = False
+        return False
 
 
 # ------------------------------------------------------------------ endpoint bodies (run in a thread)
@@ -124,7 +157,7 @@ def _do_profile(form, built):
     from .. import profile
     from .svg import neck, profile_svg
     t0 = time.perf_counter()
-    p = profile(form["family"], **built[0])
+    p = profile(form["family"], **built["profile"])
     svg = profile_svg(p)
     return _json({"svg": svg, "report": p.report, "neck": neck(p),
                   "ms": round(1000 * (time.perf_counter() - t0), 1)})
@@ -133,7 +166,7 @@ def _do_profile(form, built):
 def _do_body(form, built):
     from starlette.responses import Response
     from .meshdata import encode
-    b = _preview_body(form["family"], built[0], built[1])
+    b = _preview_body(form["family"], built["profile"], built["body"])
     rep = {k: v for k, v in b.report.items() if not isinstance(v, (list, dict))}
     return Response(encode(b), media_type="application/octet-stream",
                     headers={"X-Gear3d-Report": strict.dumps(rep), "Cache-Control": "no-store"})
@@ -143,8 +176,8 @@ def _do_pair(form, built):
     from ..analysis.pairs import check_pair
     from ..commands.check import build_pair, summary
     from .pairview import pair_animation
-    z2, internal, mate = built[2]
-    p1, p2 = build_pair(form["family"], dict(built[0]), z2, internal, mate)
+    z2, internal, mate = built["pair"]
+    p1, p2 = build_pair(form["family"], dict(built["profile"]), z2, internal, mate)
     rep = check_pair(p1, p2, internal=internal)
     return _json({"report": rep, "summary": summary(rep), "animation": pair_animation(p1, p2, rep)})
 
@@ -156,24 +189,34 @@ def _download_name(family: str, teeth, fmt: str) -> str:
 
 
 def _do_download(form, built, fmt):
+    """The file ``gear3d body``/``gear3d profile FAMILY ... -o NAME.fmt`` writes: the CLI's own
+    ``run`` on the CLI's own Namespace, into a temporary folder, read back and removed."""
     import tempfile
 
     from starlette.responses import Response
 
-    from .. import profile
-    from ..export import write
-    from ..solids import body
+    from ..commands import body as cbody
+    from ..commands import profile as cprof
     kind, media = DOWNLOADS[fmt]
-    prof = profile(form["family"], **built[0])
-    obj = body(prof, **built[1]) if kind == "body" else prof
-    name = _download_name(form["family"], prof.teeth, fmt)
+    ns = built["ns"]
     with tempfile.TemporaryDirectory(prefix="gear3d-web-") as d:
-        path = os.path.join(d, name)
-        write(obj, path)
-        with open(path, "rb") as fh:
+        ns.output = os.path.join(d, "download." + fmt)
+        with _quiet():
+            (cbody if kind == "body" else cprof).run(ns)
+        with open(ns.output, "rb") as fh:
             data = fh.read()
+    name = _download_name(form["family"], built["profile"].get("teeth", _default_teeth(form["family"])), fmt)
     return Response(data, media_type=media,
                     headers={"Content-Disposition": f'attachment; filename="{name}"', "Cache-Control": "no-store"})
+
+
+def _default_teeth(family: str):
+    """The family builder's default ``teeth`` (for a file name), or None."""
+    import inspect
+
+    from ..profiles import FAMILIES
+    p = inspect.signature(FAMILIES[family]).parameters.get("teeth")
+    return None if p is None else p.default
 
 
 # ------------------------------------------------------------------ the app

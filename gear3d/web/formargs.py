@@ -73,19 +73,33 @@ def family_params(ns, output=None, mesh: bool = False) -> dict:
     return fp(ns)
 
 
-def profile_kwargs(form: dict, output=None) -> dict:
-    """``profile()`` keywords of ``gear3d profile FAMILY ... [-o output]``."""
-    return family_params(namespace("profile", form["family"], ("profile", form["profile"])), output)
+def profile_kwargs(form: dict, output=None) -> tuple:
+    """(``profile()`` keywords, the Namespace) of ``gear3d profile FAMILY ... [-o output]``."""
+    ns = namespace("profile", form["family"], ("profile", form["profile"]))
+    return family_params(ns, output), ns
 
 
 def body_kwargs(form: dict, output=None) -> tuple:
-    """(``profile()`` keywords, ``body()`` keywords) of ``gear3d body FAMILY ... [-o output]``."""
+    """(``profile()`` keywords, ``body()`` keywords, the Namespace) of ``gear3d body FAMILY ...
+    [-o output]``; the profile's tolerance is the body's, as the user asked (see
+    :func:`profile_tolerance` for the share the CLI builds it at)."""
     from ..commands.body import body_params
     ns = namespace("body", form["family"], ("profile", form["profile"]), ("body", form["body"]))
     kw = body_params(ns)
     if "width" not in kw:
         raise GearError("width", None, "a number > 0 mm (--width)")
-    return family_params(ns, output, mesh=True), kw
+    return family_params(ns, output, mesh=True), kw, ns
+
+
+def profile_tolerance(body_tol: float, kind: str, offset: bool) -> float:
+    """The tolerance (mm) the CLI builds a body's profile at: the core's planned share of the
+    body tolerance (``gear3d.solids.body.profile_tolerance``), or all of it where the core
+    has no such plan."""
+    try:
+        from ..solids.body import profile_tolerance as share
+    except ImportError:
+        return body_tol
+    return share(body_tol, kind, offset)
 
 
 def pair_kwargs(form: dict) -> tuple:
