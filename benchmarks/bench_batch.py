@@ -13,7 +13,8 @@ values) = 1,000 parts (``--parts`` trims the tooth range), width 4 mm, STL at 0.
 * which heavy libraries the workers imported (an STL library should need none);
 * whether the manifests of all runs are byte-identical (they must be).
 
-Writes ``out/bench/batch.md`` and ``batch.json``; ``--publish`` also replaces the batch
+Writes ``out/bench/batch.md``, ``batch.json`` and ``batch.png`` (parts/s against workers);
+``--publish`` also copies the plot to ``benchmarks/batch_throughput.png`` and replaces the batch
 section of BENCHMARKS.md (between its ``<!-- batch:begin -->``/``<!-- batch:end -->``
 markers, appended when missing). A full run takes minutes on 2 cores.
 
@@ -129,6 +130,36 @@ def markdown(res) -> str:
     return "\n".join(lines) + "\n"
 
 
+def plot(res, path: Path):
+    """parts/s against workers: measured, ideal (linear from 1 worker), the target."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    rows = res["runs"]
+    r1 = next((r for r in rows if r["workers"] == 1), rows[0])
+    unit = r1["parts_per_s"] / r1["workers"]
+    w = [r["workers"] for r in rows]
+    fig, ax = plt.subplots(figsize=(5.5, 4))
+    ax.plot(w, [r["parts_per_s"] for r in rows], "o-", label="measured")
+    ax.plot(w, [unit * x for x in w], "k:", label="ideal (linear from 1 worker)")
+    ax.plot(list(BEFORE), list(BEFORE.values()), "s--", color="grey", label="issue 12, before")
+    ax.axhline(TARGET_RATE, color="tab:red", lw=0.8, label=f"target {TARGET_RATE:g} parts/s on 2")
+    for r in rows:
+        ax.annotate(f"load {r['load_before']}", (r["workers"], r["parts_per_s"]), textcoords="offset points",
+                    xytext=(6, -12), fontsize=7)
+    ax.set_xlabel("worker processes")
+    ax.set_ylabel("parts/s")
+    ax.set_xticks(sorted(set(w) | set(BEFORE)))
+    ax.set_title(f"gear3d batch: {res['parts']:,} spur parts at {res['tolerance'] * 1000:g} µm", fontsize=9)
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    tmp = path.with_name("." + path.stem + ".tmp.png")
+    fig.savefig(tmp, dpi=110, metadata={"Software": None})
+    plt.close(fig)
+    os.replace(tmp, path)
+
+
 def publish(section: str, path: Path = ROOT / "BENCHMARKS.md"):
     """Replace (or append) the marked batch section of BENCHMARKS.md, atomically."""
     text = path.read_text() if path.exists() else ""
@@ -197,8 +228,11 @@ def main(argv=None):
             Path(p).write_text(text)
         with atomic_path(out_md.with_suffix(".json")) as p:
             Path(p).write_text(json.dumps(res, indent=1, allow_nan=False) + "\n")
+        plot(res, out_md.with_suffix(".png"))
         if a.publish:
-            publish(text)
+            shutil.copyfile(out_md.with_suffix(".png"), ROOT / "benchmarks" / "batch_throughput.png")
+            head, rest = text.split("\n", 1)
+            publish(head + "\n\n![parts/s against workers](benchmarks/batch_throughput.png)\n" + rest)
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
 
