@@ -22,6 +22,7 @@ Each request is logged in one line.
 """
 from __future__ import annotations
 
+import contextlib
 import math
 import os
 import sys
@@ -42,6 +43,12 @@ DOWNLOADS = {"stl": ("body", "model/stl"), "3mf": ("body", "model/3mf"), "step":
              "dxf": ("profile", "image/vnd.dxf"), "svg": ("profile", "image/svg+xml")}
 
 MAX_QUERY_ITEMS = 80
+
+#: formats whose writers use process-wide state (matplotlib's pyplot for the SVG figure,
+#: OpenCascade for a B-rep STEP): one at a time
+UNSHARED = ("svg", "step")
+_UNSHARED = threading.Lock()
+_NO_LOCK = contextlib.nullcontext()
 
 
 class Busy(Exception):
@@ -201,7 +208,7 @@ def _do_download(form, built, fmt):
     ns = built["ns"]
     with tempfile.TemporaryDirectory(prefix="gear3d-web-") as d:
         ns.output = os.path.join(d, "download." + fmt)
-        with _quiet():
+        with _quiet(), (_UNSHARED if fmt in UNSHARED else _NO_LOCK):
             (cbody if kind == "body" else cprof).run(ns)
         with open(ns.output, "rb") as fh:
             data = fh.read()
