@@ -10,8 +10,9 @@ body parameters as ``b.<name>``, pair parameters as ``pair.<name>``; never paths
 * ``/api/body``                           binary mesh (:mod:`gear3d.web.meshdata`) at the print
                                           tolerance 0.01 mm; its report in ``X-Gear3d-Report``
 * ``/api/pair``                           ``{"report", "summary", "animation"}`` (check_pair)
-* ``/api/download?fmt=stl|3mf|step|dxf|svg``  the file ``gear3d.export.write`` makes, the same
-                                          bytes as ``gear3d body``/``gear3d profile -o``
+* ``/api/download?fmt=stl|3mf|step|dxf|svg``  the file ``gear3d body``/``gear3d profile ... -o``
+                                          writes (the CLI's own command through
+                                          ``gear3d.export.write``): the CLI's bytes
 
 Parameters become keywords exactly as the CLI makes them (:mod:`gear3d.web.formargs`).
 Every JSON answer is strict (no NaN/Infinity). Bad input answers 400
