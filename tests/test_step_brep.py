@@ -178,12 +178,12 @@ def test_same_bytes_twice(helical, helical_step, tmp_path):
     # piece); + 2 end faces, 2 groove ends and the groove's root cylinder
     ("herringbone", dict(helix_angle_deg=25, gap=2.0), False, 16, 4 * 16 * 2 + 2 + 2 + 1),
     ("chevron-arch", dict(helix_angle_deg=30, arch_radius=4.0), False, 20, 2 * 20 * 3 + 2),
-    ("helical", dict(helix_angle_deg=15), True, 40, None),
+    ("helical", dict(helix_angle_deg=15), True, 30, None),
 ])
 def test_kinds_and_rings(kind, kw, internal, z, faces, tmp_path):
     _occ()
     p = gear3d.profile("involute", teeth=z, module=1, tolerance=0.01, internal=internal)
-    b = body(p, kind=kind, width=12, **kw)
+    b = body(p, kind=kind, width=8, **kw)
     out = tmp_path / "g.stp"
     write(b, out, step="brep")
     shape = read_step(out)

@@ -281,7 +281,20 @@ def loop_runs(profile, loop) -> list:
         ta = t[g[0][2]] if cands[ia] else None
         tb = t[g[-1][3]] if cands[ib] else None
         runs.append([j, k, ta, tb, g[0][2], g[0][3], g[-1][2], g[-1][3], ia, ib])
-    # resolve the ends: corners by Newton, junctions by equal points
+    # resolve the ends: corners by Newton, junctions by equal points. Every tooth repeats
+    # tooth 0's corners turned: solve each distinct one once
+    memo = {}
+
+    def crossing(fn, ja, ka, ta, jb, kb, tb):
+        key = (fn.__name__, ja, round(float(ta), 12), jb, round(float(tb), 12), (kb - ka) % z)
+        if key not in memo:
+            if fn is _corner_params:
+                memo[key] = fn(pieces[ja], 0, ta, pieces[jb], kb - ka, tb, None, ang)
+            else:
+                memo[key] = fn(pieces[ja], 0, ta, pieces[jb], kb - ka, tb, ang)
+        s, u, p, gap = memo[key]
+        return s, u, _rot2(p, ka * ang), gap
+
     out = []
     n = len(runs)
     ends = [None] * n     # exact point at the end of run i (= start of run i+1)
@@ -294,8 +307,7 @@ def loop_runs(profile, loop) -> list:
             # a bridge edge between matched vertices: the exact crossing lies near it
             # (or, where a sub-tolerance notch was pruned, the closest approach: its midpoint
             # pins both ends, and the measurement below sees how far that moved the flank)
-            s, u, p, gap = _closest_params(pieces[ja], ka, params[ja][A[7]], pieces[jb], kb,
-                                           params[jb][B[4]], ang)
+            s, u, p, gap = crossing(_closest_params, ja, ka, params[ja][A[7]], jb, kb, params[jb][B[4]])
             va, vb = L[A[9]], L[B[8]]
             dv = vb - va
             w = float(np.clip((p - va) @ dv / max(dv @ dv, 1e-300), 0, 1))
@@ -315,7 +327,7 @@ def loop_runs(profile, loop) -> list:
         # a corner: A's last chord (A[6]->A[7]) meets B's first chord (B[4]->B[5])
         ta = 0.5 * (params[ja][A[6]] + params[ja][A[7]])
         tb = 0.5 * (params[jb][B[4]] + params[jb][B[5]])
-        s, u, p, gap = _corner_params(pieces[ja], ka, ta, pieces[jb], kb, tb, L[A[9]], ang)
+        s, u, p, gap = crossing(_corner_params, ja, ka, ta, jb, kb, tb)
         lo_a, hi_a = sorted((params[ja][A[6]], params[ja][A[7]]))
         lo_b, hi_b = sorted((params[jb][B[4]], params[jb][B[5]]))
         wa, wb = 0.5 * (hi_a - lo_a) + 1e-12, 0.5 * (hi_b - lo_b) + 1e-12
@@ -582,14 +594,18 @@ def _merge_runs(runs, which, flanks, ang, pieces):
     n = len(runs)
     ors = [_oriented(flanks[w], r, ang) for r, w in zip(runs, which)]
 
+    memo = {}
+
     def tangent(r, end):
         """Unit tangent (loop direction) of the exact piece at the run's start or end."""
-        G = pieces[r.piece]
         t = r.t1 if end else r.t0
         sgn = 1.0 if r.t1 >= r.t0 else -1.0
-        h = 1e-7 * sgn
-        q = G(np.array([t - h, t]) if end else np.array([t, t + h]))
-        d = _rot2(q[1] - q[0], r.k * ang)
+        key = (r.piece, round(t, 12), end, sgn)
+        if key not in memo:
+            h = 1e-7 * sgn
+            q = pieces[r.piece](np.array([t - h, t]) if end else np.array([t, t + h]))
+            memo[key] = q[1] - q[0]
+        d = _rot2(memo[key], r.k * ang)
         return d / max(float(np.hypot(*d)), 1e-300)
 
     smooth = []
@@ -737,6 +753,24 @@ def brep_solid(b, measure: bool = True):
 def _static(cls, name):
     """A static method of an OCP class (``Name_s`` in older bindings, ``Name`` in newer)."""
     return getattr(cls, name + "_s", None) or getattr(cls, name)
+
+
+def section_wire(b, z: float = 0.0):
+    """The B-spline wire (OCC ``TopoDS_Wire``, mm) of body ``b``'s tooth loop at height z
+    (mm), turned by θ(z): the section the B-rep's flank faces pass through (for benchmarks
+    and other OCC constructions)."""
+    require_occ()
+    _check_body(b)
+    prof = b.profile
+    ang = 2 * math.pi / prof.teeth
+    tol = float(b.report["tolerance"])
+    runs = loop_runs(prof, prof.tooth_loop)
+    flanks, which = _fit_runs(prof, runs, FIT_SHARE * tol)
+    th = float(b.twist(z))
+    groups = _merge_runs(runs, which, flanks, ang, prof.pieces)
+    return _section_wire([bspline_curve(np.column_stack([_turn(g.ctrl, math.cos(th), math.sin(th)),
+                                                         np.full(len(g.ctrl), z)]), g.knots, 3)
+                          for g in groups])
 
 
 def _sew_solid(faces):
