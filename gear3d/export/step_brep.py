@@ -1036,5 +1036,5 @@ def write(obj, path, **opts):
     product = body_name(bodies[0], 0) if len(bodies) == 1 else "assembly"
     write_shape(shape, path, product)
     err = max(i["max_error"] for i in infos)
-    return (f"step: {len(shapes)} B-rep solid(s), {sum(i['faces'] for i in infos)} faces, "
-            f"measured max_error={err:.3g} mm")
+    return (f"step: {len(shapes)} exact B-rep solid(s), {sum(i['faces'] for i in infos)} faces "
+            f"(B-spline flanks), B-rep measured max_error={err:.3g} mm")
