@@ -133,22 +133,27 @@ def _check_path(path: str, param: str, exts) -> None:
 
 @contextlib.contextmanager
 def _atomic(path: str, param: str):
-    """A temporary file next to ``path`` that replaces it when the block completes and is
-    removed otherwise (no partial or temporary file is left)."""
+    """A temporary file next to ``path`` (same extension) that replaces it when the block
+    completes and is removed otherwise: no partial or temporary file is left. While it
+    lives it is listed where the CLI's signal handler looks (``gear3d.export.LIVE_TEMPS``)."""
+    from ..errors import GearError
     try:
-        from ..export import atomic_path          # the project's helper, when present
+        from ..export import LIVE_TEMPS
     except ImportError:
-        atomic_path = None
-    if atomic_path is not None:
-        with atomic_path(path, param) as tmp:
-            yield tmp
-        return
+        LIVE_TEMPS = set()
     full = os.path.abspath(path)
-    fd, tmp = tempfile.mkstemp(prefix=".gear3d-", suffix=os.path.splitext(full)[1], dir=os.path.dirname(full))
+    try:
+        fd, tmp = tempfile.mkstemp(prefix="." + os.path.basename(full)[:100] + ".",
+                                   suffix=".tmp" + os.path.splitext(full)[1], dir=os.path.dirname(full))
+    except OSError as e:
+        raise GearError(param, path, "a path in a folder where files can be created", e.strerror or "") from None
+    LIVE_TEMPS.add(tmp)
     os.close(fd)
     try:
         yield tmp
+        os.chmod(tmp, 0o644)
         os.replace(tmp, full)
     finally:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
+        if os.path.lexists(tmp):
+            os.remove(tmp)
+        LIVE_TEMPS.discard(tmp)
