@@ -22,8 +22,13 @@ PIN_STEP_FINE = 0.001
 CONTACT_MARGIN = 4.0
 #: coarse radii scanned before a pin centre is bisected
 PIN_SCAN = 96
-#: bisection steps of a pin centre (range / 2**60 is far below any tolerance)
+#: bisection steps of a pin centre (range / 2**60 is far below any tolerance); the pin
+#: centre's bisection stops once its bracket is below BISECT_TOL mm
 BISECT = 60
+BISECT_TOL = 1e-10
+#: golden-section steps for a ball's contact height (0.618**20 of a 2/24-radius bracket:
+#: the height to 1e-5 mm, the distance to ~1e-10 mm, its error being second order)
+GOLDEN = 20
 
 
 # ------------------------------------------------------------------- profile geometry
@@ -309,7 +314,7 @@ class _PinSolver:
         step = hs[1] - hs[0]
         lo, hi = hs[j] - step, hs[j] + step
         gr = (math.sqrt(5) - 1) / 2
-        for _ in range(32):                         # golden section on each centre's bracket
+        for _ in range(GOLDEN):                     # golden section on each centre's bracket
             x1, x2 = hi - gr * (hi - lo), lo + gr * (hi - lo)
             v2 = f(np.stack([x1, x2], axis=1))
             left = v2[:, 0] < v2[:, 1]
@@ -366,6 +371,8 @@ class _PinSolver:
         a = np.array([b[1] for b in brackets])
         b = np.array([b[2] for b in brackets])
         for _ in range(BISECT):
+            if float(np.max(b - a)) < BISECT_TOL:
+                break
             m = 0.5 * (a + b)
             dm = self.distance(m)
             touch = dm <= rhos[ts]
