@@ -120,6 +120,47 @@ def test_workers_exit_within_5_s_of_parent_sigkill(tmp_path):
         proc.wait()
 
 
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="reads /proc")
+def test_sigint_stops_between_parts_cleanly(tmp_path):
+    """SIGINT to the batch process alone: running chunks stop after their current part,
+    exit 130 with one line, no temporary file, a manifest of what was built, no process left."""
+    n = 40
+    f = _lib(tmp_path, range(10, 10 + n))
+    out = tmp_path / "o"
+    cmd = [sys.executable, "-m", "gear3d.cli", "batch", f, "--out", str(out), "--workers", "2", "--no-progress"]
+    env = dict(os.environ, PYTHONPATH=ROOT + os.pathsep + os.environ.get("PYTHONPATH", ""))
+    proc = subprocess.Popen(cmd, start_new_session=True, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
+                            env=env, text=True)
+    recs = out / ".records"
+    try:
+        t0 = time.monotonic()
+        while not (recs.is_dir() and any(x.endswith(".json") for x in os.listdir(recs))):
+            assert proc.poll() is None and time.monotonic() - t0 < 120
+            time.sleep(0.02)
+        family = _descendants(proc.pid)
+        proc.send_signal(signal.SIGINT)
+        _, stderr = proc.communicate(timeout=60)
+        t1 = time.monotonic()
+        while time.monotonic() - t1 < 5.0 and any(_alive(p, s) for p, s in family.items()):
+            time.sleep(0.02)
+        assert not [p for p, s in family.items() if _alive(p, s)]
+    finally:
+        try:
+            os.killpg(proc.pid, signal.SIGKILL)
+        except ProcessLookupError:
+            pass
+        proc.wait()
+    assert proc.returncode == 130 and len(stderr.splitlines()) == 1
+    assert not [x for x in os.listdir(out) if x.startswith(".") and x != ".records"]
+    assert not [x for x in os.listdir(recs) if x.startswith(".")]
+    man = json.loads((out / "manifest.json").read_text())
+    on_disk = {x[:-5]: json.loads((recs / x).read_text())["status"] for x in os.listdir(recs)}
+    built = {k for k, v in on_disk.items() if v == "ok"}
+    # every part finished on disk is in the manifest, even if its result never reached the parent
+    assert {p["name"] for p in man["parts"] if p["status"] == "ok"} == built and 1 <= len(on_disk) < n
+    assert _parts(out) == {b + ".stl" for b in built}
+
+
 def _cmdline(pid):
     try:
         with open(f"/proc/{pid}/cmdline", "rb") as f:

@@ -187,9 +187,20 @@ def chunked(todo: list, workers: int) -> list:
     return [todo[i:i + size] for i in range(0, len(todo), size)]
 
 
+#: in a pool worker: set by the batch process when it is interrupted (stop between parts)
+_STOP = None
+
+
 def build_chunk(job: dict, parts: list, out_dir: str) -> list:
-    """Build several parts in one task (see :func:`build_part`); returns their results."""
-    return [build_part(job, p, out_dir) for p in parts]
+    """Build several parts in one task (see :func:`build_part`); returns their results.
+    In a pool worker the chunk ends early, between two parts, once the batch process
+    asks it to stop (an interrupt): the parts not built are built by the next run."""
+    out = []
+    for p in parts:
+        if _STOP is not None and _STOP.is_set():
+            break
+        out.append(build_part(job, p, out_dir))
+    return out
 
 
 def worker_modules(lib: dict) -> list:
@@ -211,13 +222,16 @@ def worker_modules(lib: dict) -> list:
     return list(dict.fromkeys(mods))
 
 
-def _watch_parent(conn):
+def _watch_parent(conn, stop=None):
     """Pool worker initializer: exit as soon as the batch process is gone.
 
     ``conn`` is the read end of a pipe whose only write end the batch process holds and
     never writes to: ``recv_bytes`` blocks until that process exits (EOF), however it dies.
-    A daemon thread waits on it and ends this worker with ``os._exit``."""
+    A daemon thread waits on it and ends this worker with ``os._exit``. ``stop`` (an
+    Event) is kept for :func:`build_chunk`."""
     import threading
+    global _STOP
+    _STOP = stop
 
     def watch():
         try:
@@ -305,6 +319,13 @@ def run_library(lib: dict, out_dir, workers: int = 2, engine: str = "local", sch
     finally:
         if runner is not None:
             runner.close()
+            # parts finished in a worker whose result never came back (an interrupt): their
+            # records are on disk, so the manifest lists every complete part
+            for part in todo:
+                if part["name"] not in records:
+                    rec = _done_record(out_dir, part, spec_of(job, part))
+                    if rec is not None:
+                        records[part["name"]] = rec
         if bar is not None:
             bar.close()
         manifest = _write_manifest(out_dir, lib, records)
@@ -345,8 +366,9 @@ class _PoolRunner:
         self.workers = self.slots = workers
         # the write end stays here and is never written: EOF in a worker = this process died
         self._watch_r, self._watch_w = ctx.Pipe(duplex=False)
+        self.stop = ctx.Event()
         self.ex = ProcessPoolExecutor(max_workers=workers, mp_context=ctx, initializer=_watch_parent,
-                                      initargs=(self._watch_r,))
+                                      initargs=(self._watch_r, self.stop))
 
     def run(self, job, chunks, out_dir, done):
         from concurrent.futures import FIRST_COMPLETED, wait
@@ -367,10 +389,12 @@ class _PoolRunner:
                     if nxt is not None:
                         pending.add(self.ex.submit(build_chunk, job, nxt, out_dir))
         except BaseException:
-            self.ex.shutdown(wait=False, cancel_futures=True)
+            self.stop.set()                # running chunks end after their current part
             raise
 
     def close(self):
+        """Cancel the queued chunks, wait for the running ones (they end after their current
+        part once ``stop`` is set), then drop the pipe."""
         self.ex.shutdown(wait=True, cancel_futures=True)
         self._watch_w.close()
         self._watch_r.close()
