@@ -145,11 +145,6 @@ def _reference_radius(profile, g: ToothGeometry) -> float:
     return 0.5 * (g.r_root + g.r_tip)
 
 
-def _pitch_or_mid(profile, g: ToothGeometry) -> float:
-    r = float(profile.pitch_radius)
-    return r if g.on_flank(r) else 0.5 * (g.r_root + g.r_tip)
-
-
 def inspect(profile, *, span_teeth=None, pin_diameter=None, helix_angle_deg=0.0) -> Inspection:
     """Inspection measurements of a built profile (mm, deg), computed on request.
 
@@ -203,35 +198,45 @@ def inspect(profile, *, span_teeth=None, pin_diameter=None, helix_angle_deg=0.0)
     else:
         out.update(_pins(g, gi, pin_diameter, r_ref, twist, beta, notes))
 
-    # ---- chordal at the pitch circle
-    r_ch = pr if (is_inv or g.on_flank(pr)) else _pitch_or_mid(profile, g)
+    out.update(_chordal_part(g, gi, pr, beta, notes))
+    out.update(_neck_part(g, float(profile.module)))
+    out["notes"] = tuple(notes)
+    return Inspection(**out)
+
+
+def _chordal_part(g: ToothGeometry, gi, pr, beta, notes) -> dict:
+    """Chordal thickness and height at the pitch circle (or the mid-depth circle where the
+    pitch circle misses the flanks); normal plane (virtual gear, KHK) for a helical gear."""
+    out = {}
+    r_ch = pr if (gi is not None or g.on_flank(pr)) else 0.5 * (g.r_root + g.r_tip)
     if r_ch != pr:
         notes.append(f"chordal: the pitch circle misses the flanks; measured on r = {r_ch:.6g} mm")
     out["chordal_radius"] = r_ch
     ch = chordal_profile(g, r_ch) if g.on_flank(r_ch) else None
     if ch is not None:
         chord, height, unc, ang = ch
-        if beta:          # normal plane, virtual gear (KHK), from the measured arc thickness
-            chord2, height2 = chordal_values(r_ch * ang, r_ch, abs(g.r_tip - r_ch), internal, beta, z,
-                                       2 * r_ch / z)
+        if beta:          # from the measured arc thickness, on the virtual gear
+            chord, height = chordal_values(r_ch * ang, r_ch, abs(g.r_tip - r_ch), g.internal, beta, g.z,
+                                           2 * r_ch / g.z)
             unc = unc * math.cos(beta)
-            chord, height = chord2, height2
         out.update(chordal_thickness_profile=chord, chordal_height_profile=height, chordal_uncertainty=unc)
-    if is_inv:
+    if gi is not None:
         c, h = chordal_formula(gi)
         out.update(chordal_thickness=c, chordal_height=h)
     elif ch is not None:
-        out.update(chordal_thickness=out["chordal_thickness_profile"], chordal_height=out["chordal_height_profile"])
+        out.update(chordal_thickness=out["chordal_thickness_profile"],
+                   chordal_height=out["chordal_height_profile"])
     else:
         notes.append("chordal: no flank crossing at that radius")
+    return out
 
-    # ---- neck
+
+def _neck_part(g: ToothGeometry, module: float) -> dict:
+    """Neck values; necked above NECK_MIN_MODULES modules (and twice the profile's error)."""
     nk = neck_profile(g)
-    m_eff = float(profile.module)
-    out.update(necked=bool(nk.depth > max(NECK_MIN_MODULES * m_eff, 2 * g.e)), neck_depth=nk.depth, neck_radius=nk.neck_radius,
-               neck_width=nk.neck_width, bulge_radius=nk.bulge_radius, bulge_width=nk.bulge_width)
-    out["notes"] = tuple(notes)
-    return Inspection(**out)
+    return dict(necked=bool(nk.depth > max(NECK_MIN_MODULES * module, 2 * g.e)), neck_depth=nk.depth,
+                neck_radius=nk.neck_radius, neck_width=nk.neck_width, bulge_radius=nk.bulge_radius,
+                bulge_width=nk.bulge_width)
 
 
 def _span(g: ToothGeometry, gi, k, r_ref, beta, notes) -> dict:

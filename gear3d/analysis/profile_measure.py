@@ -395,7 +395,7 @@ def _m_from_centre(R, d_pin, z, internal):
     return 2 * R * odd + (-d_pin if internal else d_pin)
 
 
-def over_pins_profile(g: ToothGeometry, d_pin: float, twist: float, ball_scale: float = 1.0):
+def over_pins_profile(g: ToothGeometry, d_pin: float, twist: float):
     """(M, uncertainty, centre radius, contact radius, why) for pins of diameter ``d_pin``
     from the polyline; ``why`` is None when the pin touches both flanks, else the reason."""
     rho = d_pin / 2
