@@ -10,7 +10,9 @@ values) = 1,000 parts (``--parts`` trims the tooth range), width 4 mm, STL at 0.
   ``--baseline`` parts in this process (``workers=0``; 1.00 = the pool costs nothing);
 * the 1-minute load average before and after each run (on a loaded machine the same
   run reads several times slower, so figures without it mean little), cores, CPU;
-* which heavy libraries the workers imported (an STL library should need none);
+* which heavy libraries the workers imported (an STL library should need none), and the
+  batch process's own CPU time over the wall time (its share of a core: preflight, results,
+  progress, manifests; the workers' CPU is not in it);
 * whether the manifests of all runs are byte-identical (they must be).
 
 Writes ``out/bench/batch.md``, ``batch.json`` and ``batch.png`` (parts/s against workers);
@@ -77,14 +79,14 @@ def timed_run(lib, out, workers, progress) -> dict:
     from gear3d.jobs.batch import run_library
     shutil.rmtree(out, ignore_errors=True)
     la0 = load1()
-    t = time.perf_counter()
+    t, c = time.perf_counter(), time.process_time()
     r = run_library(lib, str(out), workers=workers, progress=progress)
-    dt = time.perf_counter() - t
+    dt, cpu = time.perf_counter() - t, time.process_time() - c
     la1 = load1()
     timings = json.loads((out / "timings.json").read_text())
     n = r["built"]
     return {"workers": workers, "parts": n, "failed": r["failed"], "seconds": dt, "parts_per_s": n / dt,
-            "load_before": la0, "load_after": la1,
+            "load_before": la0, "load_after": la1, "parent_cpu_s": cpu,
             "part_seconds_median": sorted(timings["parts"].values())[len(timings["parts"]) // 2],
             "heavy_imports": timings.get("last_run_heavy_imports", []),
             "processes": len(timings.get("last_run_workers", {}))}
@@ -101,8 +103,8 @@ def markdown(res) -> str:
         f"{res['cores']} cores, Python {res['python']}; `python benchmarks/bench_batch.py` "
         f"({res['date']}). Wall time from an empty folder, pool start-up included.", "",
         "| workers | parts | failed | wall time (s) | parts/s | efficiency | vs issue 12 before | "
-        "median s/part | load avg before / after |",
-        "|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
+        "median s/part | parent CPU / wall | load avg before / after |",
+        "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
     for r in rows:
         eff = r["parts_per_s"] / (r["workers"] * unit)
         before = BEFORE.get(r["workers"])
@@ -110,7 +112,8 @@ def markdown(res) -> str:
         lines.append(f"| {r['workers']} | {r['parts']:,} | {r['failed']} | {r['seconds']:.1f} | "
                      f"{r['parts_per_s']:.1f} | {eff:.2f} | "
                      f"{vs} | "
-                     f"{r['part_seconds_median']:.3f} | {r['load_before']} / {r['load_after']} |")
+                     f"{r['part_seconds_median']:.3f} | {r['parent_cpu_s'] / r['seconds']:.3f} | "
+                     f"{r['load_before']} / {r['load_after']} |")
     two = next((r for r in rows if r["workers"] == 2), None)
     lines += [""]
     if two is not None:
