@@ -115,8 +115,9 @@ def run_write(stage, obj):
         write(obj, path)
     if kind in MESH_KINDS:
         bodies = obj if isinstance(obj, list) else [obj]
-        extra["triangles"] = int(sum(b.manifold.num_tri() if hasattr(b, "manifold") else len(b.mesh.faces)
-                                     for b in bodies))   # manifold count: no trimesh needed
+        extra["triangles"] = int(sum(len(b.arrays()[1]) if hasattr(b, "arrays") else b.manifold.num_tri()
+                                     if hasattr(b, "manifold") else len(b.mesh.faces)
+                                     for b in bodies))   # arrays / manifold count: no trimesh needed
         extra["volume"] = float(sum(b.report["volume"] for b in bodies))
     return _file_info(path, out_dir, kind=kind, tolerance=i.get("tolerance"), **extra)
 
