@@ -247,3 +247,14 @@ def test_unwritable_out_exits_2_and_writes_nothing(tmp_path, capsys, bad):
     err = capsys.readouterr().err
     assert rc == 2 and err.count("\n") == 1 and err.startswith(f"gear3d: error: out = '{target}'")
     assert sorted(os.listdir(tmp_path)) == sorted(["lib.toml"] + (["afile"] if bad == "file" else []))
+
+
+@pytest.mark.parametrize("value", ["x", "-1", "1025", "1e3", "2.5"])
+def test_bad_workers_exit_2_naming_the_range(tmp_path, capsys, value):
+    f = _lib(tmp_path, [10])
+    with pytest.raises(SystemExit) as ex:
+        main(["batch", f, "--out", str(tmp_path / "o"), "--workers", value, "--no-progress"])
+    err = capsys.readouterr().err
+    assert ex.value.code == 2 and err.count("\n") == 1
+    assert f"--workers: '{value}' is not allowed: an integer in [0, 1024]" in err
+    assert sorted(os.listdir(tmp_path)) == ["lib.toml"]

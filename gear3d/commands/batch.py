@@ -17,12 +17,28 @@ import os
 import sys
 
 
+MAX_WORKERS = 1024
+
+
+def _workers(text: str) -> int:
+    """argparse type of ``--workers``: an integer in [0, MAX_WORKERS], else a one-line
+    refusal that names the range (exit 2)."""
+    import argparse
+    try:
+        v = int(text, 10)
+    except ValueError:
+        v = -1
+    if not 0 <= v <= MAX_WORKERS:
+        raise argparse.ArgumentTypeError(f"{_one_line(repr(text), 60)} is not allowed: an integer in [0, {MAX_WORKERS}]")
+    return v
+
+
 def add_parser(sub):
     p = sub.add_parser("batch", help="build a part library (TOML sweep) in parallel -> files + manifest")
     p.add_argument("library", help="library TOML file (see templates/)")
     p.add_argument("--out", default=None, help="output folder (default out/<library name>)")
-    p.add_argument("--workers", type=int, default=None,
-                   help="worker processes (default: CPU count; 0 = in this process)")
+    p.add_argument("--workers", type=_workers, default=None,
+                   help=f"worker processes, an integer in [0, {MAX_WORKERS}] (default: CPU count; 0 = in this process)")
     p.add_argument("--engine", default="local", choices=["local", "dask"],
                    help="process pool, or Dask distributed (needs: pip install 'gear3d[dask]')")
     p.add_argument("--scheduler", default=None, metavar="ADDR",
