@@ -242,16 +242,48 @@ def test_given_k_is_used_and_bad_k_is_refused_with_range():
 
 # ------------------------------------------------------------------ other families
 
-def test_sine_family_measured_on_profile_is_consistent():
-    p = gear3d.profile("sine", teeth=20, module=1, addendum_coeff=1.0)
-    ins = inspect(p)
-    assert ins.method == "profile"
-    assert ins.span_width is not None and ins.over_pins is not None
-    # pins over an even gear: M = 2 R + d exactly (the geometry of the measurement)
-    assert ins.over_pins == pytest.approx(2 * ins.pin_centre_radius + ins.pin_diameter, abs=1e-12)
-    # the chord at the pitch circle is 2 r sin(s / 2r) of the report's arc thickness
-    s = p.report["thickness_at_pitch"]
-    assert ins.chordal_thickness == pytest.approx(2 * 10 * math.sin(s / 20), abs=ins.chordal_uncertainty)
+def test_sine_family_measured_on_profile_converges_within_its_bound():
+    p = gear3d.profile("sine", teeth=20, module=1, addendum_coeff=1.0, tolerance=2e-3)
+    fine = p.at_tolerance(1e-4)
+    a = inspect(p)
+    assert a.method == "profile" and a.span_width is not None and a.over_pins is not None
+    b = inspect(fine, span_teeth=a.span_teeth, pin_diameter=a.pin_diameter)
+    # the ideal pin (only the default's choice) rests on the polyline's normal: 1 % apart
+    assert a.ideal_pin_diameter == pytest.approx(b.ideal_pin_diameter, rel=0.01)
+    # two independent tessellations: each value within its own bound of the same truth
+    assert abs(a.span_width - b.span_width) <= a.span_uncertainty + b.span_uncertainty
+    assert abs(a.over_pins - b.over_pins) <= a.over_pins_uncertainty + b.over_pins_uncertainty
+    assert abs(a.chordal_thickness - b.chordal_thickness) <= a.chordal_uncertainty + b.chordal_uncertainty
+    # the model's own arc thickness at the pitch circle gives the chord 2 r sin(s / 2r)
+    s = fine.report["thickness_at_pitch"]
+    assert b.chordal_thickness == pytest.approx(2 * 10 * math.sin(s / 20), abs=b.chordal_uncertainty)
+    # the pin circle is tangent to the exact boundary (the model's Newton foot points)
+    ang = math.radians(b.pin_angle_deg)
+    c = b.pin_centre_radius * np.array([[math.cos(ang), math.sin(ang)]])
+    assert float(fine.exact_distance(c)[0]) == pytest.approx(b.pin_diameter / 2, abs=b.over_pins_uncertainty)
+
+
+def test_between_pins_rings_hypothesis():
+    seen = []
+
+    @settings(max_examples=10, deadline=None, derandomize=True, database=None)
+    @given(z=st.integers(30, 90), x=st.floats(-0.2, 0.5))
+    def check(z, x):
+        try:
+            ins = inspect(gear3d.profile("involute", teeth=z, module=1.0, shift_coeff=x, internal=True))
+        except GearError:
+            seen.append(False)
+            return
+        if ins.over_pins_profile is None:
+            seen.append(False)
+            return
+        seen.append(True)
+        assert ins.over_pins == pytest.approx(over_pins_textbook(1.0, z, 20, x, ins.pin_diameter, internal=True),
+                                              abs=1e-9)
+        within(ins, "over_pins", "over_pins_profile", "over_pins_uncertainty")
+
+    check()
+    assert len(seen) >= 8 and sum(seen) >= 0.8 * len(seen), f"only {sum(seen)} of {len(seen)} rings measured"
 
 
 def test_pin_circle_is_tangent_to_both_flanks_of_a_cycloidal_gear():

@@ -131,9 +131,12 @@ def _crossing_angles(loop: np.ndarray, radii: np.ndarray) -> list:
     return [np.concatenate(o) if o else np.zeros(0) for o in out]
 
 
-def _crossings(loop: np.ndarray, radius: float, centre: float, half: float):
-    """Crossing points (mm) and the unit direction of the crossing edge, for the crossings of
-    one circle whose angle is within ``half`` of ``centre``: (points (N,2), dirs (N,2), angle rel)."""
+def _crossings(loop: np.ndarray, radius: float, centre: float, half: float, smooth: bool = False):
+    """Crossing points (mm) and a unit tangent there, for the crossings of one circle whose
+    angle is within ``half`` of ``centre``: (points (N,2), dirs (N,2), angle rel). The
+    tangent is the crossing edge's direction, or with ``smooth`` the vertices' central
+    differences interpolated along the edge (second order: the curve's own tangent to
+    O(h^2), where the chord's is only O(h))."""
     a = loop
     b = np.roll(loop, -1, axis=0)
     d = b - a
@@ -143,12 +146,19 @@ def _crossings(loop: np.ndarray, radius: float, centre: float, half: float):
     disc = B * B - 4 * A * C
     ok = (disc >= 0) & (A > 0)
     sq = np.sqrt(np.where(ok, disc, 0.0))
+    if smooth:
+        tv = np.roll(loop, -1, axis=0) - np.roll(loop, 1, axis=0)
+        tv /= np.maximum(np.hypot(tv[:, 0], tv[:, 1]), 1e-300)[:, None]
     P, D = [], []
     for sgn in (-1.0, 1.0):
         s = (-B + sgn * sq) / (2 * np.where(A > 0, A, 1.0))
         m = ok & (s >= 0) & (s < 1)
         P.append(a[m] + s[m, None] * d[m])
-        D.append(d[m] / np.sqrt(A[m])[:, None])
+        if smooth:
+            t = (1 - s[m, None]) * tv[m] + s[m, None] * np.roll(tv, -1, axis=0)[m]
+            D.append(t / np.maximum(np.hypot(t[:, 0], t[:, 1]), 1e-300)[:, None])
+        else:
+            D.append(d[m] / np.sqrt(A[m])[:, None])
     P, D = np.concatenate(P), np.concatenate(D)
     rel = (np.arctan2(P[:, 1], P[:, 0]) - centre + math.pi) % (2 * math.pi) - math.pi
     keep = np.abs(rel) <= half
@@ -426,7 +436,7 @@ def ideal_pin_profile(g: ToothGeometry, r_contact: float, twist: float) -> float
     centre P + rho n on the space's centre line (a ball: the helicoid's normal, turned back
     by the helix to the ball's height)."""
     c = space_angle(g)
-    P, D, rel = _crossings(g.loop, r_contact, c, math.pi / g.z)
+    P, D, rel = _crossings(g.loop, r_contact, c, math.pi / g.z, smooth=True)
     if len(P) == 0:
         return math.nan
     # the crossing of the flank just below the centre line (tooth 0's side)
