@@ -191,7 +191,13 @@ class ExactBoundary:
                 # trimming cut away: keep it only if it lies on the trimmed polygon;
                 # otherwise bound the distance by the polygon's own (+ its measured error)
                 c = chord[sel]
-                inside = pc.alive[c] & pc.alive[c + 1] & (t_i >= pc.t[c]) & (t_i <= pc.t[c + 1])
+                # inside the boundary: a chord with both ends alive, and a foot within it
+                # or within a neighbouring chord whose ends are alive too
+                nt = len(pc.t)
+                left = pc.alive[np.maximum(c - 1, 0)] & (c > 0)
+                right = pc.alive[np.minimum(c + 2, nt - 1)] & (c + 2 < nt)
+                inside = (pc.alive[c] & pc.alive[c + 1]
+                          & ((t_i >= pc.t[c]) | left) & ((t_i <= pc.t[c + 1]) | right))
                 sus = np.nonzero(~inside)[0]
                 if len(sus) and self.polygon is not None:
                     on = self._poly_dist(foot[sus]) <= 2 * self.tol + 1e-9

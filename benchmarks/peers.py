@@ -1,0 +1,211 @@
+"""gear3d against BOSL2 (OpenSCAD) on the reference helical gear, whole process, one run.
+
+Reference gear (../shared/peers/helical20.scad): 20 teeth, transverse module 1 and pressure
+angle 20 deg, helix 20 deg, 10 mm wide, 5 mm bore, STL written.
+
+For each tool and setting the benchmark runs the whole command N times, interleaved, and
+takes the median CPU time (user + sys of the child process, from ``getrusage``). It reads
+each STL back with trimesh (an independent reader) and measures the *flank error* the same
+way on both: every side triangle is sampled (corners, edge midpoints, centroid), each
+sample is turned back by the helix twist at its height, and its distance to the exact
+involute is taken along the base-circle tangent (two involutes of one base circle are
+parallel curves: the distance is r_b times the difference of their roll angles), on the
+working flank between radii ``R_LO`` and ``R_HI``. The tooth phase (where tooth 0 sits) is
+fitted for each mesh; the tooth thickness is the theoretical one, not fitted.
+
+gear3d's sources are byte-compiled first (``compileall``), as an installed package is.
+
+Run:  python benchmarks/peers.py [--runs 5] [--publish]
+``--publish`` writes the table into BENCHMARKS.md (between the peers markers) and the plot
+benchmarks/peers.png. Needs ``openscad`` (apt-get install -y openscad).
+"""
+from __future__ import annotations
+
+import argparse
+import math
+import os
+import platform
+import resource
+import shutil
+import statistics
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+import numpy as np
+
+ROOT = Path(__file__).resolve().parents[1]
+PEERS = ROOT.parent / "shared" / "peers"
+Z, M, ALPHA, BETA, WIDTH = 20, 1.0, 20.0, 20.0, 10.0
+RP = Z * M / 2
+RB = RP * math.cos(math.radians(ALPHA))
+R_LO, R_HI = RP - 0.4 * M, RP + 0.85 * M       # working flank, clear of root fillet and tip
+TOLS = [0.01, 0.006, 0.005, 0.004, 0.003, 0.002, 0.001]
+
+
+def cpu_run(cmd, cwd=None, env=None) -> float:
+    """CPU seconds (user + sys) of one whole child process."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    r = subprocess.run(cmd, cwd=cwd, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    if r.returncode != 0:
+        raise RuntimeError(f"{cmd}: {r.stderr.decode()[-500:]}")
+    return (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+
+
+def inv(a):
+    return np.tan(a) - a
+
+
+def flank_error(path: str) -> dict:
+    """Flank error (mm) of the helical reference gear in an STL file (see module doc)."""
+    import trimesh
+    mesh = trimesh.load(path, force="mesh", process=False)
+    V, F = np.asarray(mesh.vertices, float), np.asarray(mesh.faces)
+    tri = V[F]
+    n = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
+    nz = np.abs(n[:, 2]) / np.maximum(np.linalg.norm(n, axis=1), 1e-300)
+    tri = tri[nz < 0.5]                                   # side triangles only
+    bary = np.array([[1, 0, 0], [0, 1, 0], [0, 0, 1], [.5, .5, 0], [0, .5, .5], [.5, 0, .5],
+                     [1 / 3, 1 / 3, 1 / 3]])
+    pts = np.einsum("bk,tkj->tbj", bary, tri).reshape(-1, 3)
+    z = pts[:, 2]
+    zmin, zmax = V[:, 2].min(), V[:, 2].max()
+    inside = (z > zmin + 1e-6) & (z < zmax - 1e-6)
+    best = None
+    for hand in (1.0, -1.0):
+        th = hand * (z - zmin) * math.tan(math.radians(BETA)) / RP
+        c, s = np.cos(-th), np.sin(-th)
+        x = c * pts[:, 0] - s * pts[:, 1]
+        y = s * pts[:, 0] + c * pts[:, 1]
+        r = np.hypot(x, y)
+        sel = inside & (r >= R_LO) & (r <= R_HI)
+        phi = np.arctan2(y[sel], x[sel])
+        iv = inv(np.arccos(RB / r[sel]))
+        u1, u2 = phi - iv, phi + iv          # roll-angle positions of the two flank families
+        pitch = 2 * math.pi / Z
+        psi_b = math.pi / (2 * Z) + float(inv(math.radians(ALPHA)))  # half tooth angle at r_b
+
+        def dist(c0):
+            d1 = np.abs((u1 - (c0 - psi_b) + pitch / 2) % pitch - pitch / 2)
+            d2 = np.abs((u2 - (c0 + psi_b) + pitch / 2) % pitch - pitch / 2)
+            return RB * np.minimum(d1, d2)
+        grid = np.linspace(0, pitch, 721)
+        scores = [np.percentile(dist(g), 90) for g in grid]
+        g0 = grid[int(np.argmin(scores))]
+        lo, hi = g0 - pitch / 720, g0 + pitch / 720
+        for _ in range(60):                  # golden-section on the largest distance
+            a = hi - 0.618 * (hi - lo)
+            b = lo + 0.618 * (hi - lo)
+            if dist(a).max() < dist(b).max():
+                hi = b
+            else:
+                lo = a
+        d = dist(0.5 * (lo + hi))
+        res = {"flank_error": float(d.max()), "flank_p99": float(np.percentile(d, 99)),
+               "samples": int(sel.sum()), "triangles": int(len(F)),
+               "vertices": int(len(np.unique(V.round(9), axis=0)))}
+        if best is None or res["flank_error"] < best["flank_error"]:
+            best = res
+    return best
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--runs", type=int, default=5)
+    ap.add_argument("--publish", action="store_true")
+    args = ap.parse_args(argv)
+    openscad = shutil.which("openscad")
+    if openscad is None:
+        print("openscad not found: apt-get install -y openscad", file=sys.stderr)
+        return 2
+    gear3d = shutil.which("gear3d") or str(Path(sys.executable).with_name("gear3d"))
+    work = Path(tempfile.mkdtemp(prefix="gear3d-peers-"))
+    jobs = {"BOSL2 (OpenSCAD)": ([openscad, "-o", str(work / "bosl2.stl"), "helical20.scad"], PEERS,
+                                 work / "bosl2.stl", "slices=20"),
+            "python -c 'import numpy, manifold3d'": ([sys.executable, "-c", "import numpy, manifold3d"],
+                                                      None, None, "(floor)")}
+    for t in TOLS:
+        out = work / f"gear3d_{t}.stl"
+        jobs[f"gear3d tol {t:g}"] = ([gear3d, "body", "involute", "--teeth", str(Z), "--module", str(M),
+                                      "--kind", "helical", "--helix-angle", str(BETA), "--width", str(WIDTH),
+                                      "--bore", "5", "--tolerance", str(t), "-o", str(out)], None, out, f"tol {t:g} mm")
+    # an installed package carries compiled bytecode (pip compiles on install); an editable
+    # checkout under PYTHONDONTWRITEBYTECODE would recompile gear3d in every process
+    subprocess.run([sys.executable, "-m", "compileall", "-q", str(ROOT / "gear3d")], check=True)
+    times = {k: [] for k in jobs}
+    for i in range(args.runs):                       # interleaved: the machine's load hits all alike
+        for k, (cmd, cwd, _out, _s) in jobs.items():
+            times[k].append(cpu_run(cmd, cwd=cwd))
+        print(f"run {i + 1}/{args.runs} done", file=sys.stderr)
+    rows = []
+    bosl_cpu = statistics.median(times["BOSL2 (OpenSCAD)"])
+    for k, (cmd, cwd, out, setting) in jobs.items():
+        cpu = statistics.median(times[k])
+        row = {"tool": k, "setting": setting, "cpu_s": cpu, "cpu_ratio": cpu / bosl_cpu}
+        if out is not None:
+            row.update(flank_error(str(out)))
+        rows.append(row)
+    bosl = rows[0]
+    ok = [r for r in rows if r["tool"].startswith("gear3d") and r["flank_error"] <= bosl["flank_error"]]
+    matched = max(ok, key=lambda r: float(r["setting"].split()[1])) if ok else None
+    load = os.getloadavg()
+    lines = ["| tool | setting | CPU s (median) | CPU ratio to BOSL2 | triangles | vertices | flank error µm (max / p99) |",
+             "|---|---|---|---|---|---|---|"]
+    for r in rows:
+        fe = (f"{r['flank_error'] * 1e3:.2f} / {r['flank_p99'] * 1e3:.2f}" if "flank_error" in r else "")
+        tri = f"{r['triangles']:,}" if "triangles" in r else ""
+        ver = f"{r['vertices']:,}" if "vertices" in r else ""
+        mark = " **(matched)**" if r is matched else ""
+        lines.append(f"| {r['tool']}{mark} | {r['setting']} | {r['cpu_s']:.3f} | {r['cpu_ratio']:.2f} | {tri} | {ver} | {fe} |")
+    head = (f"Machine: {platform.machine()}, {os.cpu_count()} cores, Python {platform.python_version()}, "
+            f"load average {load[0]:.2f} / {load[1]:.2f} / {load[2]:.2f}; {args.runs} interleaved runs each.")
+    verdict = ("No gear3d tolerance reached BOSL2's flank error." if matched is None else
+               f"At equal or better flank error ({matched['flank_error'] * 1e3:.2f} µm against "
+               f"{bosl['flank_error'] * 1e3:.2f} µm) gear3d ({matched['setting']}) takes "
+               f"**{matched['cpu_ratio']:.2f}x** BOSL2's CPU time, with "
+               f"{matched['vertices'] / bosl['vertices']:.2f}x its vertices.")
+    table = "\n".join([head, "", *lines, "", verdict])
+    print(table)
+    if args.publish:
+        _publish(table, rows)
+    shutil.rmtree(work, ignore_errors=True)
+    return 0
+
+
+def _publish(table: str, rows) -> None:
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(figsize=(6.4, 4.2))
+    g = [r for r in rows if r["tool"].startswith("gear3d")]
+    b = rows[0]
+    ax.plot([r["flank_error"] * 1e3 for r in g], [r["cpu_ratio"] for r in g], "o-", label="gear3d (tolerances)")
+    for r in g:
+        ax.annotate(r["setting"].split()[1], (r["flank_error"] * 1e3, r["cpu_ratio"]), fontsize=7,
+                    textcoords="offset points", xytext=(4, 2))
+    ax.plot([b["flank_error"] * 1e3], [1.0], "s", color="C3", label="BOSL2 slices=20")
+    floor = rows[1]["cpu_ratio"]
+    ax.axhline(floor, color="0.6", ls=":", label="import numpy, manifold3d")
+    ax.axhline(0.5, color="C2", ls="--", lw=0.8, label="target 0.5x")
+    ax.set_xscale("log")
+    ax.set_xlabel("flank error (µm, max over the working flank)")
+    ax.set_ylabel("whole-process CPU time / BOSL2's")
+    ax.set_title("Reference helical gear, STL written")
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(ROOT / "benchmarks" / "peers.png", dpi=120)
+    md = ROOT / "BENCHMARKS.md"
+    text = md.read_text()
+    start, end = "<!-- peers:start -->", "<!-- peers:end -->"
+    block = f"{start}\n{table}\n\n![CPU ratio against flank error](benchmarks/peers.png)\n{end}"
+    if start in text:
+        text = text[:text.index(start)] + block + text[text.index(end) + len(end):]
+    else:
+        text = text.rstrip() + "\n\n## gear3d against BOSL2 (benchmarks/peers.py)\n\n" + block + "\n"
+    md.write_text(text)
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
