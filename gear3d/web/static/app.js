@@ -273,13 +273,16 @@ async function body3d() {
   geo.setIndex(new THREE.BufferAttribute(idx, 1));
   geo.computeVertexNormals();
   geo.computeBoundingSphere();
-  if (t.mesh) { t.scene.remove(t.mesh); t.mesh.geometry.dispose(); }
+  if (t.mesh) { t.scene.remove(t.mesh); t.mesh.geometry.dispose(); t.mesh.material.dispose(); }
   const mat = new THREE.MeshStandardMaterial({ color: 0x5b7fb8, metalness: 0.15, roughness: 0.55, flatShading: true });
   t.mesh = new THREE.Mesh(geo, mat);
   t.scene.add(t.mesh);
   const s = geo.boundingSphere;
-  const fresh = !t.fitted;
-  if (fresh) {
+  // fit the camera on the first body, a new family or a body of another size; keep the user's view otherwise
+  const ratio = t.fitRadius ? s.radius / t.fitRadius : 0;
+  if (!t.fitted || t.fitFamily !== r.family || ratio > 1.5 || ratio < 0.67) {
+    t.fitRadius = s.radius;
+    t.fitFamily = r.family;
     const d = s.radius / Math.sin((t.camera.fov * Math.PI) / 360) * 1.05;
     t.camera.position.set(s.center.x + 0.45 * d, s.center.y - 0.65 * d, s.center.z + 0.6 * d);
     t.controls.target.copy(s.center);
