@@ -279,3 +279,35 @@ def test_without_opencascade_step_brep_says_what_to_install(tmp_path, monkeypatc
     text = (tmp_path / "f.step").read_text()
     assert "MANIFOLD_SOLID_BREP" in text and "B_SPLINE" not in text
     assert os.path.getsize(tmp_path / "f.step") > 0
+
+
+def test_faceted_step_merges_coplanar_facets(tmp_path):
+    """The default (faceted) STEP: one planar face per coplanar region (trimesh's own
+    facet grouping is the oracle), end faces with their holes, a valid solid of the mesh's
+    exact volume."""
+    _occ()
+    p = gear3d.profile("involute", teeth=20, module=1, tolerance=0.01)
+    b = body(p, kind="spur", width=8, bore=8)
+    out = tmp_path / "f.step"
+    info = write(b, out)
+    shape = read_step(out)
+    assert len(sub_shapes(shape, "solid")) == 1 and is_valid(shape)
+    m = b.mesh
+    in_facets = sum(len(f) for f in m.facets)
+    want = len(m.facets) + len(m.faces) - in_facets
+    faces = sub_shapes(shape, "face")
+    assert len(faces) == want and len(faces) < len(m.faces) / 3
+    assert f"{want} planar faces" in info
+    # the end faces are single faces with the bore as a hole: 2 wires each
+    from OCP.BRepAdaptor import BRepAdaptor_Surface
+    from OCP.GeomAbs import GeomAbs_Plane
+    from OCP.TopoDS import TopoDS
+    as_face = getattr(TopoDS, "Face_s", None) or TopoDS.Face
+    ends = []
+    for f in faces:
+        s = BRepAdaptor_Surface(as_face(f))
+        assert s.GetType() == GeomAbs_Plane
+        if abs(abs(s.Plane().Axis().Direction().Z()) - 1) < 1e-12:
+            ends.append(len(sub_shapes(f, "wire")))
+    assert ends == [2, 2]
+    assert occ_volume(shape) == pytest.approx(b.manifold.volume(), rel=1e-9)
