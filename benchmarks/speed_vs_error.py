@@ -29,6 +29,11 @@ def publish(out_dir="out/bench"):
     md = md.replace("# Speed against error", "# Benchmarks: speed against error", 1)
     md += ("\nRegenerate with `python benchmarks/speed_vs_error.py --publish` "
            "(or `gear3d bench`, which writes `out/bench/` only).\n")
+    # sections other benchmarks own (between <!-- NAME:begin --> and <!-- NAME:end -->) are kept
+    import re
+    old = (ROOT / "BENCHMARKS.md").read_text() if (ROOT / "BENCHMARKS.md").exists() else ""
+    for m in re.finditer(r"(?ms)^<!-- ([\w-]+):begin -->$.*?^<!-- \1:end -->$", old):
+        md += "\n" + m.group(0) + "\n"
     tmp = ROOT / "BENCHMARKS.md.tmp"
     tmp.write_text(md)
     os.replace(tmp, ROOT / "BENCHMARKS.md")
