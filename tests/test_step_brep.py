@@ -178,7 +178,7 @@ def test_same_bytes_twice(helical, helical_step, tmp_path):
     # piece); + 2 end faces, 2 groove ends and the groove's root cylinder
     ("herringbone", dict(helix_angle_deg=25, gap=2.0), False, 16, 4 * 16 * 2 + 2 + 2 + 1),
     ("chevron-arch", dict(helix_angle_deg=30, arch_radius=4.0), False, 20, 2 * 20 * 3 + 2),
-    ("helical", dict(helix_angle_deg=15), True, 30, None),
+    ("helical", dict(helix_angle_deg=15), True, 24, None),
 ])
 def test_kinds_and_rings(kind, kw, internal, z, faces, tmp_path):
     _occ()

@@ -184,6 +184,47 @@ def _closest_params(Ga, ka, ta, Gb, kb, tb, ang, iters=80):
     return s, u, 0.5 * (pa + pb), float(np.hypot(*(pa - pb)))
 
 
+@dataclass
+class ExactSet:
+    """The exact pieces the trimmed loop is mapped onto: the profile's tooth-period
+    evaluators plus, when the profile was cut by a turned tip circle (``tip_radius``), that
+    circle over tooth 0's sector (t in [0, 1] -> angle (t - 1/2)·2π/z), sampled at the
+    loop's own vertices on it."""
+    pieces: list
+    piece_params: list
+    teeth: int
+    tolerance: float
+
+
+def exact_set(profile) -> ExactSet:
+    """The :class:`ExactSet` of a profile (mm)."""
+    pieces, params = list(profile.pieces), [np.asarray(t, float) for t in profile.piece_params]
+    z = profile.teeth
+    rt = (getattr(profile, "params", None) or {}).get("tip_radius")
+    if rt:
+        rt = float(rt)
+        ang = 2 * math.pi / z
+        L = np.vstack(profile.loops)
+        r = np.hypot(L[:, 0], L[:, 1])
+        on = np.abs(r - rt) <= 1e-7 * max(1.0, rt)
+        if on.any():
+            phi = np.arctan2(L[on, 1], L[on, 0])
+            t = (phi - np.round(phi / ang) * ang) / ang + 0.5
+            # every tooth repeats tooth 0's vertices: merge copies that differ by rounding
+            t = np.sort(np.clip(t, 0, 1))
+            t = t[np.concatenate([[True], np.diff(t) > 1e-9])]
+            if len(t) > 1:     # the circle was sampled evenly: continue past the corners
+                dt = float(np.median(np.diff(t)))
+                t = np.unique(np.concatenate([t, t[0] - dt * np.arange(1, 4), t[-1] + dt * np.arange(1, 4)]))
+
+            def arc(tt, rt=rt, ang=ang):
+                a = (np.asarray(tt, float) - 0.5) * ang
+                return np.stack([rt * np.cos(a), rt * np.sin(a)], axis=-1)
+            pieces.append(arc)
+            params.append(t)
+    return ExactSet(pieces, params, z, float(profile.tolerance))
+
+
 def loop_runs(profile, loop) -> list:
     """Map a closed trimmed loop (vertices mm) onto the exact pieces: the list of
     :class:`Run` in loop order, each with exact end points. Raises GearError when a stretch
@@ -268,7 +309,9 @@ def loop_runs(profile, loop) -> list:
         i = (start + s_) % M
         lb = labels[i]
         if lb is not None:
-            if groups and key(lb) == key(prev):
+            # same piece, copy and direction, and the samples follow on (a self-crossing of
+            # one piece, e.g. a pointed tip, starts a new run)
+            if groups and key(lb) == key(prev) and prev[3] == lb[2]:
                 groups[-1][0].append(lb)
             else:
                 groups.append([[lb], i])
@@ -673,15 +716,16 @@ def brep_solid(b, measure: bool = True):
     z = prof.teeth
     ang = 2 * math.pi / z
     e_fit = FIT_SHARE * tol
-    runs = loop_runs(prof, prof.tooth_loop)
-    flanks, which = _fit_runs(prof, runs, e_fit)
+    ex = exact_set(prof)
+    runs = loop_runs(ex, prof.tooth_loop)
+    flanks, which = _fit_runs(ex, runs, e_fit)
     rho = max(float(np.hypot(*f.coefs.T).max()) for f in flanks)
     t_fit = time.perf_counter()
 
     gap = float(rep.get("gap") or 0.0)
     lp = _law_pieces(law, gap)
     faces, recs = [], []
-    groups = _merge_runs(runs, which, flanks, ang, prof.pieces)
+    groups = _merge_runs(runs, which, flanks, ang, ex.pieces)
     sections = {}        # z -> list of section control points (loop order, one per group)
     law_bound = 0.0
     for za, zb, in_gap in lp:
@@ -735,7 +779,7 @@ def brep_solid(b, measure: bool = True):
         shape = _transformed(shape, T)
     t_feat = time.perf_counter()
     info = _validate(shape, b, tol)
-    max_err = _measure(prof, law, flanks, recs, tol) if measure else math.nan
+    max_err = _measure(ex, law, flanks, recs, tol) if measure else math.nan
     t_end = time.perf_counter()
     info.update({
         "max_error": max_err, "tolerance": tol, "flank_faces": n_flank,
@@ -764,10 +808,11 @@ def section_wire(b, z: float = 0.0):
     prof = b.profile
     ang = 2 * math.pi / prof.teeth
     tol = float(b.report["tolerance"])
-    runs = loop_runs(prof, prof.tooth_loop)
-    flanks, which = _fit_runs(prof, runs, FIT_SHARE * tol)
+    ex = exact_set(prof)
+    runs = loop_runs(ex, prof.tooth_loop)
+    flanks, which = _fit_runs(ex, runs, FIT_SHARE * tol)
     th = float(b.twist(z))
-    groups = _merge_runs(runs, which, flanks, ang, prof.pieces)
+    groups = _merge_runs(runs, which, flanks, ang, ex.pieces)
     return _section_wire([bspline_curve(np.column_stack([_turn(g.ctrl, math.cos(th), math.sin(th)),
                                                          np.full(len(g.ctrl), z)]), g.knots, 3)
                           for g in groups])
