@@ -3,28 +3,90 @@
 Bad input exits with code 2 and one line on stderr naming the parameter, its value and
 the allowed range; no file is written. Heavy libraries are imported by the command that
 needs them, so ``gear3d --help`` starts fast.
+
+Exit codes: 0 success, 1 a batch with failed parts, 2 bad input (one line on stderr),
+130 interrupted (SIGINT), 143 terminated (SIGTERM). On SIGINT/SIGTERM every temporary
+file still being written is removed (:data:`gear3d.export.LIVE_TEMPS`), so an
+interrupted run leaves neither a partial nor a temporary file.
 """
 from __future__ import annotations
 
 import argparse
 import importlib
+import math
+import signal
 import sys
+
+import os
+
+# one BLAS thread: gear3d's arrays are small, and idle BLAS threads only add CPU time to
+# every process (set before numpy is first imported; a user's own setting wins)
+for _v in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ.setdefault(_v, "1")
 
 #: sub-command modules, in help order; each defines ``add_parser(subparsers)`` and ``run(args)``
 COMMANDS = ["profile", "inspect", "body", "pair", "check", "drive", "harmonic", "build", "batch", "bench", "families", "serve"]
 
+#: exit codes of the signals the CLI handles
+SIGNAL_EXIT = {signal.SIGINT: 130, signal.SIGTERM: 143}
+
+
+def _one_line(text) -> str:
+    from .errors import one_line
+    return one_line(text)
+
 
 class _Parser(argparse.ArgumentParser):
+    """One-line errors with exit code 2; no prefix matching (``--bore`` never means
+    ``--bore-radius``)."""
+
+    def __init__(self, *a, **kw):
+        kw.setdefault("allow_abbrev", False)
+        super().__init__(*a, **kw)
+
     def error(self, message):  # one line, exit code 2
-        sys.stderr.write(f"gear3d: error: {message}\n")
+        sys.stderr.write(f"gear3d: error: {_one_line(message)}\n")
         raise SystemExit(2)
 
 
-def build_parser() -> argparse.ArgumentParser:
-    ap = _Parser(prog="gear3d", description="Gear theory to manufacturable geometry.")
+def number(kind: str = "float", lo=None, hi=None, *, lo_open=False, hi_open=False, unit: str = ""):
+    """An argparse ``type=`` that reads a finite number in a range and says the range when it
+    refuses: ``--teeth x`` -> ``argument --teeth: 'x' is not allowed: an integer in [1, 100000]``.
+
+    ``kind`` is ``"int"`` or ``"float"``; ``lo``/``hi`` bound it (None = unbounded); the
+    family builders still check their own, tighter, ranges.
+    """
+    integer = kind == "int"
+    lo_b, hi_b = ("(" if lo_open else "["), (")" if hi_open else "]")
+    rng = f"{lo_b}{'-inf' if lo is None else f'{lo:g}'}, {'inf' if hi is None else f'{hi:g}'}{hi_b}"
+    allowed = ("an integer in " if integer else "a number in ") + rng + (f" {unit}" if unit else "")
+
+    def parse(text: str):
+        try:
+            if not text.isascii():      # no full-width or Arabic-Indic digits
+                raise ValueError(text)
+            v = int(text, 10) if integer else float(text)
+            ok = math.isfinite(v) and (lo is None or v > lo or (v == lo and not lo_open)) \
+                and (hi is None or v < hi or (v == hi and not hi_open))
+        except (ValueError, OverflowError):
+            ok = False
+        if not ok:
+            from .errors import _show
+            raise argparse.ArgumentTypeError(f"{_show(text)} is not allowed: {allowed}")
+        return v
+    parse.__name__ = "integer" if integer else "number"
+    return parse
+
+
+def build_parser(only=None) -> argparse.ArgumentParser:
+    """The argument parser; ``only`` (a list of command names) imports just those command
+    modules (a run of one command needs only its own module and flags)."""
+    ap = _Parser(prog="gear3d", description="Gear theory to manufacturable geometry.",
+                 epilog="Exit codes: 0 ok, 1 a batch with failed parts, 2 bad input (one line on "
+                        "stderr), 130 interrupted, 143 terminated.")
     ap.add_argument("--version", action="version", version="gear3d 0.1.0")
     sub = ap.add_subparsers(dest="command", parser_class=_Parser, metavar="COMMAND")
-    for name in COMMANDS:
+    for name in (only or COMMANDS):
         try:
             mod = importlib.import_module(f"gear3d.commands.{name}")
         except ModuleNotFoundError as e:  # a command not shipped yet
@@ -36,22 +98,77 @@ def build_parser() -> argparse.ArgumentParser:
     return ap
 
 
+class Terminated(BaseException):
+    """Raised in the main thread by the SIGINT/SIGTERM handler; ``code`` is the exit code."""
+
+    def __init__(self, signum: int):
+        self.signum, self.code = signum, SIGNAL_EXIT.get(signum, 128 + int(signum))
+        super().__init__(signum)
+
+
+def _remove_live_temps():
+    try:
+        from .export import remove_live_temps
+    except Exception:  # pragma: no cover - the exporters failed to import
+        return
+    remove_live_temps()
+
+
+def _on_signal(signum, frame):
+    # remove the temporary files now (the writer may be deep in C code that would not
+    # unwind soon), ignore further signals of this kind, then unwind the main thread
+    signal.signal(signum, signal.SIG_IGN)
+    _remove_live_temps()
+    raise Terminated(signum)
+
+
+def _install_handlers() -> dict:
+    old = {}
+    for s in SIGNAL_EXIT:
+        try:
+            old[s] = signal.signal(s, _on_signal)
+        except (ValueError, OSError):  # not the main thread of the main interpreter
+            pass
+    return old
+
+
 def main(argv=None) -> int:
     from .errors import GearError
-    ap = build_parser()
-    args = ap.parse_args(argv)
-    if not getattr(args, "_run", None):
-        ap.print_help()
-        return 2
+    old = _install_handlers()
     try:
-        rc = args._run(args)
-    except GearError as e:
-        sys.stderr.write(f"gear3d: error: {e}\n")
-        return 2
+        words = list(sys.argv[1:] if argv is None else argv)
+        first = next((w for w in words if not w.startswith("-")), None)
+        ap = build_parser([first] if first in COMMANDS and words and words[0] == first else None)
+        try:
+            args = ap.parse_args(words)
+        except SystemExit as e:   # --help / --version (0) or a usage error (2, one line written)
+            return e.code if isinstance(e.code, int) else 2
+        if not getattr(args, "_run", None):
+            ap.print_help()
+            sys.stderr.write("gear3d: error: a command is required: one of "
+                             + ", ".join(c for c in COMMANDS) + "\n")
+            return 2
+        try:
+            rc = args._run(args)
+        except GearError as e:
+            sys.stderr.write(f"gear3d: error: {_one_line(e)}\n")
+            return 2
+        return int(rc or 0)
+    except Terminated as t:
+        _remove_live_temps()
+        name = "interrupted" if t.signum == signal.SIGINT else "terminated"
+        sys.stderr.write(f"gear3d: {name} (signal {int(t.signum)}); temporary files removed\n")
+        return t.code
     except KeyboardInterrupt:
-        sys.stderr.write("gear3d: interrupted\n")
+        _remove_live_temps()
+        sys.stderr.write("gear3d: interrupted; temporary files removed\n")
         return 130
-    return int(rc or 0)
+    finally:
+        for s, h in old.items():
+            try:
+                signal.signal(s, h)
+            except (ValueError, OSError, TypeError):  # pragma: no cover
+                pass
 
 
 if __name__ == "__main__":

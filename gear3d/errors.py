@@ -9,14 +9,34 @@ from __future__ import annotations
 import math
 
 
+def one_line(text) -> str:
+    """``text`` on one printable line: newlines, NUL and other control characters are
+    escaped (``\\n``, ``\\x00``), so a hostile name cannot forge or split a message."""
+    s = str(text)
+    if s.isprintable():
+        return s
+    return "".join(c if c.isprintable() else repr(c)[1:-1] for c in s)
+
+
+def _show(value) -> str:
+    """A value for a message: ``repr`` (strings quoted), at most 200 characters."""
+    try:
+        r = repr(value)
+    except Exception:  # a hostile __repr__
+        r = f"<{type(value).__name__}>"
+    return r if len(r) <= 200 else r[:197] + "..."
+
+
 class GearError(ValueError):
-    """Bad input or an infeasible request; ``param``/``value``/``allowed`` say which."""
+    """Bad input or an infeasible request; ``param``/``value``/``allowed`` say which.
+
+    The message is always one line (control characters escaped, see :func:`one_line`)."""
 
     def __init__(self, param: str, value, allowed: str, why: str = ""):
         self.param, self.value, self.allowed, self.why = param, value, allowed, why
-        msg = f"{param} = {value!r} is not allowed: {allowed}"
+        msg = f"{one_line(param)} = {one_line(_show(value))} is not allowed: {one_line(allowed)}"
         if why:
-            msg += f" ({why})"
+            msg += f" ({one_line(why)})"
         super().__init__(msg)
 
 
@@ -24,12 +44,35 @@ class ToleranceError(GearError):
     """The requested tolerance cannot be met (too fine for double precision or the vertex budget)."""
 
 
-def _fmt(x) -> str:
+def _fmt(x, down=None) -> str:
+    """A bound for a message, 6 significant digits. ``down=True`` rounds an upper bound
+    down and ``down=False`` a lower bound up, so that the printed range never includes a
+    value the check refuses (16.4999999937 prints as 16.4999, not 16.5)."""
     if x is None:
         return ""
     if isinstance(x, float) and math.isinf(x):
         return "inf" if x > 0 else "-inf"
-    return f"{x:g}" if isinstance(x, (int, float)) else str(x)
+    if not isinstance(x, (int, float)):
+        return str(x)
+    s = f"{x:g}"
+    if down is None or float(s) == x:
+        return s
+    e = math.floor(math.log10(abs(x))) - 5
+    v = float(s)
+    if down and v > x:
+        v -= 10.0 ** e
+    elif not down and v < x:
+        v += 10.0 ** e
+    v = round(v, -e) if e < 0 else v
+    return f"{v:.6g}"
+
+
+def allowed_range(lo=None, hi=None, *, lo_open=False, hi_open=False, integer=False, unit: str = "") -> str:
+    """``"a number in (0, 16.4999] mm"``: the words :func:`check_number` uses for a range."""
+    lo_b = "(" if lo_open else "["
+    hi_b = ")" if hi_open else "]"
+    rng = f"{lo_b}{_fmt(lo, False) if lo is not None else '-inf'}, {_fmt(hi, True) if hi is not None else 'inf'}{hi_b}"
+    return ("an integer in " if integer else "a number in ") + rng + (f" {unit}" if unit else "")
 
 
 def check_number(name: str, value, lo=None, hi=None, *, lo_open=False, hi_open=False,
@@ -38,15 +81,14 @@ def check_number(name: str, value, lo=None, hi=None, *, lo_open=False, hi_open=F
 
     ``lo``/``hi`` are the bounds (None = unbounded); ``*_open`` makes a bound exclusive.
     """
-    lo_b = "(" if lo_open else "["
-    hi_b = ")" if hi_open else "]"
-    rng = f"{lo_b}{_fmt(lo) if lo is not None else '-inf'}, {_fmt(hi) if hi is not None else 'inf'}{hi_b}"
-    allowed = ("an integer in " if integer else "a number in ") + rng + (f" {unit}" if unit else "")
+    allowed = allowed_range(lo, hi, lo_open=lo_open, hi_open=hi_open, integer=integer, unit=unit)
     if isinstance(value, bool):
+        raise GearError(name, value, allowed)
+    if isinstance(value, str) or not _numeric(value):
         raise GearError(name, value, allowed)
     try:
         v = float(value)
-    except (TypeError, ValueError):
+    except (TypeError, ValueError, OverflowError):
         raise GearError(name, value, allowed) from None
     if not math.isfinite(v):
         raise GearError(name, value, allowed)
@@ -61,8 +103,38 @@ def check_number(name: str, value, lo=None, hi=None, *, lo_open=False, hi_open=F
     return v
 
 
+def _numeric(value) -> bool:
+    """True for Python / numpy numbers (int, float, numpy scalars and 0-d arrays), not for
+    strings, None, sequences or objects that merely define ``__float__``."""
+    import numbers
+    if isinstance(value, numbers.Real):
+        return True
+    try:
+        import numpy as np
+    except ImportError:  # pragma: no cover
+        return False
+    return isinstance(value, np.ndarray) and value.ndim == 0 and value.dtype.kind in "iuf"
+
+
+def check_bool(name: str, value) -> bool:
+    """Validate a flag: ``True``/``False`` (or a numpy bool), nothing else (not ``'yes'``, not 1)."""
+    try:
+        import numpy as np
+        if isinstance(value, np.bool_):
+            return bool(value)
+    except ImportError:  # pragma: no cover
+        pass
+    if not isinstance(value, bool):
+        raise GearError(name, value, "True or False")
+    return value
+
+
 def check_choice(name: str, value, choices) -> str:
     """Validate that ``value`` is one of ``choices``."""
-    if value not in choices:
+    try:
+        ok = isinstance(value, str) and value in choices
+    except TypeError:
+        ok = False
+    if not ok:
         raise GearError(name, value, "one of " + ", ".join(map(str, choices)))
     return value

@@ -194,7 +194,12 @@ def mate(tool, teeth: int, internal: bool | None = None, tolerance: float | None
     generates a ring. ``tolerance`` (mm) defaults to the tool's. Tooth 0 of the result is
     centred on +x, so both wheels at phase 0 are in mesh (see :func:`place`).
     """
-    from ..model import build_profile
+    from ..model import Profile, build_profile
+    if not isinstance(tool, Profile):
+        raise GearError("tool", type(tool).__name__, "a gear3d Profile (gear3d.profile(...)) to roll as the cutter")
+    if internal is not None:
+        from ..errors import check_bool
+        internal = check_bool("internal", internal)
     z2 = int(check_number("teeth", teeth, 1, 100_000, integer=True))
     z1, r1 = tool.teeth, tool.pitch_radius
     m = 2 * r1 / z1

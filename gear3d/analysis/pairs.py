@@ -30,7 +30,7 @@ class _Placed:
     def __init__(self, prof, centre):
         self.prof = prof
         self.c = np.asarray(centre, float)
-        self.loops = [np.asarray(l, float) for l in prof.loops]
+        self.loops = _valid_loops([np.asarray(l, float) for l in prof.loops])
 
     def polygon(self, ang):
         import shapely
@@ -38,6 +38,26 @@ class _Placed:
         outer = max(ls, key=lambda l: abs(_area(l)))
         holes = [l for l in ls if l is not outer]
         return shapely.Polygon(outer, holes)
+
+
+def _valid_loops(loops):
+    """The loops of a valid polygon (GEOS refuses self-touching rings, which a profile
+    within tolerance of a cusp can have): unchanged when valid, else repaired once with
+    ``make_valid`` (largest polygon kept; rotations keep it valid)."""
+    import shapely
+    outer = max(loops, key=lambda l: abs(_area(l)))
+    poly = shapely.Polygon(outer, [l for l in loops if l is not outer])
+    if poly.is_valid:
+        return loops
+    fixed = shapely.make_valid(poly)
+    parts = [g for g in getattr(fixed, "geoms", [fixed]) if g.geom_type == "Polygon"]
+    if not parts:
+        parts = [g for m in getattr(fixed, "geoms", []) if m.geom_type == "MultiPolygon" for g in m.geoms]
+    if not parts:
+        return loops
+    best = max(parts, key=lambda g: g.area)
+    return [np.asarray(best.exterior.coords, float)[:-1]] + \
+        [np.asarray(r.coords, float)[:-1] for r in best.interiors]
 
 
 def _area(l):
@@ -65,7 +85,19 @@ def _penetration(A, B):
     return best, where, 0.0
 
 
+def _check_profiles(p1, p2):
+    """Both wheels must be Profiles (anything else: GearError naming ``p1``/``p2``)."""
+    from ..model import Profile
+    for name, p in (("p1", p1), ("p2", p2)):
+        if not isinstance(p, Profile):
+            raise GearError(name, type(p).__name__, "a gear3d Profile (gear3d.profile(...))")
+
+
 def _setup(p1, p2, internal, center_distance):
+    _check_profiles(p1, p2)
+    if internal is not None:
+        from ..errors import check_bool
+        internal = check_bool("internal", internal)
     r1, r2 = p1.pitch_radius, p2.pitch_radius
     if internal is None:
         internal = bool(p1.internal or p2.internal)
@@ -76,6 +108,12 @@ def _setup(p1, p2, internal, center_distance):
     m1, m2 = 2 * r1 / p1.teeth, 2 * r2 / p2.teeth
     if abs(m1 - m2) > 1e-9 * max(m1, m2):
         raise GearError("p2.module", m2, f"the module of p1 ({m1:g} mm)")
+    if internal:
+        ring, pin = (p2, p1) if p2.internal else (p1, p2)
+        if ring.teeth <= pin.teeth:
+            raise GearError("p2.teeth" if ring is p2 else "p1.teeth", ring.teeth,
+                            f"an integer > {pin.teeth} for the ring",
+                            "a ring needs more teeth than its pinion")
     if internal:
         a0 = abs(r2 - r1)
     else:
@@ -391,6 +429,9 @@ def largest_addendum(family: str, teeth1: int, teeth2: int, internal: bool = Fal
     """Largest ``addendum_coeff`` (to ``precision``) for which the pair of ``family`` wheels
     with the same coefficient rolls without interference. Bisection on :func:`check_pair`."""
     from ..profiles import profile
+    precision = check_number("precision", precision, 1e-4, 0.5, unit="modules")
+    lo = check_number("lo", lo, 0, None, lo_open=True)
+    hi = check_number("hi", hi, lo, None, lo_open=True)
 
     def ok(c):
         a = profile(family, teeth=teeth1, addendum_coeff=c, **params)
@@ -420,6 +461,7 @@ def tip_correction(family: str, teeth1: int, teeth2: int, internal: bool = True,
     and the contact ratio before and after (the lost contact).
     """
     from ..profiles import profile
+    precision = check_number("precision", precision, 1e-4, 0.5, unit="modules")
     kw = dict(addendum_coeff=addendum_coeff, tolerance=tolerance, **params)
     p1 = profile(family, teeth=teeth1, **kw)
     p2 = profile(family, teeth=teeth2, internal=internal, **kw)

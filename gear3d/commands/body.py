@@ -5,28 +5,28 @@ report is printed as JSON.
 """
 from __future__ import annotations
 
-import json
 import sys
 
-from .profile import add_profile_flags, family_params
+from ..cli import number
+from .profile import FLOAT, add_profile_flags, family_params
 
 #: CLI flag -> body() keyword
 BODY_FLAGS = [
-    ("--width", float, "face width (mm)", "width"),
-    ("--helix-angle", float, "helix angle at the pitch circle (deg)", "helix_angle_deg"),
-    ("--gap", float, "herringbone central groove width (mm)", "gap"),
-    ("--arch-radius", float, "chevron-arch: arch radius R in the unrolled pitch cylinder (mm)", "arch_radius"),
-    ("--body-tolerance", float, "body tolerance (mm), default the profile --tolerance", "tolerance"),
-    ("--bore", float, "bore diameter (mm)", "bore"),
-    ("--hub-diameter", float, "hub boss diameter (mm)", "hub_diameter"),
-    ("--hub-length", float, "hub boss length above the top face (mm)", "hub_length"),
-    ("--set-screw", float, "radial set-screw hole diameter (mm)", "set_screw"),
-    ("--lightening-holes", int, "number of lightening holes in the web", "lightening_holes"),
-    ("--web-thickness", float, "web thickness (mm), faces recessed around the hub", "web_thickness"),
-    ("--xy-offset", float, "print compensation: XY offset of the profile (mm, + = more material)", "xy_offset"),
-    ("--elephant-foot", float, "45 deg chamfer of the bottom (first layer) edge (mm)", "elephant_foot"),
-    ("--chamfer", float, "45 deg chamfer of both tooth ends (mm)", "chamfer"),
-    ("--rim-diameter", float, "ring gears: outer rim diameter (mm)", "rim_diameter"),
+    ("--width", number("float", 0, None, lo_open=True, unit="mm"), "face width (mm)", "width"),
+    ("--helix-angle", FLOAT, "helix angle at the pitch circle (deg)", "helix_angle_deg"),
+    ("--gap", FLOAT, "herringbone central groove width (mm)", "gap"),
+    ("--arch-radius", FLOAT, "chevron-arch: arch radius R in the unrolled pitch cylinder (mm)", "arch_radius"),
+    ("--body-tolerance", FLOAT, "body tolerance (mm), default the profile --tolerance", "tolerance"),
+    ("--bore", FLOAT, "bore diameter (mm)", "bore"),
+    ("--hub-diameter", FLOAT, "hub boss diameter (mm)", "hub_diameter"),
+    ("--hub-length", FLOAT, "hub boss length above the top face (mm)", "hub_length"),
+    ("--set-screw", FLOAT, "radial set-screw hole diameter (mm)", "set_screw"),
+    ("--lightening-holes", number("int", 0, 64), "number of lightening holes in the web", "lightening_holes"),
+    ("--web-thickness", FLOAT, "web thickness (mm), faces recessed around the hub", "web_thickness"),
+    ("--xy-offset", FLOAT, "print compensation: XY offset of the profile (mm, + = more material)", "xy_offset"),
+    ("--elephant-foot", FLOAT, "45 deg chamfer of the bottom (first layer) edge (mm)", "elephant_foot"),
+    ("--chamfer", FLOAT, "45 deg chamfer of both tooth ends (mm)", "chamfer"),
+    ("--rim-diameter", FLOAT, "ring gears: outer rim diameter (mm)", "rim_diameter"),
     ("--name", str, "part name (3MF object name)", "name"),
 ]
 
@@ -34,6 +34,9 @@ BODY_FLAGS = [
 def add_parser(sub):
     p = sub.add_parser("body", help="a 3D gear body -> .stl .3mf .step .png .json")
     add_profile_flags(p)
+    for a in p._actions:        # a body is a mesh: its default is the printing tolerance
+        if a.dest == "tolerance":
+            a.help = "max deviation from the exact curve (mm); default 0.01 mm for mesh outputs (a body)"
     p.add_argument("--kind", default="spur", choices=["spur", "helical", "herringbone", "chevron-arch"],
                    help="twist law")
     p.add_argument("--hand", default="right", choices=["right", "left"], help="helix hand")
@@ -68,10 +71,10 @@ def run(args) -> int:
     kw = body_params(args)
     if "width" not in kw:
         raise GearError("width", None, "a number > 0 mm (--width)")
-    b = body(profile(args.family, **family_params(args)), **kw)
+    b = body(profile(args.family, **family_params(args, out, mesh=True)), **kw)
     if out is None:
-        json.dump(b.report, sys.stdout, indent=1, default=float)
-        sys.stdout.write("\n")
+        from ..export.json_format import dumps
+        sys.stdout.write(dumps(b.report) + "\n")
         return 0
     from ..export import write
     step_opts = {"step": args.step} if args.step and out.lower().endswith((".step", ".stp")) else {}

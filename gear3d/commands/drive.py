@@ -10,20 +10,27 @@ Double drive: ``--z2 --z3 --z2-inner --z4``; single drive: ``--z-flex --z-circul
 """
 from __future__ import annotations
 
-import json
 import os
 import sys
+
+from ..cli import number
+
+#: mm: default tolerance of ``build`` (mesh outputs, printing) and of ``check``
+BUILD_TOLERANCE = 0.01
+CHECK_TOLERANCE = 1e-4
+TOOTH_CHOICES = ("triangular", "sine", "involute")
 
 
 def _design_flags(p):
     p.add_argument("--seed002", action="store_true", help="seed 002's worked design (m 0.3, 200/202, 192/190)")
-    p.add_argument("--module", type=float, default=None, help="module m (mm)")
-    p.add_argument("--z2", type=int, default=None, help="double: outer teeth of the flexspline")
-    p.add_argument("--z3", type=int, default=None, help="double: teeth of the fixed ring")
-    p.add_argument("--z2-inner", type=int, default=None, help="double: inner teeth z'2 of the flexspline")
-    p.add_argument("--z4", type=int, default=None, help="double: teeth of the mobile wheel")
-    p.add_argument("--z-flex", type=int, default=None, help="single: flexspline teeth")
-    p.add_argument("--z-circular", type=int, default=None, help="single: circular spline teeth")
+    p.add_argument("--module", type=number("float", 0, 1000, lo_open=True, unit="mm"), default=None,
+                   help="module m (mm)")
+    p.add_argument("--z2", type=number("int", 1, 100_000), default=None, help="double: outer teeth of the flexspline")
+    p.add_argument("--z3", type=number("int", 1, 100_000), default=None, help="double: teeth of the fixed ring")
+    p.add_argument("--z2-inner", type=number("int", 1, 100_000), default=None, help="double: inner teeth z'2 of the flexspline")
+    p.add_argument("--z4", type=number("int", 1, 100_000), default=None, help="double: teeth of the mobile wheel")
+    p.add_argument("--z-flex", type=number("int", 1, 100_000), default=None, help="single: flexspline teeth")
+    p.add_argument("--z-circular", type=number("int", 1, 100_000), default=None, help="single: circular spline teeth")
     p.add_argument("--fixed", default=None, help="single: circular | flexspline (the fixed member)")
     for flag, hlp in [("--w0", "stage 1 max radial deformation (mm), default m*(z3-z2)/2"),
                       ("--w0-inner", "double, stage 2 deformation w'0 (mm)"),
@@ -34,7 +41,7 @@ def _design_flags(p):
                       ("--length-fixed", "double: fixed ring length (mm), default b"),
                       ("--length-mobile", "double: mobile wheel length (mm), default b"),
                       ("--length-circular", "single: circular spline length (mm), default b")]:
-        p.add_argument(flag, type=float, default=None, help=hlp)
+        p.add_argument(flag, type=number("float"), default=None, help=hlp)
 
 
 def _design(args):
@@ -59,18 +66,23 @@ def _design(args):
     return double_harmonic(**kw)
 
 
-def _write_text(path, text):
-    import tempfile
-    d = os.path.dirname(os.path.abspath(path))
-    fd, tmp = tempfile.mkstemp(dir=d, suffix=".tmp")
-    try:
-        with os.fdopen(fd, "w") as f:
-            f.write(text)
-        os.chmod(tmp, 0o644)
-        os.replace(tmp, path)
-    finally:
-        if os.path.exists(tmp):
-            os.remove(tmp)
+def _write_json(path, data, param="json"):
+    """``data`` as strict JSON (NaN/inf -> null), atomically."""
+    from ..export import atomic_path
+    from ..export.json_format import dumps
+    with atomic_path(path, param) as tmp, open(tmp, "w", encoding="utf-8") as f:
+        f.write(dumps(data) + "\n")
+
+
+def _check_paths(args):
+    """Every output path of the action, checked before any work."""
+    from ..export import check_out_dir, check_path
+    if getattr(args, "json", None) is not None:
+        check_path(args.json, "json", (".json",))
+    if getattr(args, "png", None) is not None:
+        check_path(args.png, "png", (".png", ".svg"))
+    if getattr(args, "output", None) is not None:
+        check_out_dir(args.output, "output")
 
 
 def add_parser(sub):
@@ -83,18 +95,20 @@ def add_parser(sub):
     d.add_argument("--json", default=None, help="write the full report as JSON to this file")
     b = acts.add_parser("build", help="parts -> OUTDIR/*.stl (+ --3mf assembly)")
     _design_flags(b)
-    b.add_argument("--tooth", default="triangular", help="triangular | sine | involute")
-    b.add_argument("--tolerance", type=float, default=1e-3, help="max deviation from the exact curves (mm)")
-    b.add_argument("--bearing-thickness", type=float, default=0.0, help="flexible bearing ring thickness (mm), 0 = none")
+    b.add_argument("--tooth", default="triangular", choices=TOOTH_CHOICES, help="triangular | sine | involute")
+    b.add_argument("--tolerance", type=number("float", 0, 1, lo_open=True, unit="mm"), default=BUILD_TOLERANCE,
+                   help=f"max deviation from the exact curves (mm); default {BUILD_TOLERANCE:g} mm (mesh outputs)")
+    b.add_argument("--bearing-thickness", type=number("float", 0, None, unit="mm"), default=0.0, help="flexible bearing ring thickness (mm), 0 = none")
     b.add_argument("--3mf", dest="threemf", action="store_true", help="also write the placed, deflected assembly as one 3MF")
     b.add_argument("-o", "--output", required=True, help="output folder")
     c = acts.add_parser("check", help="deformed-state mesh check of one stage -> JSON (+ --png)")
     _design_flags(c)
-    c.add_argument("--stage", type=int, default=1, help="1 (outer teeth) or 2 (double drive's inner teeth)")
-    c.add_argument("--tooth", default="triangular", help="triangular | sine | involute")
-    c.add_argument("--tolerance", type=float, default=1e-4, help="profile tolerance (mm)")
-    c.add_argument("--positions", type=int, default=16, help="flex rotations sampled over one pitch")
-    c.add_argument("--deflection", type=float, default=None, help="override w0 of the stage (mm); 0 = undeflected")
+    c.add_argument("--stage", type=number("int", 1, 2), default=1, help="1 (outer teeth) or 2 (double drive's inner teeth)")
+    c.add_argument("--tooth", default="triangular", choices=TOOTH_CHOICES, help="triangular | sine | involute")
+    c.add_argument("--tolerance", type=number("float", 0, 1, lo_open=True, unit="mm"), default=CHECK_TOLERANCE,
+                   help=f"profile tolerance (mm); default {CHECK_TOLERANCE:g} mm")
+    c.add_argument("--positions", type=number("int", 1, 1000), default=16, help="flex rotations sampled over one pitch")
+    c.add_argument("--deflection", type=number("float", 0, None, unit="mm"), default=None, help="override w0 of the stage (mm); 0 = undeflected")
     c.add_argument("--png", default=None, help="write a figure like seed 002 Figs. 3-4")
     c.add_argument("--json", default=None, help="write the report to this file instead of stdout")
     return p
@@ -105,11 +119,12 @@ def run(args) -> int:
     if getattr(args, "drive_kind", None) != "harmonic" or not getattr(args, "harmonic_action", None):
         raise GearError("drive", getattr(args, "drive_kind", None),
                         "`harmonic design|build|check` (see gear3d drive harmonic --help)")
+    _check_paths(args)
     design = _design(args)
     act = args.harmonic_action
     if act == "design":
         if args.json:
-            _write_text(args.json, json.dumps(design.report, indent=1, default=float) + "\n")
+            _write_json(args.json, design.report)
         sys.stdout.write(design.table() + "\n")
         return 0
     if act == "build":
@@ -121,24 +136,16 @@ def run(args) -> int:
                                 "the exporters are not available") from None
             raise
         from ..harmonic.parts import assembly, build_parts
+        from ..export import make_out_dir, remove_dirs
         out = args.output
-        if os.path.exists(out) and not os.path.isdir(out):
-            raise GearError("output", out, "a folder (existing or new)")
         parts = build_parts(design, tooth=args.tooth, tolerance=args.tolerance,
                             bearing_thickness=args.bearing_thickness)
-        os.makedirs(out, exist_ok=True)
-        for p in parts:
-            path = os.path.join(out, f"{p.name}.stl")
-            write(p, path)
-            sys.stdout.write(f"wrote {path}: volume {p.report['volume']:.4f} mm^3, genus {p.report['genus']}\n")
-        if args.threemf:
-            scene = assembly(design, tooth=args.tooth, tolerance=args.tolerance,
-                             bearing_thickness=args.bearing_thickness, parts=parts)
-            path = os.path.join(out, "assembly.3mf")
-            write(scene, path)
-            sys.stdout.write(f"wrote {path}: {len(scene)} parts\n")
-        _write_text(os.path.join(out, "design.json"), json.dumps(
-            {"design": design.report, "parts": {p.name: p.report for p in parts}}, indent=1, default=float) + "\n")
+        made = make_out_dir(out, "output")
+        try:
+            _write_parts(args, design, parts, out, write, assembly)
+        except BaseException:
+            remove_dirs(made)
+            raise
         return 0
     # check
     from ..harmonic.deform import mesh_check, mesh_figure, public_report
@@ -148,14 +155,34 @@ def run(args) -> int:
     chk = mesh_check(design, args.stage - 1, tooth=args.tooth, tolerance=args.tolerance,
                      w0=args.deflection, positions=args.positions)
     if args.png:
-        mesh_figure(chk, args.png)
-    txt = json.dumps(public_report(chk), indent=1, default=float) + "\n"
+        from ..export import atomic_path
+        with atomic_path(args.png, "png") as tmp:
+            mesh_figure(chk, tmp)
     if args.json:
-        _write_text(args.json, txt)
+        _write_json(args.json, public_report(chk))
         sys.stdout.write(f"wrote {args.json}: interference={chk['interference']} "
                          f"max_penetration={chk['max_penetration']:.4g} mm "
                          f"engagement depth {chk['max_engagement_depth']:.4f} mm at "
                          f"{chk['max_engagement_angle_deg']:.2f} deg\n")
     else:
-        sys.stdout.write(txt)
+        from ..export.json_format import dumps
+        sys.stdout.write(dumps(public_report(chk)) + "\n")
     return 0
+
+
+def _write_parts(args, design, parts, out, write, assembly):
+    """The parts' STL files (+ the 3MF assembly) and design.json into ``out``."""
+    for p in parts:
+        path = os.path.join(out, f"{p.name}.stl")
+        write(p, path)
+        sys.stdout.write(f"wrote {path}: volume {p.report['volume']:.4f} mm^3, genus {p.report['genus']}, "
+                         f"tolerance {args.tolerance:g} mm\n")
+    if args.threemf:
+        scene = assembly(design, tooth=args.tooth, tolerance=args.tolerance,
+                         bearing_thickness=args.bearing_thickness, parts=parts)
+        path = os.path.join(out, "assembly.3mf")
+        write(scene, path)
+        sys.stdout.write(f"wrote {path}: {len(scene)} parts\n")
+    _write_json(os.path.join(out, "design.json"),
+                {"design": design.report, "tolerance": args.tolerance,
+                 "parts": {p.name: p.report for p in parts}}, "output")

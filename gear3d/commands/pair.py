@@ -8,10 +8,9 @@ or a figure ``-o x.png|x.svg`` of the placed pair with the worst interference ma
 """
 from __future__ import annotations
 
-import json
 import sys
 
-from .check import add_pair_flags, build_pair, pair_profiles
+from .check import add_pair_flags, build_pair, pair_profiles, write_figure, write_report
 
 
 def add_parser(sub):
@@ -28,10 +27,13 @@ def add_parser(sub):
 def run(args) -> int:
     from ..errors import GearError
     from ..analysis.pairs import check_pair, largest_addendum, tip_correction
-    kw, z2, internal = pair_profiles(args)
+    from ..export import check_path
     out = args.output
-    if out is not None and not out.lower().endswith((".json", ".png", ".svg")):
-        raise GearError("output", out, "a path ending in .json, .png or .svg")
+    if out is not None:
+        check_path(out, "output", (".json", ".png", ".svg"))
+        if (args.largest_addendum or args.tip_correction) and not out.lower().endswith(".json"):
+            raise GearError("output", out, "a .json file with --largest-addendum / --tip-correction")
+    kw, z2, internal = pair_profiles(args)
     fam = args.family
     if args.largest_addendum:
         kw.pop("addendum_coeff", None)
@@ -45,17 +47,14 @@ def run(args) -> int:
         rep = check_pair(p1, p2, internal=internal)
         if out is not None and out.lower().endswith((".png", ".svg")):
             from ..figures import pair_figure
-            pair_figure(p1, p2, rep, out)
+            write_figure(out, lambda tmp: pair_figure(p1, p2, rep, tmp), "output")
             sys.stdout.write(f"wrote {out}: interference={rep['interference']} "
                              f"max_penetration={rep['max_penetration']:.4g} mm contact_ratio={rep['contact_ratio']:.3f}\n")
             return 0
-    text = json.dumps(rep, indent=1, default=float)
     if out is None:
-        sys.stdout.write(text + "\n")
+        from ..export.json_format import dumps
+        sys.stdout.write(dumps(rep) + "\n")
     else:
-        from ..export import atomic_path
-        with atomic_path(out) as tmp:
-            with open(tmp, "w") as fh:
-                fh.write(text + "\n")
+        write_report(out, rep, "output")
         sys.stdout.write(f"wrote {out}\n")
     return 0

@@ -1,52 +1,64 @@
 """``gear3d profile FAMILY ... -o OUT``: one 2D profile, format picked by OUT's extension."""
 from __future__ import annotations
 
-import json
 import sys
+
+from ..cli import number
+
+#: mm: the default tolerance of mesh outputs (printing), and of everything else (DXF, EDM)
+MESH_TOLERANCE = 0.01
+DEFAULT_TOLERANCE = 0.001
+#: extensions of mesh outputs (they default to :data:`MESH_TOLERANCE`)
+MESH_EXTS = (".stl", ".3mf", ".step", ".stp", ".obj", ".ply", ".vtu")
+TOLERANCE_HELP = (f"max deviation from the exact curve (mm); default {DEFAULT_TOLERANCE:g} mm, "
+                  f"{MESH_TOLERANCE:g} mm for mesh outputs ({' '.join(MESH_EXTS)})")
+
+#: a finite number (the families check their own ranges)
+FLOAT = number("float")
 
 #: CLI flag -> family keyword; only the flags a user gives are passed on, and a family
 #: refuses the ones it does not take (GearError naming the flag's parameter).
 PROFILE_FLAGS = [
-    ("--teeth", int, "number of teeth"),
-    ("--module", float, "module m (mm)"),
-    ("--addendum-coeff", float, "addendum coefficient (x m)"),
-    ("--dedendum-coeff", float, "dedendum coefficient (x m)"),
-    ("--shift-coeff", float, "profile shift / rack displacement coefficient (x m)"),
-    ("--pressure-angle", float, "pressure angle (deg)", "pressure_angle_deg"),
-    ("--tip-radius-coeff", float, "tool tip radius coefficient (x m), 0 = sharp"),
-    ("--backlash", float, "backlash as arc thickness removed at the pitch circle (mm)"),
-    ("--tip-radius", float, "turned tip radius (mm)"),
-    ("--rim-radius", float, "ring gear rim radius (mm)"),
+    ("--teeth", number("int", 1, 100_000), "number of teeth"),
+    ("--module", number("float", 0, 1000, lo_open=True, unit="mm"), "module m (mm)"),
+    ("--addendum-coeff", FLOAT, "addendum coefficient (x m)"),
+    ("--dedendum-coeff", FLOAT, "dedendum coefficient (x m)"),
+    ("--shift-coeff", FLOAT, "profile shift / rack displacement coefficient (x m)"),
+    ("--pressure-angle", FLOAT, "pressure angle (deg)", "pressure_angle_deg"),
+    ("--tip-radius-coeff", FLOAT, "tool tip radius coefficient (x m), 0 = sharp"),
+    ("--backlash", FLOAT, "backlash as arc thickness removed at the pitch circle (mm)"),
+    ("--tip-radius", FLOAT, "turned tip radius (mm)"),
+    ("--rim-radius", FLOAT, "ring gear rim radius (mm)"),
     ("--form", str, "sine family: epi | hypo (seed 000)"),
-    ("--unit-radius", float, "sine family, seed 000: rack unit radius r (mm)"),
-    ("--amplitude", float, "sine family, seed 000: harmonic amplitude A (mm)"),
-    ("--displacement", float, "sine family, seed 000: rack displacement dx (mm)"),
-    ("--pins", int, "cycloid: number of pins N"),
-    ("--pin-circle-radius", float, "cycloid: pin circle radius R (mm)"),
-    ("--pin-radius", float, "cycloid: pin radius (mm)"),
-    ("--eccentricity", float, "cycloid / EC: eccentricity (mm)"),
-    ("--mate-teeth", int, "EC / pairs: teeth of the mating wheel"),
-    ("--tooth-radius", float, "EC: tooth circle radius rho (mm)"),
-    ("--center-distance", float, "centre distance (mm)"),
-    ("--lobes", int, "gerotor: lobes of the inner rotor"),
+    ("--unit-radius", FLOAT, "sine family, seed 000: rack unit radius r (mm)"),
+    ("--amplitude", FLOAT, "sine family, seed 000: harmonic amplitude A (mm)"),
+    ("--displacement", FLOAT, "sine family, seed 000: rack displacement dx (mm)"),
+    ("--pins", number("int", 1, 100_000), "cycloid: number of pins N"),
+    ("--pin-circle-radius", FLOAT, "cycloid: pin circle radius R (mm)"),
+    ("--pin-radius", FLOAT, "cycloid: pin radius (mm)"),
+    ("--eccentricity", FLOAT, "cycloid / EC: eccentricity (mm)"),
+    ("--mate-teeth", number("int", 1, 100_000), "EC / pairs: teeth of the mating wheel"),
+    ("--tooth-radius", FLOAT, "EC: tooth circle radius rho (mm)"),
+    ("--center-distance", FLOAT, "centre distance (mm)"),
+    ("--lobes", number("int", 1, 100_000), "gerotor: lobes of the inner rotor"),
     ("--variant", str, "gerotor: epi | hypo (seed 000's two variants)"),
-    ("--offset-correction", float, "cycloid disc: equidistant correction for clearance (mm)"),
-    ("--radial-correction", float, "cycloid disc: pin-circle radius correction (mm)"),
-    ("--output-holes", int, "cycloid disc: number of output holes"),
-    ("--output-hole-radius", float, "cycloid disc: output hole radius (mm)"),
-    ("--output-circle-radius", float, "cycloid disc: output hole circle radius (mm)"),
-    ("--bore-radius", float, "cycloid disc: central bore radius (mm)"),
-    ("--rotor-lead", float, "Moineau: rotor lead (mm)"),
-    ("--rolling-radius-coeff", float, "cycloidal rack: rolling circle radius (x m)"),
-    ("--half-angle", float, "triangular teeth: tooth half-angle (deg)", "half_angle_deg"),
-    ("--thickness-coeff", float, "triangular teeth: tooth thickness on the pitch circle (x p)"),
+    ("--offset-correction", FLOAT, "cycloid disc: equidistant correction for clearance (mm)"),
+    ("--radial-correction", FLOAT, "cycloid disc: pin-circle radius correction (mm)"),
+    ("--output-holes", number("int", 0, 64), "cycloid disc: number of output holes"),
+    ("--output-hole-radius", FLOAT, "cycloid disc: output hole radius (mm)"),
+    ("--output-circle-radius", FLOAT, "cycloid disc: output hole circle radius (mm)"),
+    ("--bore-radius", FLOAT, "cycloid disc: central bore radius (mm)"),
+    ("--rotor-lead", FLOAT, "Moineau: rotor lead (mm)"),
+    ("--rolling-radius-coeff", FLOAT, "cycloidal rack: rolling circle radius (x m)"),
+    ("--half-angle", FLOAT, "triangular teeth: tooth half-angle (deg)", "half_angle_deg"),
+    ("--thickness-coeff", FLOAT, "triangular teeth: tooth thickness on the pitch circle (x p)"),
 ]
 
 #: DXF writer options of ``gear3d profile ... -o x.dxf``
 DXF_FLAGS = [
-    ("--kerf", float, "wire/kerf compensation: signed offset of the exact curve (mm, + = more material)", "kerf"),
-    ("--lead-in", float, "wire lead-in length (mm)", "lead_in"),
-    ("--start-angle", float, "polar angle of the wire start point (deg)", "start_angle_deg"),
+    ("--kerf", FLOAT, "wire/kerf compensation: signed offset of the exact curve (mm, + = more material)", "kerf"),
+    ("--lead-in", FLOAT, "wire lead-in length (mm)", "lead_in"),
+    ("--start-angle", FLOAT, "polar angle of the wire start point (deg)", "start_angle_deg"),
     ("--dxf-version", str, "DXF version: R2000 (default), R12 (LINE/ARC), R2004, R2010, R2013, R2018", "dxf_version"),
 ]
 
@@ -59,10 +71,20 @@ def add_profile_flags(p):
         dest = spec[3] if len(spec) > 3 else flag[2:].replace("-", "_")
         p.add_argument(flag, type=typ, dest=dest, default=None, help=hlp)
     p.add_argument("--internal", action="store_true", help="ring (internal) gear")
-    p.add_argument("--tolerance", type=float, default=1e-3, help="max deviation from the exact curve (mm)")
+    p.add_argument("--tolerance", type=number("float", 0, 1, lo_open=True, unit="mm"), default=None,
+                   help=TOLERANCE_HELP)
 
 
-def family_params(args) -> dict:
+def default_tolerance(output=None, mesh: bool = False) -> float:
+    """The CLI's default tolerance (mm): 0.01 for a mesh output (or ``mesh=True``), else 0.001."""
+    if mesh or (output is not None and str(output).lower().endswith(MESH_EXTS)):
+        return MESH_TOLERANCE
+    return DEFAULT_TOLERANCE
+
+
+def family_params(args, output=None, mesh: bool = False) -> dict:
+    """Family keywords from the flags given; ``tolerance`` defaults by the output (see
+    :func:`default_tolerance`)."""
     kw = {}
     for spec in PROFILE_FLAGS:
         dest = spec[3] if len(spec) > 3 else spec[0][2:].replace("-", "_")
@@ -71,14 +93,14 @@ def family_params(args) -> dict:
             kw[dest] = v
     if args.internal:
         kw["internal"] = True
-    kw["tolerance"] = args.tolerance
+    kw["tolerance"] = args.tolerance if args.tolerance is not None else default_tolerance(output, mesh)
     return kw
 
 
 def add_parser(sub):
     p = sub.add_parser("profile", help="a 2D gear profile -> .json .dxf .svg .png .stl")
     add_profile_flags(p)
-    p.add_argument("--width", type=float, default=None, help="extrusion width for .stl (mm)")
+    p.add_argument("--width", type=number("float", 0, None, lo_open=True, unit="mm"), default=None, help="extrusion width for .stl (mm)")
     for flag, typ, hlp, dest in DXF_FLAGS:
         p.add_argument(flag, type=typ, dest=dest, default=None, help=hlp)
     p.add_argument("--spline", action="store_true", help="DXF: SPLINE entities (control points) instead of arcs")
@@ -94,27 +116,52 @@ def run(args) -> int:
     if out is not None:
         from ..export import check_output
         check_output(out, kinds="profile")
-    prof = profile(args.family, **family_params(args))
+    opts = _write_options(args, out)
+    prof = profile(args.family, **family_params(args, out))
     if out is None:
-        json.dump(prof.report, sys.stdout, indent=1, default=float)
-        sys.stdout.write("\n")
+        from ..export.json_format import dumps
+        sys.stdout.write(dumps(prof.report) + "\n")
         return 0
     from ..export import write
+    info = write(prof, out, **opts)
+    r = prof.report
+    sys.stdout.write(f"wrote {out}: {args.family} z={r['teeth']} max_error={r['max_error']:.3g} mm "
+                     f"(tolerance {r['tolerance']:g} mm)" + (f" {info}" if info else "") + "\n")
+    return 0
+
+
+def _write_options(args, out) -> dict:
+    """Exporter options from the flags, checked against the output before any work."""
+    from ..errors import GearError
     opts = {}
+    if out is None:
+        given = [f for f in ("width", "kerf", "lead_in", "start_angle_deg", "dxf_version")
+                 if getattr(args, f) is not None] + [f for f in ("spline", "no_pitch_circle") if getattr(args, f)]
+        if given:
+            raise GearError(given[0], getattr(args, given[0]), "only with an output file (-o)")
+        return opts
     if args.width is not None:
+        if not out.lower().endswith(MESH_EXTS):
+            raise GearError("width", args.width, "only with a 3D output (" + " ".join(MESH_EXTS) + ")")
         opts["width"] = args.width
-    elif out.lower().endswith((".stl", ".3mf", ".step", ".stp", ".obj", ".ply", ".vtu")):
+    elif out.lower().endswith(MESH_EXTS):
         raise GearError("width", None, "a number > 0 mm for a 3D output (--width)")
     dxf_opts = {dest: getattr(args, dest) for *_, dest in DXF_FLAGS if getattr(args, dest) is not None}
     if args.spline:
         dxf_opts["spline"] = True
     if args.no_pitch_circle:
         dxf_opts["pitch_circle"] = False
+    if out.lower().endswith(".dxf") and args.tolerance is not None:
+        from ..export.dxf import DXF_MIN_TOLERANCE
+        if args.tolerance < DXF_MIN_TOLERANCE:
+            from ..errors import ToleranceError
+            raise ToleranceError("tolerance", args.tolerance, f"a number >= {DXF_MIN_TOLERANCE:g} mm for a DXF",
+                                 "the fit is certified against a reference 20x finer")
+    if "dxf_version" in dxf_opts:
+        from ..errors import check_choice
+        from ..export.dxf import VERSIONS
+        dxf_opts["dxf_version"] = check_choice("dxf_version", str(dxf_opts["dxf_version"]).upper(), VERSIONS)
     if dxf_opts and not out.lower().endswith(".dxf"):
         raise GearError(next(iter(dxf_opts)), next(iter(dxf_opts.values())), "only with a .dxf output")
     opts.update(dxf_opts)
-    info = write(prof, out, **opts)
-    r = prof.report
-    sys.stdout.write(f"wrote {out}: {args.family} z={r['teeth']} max_error={r['max_error']:.3g} mm "
-                     f"(tolerance {r['tolerance']:g} mm)" + (f" {info}" if info else "") + "\n")
-    return 0
+    return opts

@@ -25,6 +25,21 @@ def clean(x):
     return x
 
 
+def _default(x):
+    """Fallback for objects ``json`` does not know: a finite number, else null, else text."""
+    try:
+        v = float(x)
+    except (TypeError, ValueError, OverflowError):
+        return str(x)
+    return v if math.isfinite(v) else None
+
+
+def dumps(data, indent=1, **kw) -> str:
+    """Strict JSON text of ``data``: numpy values to Python, NaN/inf to null
+    (``allow_nan=False``, so no ``NaN``/``Infinity`` token can ever be written)."""
+    return json.dumps(clean(data), indent=indent, allow_nan=False, default=_default, **kw)
+
+
 def to_dict(obj) -> dict:
     from ..model import Profile
     if isinstance(obj, Profile):

@@ -212,11 +212,15 @@ def _scene_graph(scene, out_dir, only=None):
     owners = {"parts": {}, "pairs": {}, "assemblies": {}}
 
     def claim(fname, who):
-        if fname in files and files[fname] != who:
+        # names that differ only in case collide on case-insensitive file systems
+        k = fname.casefold()
+        if k in files and files[k][0] != who:
             raise TemplateError(scene["file"], f"{who}.name", fname,
-                                f"a name whose files do not collide with {files[fname]}'s")
-        files[fname] = who
+                                f"a name whose files do not collide with {files[k][0]}'s",
+                                f"both would write {files[k][1]}")
+        files[k] = (who, fname)
 
+    claim(scene["name"] + ".report.json", "scene")
     for part in scene["parts"]:
         if sel and part["name"] not in sel:
             continue
@@ -311,16 +315,23 @@ def build_scene(scene: dict, out_dir, only=None, dry_run=False, log=None) -> dic
     plan (``{"stages": [lines]}``) and write nothing. Returns the scene report (also
     written to ``out_dir/<scene>.report.json``), whose ``stages`` counts the stages run.
     """
+    from ..export import check_out_dir, make_out_dir, remove_dirs
     if not dry_run:
-        os.makedirs(out_dir, exist_ok=True)
+        check_out_dir(out_dir, "out")
+    # every output name is claimed (collisions refused) before any folder or file is made
     g, owners = _scene_graph(scene, out_dir if not dry_run else (out_dir or "."), only)
     targets = [k for grp in owners.values() for t in grp.values() for k in t.values()]
     if dry_run:
         return {"stages": g.plan(targets), "graph": g}
-    res = g.run(targets, on_stage=(lambda s: log(f"{s.kind:<9} {s.label}")) if log else None)
-    report = _report(scene, g, owners, res)
-    rpath = out_path(out_dir, scene["name"] + ".report.json", scene["file"], "scene.name")
-    write_json(rpath, report)
+    made = make_out_dir(out_dir, "out")
+    try:
+        res = g.run(targets, on_stage=(lambda s: log(f"{s.kind:<9} {s.label}")) if log else None)
+        report = _report(scene, g, owners, res)
+        rpath = out_path(out_dir, scene["name"] + ".report.json", scene["file"], "scene.name")
+        write_json(rpath, report)
+    except BaseException:
+        remove_dirs(made)      # a failed build leaves no empty folder behind
+        raise
     report["graph"] = g
     return report
 

@@ -14,7 +14,9 @@ Scene (``[scene]``, ``[[part]]``, ``[[pair]]``, ``[[assembly]]``)::
     outputs = ["dxf", "stl"]       # kinds written for every part (OUTPUT_KINDS): dxf, svg,
                                    # png, json (the profile: figure / loops + report) from the
                                    # profile; stl, 3mf, step, obj, ply, vtu from the body
-    tolerance = 0.001              # mm, default for every output kind
+    tolerance = 0.001              # mm, default for every output kind; when it is not
+                                   # given, 0.001 for dxf/svg/png/json and the pair check,
+                                   # 0.01 for mesh kinds (stl 3mf step obj ply vtu: printing)
     [scene.tolerances]             # mm per kind; also "check" (pair checks)
     stl = 0.01
     [scene.options.dxf]            # exporter options (dxf: kerf, lead_in, ...)
@@ -73,7 +75,11 @@ OUTPUT_KINDS = PROFILE_KINDS + MESH_KINDS
 TOLERANCE_KEYS = OUTPUT_KINDS + ("check",)
 TOL_RANGE = (1e-7, 1.0)
 DEFAULT_TOLERANCE = 1e-3
+#: mm: default tolerance of mesh kinds when the template gives no ``tolerance``
+MESH_TOLERANCE = 0.01
 MAX_LIBRARY_PARTS = 1_000_000
+#: files a library run writes next to its parts (a part's file may not take these names)
+LIBRARY_RESERVED = ("manifest.json", "manifest.csv", "timings.json")
 
 _NAME_RE = re.compile(r"^[A-Za-z0-9][A-Za-z0-9._+=@,-]{0,119}$")
 _SPEC_RE = re.compile(r"^[<>^=]?[+-]?0?\d{0,3}(\.\d{1,2})?[dfge]?$")
@@ -174,13 +180,12 @@ def safe_name(file, key, name) -> str:
 def _number(file, key, v, lo=None, hi=None, lo_open=False, hi_open=False, integer=False, unit=""):
     from ..errors import check_number
     try:
-        if integer and isinstance(v, float):
+        if (integer and isinstance(v, float)) or isinstance(v, (str, bool)) or v is None:
             raise GearError(key, v, "")
         return check_number(key, v, lo, hi, lo_open=lo_open, hi_open=hi_open, integer=integer, unit=unit)
     except GearError:
-        lo_b, hi_b = "(" if lo_open else "[", ")" if hi_open else "]"
-        rng = f"{lo_b}{'-inf' if lo is None else f'{lo:g}'}, {'inf' if hi is None else f'{hi:g}'}{hi_b}"
-        fail(file, key, v, ("an integer in " if integer else "a number in ") + rng + (f" {unit}" if unit else ""))
+        from ..errors import allowed_range
+        fail(file, key, v, allowed_range(lo, hi, lo_open=lo_open, hi_open=hi_open, integer=integer, unit=unit))
 
 
 def _bool(file, key, v):
@@ -302,8 +307,11 @@ def check_body(file, key, table, *, names=None):
 
 
 def check_tolerances(file, key, top):
+    """(default tolerance, {kind: tolerance}) in mm. Without an explicit ``tolerance`` the
+    mesh kinds default to :data:`MESH_TOLERANCE` (printing), the others to
+    :data:`DEFAULT_TOLERANCE`; ``tolerances`` overrides per kind."""
     tol = _number(file, f"{key}.tolerance", top.get("tolerance", DEFAULT_TOLERANCE), *TOL_RANGE, unit="mm")
-    tols = {}
+    tols = {} if "tolerance" in top else {k: MESH_TOLERANCE for k in MESH_KINDS}
     t = _table(file, f"{key}.tolerances", top.get("tolerances", {}))
     for k, v in t.items():
         _str(file, f"{key}.tolerances.{k}", k, TOLERANCE_KEYS)
@@ -325,8 +333,24 @@ def check_options(file, key, table):
             fail(file, f"{key}.{kind}", opts, "dxf (the only exporter with options)")
         _table(file, f"{key}.dxf", opts)
         _unknown(file, f"{key}.dxf", opts, dxf_keys)
-        out["dxf"] = dict(opts)
+        out["dxf"] = {k: _dxf_option(file, f"{key}.dxf.{k}", k, v) for k, v in opts.items()}
     return out
+
+
+def _dxf_option(file, key, name, v):
+    """One DXF exporter option, typed and ranged (the exporter checks module-relative limits)."""
+    from ..export.dxf import VERSIONS
+    if name in ("spline", "pitch_circle"):
+        return _bool(file, key, v)
+    if name == "dxf_version":
+        return _str(file, key, v, VERSIONS)
+    if name == "lead_in":
+        return _number(file, key, v, 0, None, lo_open=True, unit="mm")
+    if name == "start_angle_deg":
+        return _number(file, key, v, -360, 360, unit="deg")
+    if name == "max_arc_deg":
+        return _number(file, key, v, 1, 180, unit="deg")
+    return _number(file, key, v, unit="mm")
 
 
 def check_part(file, key, raw, *, default_outputs, names=None, require_name=True):
@@ -391,6 +415,7 @@ def load_scene(path, sets=()) -> dict:
         if p["body"] and p["body"].get("mate") == p["name"]:
             fail(file, f"part[{p['name']}].body.mate", p["name"], "another part's name")
     by = {p["name"]: p for p in parts}
+    _check_mates(file, by)
     pairs = [_pair(file, i, rp, by, seen) for i, rp in enumerate(_array(file, data, "pair"))]
     assemblies = [_assembly(file, i, ra, seen) for i, ra in enumerate(_array(file, data, "assembly"))]
     if not parts and not assemblies:
@@ -398,6 +423,22 @@ def load_scene(path, sets=()) -> dict:
     return {"file": file, "name": name, "description": top.get("description", ""), "outputs": outputs,
             "tolerance": tol, "tolerances": tols, "options": options, "parts": parts,
             "pairs": pairs, "assemblies": assemblies}
+
+
+def _check_mates(file, by):
+    """``[part.body] mate`` must name a part with a body, and mates may not form a cycle."""
+    for name, p in by.items():
+        chain, cur = [name], p
+        while cur["body"] and cur["body"].get("mate"):
+            nxt = cur["body"]["mate"]
+            other = by.get(nxt)
+            if other is None or other["body"] is None:
+                fail(file, f"part[{cur['name']}].body.mate", nxt, "a part that has a [part.body] table")
+            if nxt in chain:
+                fail(file, f"part[{cur['name']}].body.mate", nxt, "a part that is not mated back to this one",
+                     "mates form a cycle: " + " -> ".join(chain + [nxt]))
+            chain.append(nxt)
+            cur = other
 
 
 def _array(file, data, key):
@@ -425,6 +466,8 @@ def _pair(file, i, rp, by, seen):
         fail(file, f"{label}.parts", ps, "a list of two part names")
     for j, n in enumerate(ps):
         _str(file, f"{label}.parts[{j}]", n, sorted(by))
+    if ps[0] == ps[1]:
+        fail(file, f"{label}.parts", ps, "two different part names", "a part cannot mesh with itself")
     outs = _kinds(file, f"{label}.outputs", rp.get("outputs", ["json"]), ("json",) + MESH_KINDS)
     if any(k in MESH_KINDS for k in outs):
         for n in ps:
@@ -449,8 +492,13 @@ def _assembly(file, i, ra, seen):
     else:
         from ..harmonic.synthesis import double_harmonic
         _table(file, f"{label}.design", design)
-        allowed = [n for n in inspect.signature(double_harmonic).parameters]
+        params = inspect.signature(double_harmonic).parameters
+        allowed = [n for n in params]
         _unknown(file, f"{label}.design", design, allowed)
+        for n, prm in params.items():
+            if prm.default is inspect.Parameter.empty and n not in design:
+                fail(file, f"{label}.design.{n}", None, "required: " + ", ".join(
+                    k for k, q in params.items() if q.default is inspect.Parameter.empty))
         for k, v in design.items():
             _number(file, f"{label}.design.{k}", v, integer=k.startswith("z"))
     from ..harmonic.parts import TOOTH_FAMILIES
@@ -584,16 +632,22 @@ def load_library(path, sets=()) -> dict:
         values.update(body or {})
         values.update({k: d for k, d in sig.items()})
         values.update(params)
-        values.update(family=fam, index=i)
+        values.update(family=fam, index=i, name=name)
         try:
             pname = pattern.format(**values)
         except (ValueError, TypeError) as e:
             fail(file, "library.pattern", pattern, "a pattern whose specs fit the values", str(e))
         safe_name(file, f"library.pattern -> part {i}", pname)
-        if pname in seen:
+        for k in base["outputs"]:
+            if f"{pname}.{k}".casefold() in LIBRARY_RESERVED:
+                fail(file, "library.pattern", pattern, "a pattern whose files do not take the names "
+                     + ", ".join(LIBRARY_RESERVED), f"part {i} would write {pname}.{k}")
+        pname_key = pname.casefold()
+        if pname_key in seen:
             fail(file, "library.pattern", pattern, "a pattern giving every part its own name",
-                 f"parts {seen[pname]} and {i} are both {pname!r}")
-        seen[pname] = i
+                 f"parts {seen[pname_key]} and {i} are both {pname!r} (names differing only in case "
+                 "collide on case-insensitive file systems)")
+        seen[pname_key] = i
         parts.append({"name": pname, "family": fam, "params": params, "body": body,
                       "outputs": base["outputs"],
                       "values": {".".join(kp): x for (kp, _), x in zip(axes, combo)}})

@@ -5,7 +5,7 @@ closed forms (sine-circular, ...) hand their exact evaluators to the same builde
 """
 from __future__ import annotations
 
-from ..errors import GearError, check_number
+from ..errors import GearError, check_bool, check_number
 
 FAMILIES: dict = {}
 
@@ -17,11 +17,30 @@ def register(name: str):
     return deco
 
 
+#: family name -> module that registers it (only that module is imported to build one)
+FAMILY_MODULE = {
+    "involute": "involute", "sine": "sine", "sine-circular": "sine_circular",
+    "cycloidal": "cycloid", "epicycloid": "cycloid", "hypocycloid": "cycloid",
+    "cycloid-disc": "cycloid", "cycloid-pins": "cycloid", "gerotor-inner": "gerotor",
+    "gerotor-outer": "gerotor", "ec-pinion": "ec", "ec-wheel": "ec", "moineau-rotor": "moineau",
+    "moineau-stator": "moineau", "triangular": "triangular", "mate": "conjugate",
+}
+
+
 def profile(family: str, **params):
     """Build a profile of ``family`` (see :data:`FAMILIES`) from keyword parameters (mm, deg)."""
-    _load()
-    if family not in FAMILIES:
+    if isinstance(family, str) and family in FAMILY_MODULE and family not in FAMILIES:
+        import importlib
+        importlib.import_module(f"{__name__}.{FAMILY_MODULE[family]}")
+    if isinstance(family, str) and family not in FAMILIES:
+        _load()
+    if not isinstance(family, str) or family not in FAMILIES:
+        _load()
         raise GearError("family", family, "one of " + ", ".join(sorted(FAMILIES)))
+    if "internal" in params:
+        params["internal"] = check_bool("internal", params["internal"])
+    if family != "mate" and params.get("rim_radius") is not None and not params.get("internal"):
+        raise GearError("rim_radius", params["rim_radius"], "only for a ring gear (internal=True)")
     return FAMILIES[family](**params)
 
 
@@ -68,12 +87,19 @@ def reject_unknown(family: str, extra: dict):
 def blank_and_rim(internal: bool, tip_radius, rim_radius, root_radius: float, module: float, tol: float):
     """Validated turned tip (``clip`` for the builder) and ring rim (mm) of a rack family.
 
-    ``tip_radius`` (mm, optional) turns the blank; a ring gets a rim at ``rim_radius`` or,
-    by default, two modules beyond its root circle.
+    ``tip_radius`` (mm, optional) turns the blank; it must stay outside the root circle
+    ``root_radius`` (mm) of an external gear, inside that of a ring, or no tooth would be
+    left. A ring gets a rim at ``rim_radius`` or, by default, two modules beyond its root
+    circle.
     """
     clip = None
     if tip_radius is not None:
-        tr = check_number("tip_radius", tip_radius, 0, None, lo_open=True, unit="mm")
+        if internal:
+            tr = check_number("tip_radius", tip_radius, 0, root_radius - tol, lo_open=True, hi_open=True,
+                              unit="mm (inside the ring's root circle)")
+        else:
+            tr = check_number("tip_radius", tip_radius, root_radius + tol, None, lo_open=True,
+                              unit="mm (outside the root circle)")
         clip = (tr, None) if internal else (None, tr)
     rim = None
     if internal:

@@ -32,6 +32,11 @@ def sine(teeth=20, module=None, addendum_coeff=None, shift_coeff=0.0, internal=F
                          lo_open=True, unit="mm")
         addendum_coeff = A / module
         shift_coeff = check_number("displacement", displacement or 0.0, None, None, unit="mm") / module
+    else:
+        for k, v in (("amplitude", amplitude), ("displacement", displacement)):
+            if v is not None:
+                raise GearError(k, v, "only with unit_radius (seed 000's rack); with module use "
+                                + ("addendum_coeff" if k == "amplitude" else "shift_coeff"))
     module = 1.0 if module is None else module
     addendum_coeff = 1.0 if addendum_coeff is None else addendum_coeff
     z, m, tol = common(teeth, module, tolerance)
@@ -46,7 +51,8 @@ def sine(teeth=20, module=None, addendum_coeff=None, shift_coeff=0.0, internal=F
                         "the rack would reach the gear centre")
     params = dict(teeth=z, module=m, addendum_coeff=c, shift_coeff=x, internal=bool(internal),
                   tolerance=tol, tip_radius=tip_radius, rim_radius=rim_radius, form=form)
-    clip, rim = blank_and_rim(bool(internal), tip_radius, rim_radius, r - x * m + ha, m, tol)
+    clip, rim = blank_and_rim(bool(internal), tip_radius, rim_radius,
+                              (r - x * m + ha) if internal else (r + x * m - ha), m, tol)
     rack = sine_rack(m, ha, hypo=(form == "hypo"))
     pieces = rack_envelope(rack, r, x * m, bool(internal))
     return build_profile("sine", params, [p for p, _ in pieces], z, r, internal=bool(internal),

@@ -271,43 +271,59 @@ def chamfer_vectors(loops, amount: float, name: str) -> list:
     to a convex tooth-tip corner) are collapsed onto one point, the discrete form of the
     swallowtail a true offset removes. Raises GearError naming ``name`` when the inset loop
     still folds over (a chamfer wider than half a tooth tip)."""
-    import shapely
     out = []
     for l, v in zip(loops, miter_vectors(loops)):
-        # a micro-notch (edges shorter than the inset, miter at its limit) left within
-        # tolerance next to a singular point: move it with its neighbours, not along its
-        # own extreme miter
-        v = v.copy()
-        e_prev = np.hypot(*(l - np.roll(l, 1, axis=0)).T)
-        e_next = np.hypot(*(np.roll(l, -1, axis=0) - l).T)
-        micro = (np.hypot(*v.T) > 2.5) & (np.minimum(e_prev, e_next) < amount)
-        for _ in range(10):
-            if not micro.any():
-                break
-            v[micro] = 0.5 * (np.roll(v, 1, axis=0)[micro] + np.roll(v, -1, axis=0)[micro])
-            micro = micro & (np.hypot(*v.T) > 2.5)
-        q = l - amount * v
-        e0 = np.roll(l, -1, axis=0) - l
-        for _ in range(200):
-            e1 = np.roll(q, -1, axis=0) - q
-            bad = np.nonzero(np.einsum("ij,ij->i", e0, e1) < 0)[0]
-            if len(bad) == 0:
-                break
-            nxt = (bad + 1) % len(q)
-            mid = 0.5 * (q[bad] + q[nxt])
-            q[bad] = mid
-            q[nxt] = mid
-        vec = (l - q) / amount
-        for frac in (0.5, 1.0):
-            qq = l - frac * amount * vec
-            keep = np.ones(len(qq), bool)
-            keep[1:] = np.any(qq[1:] != qq[:-1], axis=1)
-            ring = shapely.linearrings(qq[keep])
-            if not shapely.is_simple(ring) or np.sign(_area(l)) != np.sign(_area(qq)):
-                raise GearError(name, amount, "a smaller value for this profile",
-                                "the chamfered edge would fold over (narrow tooth tips)")
+        vec = _inset_vectors(l, v, amount)
+        if vec is None:
+            # the largest inset that does not fold over, by bisection (error path only)
+            lo, hi = 0.0, float(amount)
+            for _ in range(14):
+                mid = 0.5 * (lo + hi)
+                lo, hi = (mid, hi) if _inset_vectors(l, v, mid) is not None else (lo, mid)
+            raise GearError(name, amount, f"a number in [0, {math.floor(lo * 1e4) / 1e4:g}] mm for this profile",
+                            "the chamfered edge would fold over (narrow tooth tips)")
         out.append(vec)
     return out
+
+
+def _inset_vectors(l, v, amount):
+    """The inset vectors of one loop for an inset of ``amount`` mm, or None when the inset
+    loop folds over (see :func:`chamfer_vectors`)."""
+    import shapely
+    if amount <= 0:
+        return np.zeros_like(l)
+    # a micro-notch (edges shorter than the inset, miter at its limit) left within
+    # tolerance next to a singular point: move it with its neighbours, not along its
+    # own extreme miter
+    v = v.copy()
+    e_prev = np.hypot(*(l - np.roll(l, 1, axis=0)).T)
+    e_next = np.hypot(*(np.roll(l, -1, axis=0) - l).T)
+    micro = (np.hypot(*v.T) > 2.5) & (np.minimum(e_prev, e_next) < amount)
+    for _ in range(10):
+        if not micro.any():
+            break
+        v[micro] = 0.5 * (np.roll(v, 1, axis=0)[micro] + np.roll(v, -1, axis=0)[micro])
+        micro = micro & (np.hypot(*v.T) > 2.5)
+    q = l - amount * v
+    e0 = np.roll(l, -1, axis=0) - l
+    for _ in range(200):
+        e1 = np.roll(q, -1, axis=0) - q
+        bad = np.nonzero(np.einsum("ij,ij->i", e0, e1) < 0)[0]
+        if len(bad) == 0:
+            break
+        nxt = (bad + 1) % len(q)
+        mid = 0.5 * (q[bad] + q[nxt])
+        q[bad] = mid
+        q[nxt] = mid
+    vec = (l - q) / amount
+    for frac in (0.5, 1.0):
+        qq = l - frac * amount * vec
+        keep = np.ones(len(qq), bool)
+        keep[1:] = np.any(qq[1:] != qq[:-1], axis=1)
+        ring = shapely.linearrings(qq[keep])
+        if not shapely.is_simple(ring) or np.sign(_area(l)) != np.sign(_area(qq)):
+            return None
+    return vec
 
 
 def _area(l):
