@@ -243,6 +243,8 @@ def body(profile, kind="spur", width=10.0, helix_angle_deg=0.0, hand="right", ga
         ntri, nvert = int(man.num_tri()), int(man.num_vert())
         watertight = bool(ntri > 0 and man.status().name == "NoError")
 
+    n_bore = len(circle_loop(direct, tol)) if direct else 0
+    min_v = minimum_vertices(prof, law, tol, W)
     rep = prof.report
     report = {
         "kind": kind, "width": W, "helix_angle_deg": beta, "hand": law.hand,
@@ -252,6 +254,7 @@ def body(profile, kind="spur", width=10.0, helix_angle_deg=0.0, hand="right", ga
         "volume": props["volume"], "surface_area": props["surface_area"],
         "triangles": ntri, "vertices": nvert,
         "layers": len(knots) - 1, "max_edge_length": max_len,
+        "min_vertices": min_v, "vertex_ratio": (nvert - n_bore * len(knots)) / min_v,
         "max_error": max_err, "max_error_bound": bound, "measured_heights": heights,
         "tolerance": tol, "watertight": watertight,
         "genus": props["genus"],
@@ -403,6 +406,42 @@ def twisted_mesh(polys, knots, law, fixed=None):
     T = np.asarray(triangulate(polys), np.int64).reshape(-1, 3)
     F = np.concatenate([T[:, ::-1], sides, T + (K - 1) * n])
     return V, F
+
+
+def minimum_vertices(prof, law, tol: float, W: float) -> float:
+    """A reference vertex count (teeth only, no bore) for a body at tolerance ``tol`` (mm):
+    what a stack of turned profile polygons needs under the additive error model
+    e_profile + e_layers <= tol, with each term at its unavoidable minimum,
+
+        min over f in (0, 1) of  N(f tol) * (L((1 - f) tol) + 1)
+
+    N(e): the profile's equal-sag vertex count, ``teeth * min_vertices_per_tooth`` at the
+    profile's tolerance, scaled by sqrt(tolerance / e) (chord sag grows with the square of
+    the chord); L(e): on each smooth piece of the twist law, the layers for which the
+    outermost point's chord between layers sags by e, r (1 - cos(Δθ/2)) = e, and the law's
+    own bend between layers r θ'' Δz² / 8 stays within e (no zig-zag term). A spur body has
+    one layer. The measured error, not this model, certifies a body, so a body may well
+    come out below this count; ``vertex_ratio`` in the report is its count over it."""
+    n1 = prof.teeth * float(prof.report.get("min_vertices_per_tooth", 0.0)) or float(prof.report["vertices"])
+    tp = prof.tolerance
+    r = float(prof.report.get("tip_radius", prof.pitch_radius))
+    r = max(r, float(prof.report.get("rim_radius") or 0.0))
+    cuts = law.breaks()
+    pieces = [(a, b, *law.bounds(a, b)) for a, b in zip(cuts[:-1], cuts[1:]) if b > a]
+    if all(d1 == 0 for *_ab, d1, _d2 in pieces):
+        return 2 * n1 * math.sqrt(tp / tol)
+    best = math.inf
+    for f in np.linspace(0.02, 0.98, 97):
+        e_t = (1 - f) * tol
+        dth = 2 * math.acos(max(1 - e_t / r, -1.0))
+        layers = 0
+        for a, b, d1, d2 in pieces:
+            n = math.ceil((b - a) * d1 / dth - 1e-9)
+            if d2 > 0:
+                n = max(n, math.ceil((b - a) / math.sqrt(8 * e_t / (r * d2)) - 1e-9))
+            layers += max(n, 1)
+        best = min(best, n1 * math.sqrt(tp / (f * tol)) * (layers + 1))
+    return best
 
 
 def mesh_properties(V, F) -> dict:
