@@ -71,7 +71,12 @@ def run(args) -> int:
     kw = body_params(args)
     if "width" not in kw:
         raise GearError("width", None, "a number > 0 mm (--width)")
-    b = body(profile(args.family, **family_params(args, out, mesh=True)), **kw)
+    fp = family_params(args, out, mesh=True)
+    # build the profile once, at the share of the body tolerance the body plan gives it
+    from ..solids.body import profile_tolerance
+    kw.setdefault("tolerance", fp["tolerance"])
+    fp["tolerance"] = profile_tolerance(kw["tolerance"], kw["kind"], bool(kw.get("xy_offset")))
+    b = body(profile(args.family, **fp), **kw)
     if out is None:
         from ..export.json_format import dumps
         sys.stdout.write(dumps(b.report) + "\n")

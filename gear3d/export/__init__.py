@@ -192,11 +192,19 @@ def _kind(obj) -> str:
     if isinstance(obj, Profile):
         return "profile"
     if isinstance(obj, (list, tuple)):
-        if obj and all(hasattr(b, "mesh") for b in obj):
+        if obj and all(_is_body(b) for b in obj):
             return "body"
-    elif hasattr(obj, "mesh"):
+    elif _is_body(obj):
         return "body"
     raise GearError("obj", type(obj).__name__, "a Profile, a body (with .mesh) or a list of bodies")
+
+
+def _is_body(obj) -> bool:
+    """A body has a ``manifold``, ``mesh`` or ``arrays``; asked of the class and the instance
+    dictionary, so that lazy properties (which would build a manifold or a trimesh) are not
+    evaluated just to tell."""
+    names = ("manifold", "mesh", "arrays")
+    return any(hasattr(type(obj), a) for a in names) or any(a in getattr(obj, "__dict__", {}) for a in names)
 
 
 class atomic_path:
@@ -278,11 +286,24 @@ def as_bodies(obj, width=None, **body_opts) -> list:
 
 
 def body_mesh(b):
-    """(vertices float64 (n,3), faces int (m,3)) of a body in place (its ``transform`` applied)."""
+    """(vertices float64 (n,3), faces int (m,3)) of a body in place (its ``transform`` applied).
+
+    Taken from the body's own arrays or its manifold (``to_mesh64``), so that writers that
+    need only arrays (STL, OBJ/PLY/VTU, STEP) never import trimesh."""
     import numpy as np
-    m = b.mesh
-    v = np.asarray(m.vertices, float)
-    f = np.asarray(m.faces, np.int64)
+    if callable(getattr(b, "arrays", None)):
+        v, f = b.arrays()
+        v = np.asarray(v, float)
+        f = np.asarray(f, np.int64)
+    elif getattr(b, "manifold", None) is not None and hasattr(b.manifold, "to_mesh64"):
+        man = b.manifold
+        m = man.to_mesh64()
+        v = np.asarray(m.vert_properties, float)[:, :3]
+        f = np.asarray(m.tri_verts, np.int64)
+    else:
+        m = b.mesh
+        v = np.asarray(m.vertices, float)
+        f = np.asarray(m.faces, np.int64)
     T = getattr(b, "transform", None)
     if T is not None:
         T = np.asarray(T, float)
