@@ -433,12 +433,24 @@ def test_api_raises_gear_errors_only():
             f()
 
 
-def test_check_pair_with_itself_is_a_pair():
-    """The same object twice is two equal wheels: 12/12 involutes mesh at a = 2r."""
+def test_self_touching_profile_polygon_is_repaired():
+    """check_pair(p, p) on a 12-tooth involute at 0.01 mm raised GEOSException: its polygon
+    touches itself within the tolerance. The rolling polygons are repaired once (valid,
+    same area to the tolerance), and the intersection the roll needs now works."""
+    import shapely
+    from gear3d.analysis.pairs import _Placed, _penetration, _valid_loops
     p = gear3d.profile("involute", teeth=12, tolerance=0.01)
-    rep = gear3d.check_pair(p, p)
-    assert rep["center_distance"] == pytest.approx(12.0)
-    assert rep["ratio"] == pytest.approx(-1.0)
+    A, B = _Placed(p, (0.0, 0.0)), _Placed(p, (12.0, 0.0))
+    PA, PB = A.polygon(0.0), B.polygon(math.pi + math.pi / 12)
+    assert PA.is_valid and PB.is_valid
+    raw = shapely.Polygon(max(p.loops, key=len))
+    assert abs(PA.area - abs(raw.area)) <= 0.01 * raw.length
+    pen, where, gap = _penetration(PA, PB)
+    assert 0.0 <= pen < 0.1
+    # a bow-tie (self-crossing) loop: repaired to a valid polygon of the larger lobe
+    bow = np.array([[0, 0], [2, 2], [2, 0], [0, 2.0]])
+    fixed = _valid_loops([bow])
+    assert shapely.Polygon(fixed[0]).is_valid and shapely.Polygon(fixed[0]).area == pytest.approx(1.0)
 
 
 # --------------------------------------------------------------------- 10. messages
