@@ -62,7 +62,7 @@ def require_occ():
 class Run:
     """One stretch of the tooth loop on one exact piece: ``piece`` index, tooth copy ``k``
     (turned by 2πk/z), parameter interval [t0, t1] in loop order (t0 > t1 when the loop
-    runs against the piece), ``hint``: the piece's samples inside the interval."""
+    runs against the piece), exact end points ``p0``/``p1`` (mm, in place)."""
     piece: int
     k: int
     t0: float
@@ -72,6 +72,7 @@ class Run:
 
 
 def _rot2(pts, ang):
+    """Points (..., 2) mm turned by ``ang`` rad about the origin."""
     c, s = math.cos(ang), math.sin(ang)
     pts = np.asarray(pts, float)
     return np.stack([c * pts[..., 0] - s * pts[..., 1], s * pts[..., 0] + c * pts[..., 1]], axis=-1)
@@ -387,7 +388,7 @@ def loop_runs(profile, loop) -> list:
 # ============================================================ curve and law fits
 
 def _knots_mults(t, k):
-    """scipy knot vector -> (distinct knots, multiplicities)."""
+    """scipy knot vector -> (distinct knots, multiplicities) for OpenCascade (degree k)."""
     u, m = np.unique(np.round(t, 15), return_counts=True)
     return u, m
 
@@ -822,7 +823,6 @@ def _sew_solid(faces):
     from OCP.BRep import BRep_Builder
     from OCP.BRepBuilderAPI import BRepBuilderAPI_Sewing
     from OCP.BRepLib import BRepLib
-    from OCP.ShapeFix import ShapeFix_Solid
     from OCP.TopAbs import TopAbs_SHELL
     from OCP.TopExp import TopExp_Explorer
     from OCP.TopoDS import TopoDS, TopoDS_Solid
