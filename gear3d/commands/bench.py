@@ -24,13 +24,19 @@ def add_parser(sub):
 
 
 def run(args) -> int:
+    import os
     from .. import families
     from ..bench import headline, run as bench_run
     from ..errors import GearError
-    from ..paths import check_writable
-    if args.json is not None:
-        check_writable("json", args.json, folder=False)
-    check_writable("out_dir", args.out_dir, folder=True)
+    from ..export import check_out_dir
+    if args.json is not None:            # a file; its missing folders are created at the end
+        if os.path.isdir(args.json) or args.json.endswith(os.sep):
+            raise GearError("json", args.json, "a file path (missing folders are created)", "it is a folder")
+        try:
+            check_out_dir(os.path.dirname(os.path.abspath(args.json)), "json")
+        except GearError as e:
+            raise GearError("json", args.json, e.allowed, e.why) from None
+    check_out_dir(args.out_dir, "out_dir")
     if args.family:
         known = families()
         for f in args.family:

@@ -255,7 +255,7 @@ def run_library(lib: dict, out_dir, workers: int = 2, engine: str = "local", sch
     GearError before anything is written.
     """
     from ..errors import check_choice, check_number
-    from ..paths import check_writable
+    from ..export import check_out_dir, make_out_dir
     engine = check_choice("engine", engine, ("local", "dask"))
     workers = check_number("workers", workers, 0, 1024, integer=True)
     if scheduler is not None and engine != "dask":
@@ -264,7 +264,7 @@ def run_library(lib: dict, out_dir, workers: int = 2, engine: str = "local", sch
         require_dask()
     preflight(lib)
     out_dir = str(out_dir)
-    check_writable("out", out_dir, folder=True)
+    check_out_dir(out_dir, "out")
     job = job_header(lib)
     records, todo = {}, []
     for part in lib["parts"]:
@@ -280,11 +280,11 @@ def run_library(lib: dict, out_dir, workers: int = 2, engine: str = "local", sch
     elif todo and workers > 0:
         runner = _PoolRunner(workers, worker_modules(lib))
     try:
-        os.makedirs(out_dir, exist_ok=True)
-    except OSError as e:
+        make_out_dir(out_dir, "out")       # then a manifest is always written into it
+    except BaseException:
         if runner is not None:
             runner.close()
-        raise GearError("out", out_dir, "a writable folder", e.strerror or str(e)) from None
+        raise
     _clean_stale(out_dir, lib)
     timings = _read_timings(out_dir)
     t0 = time.perf_counter()
