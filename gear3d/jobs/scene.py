@@ -110,7 +110,7 @@ def run_write(stage, obj):
             name = i.get("name")
             if isinstance(obj, list) and "names" in i:
                 obj = [b.placed(b.transform, name=n) for b, n in zip(obj, i["names"])]
-            elif name and not isinstance(obj, list):
+            elif name and not isinstance(obj, list) and kind != "stl":   # an STL stores no name
                 obj = obj.placed(obj.transform, name=name)
         write(obj, path)
     if kind in MESH_KINDS:
