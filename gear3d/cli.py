@@ -82,7 +82,9 @@ def build_parser(only=None) -> argparse.ArgumentParser:
     """The argument parser; ``only`` (a list of command names) imports just those command
     modules (a run of one command needs only its own module and flags)."""
     ap = _Parser(prog="gear3d", description="Gear theory to manufacturable geometry.",
-                 epilog="Exit codes: 0 ok, 1 a batch with failed parts, 2 bad input (one line on "
+                 epilog="Any command takes --max-triangles N: the resource budget (default "
+                        "4,000,000 triangles; a profile vertex counts as eight); bigger jobs are "
+                        "refused before any work. Exit codes: 0 ok, 1 a batch with failed parts, 2 bad input (one line on "
                         "stderr), 130 interrupted, 143 terminated.")
     ap.add_argument("--version", action="version", version="gear3d 0.1.0")
     sub = ap.add_subparsers(dest="command", parser_class=_Parser, metavar="COMMAND")
@@ -132,11 +134,43 @@ def _install_handlers() -> dict:
     return old
 
 
+def _take_budget(words):
+    """Remove ``--max-triangles N`` (accepted before or after the command) from the words;
+    return (words, N or None), N validated (GearError naming max_triangles)."""
+    out, n = [], None
+    it = iter(range(len(words)))
+    for i in it:
+        w = words[i]
+        if w == "--max-triangles" or w.startswith("--max-triangles="):
+            if "=" in w:
+                v = w.split("=", 1)[1]
+            elif i + 1 < len(words):
+                v = words[i + 1]
+                next(it, None)
+            else:
+                v = None
+            from .budget import HARD_MAX_TRIANGLES
+            from .errors import GearError, check_number
+            try:
+                n = int(check_number("max_triangles", float(v) if v is not None else None, 1000,
+                                     HARD_MAX_TRIANGLES, integer=True, unit="triangles"))
+            except (TypeError, ValueError, OverflowError):
+                raise GearError("max_triangles", v, f"an integer in [1000, {HARD_MAX_TRIANGLES}] triangles") from None
+            continue
+        out.append(w)
+    return out, n
+
+
 def main(argv=None) -> int:
     from .errors import GearError
     old = _install_handlers()
     try:
         words = list(sys.argv[1:] if argv is None else argv)
+        try:
+            words, max_tri = _take_budget(words)
+        except GearError as e:
+            sys.stderr.write(f"gear3d: error: {_one_line(e)}\n")
+            return 2
         first = next((w for w in words if not w.startswith("-")), None)
         ap = build_parser([first] if first in COMMANDS and words and words[0] == first else None)
         try:
@@ -149,7 +183,9 @@ def main(argv=None) -> int:
                              + ", ".join(c for c in COMMANDS) + "\n")
             return 2
         try:
-            rc = args._run(args)
+            from .budget import limits
+            with limits(max_tri):
+                rc = args._run(args)
         except GearError as e:
             sys.stderr.write(f"gear3d: error: {_one_line(e)}\n")
             return 2

@@ -224,6 +224,10 @@ def build_profile(family: str, params: dict, pieces, teeth: int, pitch_radius: f
     budget = tol * (1 - 1 / 50) - CLIPPER_ROUNDING
     tess = [tessellate(f, budget) for f in fs]
     ts = [x.t for x in tess]
+    # the resource budget, before the period is repeated and trimmed
+    from . import budget as _budget
+    _budget.check_profile(teeth * sum(len(t) - 1 for t in ts), "teeth" if teeth > 1000 else "tolerance",
+                          teeth if teeth > 1000 else tol)
     minv = float(sum(x.min_vertices for x in tess))
     # singular points become samples, so the physical branches end exactly there
     ts = [_with_transitions(G, t) for G, t in zip(pieces, ts)]

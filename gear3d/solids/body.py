@@ -35,8 +35,6 @@ from .features import (apply_features, chamfer_vectors, offset_loops,
                        plan_features, subdivide)
 from .twist import KINDS, TwistLaw, default_arch_radius
 
-#: refuse bodies that would need more triangles than this (memory: ~200 B per triangle)
-MAX_TRIANGLES = 40_000_000
 #: smallest body tolerance with a twist (part of it goes to the profile, whose floor is 1e-7 mm)
 MIN_TWIST_TOLERANCE = 2e-7
 #: share of a twisted body's tolerance given to its profile polygon (the rest: twist terms)
@@ -344,9 +342,8 @@ def _build(prof, law, W, tol, delta, e_off, cb, ct, ef_bottom, skip, share=1.0, 
     polys = [np.asarray(p, float) for p in cs.to_polygons()]
     nv = sum(len(p) for p in polys)
     est = 2 * nv * (len(knots) - 1) + 2 * nv
-    if est > MAX_TRIANGLES:
-        raise ToleranceError("tolerance", tol, f"a coarser value for this body (it would need about "
-                             f"{est:.3g} triangles, limit {MAX_TRIANGLES:.3g})")
+    from .. import budget
+    budget.check_body(est, "tolerance", tol)
     if direct is not None:
         # plain body: the closed mesh straight from the layers (a bore is one more loop,
         # not turned: a circle turned about its centre is the same circle)
