@@ -237,8 +237,8 @@ def test_sigterm_real_dxf_export(tmp_path):
     """The issue's case: the console script writing a large DXF, terminated mid-write."""
     import shutil
     exe = shutil.which("gear3d") or os.path.join(os.path.dirname(sys.executable), "gear3d")
-    proc = subprocess.Popen([exe, "profile", "involute", "--teeth", "20", "--module", "10",
-                             "--tolerance", "1e-4", "-o", "g.dxf"], cwd=tmp_path,
+    proc = subprocess.Popen([exe, "profile", "involute", "--teeth", "40", "--module", "2",
+                             "--tolerance", "2e-4", "-o", "g.dxf"], cwd=tmp_path,
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     try:
         seen = _poll_temp(tmp_path, proc, ".tmp.dxf")

@@ -103,3 +103,10 @@ def peak_rss_bytes() -> int:
 @pytest.fixture(scope="module")
 def arena(tmp_path_factory):
     return make_arena(str(tmp_path_factory.mktemp("arena")))
+
+
+@pytest.fixture(scope="module")
+def rss_start():
+    """The process's peak RSS before the corpus (a pytest worker may have run heavy tests
+    before: the bound applies to what the corpus adds)."""
+    return peak_rss_bytes()
