@@ -184,7 +184,8 @@ def main(argv=None) -> int:
             return 2
         try:
             from .budget import limits
-            with limits(max_tri):
+            from .progress import Reporter
+            with limits(max_tri), Reporter():
                 rc = args._run(args)
         except GearError as e:
             sys.stderr.write(f"gear3d: error: {_one_line(e)}\n")

@@ -217,6 +217,8 @@ def build_profile(family: str, params: dict, pieces, teeth: int, pitch_radius: f
     Raises :class:`GearError` naming ``addendum_coeff`` when the trimmed result has no
     proper teeth.
     """
+    from .progress import stage
+    stage("profile")
     tol = tolerance
     fs = [_finite(G) for G in pieces]
     # Clipper rounds every vertex to 1e-8 mm and notch pruning may move a vertex by up

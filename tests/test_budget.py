@@ -59,3 +59,39 @@ def test_api_budget_context():
         assert e.value.param == "tolerance"
     p = gear3d.profile("involute", teeth=200, tolerance=1e-3)
     assert budget.PROFILE_VERTEX_COST * p.report["vertices"] > 50_000      # the refusal was needed
+
+
+def _run_in_pty(argv, env):
+    """Run ``python -m gear3d.cli argv`` with stderr on a pseudo-terminal; return its output."""
+    import pty
+    import subprocess
+    import sys
+    master, slave = pty.openpty()
+    p = subprocess.Popen([sys.executable, "-m", "gear3d.cli", *argv], stdin=subprocess.DEVNULL,
+                         stdout=subprocess.DEVNULL, stderr=slave, env=env, close_fds=True)
+    os.close(slave)
+    chunks = []
+    while True:
+        try:
+            data = os.read(master, 4096)
+        except OSError:          # the child closed the terminal
+            break
+        if not data:
+            break
+        chunks.append(data)
+    p.wait(timeout=120)
+    os.close(master)
+    return p.returncode, b"".join(chunks).decode(errors="replace")
+
+
+def test_progress_bar_on_a_terminal_only(tmp_path):
+    argv = ["body", "involute", "--teeth", "20", "--kind", "helical", "--helix-angle", "20",
+            "--width", "10", "--tolerance", "0.01", "-o", str(tmp_path / "g.stl")]
+    env = dict(os.environ, GEAR3D_PROGRESS_DELAY="0")
+    rc, out = _run_in_pty(argv, env)
+    assert rc == 0 and "gear3d:" in out and "stages" in out
+    # not a terminal: nothing but the result line on stdout, nothing on stderr
+    import subprocess
+    import sys
+    r = subprocess.run([sys.executable, "-m", "gear3d.cli", *argv], env=env, capture_output=True, text=True)
+    assert r.returncode == 0 and r.stderr == ""

@@ -264,6 +264,8 @@ def write(obj, path, **opts):
     """Write ``obj`` to ``path``; the extension picks the exporter. Returns a short info
     string (segment counts, measured error...) or None. Nothing is left on error."""
     import importlib
+    from ..progress import stage
+    stage("write")
     kind = _kind(obj)
     ext = check_output(path, kind)
     fmt = FORMATS[ext]

@@ -168,7 +168,10 @@ def profile_stage(g: Graph, job, part, tol, prefix) -> str:
 
 def body_stage(g: Graph, job, part, tol, prefix, parts_by_name=None) -> str:
     b = part["body"]
-    prof = profile_stage(g, job, part, tol, prefix)
+    # the profile is built once, at the share of the body tolerance the body plan gives it
+    from ..solids.body import profile_tolerance
+    prof = profile_stage(g, job, part, profile_tolerance(tol, b.get("kind", "spur"), bool(b.get("xy_offset"))),
+                         prefix)
     deps = [prof]
     if b.get("mate"):
         other = parts_by_name[b["mate"]]

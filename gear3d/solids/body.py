@@ -151,7 +151,9 @@ def body(profile, kind="spur", width=10.0, helix_angle_deg=0.0, hand="right", ga
     """
     from manifold3d import CrossSection, FillRule, Manifold
 
+    from ..progress import stage
     prof = _check_profile(profile)
+    stage("body")
     kind = check_choice("kind", kind, KINDS)
     W = check_number("width", width, 0, 100_000, lo_open=True, unit="mm")
     if kind == "spur":
@@ -595,6 +597,8 @@ def measure_mesh(V, F, law, prof, knots, delta=0.0, skip=(), min_radius=0.0):
     The end faces are the profile polygon itself, whose measured error the profile
     reports. Triangles whose centroid lies within ``min_radius`` (mm: a bore) are not the
     tooth surface. Returns (max error in mm, the measured band heights in mm)."""
+    from ..progress import stage
+    stage("measure")
     knots = np.asarray(knots, float)
     bands = _measured_bands(knots, law, list(skip))
     if not bands:
