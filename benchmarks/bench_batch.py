@@ -10,6 +10,9 @@ values) = 1,000 parts (``--parts`` trims the tooth range), width 4 mm, STL at 0.
   ``--baseline`` parts in this process (``workers=0``; 1.00 = the pool costs nothing);
 * the 1-minute load average before and after each run (on a loaded machine the same
   run reads several times slower, so figures without it mean little), cores, CPU;
+* the workers' own CPU time per part (``timings.json``), which depends little on other
+  load: the CPU-bound rate (workers / CPU s per part) and the CPU efficiency
+  (CPU s per part on 1 worker / on n) say what the pool does on a quiet machine;
 * which heavy libraries the workers imported (an STL library should need none), and the
   batch process's own CPU time over the wall time (its share of a core: preflight, results,
   progress, manifests; the workers' CPU is not in it);
@@ -88,6 +91,7 @@ def timed_run(lib, out, workers, progress) -> dict:
     return {"workers": workers, "parts": n, "failed": r["failed"], "seconds": dt, "parts_per_s": n / dt,
             "load_before": la0, "load_after": la1, "parent_cpu_s": cpu,
             "part_seconds_median": sorted(timings["parts"].values())[len(timings["parts"]) // 2],
+            "worker_cpu_s": timings.get("last_run_cpu_seconds"),
             "heavy_imports": timings.get("last_run_heavy_imports", []),
             "processes": len(timings.get("last_run_workers", {}))}
 
@@ -115,6 +119,16 @@ def markdown(res) -> str:
                      f"{r['part_seconds_median']:.3f} | {r['parent_cpu_s'] / r['seconds']:.3f} | "
                      f"{r['load_before']} / {r['load_after']} |")
     two = next((r for r in rows if r["workers"] == 2), None)
+    lines += ["", "CPU view (the workers' own CPU time, nearly independent of other load on the machine): "
+              "*CPU-bound rate* = workers / (worker CPU s per part), the rate when each worker has a core "
+              "to itself; *measured / CPU-bound* below 1 is time lost waiting for a core.", "",
+              "| workers | worker CPU s per part | CPU-bound parts/s | measured / CPU-bound | CPU efficiency |",
+              "|---:|---:|---:|---:|---:|"]
+    c1 = r1["worker_cpu_s"] / r1["parts"]
+    for r in rows:
+        c = r["worker_cpu_s"] / r["parts"]
+        bound = r["workers"] / c
+        lines.append(f"| {r['workers']} | {c:.4f} | {bound:.1f} | {r['parts_per_s'] / bound:.2f} | {c1 / c:.2f} |")
     lines += [""]
     if two is not None:
         eff2 = two["parts_per_s"] / (2 * unit)

@@ -61,8 +61,9 @@ def spec_of(job: dict, part: dict) -> str:
 
 def build_part(job: dict, part: dict, out_dir: str) -> dict:
     """Build one library part (in a worker): its files, then its record. Returns
-    ``{"record": ..., "seconds": ..., "stages": {...}}``; errors are recorded, not raised."""
-    t0 = time.perf_counter()
+    ``{"record": ..., "seconds": wall s, "cpu_seconds": this process's CPU s, "stages": {...},
+    "worker": "host:pid", ...}``; errors are recorded, not raised."""
+    t0, c0 = time.perf_counter(), time.process_time()
     g = Graph()
     rec = {"name": part["name"], "values": part["values"], "family": part["family"],
            "params": part["params"], "body": part["body"], "spec": spec_of(job, part)}
@@ -88,7 +89,8 @@ def build_part(job: dict, part: dict, out_dir: str) -> dict:
                    triangles=None, max_error=None)
     os.makedirs(os.path.join(out_dir, RECORDS), exist_ok=True)
     write_json(os.path.join(out_dir, RECORDS, part["name"] + ".json"), rec)
-    return {"record": _jsonable(rec), "seconds": time.perf_counter() - t0, "stages": dict(g.counts),
+    return {"record": _jsonable(rec), "seconds": time.perf_counter() - t0,
+            "cpu_seconds": time.process_time() - c0, "stages": dict(g.counts),
             "cache_hits": dict(g.cache_hits), "worker": worker_id(),
             "heavy_imports": [m for m in HEAVY_MODULES if m in sys.modules]}
 
@@ -292,7 +294,7 @@ def run_library(lib: dict, out_dir, workers: int = 2, engine: str = "local", sch
     failed = 0
     last_manifest = time.perf_counter()
 
-    used, heavy = {}, set()
+    used, heavy, cpu = {}, set(), [0.0]
 
     def done(res):
         nonlocal failed, last_manifest
@@ -300,6 +302,7 @@ def run_library(lib: dict, out_dir, workers: int = 2, engine: str = "local", sch
         records[rec["name"]] = rec
         timings["parts"][rec["name"]] = round(res["seconds"], 4)
         used[res["worker"]] = used.get(res["worker"], 0) + 1
+        cpu[0] += res.get("cpu_seconds", 0.0)
         heavy.update(res["heavy_imports"])
         if rec["status"] != "ok":
             failed += 1
@@ -333,7 +336,8 @@ def run_library(lib: dict, out_dir, workers: int = 2, engine: str = "local", sch
         timings.update(engine=engine, workers=workers, last_run_seconds=round(dt, 3),
                        last_run_built=len(records) - skipped,
                        last_run_parts_per_s=round((len(records) - skipped) / dt, 3) if dt > 0 else None,
-                       last_run_workers=dict(sorted(used.items())), last_run_heavy_imports=sorted(heavy))
+                       last_run_workers=dict(sorted(used.items())), last_run_heavy_imports=sorted(heavy),
+                       last_run_cpu_seconds=round(cpu[0], 3))
         write_json(os.path.join(out_dir, "timings.json"), timings)
     built = len(records) - skipped
     bad = [records[p["name"]] for p in lib["parts"]
