@@ -95,3 +95,15 @@ def test_progress_bar_on_a_terminal_only(tmp_path):
     import sys
     r = subprocess.run([sys.executable, "-m", "gear3d.cli", *argv], env=env, capture_output=True, text=True)
     assert r.returncode == 0 and r.stderr == ""
+
+
+def test_scene_budget(tmp_path):
+    scene = tmp_path / "s.toml"
+    scene.write_text('[scene]\nname = "s"\noutputs = ["stl"]\nmax_triangles = 5000\n'
+                     '[[part]]\nname = "a"\nfamily = "involute"\nteeth = 40\n[part.body]\nwidth = 5\n')
+    rc, err = run(["build", str(scene), "--out", str(tmp_path / "o")], tmp_path)
+    assert rc == 2 and err.count("\n") == 1 and "5,000 triangles" in err
+    assert not (tmp_path / "o").exists()
+    scene.write_text(scene.read_text().replace("max_triangles = 5000", "max_triangles = 1.5"))
+    rc, err = run(["build", str(scene), "--out", str(tmp_path / "o")], tmp_path)
+    assert rc == 2 and "scene.max_triangles" in err

@@ -328,7 +328,9 @@ def build_scene(scene: dict, out_dir, only=None, dry_run=False, log=None) -> dic
         return {"stages": g.plan(targets), "graph": g}
     made = make_out_dir(out_dir, "out")
     try:
-        res = g.run(targets, on_stage=(lambda s: log(f"{s.kind:<9} {s.label}")) if log else None)
+        from ..budget import limits
+        with limits(scene.get("max_triangles")):
+            res = g.run(targets, on_stage=(lambda s: log(f"{s.kind:<9} {s.label}")) if log else None)
         report = _report(scene, g, owners, res)
         rpath = out_path(out_dir, scene["name"] + ".report.json", scene["file"], "scene.name")
         write_json(rpath, report)

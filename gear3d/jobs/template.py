@@ -382,7 +382,7 @@ def check_part(file, key, raw, *, default_outputs, names=None, require_name=True
 
 # -------------------------------------------------------------------------- scene
 
-SCENE_KEYS = ("name", "description", "outputs", "tolerance", "tolerances", "options")
+SCENE_KEYS = ("name", "description", "outputs", "tolerance", "tolerances", "options", "max_triangles")
 PAIR_KEYS = ("name", "parts", "internal", "check", "outputs")
 ASSEMBLY_KEYS = ("name", "kind", "design", "tooth", "bearing_thickness", "deformed", "outputs")
 
@@ -420,9 +420,16 @@ def load_scene(path, sets=()) -> dict:
     assemblies = [_assembly(file, i, ra, seen) for i, ra in enumerate(_array(file, data, "assembly"))]
     if not parts and not assemblies:
         fail(file, "part", None, "at least one [[part]] or [[assembly]]")
+    max_tri = None
+    if "max_triangles" in top:
+        from ..budget import HARD_MAX_TRIANGLES
+        v = top["max_triangles"]
+        if isinstance(v, bool) or not isinstance(v, int) or not 1000 <= v <= HARD_MAX_TRIANGLES:
+            fail(file, "scene.max_triangles", v, f"an integer in [1000, {HARD_MAX_TRIANGLES}] (the resource budget)")
+        max_tri = v
     return {"file": file, "name": name, "description": top.get("description", ""), "outputs": outputs,
             "tolerance": tol, "tolerances": tols, "options": options, "parts": parts,
-            "pairs": pairs, "assemblies": assemblies}
+            "pairs": pairs, "assemblies": assemblies, "max_triangles": max_tri}
 
 
 def _check_mates(file, by):
