@@ -51,10 +51,11 @@ def add_parser(sub):
     return p
 
 
-def _one_line(text: str, limit: int = 300) -> str:
-    """``text`` on one line: newlines and control characters escaped, length bounded."""
+def _one_line(text: str, limit: int | None = 300) -> str:
+    """``text`` on one line: newlines and control characters escaped, length bounded
+    (``limit`` characters; None: not shortened)."""
     s = "".join(c if c.isprintable() else repr(c)[1:-1] for c in str(text))
-    return s if len(s) <= limit else s[:limit - 3] + "..."
+    return s if limit is None or len(s) <= limit else s[:limit - 3] + "..."
 
 
 def run(args) -> int:
@@ -78,8 +79,8 @@ def run(args) -> int:
                         processes=not args.threads, progress=not args.no_progress)
     except BrokenProcessPool:
         sys.stderr.write(_one_line(f"gear3d: batch: a worker process died (killed, or out of memory); the parts "
-                                   f"done so far are in {os.path.join(out, 'manifest.json')}: re-run to resume")
-                         + "\n")
+                                   f"done so far are in {os.path.join(out, 'manifest.json')}: re-run to resume",
+                                   limit=None) + "\n")
         return 1
     rate = f"{r['parts_per_s']:.2f} parts/s" if r["parts_per_s"] else "-"
     manifest = os.path.join(out, "manifest.json")
@@ -87,7 +88,8 @@ def run(args) -> int:
                      f"({rate}, {r['seconds']:.1f} s) -> {manifest}\n")
     if r["failed"]:
         first = r["first_failure"]
+        why = _one_line(first["error"], 200)       # the error is shortened, never the manifest path
         sys.stderr.write(_one_line(f"gear3d: batch: {r['failed']} of {len(lib['parts'])} parts failed "
-                                   f"(first: {first['name']}: {first['error']}); see {manifest}") + "\n")
+                                   f"(first: {first['name']}: {why}); see {manifest}", limit=None) + "\n")
         return 1
     return 0
