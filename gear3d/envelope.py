@@ -62,6 +62,10 @@ class EnvelopePiece:
     def tool_tangent(self, t):
         return self._evaluate(np.asarray(t, float))[1] if self.smooth else None
 
+    def evaluate_with_tangent(self, t):
+        """(G(t), tool tangent at t) in one evaluation (smooth pieces)."""
+        return self._evaluate(np.asarray(t, float))
+
 
 def rack_envelope_piece(el, radius: float, shift: float, internal: bool):
     """Exact evaluator ``G(t)`` (mm, gear frame) of the envelope of one rack element.

@@ -447,8 +447,15 @@ def _regularity(piece, t):
     """dG/dt . (tool tangent) (normalised) at ``t``: > 0 on a regular branch, < 0 past a cusp."""
     t = np.asarray(t, float)
     h = 1e-7
-    dG = (piece(t + h) - piece(t - h)) / (2 * h)
-    T = piece.tool_tangent(t)
+    n = len(t)
+    ev = getattr(piece, "evaluate_with_tangent", None)
+    if ev is not None:                       # one evaluation for the stencil and the tangent
+        G, T3 = ev(np.concatenate([t + h, t - h, t]))
+        dG = (G[:n] - G[n:2 * n]) / (2 * h)
+        T = T3[2 * n:]
+    else:
+        dG = (piece(t + h) - piece(t - h)) / (2 * h)
+        T = piece.tool_tangent(t)
     scale = np.hypot(*dG.T) * np.hypot(*T.T)
     with np.errstate(invalid="ignore", divide="ignore"):
         return np.einsum("ij,ij->i", dG, T) / np.where(scale > 0, scale, 1.0)
