@@ -311,3 +311,21 @@ def test_faceted_step_merges_coplanar_facets(tmp_path):
             ends.append(len(sub_shapes(f, "wire")))
     assert ends == [2, 2]
     assert occ_volume(shape) == pytest.approx(b.manifold.volume(), rel=1e-9)
+
+
+def test_cli_step_brep(tmp_path, capsys):
+    """`gear3d body ... -o x.step --step brep` writes B-spline flanks and prints the
+    B-rep's measured error; `--step` is ignored for other formats."""
+    _occ()
+    from gear3d.cli import main
+    out = tmp_path / "g.step"
+    rc = main(["body", "involute", "--teeth", "12", "--module", "1", "--tolerance", "0.01",
+               "--width", "4", "--step", "brep", "-o", str(out)])
+    line = capsys.readouterr().out
+    assert rc == 0 and "B-rep measured max_error=" in line
+    shape = read_step(out)
+    assert len(sub_shapes(shape, "solid")) == 1 and is_valid(shape)
+    assert "bspline" in face_samples(shape, n=3)
+    rc = main(["body", "involute", "--teeth", "12", "--module", "1", "--tolerance", "0.01",
+               "--width", "4", "--step", "brep", "-o", str(tmp_path / "g.stl")])
+    assert rc == 0 and (tmp_path / "g.stl").stat().st_size > 84
