@@ -107,7 +107,7 @@ def test_bad_input_is_the_clis_message_and_never_a_path(app, capsys):
     assert b"Traceback" not in body
 
 
-def test_busy_answers_503_and_the_budget_refuses_before_building(app, monkeypatch):
+def test_busy_answers_503_and_the_budget_refuses_before_building(app, monkeypatch, tmp_path):
     import gear3d.solids
     slots = app.state.slots
     assert slots.sem.acquire(blocking=False)          # one build running (max_builds=1)
@@ -125,9 +125,15 @@ def test_busy_answers_503_and_the_budget_refuses_before_building(app, monkeypatc
         calls.append(1)
         return real(*a, **k)
     monkeypatch.setattr(gear3d.solids, "body", spy)
-    st, _, body = _asgi_get(app, "/api/download", "family=involute&teeth=5000&b.width=100&tolerance=0.001&fmt=stl")
+    st, _, body = _asgi_get(app, "/api/download", "family=involute&teeth=50000&b.width=100&tolerance=0.001&fmt=stl")
     err = _strict(body)
-    assert st == 400 and err["param"] == "tolerance" and "budget" in err["error"] and not calls
+    assert st == 400 and err["param"] == "teeth" and "budget" in err["error"] and not calls
+    from gear3d.cli import main
+    out = tmp_path / "big.stl"
+    assert main(["body", "involute", "--teeth", "50000", "--width", "100", "--tolerance", "0.001", "-o", str(out)]) == 2
+    assert not out.exists()                           # the CLI refuses it too (the same budget)
+    st, _, body = _asgi_get(app, "/api/pair", "family=involute&teeth=3000&pair.mate_teeth=3001&tolerance=0.001")
+    assert st == 400 and "pair budget" in _strict(body)["error"]
 
 
 @pytest.mark.parametrize("fmt, cmd", [("3mf", "body"), ("dxf", "profile")])     # STL: in the browser below
@@ -246,46 +252,47 @@ class _Server:
             self.proc.wait(5)
 
 
-@pytest.fixture(scope="module")
-def server(tmp_path_factory):
-    """The server process (started, not yet waited for: the browser starts meanwhile)."""
-    srv = _Server(tmp_path_factory.mktemp("serve"))
-    try:
-        yield srv
-    finally:
-        srv.stop()
-
-
-@pytest.fixture(scope="module")
-def browser():
+def _launch(pw):
+    """Debian's Chromium under Playwright; a clear failure (never a skip) when it is missing."""
     if not os.path.exists(CHROMIUM):
-        pytest.fail(f"{CHROMIUM} not found: the browser tests need Debian's Chromium "
+        pytest.fail(f"{CHROMIUM} not found: the browser test needs Debian's Chromium "
                     "(apt-get install -y chromium; CI's .ci/run installs it)")
+    return pw.chromium.launch(executable_path=CHROMIUM, args=CHROMIUM_ARGS)
+
+
+def test_page_in_chromium(tmp_path, capsys):
+    """The page in a real browser, one server and one browser for all the steps (so that a
+    parallel run, pytest -n, keeps them in one worker): the SVG follows the teeth, a bad value
+    shows its message next to the field, the STL download is the CLI's bytes and watertight,
+    a pair with interference is drawn red, a screenshot is kept, each request logged."""
     try:
         from playwright.sync_api import sync_playwright
     except ImportError:
         pytest.fail("playwright is not installed: pip install -e '.[test]'")
-    with sync_playwright() as pw:
-        b = pw.chromium.launch(executable_path=CHROMIUM, args=CHROMIUM_ARGS)
-        try:
-            yield b
-        finally:
-            b.close()
-
-
-@pytest.fixture(scope="module")
-def page(server, browser):
-    """One page for the browser tests (in file order), page errors collected."""
-    server.ready()
-    ctx = browser.new_context(viewport={"width": 1400, "height": 1000}, accept_downloads=True)
-    pg = ctx.new_page()
-    pg.set_default_timeout(TIMEOUT_MS)
-    pg.errors = []
-    pg.on("pageerror", lambda e: pg.errors.append(str(e)))
-    pg.goto(server.url + "/")
-    pg.wait_for_selector("body[data-ready='1'] #preview svg.gear3d-preview")
-    yield pg
-    ctx.close()
+    (tmp_path / "serve").mkdir()
+    server = _Server(tmp_path / "serve")          # starts while the browser launches
+    try:
+        with sync_playwright() as pw:
+            browser = _launch(pw)
+            try:
+                server.ready()
+                ctx = browser.new_context(viewport={"width": 1400, "height": 1000}, accept_downloads=True)
+                page = ctx.new_page()
+                page.set_default_timeout(TIMEOUT_MS)
+                errors = []
+                page.on("pageerror", lambda e: errors.append(str(e)))
+                page.goto(server.url + "/")
+                page.wait_for_selector("body[data-ready='1'] #preview svg.gear3d-preview")
+                _check_preview_follows_the_teeth(page)
+                _check_bad_value_next_to_the_field(page)
+                _check_stl_download_is_the_clis_bytes(page, tmp_path, capsys)
+                _check_pair_interference_drawn_red(page)
+                assert not errors, errors
+            finally:
+                browser.close()
+        _check_one_log_line_a_request(server)
+    finally:
+        server.stop()
 
 
 def _profile_points(svg_d: str):
@@ -295,7 +302,7 @@ def _profile_points(svg_d: str):
     return np.array(nums).reshape(-1, 2)
 
 
-def test_page_preview_follows_the_teeth(page):
+def _check_preview_follows_the_teeth(page):
     import numpy as np
     before = page.get_attribute("#preview svg.gear3d-preview", "data-teeth")
     assert before == "20"
@@ -309,10 +316,9 @@ def test_page_preview_follows_the_teeth(page):
     assert "7.5 mm" in page.inner_text("#report")
     page.fill("#in-profile-teeth", "20")
     page.wait_for_selector("#preview svg.gear3d-preview[data-teeth='20']")
-    assert not page.errors
 
 
-def test_page_bad_value_shows_the_message_next_to_the_field(page):
+def _check_bad_value_next_to_the_field(page):
     page.fill("#in-profile-teeth", "0")
     err = page.locator("#field-profile-teeth .error")
     err.wait_for(state="visible")
@@ -325,7 +331,7 @@ def test_page_bad_value_shows_the_message_next_to_the_field(page):
     page.wait_for_selector("#preview svg.gear3d-preview[data-teeth='20']")
 
 
-def test_page_stl_download_is_the_clis_bytes(page, tmp_path, capsys):
+def _check_stl_download_is_the_clis_bytes(page, tmp_path, capsys):
     import trimesh
 
     from gear3d.cli import main
@@ -345,7 +351,7 @@ def test_page_stl_download_is_the_clis_bytes(page, tmp_path, capsys):
     assert abs(mesh.bounds[1, 2] - mesh.bounds[0, 2] - 5.0) < 1e-4
 
 
-def test_page_pair_with_interference_drawn_red(page):
+def _check_pair_interference_drawn_red(page):
     import numpy as np
     from PIL import Image
     page.select_option("#family", "sine")
@@ -371,11 +377,10 @@ def test_page_pair_with_interference_drawn_red(page):
     OUT.mkdir(parents=True, exist_ok=True)
     page.screenshot(path=str(OUT / "page.png"), full_page=True)
     assert (OUT / "page.png").stat().st_size > 10_000
-    assert not page.errors
 
 
-def test_server_logs_each_request_in_one_line(server):
-    url, log = server.ready().url, server.log
+def _check_one_log_line_a_request(server):
+    url, log = server.url, server.log
     with urllib.request.urlopen(url + "/api/profile?family=involute&teeth=17", timeout=30) as r:
         assert r.status == 200
     deadline = time.monotonic() + 10

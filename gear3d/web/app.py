@@ -267,7 +267,7 @@ def create_app(max_builds: int = 2, log=None):
 
     async def families(request):
         from .schema import families as names
-        return _json({"families": names(), "downloads": list(DOWNLOADS), "limits": budget.LIMITS,
+        return _json({"families": names(), "downloads": list(DOWNLOADS), "limits": budget.limits(),
                       "preview_tolerance": PREVIEW_TOLERANCE, "max_builds": slots.n})
 
     async def schema(request):

@@ -1,16 +1,16 @@
-"""The server's build budget: refuse, before building, what would take too long or too much memory.
+"""The server's build budget: the CLI's own (``gear3d.budget``), checked before any work.
 
-If the core has a resource-budget module (``gear3d.budget`` with ``check_*`` functions),
-the CLI's budget is the one that counts and :func:`check` calls it first. The web server
-adds its own coarse estimates on top (a shared machine should not build a 10-million-
-triangle body because a page asked):
+The builders check the core budget themselves (a profile after sampling one tooth period, a
+body before it is extruded), so the page refuses exactly what the CLI refuses, with the same
+message. Before handing a request to a builder, :func:`check` also asks the core budget
+about a cheap *lower bound* of the size (so it never refuses what the CLI would build) and
+refuses hopeless requests at once:
 
-* profile: vertices ~ teeth * 2.6 / sqrt(tolerance) (82 a tooth at 1 um, measured);
-* body: teeth * width / tolerance (mm / mm; 20 teeth x 10 mm at 1 um = 2e5, ~130k triangles);
-* pair: (z1 + z2) / sqrt(tolerance) (20 + 21 teeth at 1 um = 1.3e3, a few seconds).
+* profile vertices >= teeth * 1.3 / sqrt(tolerance) (82 a tooth at 1 um measured, halved);
+* body triangles >= 4 x that (side quads and caps of a spur body at the body tolerance).
 
-A request over a limit raises ``GearError("tolerance", ...)`` saying the coarsest
-tolerance that fits, so the page shows it next to the tolerance field.
+Pairs have no core budget yet: the server refuses (z1 + z2) / sqrt(tolerance) > 5000
+(20 + 21 teeth at 1 um = 1.3e3, a few seconds of rolling).
 """
 from __future__ import annotations
 
@@ -18,12 +18,15 @@ import math
 
 from ..errors import GearError
 
-LIMITS = {"profile": 2.0e6, "body": 1.0e6, "pair": 5.0e3}
+#: the pair limit, (z1 + z2) / sqrt(tolerance / mm)
+PAIR_LIMIT = 5.0e3
 DEFAULT_TOLERANCE = 1e-3
+#: profile vertices a tooth at tolerance t (mm) is sure to need: VERTEX_FACTOR / sqrt(t)
+VERTEX_FACTOR = 1.3
 
 
 def _count(params: dict) -> float:
-    """Teeth-like count of a form (teeth, pins or lobes; 1 when none is numeric)."""
+    """Teeth-like count of a form (teeth, pins or lobes; 1 when none is a positive number)."""
     for k in ("teeth", "pins", "lobes"):
         v = params.get(k)
         if isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) and v > 0:
@@ -38,48 +41,33 @@ def _tol(*vals) -> float:
     return DEFAULT_TOLERANCE
 
 
-def _core(what: str, **kw):
-    """Call ``gear3d.budget.check_<what>(**kw)`` when the core provides it (it raises GearError)."""
-    try:
-        import importlib
-        mod = importlib.import_module("gear3d.budget")
-    except ImportError:
-        return
-    fn = getattr(mod, f"check_{what}", None)
-    if callable(fn):
-        try:
-            fn(**kw)
-        except TypeError:      # a signature this server does not know: its own estimate still applies
-            pass
+def limits() -> dict:
+    """The limits in force (for the page): the core's triangle budget and the pair limit."""
+    from .. import budget as core
+    return {"max_triangles": core.current().max_triangles, "pair": PAIR_LIMIT}
 
 
 def check(what: str, profile: dict, body: dict | None = None, pair: dict | None = None) -> float:
-    """Raise ``GearError`` when a ``what`` ("profile", "body", "pair") build is over budget;
-    return the estimate. ``profile``/``body``/``pair`` are the parsed form sections."""
+    """Raise the CLI's ``GearError`` when a ``what`` ("profile", "body", "pair") build is surely
+    over budget; return the lower-bound estimate. ``profile``/``body``/``pair`` are keywords."""
+    from .. import budget as core
     body, pair = body or {}, pair or {}
-    _core(what, **({"profile": profile, "body": body} if what == "body" else
-                   {"profile": profile, "pair": pair} if what == "pair" else {"profile": profile}))
-    tol = _tol(profile.get("tolerance"))
     z = _count(profile)
+    tol = _tol(profile.get("tolerance"))
+    vertices = z * VERTEX_FACTOR / math.sqrt(tol)
+    # the core names the teeth for huge gears, the tolerance otherwise (gear3d.model)
+    core.check_profile(vertices, *(("teeth", profile.get("teeth")) if z > 1000 else ("tolerance", tol)))
     if what == "body":
-        w = _tol(body.get("width"), 10.0)
         btol = _tol(body.get("tolerance"), tol)
-        est, need = z * w / btol, z * w / LIMITS["body"]
-        if est > LIMITS["body"]:
-            raise GearError("tolerance", btol, f"at least {need:.3g} mm for {z:g} teeth x {w:g} mm",
-                            f"over the server's body budget teeth*width/tolerance <= {LIMITS['body']:g}")
-        return est
+        triangles = 4 * z * VERTEX_FACTOR / math.sqrt(btol)
+        core.check_body(triangles, "tolerance", btol)
+        return triangles
     if what == "pair":
         z2 = _count({"teeth": pair.get("mate_teeth")})
         est = (z + z2) / math.sqrt(tol)
-        if est > LIMITS["pair"]:
-            need = ((z + z2) / LIMITS["pair"]) ** 2
+        if est > PAIR_LIMIT:
+            need = ((z + z2) / PAIR_LIMIT) ** 2
             raise GearError("tolerance", tol, f"at least {need:.3g} mm for {z:g} + {z2:g} teeth",
-                            f"over the server's pair budget (z1+z2)/sqrt(tolerance) <= {LIMITS['pair']:g}")
+                            f"over the server's pair budget (z1+z2)/sqrt(tolerance) <= {PAIR_LIMIT:g}")
         return est
-    est = z * 2.6 / math.sqrt(tol)
-    if est > LIMITS["profile"]:
-        need = (z * 2.6 / LIMITS["profile"]) ** 2
-        raise GearError("tolerance", tol, f"at least {need:.3g} mm for {z:g} teeth",
-                        f"over the server's profile budget of {LIMITS['profile']:g} vertices")
-    return est
+    return vertices
