@@ -70,6 +70,19 @@ def cpu_model() -> str:
     return platform.processor() or platform.machine()
 
 
+def code_version(root: Path = ROOT) -> str:
+    """The gear3d commit measured (``abc1234``, ``+ local changes`` when gear3d/ differs)."""
+    import subprocess
+    try:
+        rev = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=root, capture_output=True,
+                             text=True, timeout=10).stdout.strip()
+        dirty = subprocess.run(["git", "status", "--porcelain", "--", "gear3d"], cwd=root, capture_output=True,
+                               text=True, timeout=10).stdout.strip()
+    except (OSError, subprocess.SubprocessError):
+        return "unknown"
+    return (rev or "unknown") + (" + local changes" if dirty else "")
+
+
 def load1() -> float | None:
     try:
         return round(os.getloadavg()[0], 2)
@@ -104,8 +117,9 @@ def markdown(res) -> str:
         "## Batch throughput (`gear3d batch`, local process pool)", "",
         f"{res['parts']:,} involute spur gears (module 0.5-2.4 mm x {res['tooth_counts']} tooth counts "
         f"from {TEETH_FROM}), width 4 mm, STL at {res['tolerance'] * 1000:g} µm; {res['cpu']}, "
-        f"{res['cores']} cores, Python {res['python']}; `python benchmarks/bench_batch.py` "
-        f"({res['date']}). Wall time from an empty folder, pool start-up included.", "",
+        f"{res['cores']} cores, Python {res['python']}; gear3d {res.get('commit', '?')}; "
+        f"`python benchmarks/bench_batch.py` ({res['date']}). Wall time from an empty folder, "
+        "pool start-up included.", "",
         "| workers | parts | failed | wall time (s) | parts/s | efficiency | vs issue 12 before | "
         "median s/part | parent CPU / wall | load avg before / after |",
         "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
@@ -199,6 +213,7 @@ def main(argv=None):
     ap.add_argument("--baseline", type=int, default=100, help="parts built in-process for the overhead ratio (0: skip)")
     ap.add_argument("--out", default=str(ROOT / "out" / "bench" / "batch.md"))
     ap.add_argument("--publish", action="store_true", help="also update the batch section of BENCHMARKS.md")
+    ap.add_argument("--commit", default=None, help="the gear3d version to name (default: git HEAD of this checkout)")
     a = ap.parse_args(argv)
     from gear3d.jobs.batch import build_part, job_header
     from gear3d.jobs.template import load_library
@@ -235,6 +250,7 @@ def main(argv=None):
         res = {"parts": n, "tooth_counts": n_teeth, "tolerance": a.tolerance, "cpu": cpu_model(),
                "cores": os.cpu_count(), "python": platform.python_version(),
                "date": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()), "baseline": base, "runs": runs,
+               "commit": a.commit or code_version(),
                "manifests_identical": all(m == manifests[0] for m in manifests)}
         text = markdown(res)
         print(text)
