@@ -45,8 +45,18 @@ class _Parser(argparse.ArgumentParser):
         super().__init__(*a, **kw)
 
     def error(self, message):  # one line, exit code 2
-        sys.stderr.write(f"gear3d: error: {_one_line(message)}\n")
+        sys.stderr.write(f"gear3d: error: {_one_line(_param_first(message))}\n")
         raise SystemExit(2)
+
+
+def _param_first(message: str) -> str:
+    """``argument --mate-teeth: '0' is not allowed: R`` -> ``mate_teeth = '0' is not allowed:
+    R (--mate-teeth)``: the same words as every other refusal (parameter, value, range)."""
+    head, sep, rest = message.partition(": ")
+    if head.startswith("argument --") and " is not allowed: " in rest and "/" not in head:
+        flag = head[len("argument "):]
+        return f"{flag.lstrip('-').replace('-', '_')} = {rest} ({flag})"
+    return message
 
 
 def number(kind: str = "float", lo=None, hi=None, *, lo_open=False, hi_open=False, unit: str = ""):
@@ -56,10 +66,9 @@ def number(kind: str = "float", lo=None, hi=None, *, lo_open=False, hi_open=Fals
     ``kind`` is ``"int"`` or ``"float"``; ``lo``/``hi`` bound it (None = unbounded); the
     family builders still check their own, tighter, ranges.
     """
+    from .errors import allowed_range
     integer = kind == "int"
-    lo_b, hi_b = ("(" if lo_open else "["), (")" if hi_open else "]")
-    rng = f"{lo_b}{'-inf' if lo is None else f'{lo:g}'}, {'inf' if hi is None else f'{hi:g}'}{hi_b}"
-    allowed = ("an integer in " if integer else "a number in ") + rng + (f" {unit}" if unit else "")
+    allowed = allowed_range(lo, hi, lo_open=lo_open, hi_open=hi_open, integer=integer, unit=unit)
 
     def parse(text: str):
         try:

@@ -69,8 +69,8 @@ def _fmt(x, down=None) -> str:
 
 def allowed_range(lo=None, hi=None, *, lo_open=False, hi_open=False, integer=False, unit: str = "") -> str:
     """``"a number in (0, 16.4999] mm"``: the words :func:`check_number` uses for a range."""
-    lo_b = "(" if lo_open else "["
-    hi_b = ")" if hi_open else "]"
+    lo_b = "(" if lo_open or lo is None else "["
+    hi_b = ")" if hi_open or hi is None else "]"
     rng = f"{lo_b}{_fmt(lo, False) if lo is not None else '-inf'}, {_fmt(hi, True) if hi is not None else 'inf'}{hi_b}"
     return ("an integer in " if integer else "a number in ") + rng + (f" {unit}" if unit else "")
 

@@ -472,10 +472,11 @@ def test_newline_in_template_name(cwd, capsys):
     ("--teeth", "2.5", "an integer in [1, 100000]"),
     ("--module", "-1", "a number in (0, 1000] mm"),
     ("--tolerance", "nan", "a number in (0, 1] mm"),
-    ("--backlash", "x", "a number in [-inf, inf]"),
+    ("--backlash", "x", "a number in (-inf, inf)"),
 ])
 def test_argparse_type_errors_give_range(flag, value, rng, cwd, capsys):
-    refused(["profile", "involute", flag, value], capsys, cwd, flag, repr(value), rng)
+    line = refused(["profile", "involute", flag, value], capsys, cwd, flag, repr(value), rng)
+    assert line.startswith(f"gear3d: error: {flag[2:].replace('-', '_')} = {value!r} is not allowed: ")
 
 
 def test_no_prefix_matching(cwd, capsys):
