@@ -96,12 +96,14 @@ def refine(f, t: np.ndarray, chords, target: float, max_iter: int = 40) -> np.nd
     return t
 
 
-def exact_crossing(fa, ta0, ta1, fb, tb0, tb1, rot_b: float, q0: np.ndarray, iters: int = 30):
+def exact_crossing(fa, ta0, ta1, fb, tb0, tb1, rot_b: float, q0: np.ndarray, iters: int = 30,
+                   params: bool = False):
     """Crossing of exact curves fa (on [ta0, ta1]) and fb rotated by ``rot_b`` (on [tb0, tb1]).
 
     Newton iteration in the two parameters from the chords' crossing; the Jacobian comes
     from central differences, each curve evaluated once per step (three parameters).
-    Returns the point (mm) or None if it does not converge inside the intervals (widened x3).
+    Returns the point (mm) or None if it does not converge inside the intervals (widened x3);
+    with ``params`` also the two curves' parameters there: (point, s, u).
     """
     def A3(s, h):
         return fa(np.array([s, s + h, s - h]))
@@ -144,4 +146,4 @@ def exact_crossing(fa, ta0, ta1, fb, tb0, tb1, rot_b: float, q0: np.ndarray, ite
     pa = fa(np.array([s]))[0]
     if np.hypot(*(pa - _rot(fb(np.array([u])), rot_b)[0])) > 1e-9:
         return None
-    return pa
+    return (pa, float(s), float(u)) if params else pa

@@ -18,8 +18,8 @@ tessellation: the curve itself is evaluated.
 
 A foot may run up to one chord past a trimmed corner, along the curve that was cut away
 there. Such a foot (one not inside a chord whose both ends survived) is kept only if it
-lies on the trimmed polygon (within 2 tolerances); otherwise the distance is bounded by the
-distance to the polygon plus the polygon's measured error. Trimmed corners themselves are
+lies on the trimmed polygon (within the polygon's measured error); otherwise it is pulled
+back along the curve, by bisection, to the last point that does (the corner). Trimmed corners themselves are
 certified by the profile builder (Newton on the crossing of the two exact curves).
 """
 from __future__ import annotations
@@ -37,6 +37,8 @@ NEWTON_STEPS = 3
 CANDIDATES = 3
 #: start parameters probed along a chord's interval (fractions)
 _PROBES = np.linspace(0.0, 1.0, 9)
+#: zooms of the probes around the best one before Newton's method
+ZOOMS = 2
 #: gears with more teeth than this search chords by polar angle (fewer: all chords)
 WINDOW_MIN_TEETH = 6
 
@@ -50,24 +52,33 @@ class _Piece:
     keep: np.ndarray       # (len(t) - 1,) bool: the chord carries boundary
     lo: np.ndarray         # (len(t) - 1,) the parameter range a foot point may use
     hi: np.ndarray         #   around each chord
+    cuts: dict             # chord -> parameter of the trimmed corner on it
 
 
-def _piece(f, t, alive) -> _Piece:
+def _piece(f, t, alive, cuts=None) -> _Piece:
     """One piece's chords: a chord carries boundary when one of its ends survived trimming,
-    and its foot points may move one chord width beyond its ends (clipped to [0, 1])."""
+    and its foot points may move one chord width beyond its ends (clipped to [0, 1]); a
+    chord that runs into a trimmed corner stops at the corner's parameter ``cuts[j]``."""
     t = np.asarray(t, float)
     alive = np.asarray(alive, bool)
     p = np.asarray(f(t), float)
     t0, t1 = t[:-1], t[1:]
     w = t1 - t0
     keep = alive[:-1] | alive[1:]
-    return _Piece(f, t, p, alive, keep, np.clip(t0 - w, 0, 1), np.clip(t1 + w, 0, 1))
+    lo, hi = np.clip(t0 - w, 0, 1), np.clip(t1 + w, 0, 1)
+    for j, c in (cuts or {}).items():
+        if alive[j]:
+            hi[j] = c
+        else:
+            lo[j] = c
+    return _Piece(f, t, p, alive, keep, lo, hi, dict(cuts or {}))
 
 
 class ExactBoundary:
     """The exact boundary of a profile with ``teeth``-fold symmetry (mm).
 
-    ``pieces``: list of (evaluator, parameters, sample_alive_mask) for tooth 0;
+    ``pieces``: list of (evaluator, parameters, sample_alive_mask[, {chord: corner parameter}])
+    for tooth 0;
     ``circles``: radii (mm) of exact full circles that also bound the part (a ring's rim).
     """
 
@@ -80,10 +91,10 @@ class ExactBoundary:
         self.polygon_error = float(polygon_error)
         self.pitch = 2 * math.pi / self.teeth
         self.pieces = []
-        for f, t, alive in pieces:
+        for f, t, alive, *cuts in pieces:
             if len(t) < 2 or not np.any(alive):
                 continue
-            self.pieces.append(_piece(f, t, alive))
+            self.pieces.append(_piece(f, t, alive, cuts[0] if cuts else None))
         self.circles = [float(r) for r in circles]
         a, b, owner, t0, t1 = [], [], [], [], []
         copies = (-1, 0, 1) if self.teeth > 1 else (0,)
@@ -198,18 +209,41 @@ class ExactBoundary:
                 right = pc.alive[np.minimum(c + 2, nt - 1)] & (c + 2 < nt)
                 inside = (pc.alive[c] & pc.alive[c + 1]
                           & ((t_i >= pc.t[c]) | left) & ((t_i <= pc.t[c + 1]) | right))
+                # on a chord cut at a known corner, a foot within [lo, hi] is on the boundary
+                if pc.cuts:
+                    known = np.array([j in pc.cuts for j in c], bool)
+                    inside |= known & (t_i >= pc.lo[c]) & (t_i <= pc.hi[c])
                 sus = np.nonzero(~inside)[0]
                 if len(sus) and self.polygon is not None:
-                    on = self._poly_dist(foot[sus]) <= 2 * self.tol + 1e-9
+                    on = self._poly_dist(foot[sus]) <= self._slack
                     bad = sus[~on]
                     if len(bad):
-                        d_i[bad] = self._poly_dist(qc[sel][bad]) + self.polygon_error
+                        d_i[bad] = self._clamp(pc, qc[sel][bad], c[bad], t_i[bad])
                 dist[sel] = d_i
             best = dist.reshape(len(q), m).min(axis=1)
         r = np.hypot(q[:, 0], q[:, 1])
         for R in self.circles:
             best = np.minimum(best, np.abs(r - R))
         return best
+
+    @property
+    def _slack(self) -> float:
+        """How far a point of the surviving exact boundary can lie from the trimmed polygon:
+        the polygon's measured error (chord sag, corners), plus rounding."""
+        return self.polygon_error + 1e-9
+
+    def _clamp(self, pc: _Piece, q: np.ndarray, chord: np.ndarray, t_off: np.ndarray) -> np.ndarray:
+        """Distance from ``q`` to the exact curve ``pc`` with the foot pulled back from
+        ``t_off`` (past a trimmed corner) to the last parameter, toward the chord's surviving
+        end, whose point still lies on the trimmed polygon (bisection, 2^-16 of the step)."""
+        t_a = np.where(pc.alive[chord], pc.t[chord], pc.t[chord + 1])
+        lo, hi = t_a, t_off
+        for _ in range(16):
+            mid = 0.5 * (lo + hi)
+            on = self._poly_dist(pc.f(mid)) <= self._slack
+            lo, hi = np.where(on, mid, lo), np.where(on, hi, mid)
+        d = np.hypot(*(pc.f(lo) - q).T)
+        return np.where(np.isfinite(d), d, np.inf)
 
     def _poly_dist(self, pts: np.ndarray) -> np.ndarray:
         a, b = self.polygon
@@ -236,7 +270,20 @@ class ExactBoundary:
         gp0 = pc.f(tp.ravel()).reshape(n, len(_PROBES), 2)
         dp = np.hypot(gp0[..., 0] - q[:, None, 0], gp0[..., 1] - q[:, None, 1])
         dp = np.where(np.isfinite(dp), dp, np.inf)
-        t = tp[np.arange(n), np.argmin(dp, axis=1)]
+        k = np.argmin(dp, axis=1)
+        t = tp[np.arange(n), k]
+        # zoom twice around the best probe (a parametrisation can crowd a chord's whole
+        # travel into a small part of its parameter interval)
+        span = (b - a) / (len(_PROBES) - 1)
+        for _ in range(ZOOMS):
+            tz = np.clip(t[:, None] + span[:, None] * (2 * _PROBES[None, :] - 1), lo[:, None], hi[:, None])
+            gz = pc.f(tz.ravel()).reshape(n, len(_PROBES), 2)
+            dz = np.hypot(gz[..., 0] - q[:, None, 0], gz[..., 1] - q[:, None, 1])
+            dz = np.where(np.isfinite(dz), dz, np.inf)
+            kz = np.argmin(dz, axis=1)
+            better = dz[np.arange(n), kz] < dp[np.arange(n), k]
+            t = np.where(better, tz[np.arange(n), kz], t)
+            span = span / 4
         h = np.minimum(np.maximum(w * 1e-4, 1e-12), 0.25)
         for _ in range(NEWTON_STEPS):
             # a central stencil kept inside [0, 1] (derivatives at tc, a point within h of t)

@@ -49,3 +49,55 @@ def polyline_distance(loops, pts: np.ndarray, chunk: int = 2048) -> np.ndarray:
         d, _ = segment_foot(pts[s:s + step, None, :], a[None], b[None])
         out[s:s + step] = d.min(axis=1)
     return out
+
+
+def nearest_distance(loops, pts: np.ndarray, cap: float | None = None) -> np.ndarray:
+    """Distance (mm) from points (N, 2) to the edges of closed polylines ``loops`` around the
+    origin, searching only the edges whose polar-angle range (widened by what ``cap`` mm
+    subtends at the point) holds the point's angle; points farther than ``cap`` from those
+    are measured against every edge. ``cap`` defaults to the longest edge. Exact (the same
+    result as a brute-force search), numpy only."""
+    a = np.concatenate([np.asarray(l, float) for l in loops])
+    b = np.concatenate([np.roll(np.asarray(l, float), -1, axis=0) for l in loops])
+    pts = np.atleast_2d(np.asarray(pts, float))
+    cap = float(np.hypot(*(b - a).T).max(initial=0.0)) if cap is None else float(cap)
+    a1 = np.arctan2(a[:, 1], a[:, 0])
+    span = (np.arctan2(b[:, 1], b[:, 0]) - a1 + np.pi) % (2 * np.pi) - np.pi
+    lo = np.minimum(a1, a1 + span)
+    hi = np.maximum(a1, a1 + span)
+    # edges near the origin or across the ±pi cut: searched for every point
+    r_in = np.minimum(np.hypot(*a.T), np.hypot(*b.T))
+    wide = (r_in <= 2 * cap) | (hi - lo > 0.5)
+    order = np.nonzero(~wide)[0][np.argsort(lo[~wide])]
+    lo_s = lo[order]
+    span_max = float((hi - lo)[order].max(initial=0.0))
+    always = np.nonzero(wide)[0]
+    out = np.empty(len(pts))
+    r = np.hypot(pts[:, 0], pts[:, 1])
+    ang = np.arctan2(pts[:, 1], pts[:, 0])
+    half = np.arcsin(np.clip(cap / np.maximum(r, 1e-300), 0, 1))
+    i0 = np.searchsorted(lo_s, ang - half - span_max, side="left")
+    i1 = np.searchsorted(lo_s, ang + half, side="right")
+    # points near ±pi also see the edges on the other side of the cut
+    wrap = (ang - half - span_max < -np.pi) | (ang + half > np.pi)
+    width = int((i1 - i0).max(initial=0))
+    step = max(1, 400_000 // max(width + len(always), 1))
+    for s0 in range(0, len(pts), step):
+        sl = slice(s0, s0 + step)
+        k = i0[sl, None] + np.arange(width)[None, :]
+        valid = k < i1[sl, None]
+        cols = order[np.minimum(k, max(len(order) - 1, 0))] if len(order) else np.zeros(k.shape, int)
+        d = np.full(k.shape, np.inf)
+        if len(order):
+            dd, _ = segment_foot(pts[sl, None, :], a[cols], b[cols])
+            d = np.where(valid, dd, np.inf)
+        best = d.min(axis=1) if width else np.full(len(pts[sl]), np.inf)
+        if len(always):
+            da, _ = segment_foot(pts[sl, None, :], a[always][None], b[always][None])
+            best = np.minimum(best, da.min(axis=1))
+        redo = (best > cap) | wrap[sl]
+        if redo.any():
+            idx = np.nonzero(redo)[0] + s0
+            best[redo] = polyline_distance(loops, pts[idx])
+        out[sl] = best
+    return out

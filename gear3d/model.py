@@ -306,7 +306,8 @@ def build_profile(family: str, params: dict, pieces, teeth: int, pitch_radius: f
                 corners.append((q, theta, near))
             if not changed:
                 break
-        corner_errs = _measure_corners(fs, ts, corners, teeth)
+        corner_cuts = {}
+        corner_errs = _measure_corners(fs, ts, corners, teeth, corner_cuts)
         if not corner_errs or max(corner_errs) <= tol - 2 * CLIPPER_ROUNDING:
             break
         shrink /= 4          # a corner missed the budget: tighten its chords and trim again
@@ -396,26 +397,39 @@ def build_profile(family: str, params: dict, pieces, teeth: int, pitch_radius: f
     if extra_report:
         rep.update(extra_report)
     prof.report = rep
-    prof.boundary = _boundary(fs, ts, keep, tl, teeth, tol, internal, rim_radius, arc_piece, arc_t)
+    # the raw evaluators (no-contact parameters give NaN, which the distance search skips)
+    prof.boundary = _boundary(list(pieces), ts, keep, tl, teeth, tol, internal, rim_radius, arc_piece,
+                              arc_t, max_err, corner_cuts)
     return prof
 
 
-def _boundary(fs, ts, keep, tl, teeth, tol, internal, rim_radius, arc_piece, arc_t):
+def _boundary(fs, ts, keep, tl, teeth, tol, internal, rim_radius, arc_piece, arc_t, max_err, corner_cuts):
     """The exact boundary of the trimmed profile: every piece with its samples that survived
-    trimming (within 2 tol of the trimmed polygon), the turned blank's arc, a ring's rim."""
+    trimming (within 2 tol of the trimmed polygon) and, on a chord that runs into a trimmed
+    corner, the corner's parameter (the exact crossing found by Newton); the turned blank's
+    arc; a ring's rim."""
     from .exact import ExactBoundary
     pieces = []
     start = 0
-    for i, (f, t) in enumerate(zip(fs, ts)):
-        n = len(t)
-        k = keep[start:start + n] if i == 0 else keep[start - 1:start - 1 + n]
-        start += n if i == 0 else n - 1
-        pieces.append((f, t, k))
+    items = [(f, t, corner_cuts.get(i, [])) for i, (f, t) in enumerate(zip(fs, ts))]
     if arc_piece is not None:
-        pieces.append((arc_piece, arc_t, _sector_distance(tl, arc_piece(arc_t), teeth) <= 2 * tol + 1e-9))
+        items.append((arc_piece, arc_t, corner_cuts.get(len(fs), [])))
+    for i, (f, t, cs) in enumerate(items):
+        n = len(t)
+        if i < len(fs):
+            k = keep[start:start + n] if i == 0 else keep[start - 1:start - 1 + n]
+            start += n if i == 0 else n - 1
+        else:
+            k = _sector_distance(tl, f(t), teeth) <= 2 * tol + 1e-9
+        cuts = {}
+        for c in cs:
+            j = int(np.clip(np.searchsorted(t, c) - 1, 0, n - 2))
+            if t[j] <= c <= t[j + 1] and k[j] != k[j + 1]:
+                cuts[j] = c
+        pieces.append((f, t, k, cuts))
     circles = [rim_radius] if internal and rim_radius else []
     a, b = _sector_edges(tl, teeth)
-    return ExactBoundary(pieces, teeth, circles, polygon=(a, b), tol=tol, polygon_error=tol)
+    return ExactBoundary(pieces, teeth, circles, polygon=(a, b), tol=tol, polygon_error=max_err)
 
 
 def _sector_edges(loop: np.ndarray, teeth: int):
@@ -567,11 +581,12 @@ def _tooth_loop(loops, internal):
     return max(loops, key=lambda l: abs(signed_area(l)))
 
 
-def _measure_corners(fs, ts, corners, teeth):
-    """Distance (mm) from each trimmed corner to the exact crossing of its two curves."""
+def _measure_corners(fs, ts, corners, teeth, cuts=None):
+    """Distance (mm) from each trimmed corner to the exact crossing of its two curves.
+    ``cuts`` (a dict, filled in): piece index -> parameters of the crossings on it."""
     errs = []
     for q, _theta, near in corners:
-        best = None
+        best, best_cut = None, None
         for a in range(len(near)):
             for b in range(a + 1, len(near)):
                 pa, ja, ka = near[a]
@@ -584,14 +599,19 @@ def _measure_corners(fs, ts, corners, teeth):
                 tb0, tb1 = ts[pb][jb], ts[pb][jb + 1]
                 # work in the frame of copy ka: rotate q back
                 qa = _rotate_pt(q, -ra)
-                x = exact_crossing(fa, ta0, ta1, fs[pb], tb0, tb1, 2 * math.pi * (kb - ka) / teeth, qa)
-                if x is None:
+                res = exact_crossing(fa, ta0, ta1, fs[pb], tb0, tb1, 2 * math.pi * (kb - ka) / teeth, qa,
+                                     params=True)
+                if res is None:
                     continue
+                x, sa, ub = res
                 d = float(np.hypot(*(x - qa)))
                 if best is None or d < best:
-                    best = d
+                    best, best_cut = d, ((pa, sa), (pb, ub))
         if best is not None:
             errs.append(best)
+            if cuts is not None:
+                for pc, t in best_cut:
+                    cuts.setdefault(pc, []).append(t)
     return errs
 
 

@@ -6,7 +6,7 @@
   manifold3d's own checks, volume equal to manifold3d's, measured error within tolerance
   against the slices of an independent reader;
 * the binary STL writer read back by trimesh;
-* the STL and JSON command paths import none of trimesh, scipy, shapely, matplotlib;
+* the STL, JSON and DXF command paths import none of trimesh, scipy, shapely, matplotlib;
 * the family -> module table agrees with the registry.
 """
 from __future__ import annotations
@@ -141,6 +141,7 @@ HEAVY = ("trimesh", "scipy", "shapely", "matplotlib")
     (["body", "involute", "--teeth", "20", "--kind", "helical", "--helix-angle", "20", "--width", "10",
       "--bore", "5", "--tolerance", "0.005"], ".stl"),
     (["profile", "involute", "--teeth", "20"], ".json"),
+    (["profile", "involute", "--teeth", "20"], ".dxf"),
 ])
 def test_command_paths_import_no_heavy_library(tmp_path, argv, ext):
     out = tmp_path / ("x" + ext)

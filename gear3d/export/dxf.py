@@ -19,8 +19,9 @@ Pipeline (mm throughout):
    LINE/ARC entities instead; ``spline=True`` writes each contour as one exact rational
    quadratic SPLINE (control points and weights, no fit points).
 5. **Measure.** The file is read back with ezdxf, every entity is sampled densely and
-   both distances are measured: DXF -> exact curve with ``Profile.exact_distance`` (for a
-   kerf: | distance - |kerf| |) and exact curve (reference vertices) -> DXF. If either
+   both distances are measured: DXF -> exact curve with ``Profile.exact_distance``
+   (nearest points on the exact evaluators; for a kerf: | distance - |kerf| |) and exact
+   curve (reference vertices, which lie on it) -> DXF. If either
    exceeds the tolerance the fit is redone with a smaller budget; if that fails too a
    :class:`ToleranceError` is raised and no file is left. A file is accepted only when
    both measured distances are within the tolerance itself (no allowance for the
@@ -120,7 +121,9 @@ def write_dxf(profile, path, tolerance=None, kerf: float = 0.0, lead_in=None,
         "polyline_vertices": int(sum(len(l) for l in exact.loops)),
         "reference_vertices": int(sum(len(l) for l in loops)),
         "fit_budget": budget, "reference_error": ref_err,
-        "measurement_uncertainty": float(exact.reference().report["max_error"]),
+        # DXF -> curve is measured on the exact evaluators (Newton's nearest points); the
+        # curve -> DXF side uses the reference vertices, which lie on the exact curve
+        "measurement_uncertainty": 0.0,
         **meas,
     }
 
@@ -361,12 +364,12 @@ def _chain(segs, eps=1e-7):
 
 def measure(path, exact, ref_loops, kerf: float, tol: float) -> dict:
     """Two-sided distance (mm) between the DXF read back and the exact (offset) curve."""
-    from ..model import loops_distance
+    from ..geometry import nearest_distance
     got = read_back(path, tol / 100)
     pts = np.concatenate(got)
     d = exact.exact_distance(pts)
     if kerf:
         d = np.abs(d - abs(kerf))
-    back = loops_distance(got, np.concatenate(ref_loops))
+    back = nearest_distance(got, np.concatenate(ref_loops))
     return {"max_error": float(d.max()), "max_error_curve_to_dxf": float(back.max()),
             "contours": len(got), "samples": int(len(pts))}
