@@ -173,6 +173,9 @@ def plot(res, path: Path):
     fig, ax = plt.subplots(figsize=(5.5, 4))
     ax.plot(w, [r["parts_per_s"] for r in rows], "o-", label="measured")
     ax.plot(w, [unit * x for x in w], "k:", label="ideal (linear from 1 worker)")
+    if all(r.get("worker_cpu_s") for r in rows):
+        ax.plot(w, [r["workers"] * r["parts"] / r["worker_cpu_s"] for r in rows], "^--", color="tab:green",
+                label="CPU-bound (workers / CPU s per part)")
     ax.plot(list(BEFORE), list(BEFORE.values()), "s--", color="grey", label="issue 12, before")
     ax.axhline(TARGET_RATE, color="tab:red", lw=0.8, label=f"target {TARGET_RATE:g} parts/s on 2")
     for r in rows:
