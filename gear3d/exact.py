@@ -55,7 +55,7 @@ class _Piece:
     cuts: dict             # chord -> parameter of the trimmed corner on it
 
 
-def _piece(f, t, alive, cuts=None) -> _Piece:
+def _piece(f, t, alive, cuts=None, mid_alive=None) -> _Piece:
     """One piece's chords: a chord carries boundary when one of its ends survived trimming,
     and its foot points may move one chord width beyond its ends (clipped to [0, 1]); a
     chord that runs into a trimmed corner stops at the corner's parameter ``cuts[j]``."""
@@ -65,6 +65,8 @@ def _piece(f, t, alive, cuts=None) -> _Piece:
     t0, t1 = t[:-1], t[1:]
     w = t1 - t0
     keep = alive[:-1] | alive[1:]
+    if mid_alive is not None:
+        keep = keep | np.asarray(mid_alive, bool)
     lo, hi = np.clip(t0 - w, 0, 1), np.clip(t1 + w, 0, 1)
     for j, c in (cuts or {}).items():
         if alive[j]:
@@ -77,8 +79,8 @@ def _piece(f, t, alive, cuts=None) -> _Piece:
 class ExactBoundary:
     """The exact boundary of a profile with ``teeth``-fold symmetry (mm).
 
-    ``pieces``: list of (evaluator, parameters, sample_alive_mask[, {chord: corner parameter}])
-    for tooth 0;
+    ``pieces``: list of (evaluator, parameters, sample_alive_mask[, {chord: corner parameter}
+    [, chord_alive_inside_mask]]) for tooth 0;
     ``circles``: radii (mm) of exact full circles that also bound the part (a ring's rim).
     """
 
@@ -91,10 +93,11 @@ class ExactBoundary:
         self.polygon_error = float(polygon_error)
         self.pitch = 2 * math.pi / self.teeth
         self.pieces = []
-        for f, t, alive, *cuts in pieces:
-            if len(t) < 2 or not np.any(alive):
+        for f, t, alive, *extra in pieces:
+            pc = _piece(f, t, alive, *extra)
+            if len(t) < 2 or not np.any(pc.keep):
                 continue
-            self.pieces.append(_piece(f, t, alive, cuts[0] if cuts else None))
+            self.pieces.append(pc)
         self.circles = [float(r) for r in circles]
         a, b, owner, t0, t1 = [], [], [], [], []
         copies = (-1, 0, 1) if self.teeth > 1 else (0,)
@@ -105,6 +108,11 @@ class ExactBoundary:
                 a.append(q[idx])
                 b.append(q[idx + 1])
                 owner.append(np.stack([np.full(len(idx), i), np.full(len(idx), k), idx], axis=1))
+        # the angle the period is centred on (tooth 0 for rack-cut gears; a rolled mate's
+        # period can sit elsewhere)
+        pts = np.concatenate([pc.p[pc.alive] for pc in self.pieces]) if self.pieces else np.zeros((0, 2))
+        u = pts / np.maximum(np.hypot(pts[:, 0], pts[:, 1]), 1e-300)[:, None]
+        self._center = float(np.arctan2(u[:, 1].sum(), u[:, 0].sum())) if len(u) else 0.0
         self._a = np.concatenate(a) if a else np.zeros((0, 2))
         self._b = np.concatenate(b) if b else np.zeros((0, 2))
         self._owner = np.concatenate(owner) if owner else np.zeros((0, 3), int)
@@ -179,8 +187,12 @@ class ExactBoundary:
     def _distance(self, q: np.ndarray) -> np.ndarray:
         if len(q) == 0:
             return np.zeros(0)
-        # turn every point into tooth 0's sector
-        k = np.rint(np.arctan2(q[:, 1], q[:, 0]) / self.pitch) if self.teeth > 1 else np.zeros(len(q))
+        # turn every point into the sector of the tooth period the pieces describe
+        if self.teeth > 1:
+            k = np.rint(((np.arctan2(q[:, 1], q[:, 0]) - self._center + np.pi) % (2 * np.pi) - np.pi
+                         + self._center) / self.pitch)
+        else:
+            k = np.zeros(len(q))
         q0 = rotate(q, -k * self.pitch)
         best = np.full(len(q), np.inf)
         if len(self._a):
@@ -218,7 +230,11 @@ class ExactBoundary:
                     on = self._poly_dist(foot[sus]) <= self._slack
                     bad = sus[~on]
                     if len(bad):
-                        d_i[bad] = self._clamp(pc, qc[sel][bad], c[bad], t_i[bad])
+                        ends = pc.alive[c[bad]] | pc.alive[c[bad] + 1]
+                        d_i[bad] = np.where(
+                            ends, self._clamp(pc, qc[sel][bad], c[bad], t_i[bad]),
+                            # no surviving end to pull back to: bound it by the polygon
+                            self._poly_dist(qc[sel][bad]) + self.polygon_error)
                 dist[sel] = d_i
             best = dist.reshape(len(q), m).min(axis=1)
         r = np.hypot(q[:, 0], q[:, 1])

@@ -426,7 +426,20 @@ def _boundary(fs, ts, keep, tl, teeth, tol, internal, rim_radius, arc_piece, arc
             j = int(np.clip(np.searchsorted(t, c) - 1, 0, n - 2))
             if t[j] <= c <= t[j + 1] and k[j] != k[j + 1]:
                 cuts[j] = c
-        pieces.append((f, t, k, cuts))
+        # a chord whose two ends were trimmed away can still carry boundary in its middle
+        # (an arc clipped at both ends): look at three exact points inside it
+        dead = np.nonzero(~(k[:-1] | k[1:]))[0]
+        mid_alive = np.zeros(n - 1, bool)
+        if len(dead):
+            tm = (t[dead][:, None] + (t[dead + 1] - t[dead])[:, None] * np.array([0.25, 0.5, 0.75])).ravel()
+            with np.errstate(invalid="ignore"):
+                pm = np.asarray(f(tm), float)
+            ok = np.isfinite(pm).all(axis=1)
+            near = np.zeros(len(tm), bool)
+            if ok.any():
+                near[ok] = _sector_distance(tl, pm[ok], teeth) <= 2 * tol + 1e-9
+            mid_alive[dead] = near.reshape(-1, 3).any(axis=1)
+        pieces.append((f, t, k, cuts, mid_alive))
     circles = [rim_radius] if internal and rim_radius else []
     a, b = _sector_edges(tl, teeth)
     return ExactBoundary(pieces, teeth, circles, polygon=(a, b), tol=tol, polygon_error=max_err)
