@@ -29,7 +29,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .geometry import rotate, segment_foot
+from .geometry import check_points, rotate, segment_foot
 
 #: Newton iterations on the foot-point parameter (quadratic convergence from a chord start)
 NEWTON_STEPS = 3
@@ -167,17 +167,7 @@ class ExactBoundary:
 
     def distance(self, points, chunk: int = 4096) -> np.ndarray:
         """Distance (mm) from ``points`` (N, 2) to the exact boundary."""
-        from .errors import GearError
-        try:
-            q = np.asarray(points, float)
-        except (TypeError, ValueError):
-            raise GearError("points", type(points).__name__, "an (N, 2) array of numbers (mm)") from None
-        if q.ndim == 1 and q.shape == (2,):
-            q = q[None, :]
-        if q.ndim != 2 or q.shape[1] != 2:
-            raise GearError("points", f"shape {q.shape}", "an (N, 2) array of numbers (mm)")
-        if not np.all(np.isfinite(q)):
-            raise GearError("points", "non-finite values", "finite coordinates (mm)")
+        q = check_points(points)
         out = np.empty(len(q))
         for s in range(0, len(q), chunk):
             out[s:s + chunk] = self._distance(q[s:s + chunk])

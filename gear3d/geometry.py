@@ -4,6 +4,20 @@ from __future__ import annotations
 import numpy as np
 
 
+def check_points(points) -> np.ndarray:
+    """``points`` as a finite (N, 2) float array (mm), or GearError naming ``points``."""
+    from .errors import GearError
+    try:
+        q = np.asarray(points, float)
+    except (TypeError, ValueError):
+        raise GearError("points", type(points).__name__, "an (N, 2) array of numbers (mm)") from None
+    if q.ndim == 1 and q.shape == (2,):
+        q = q[None, :]
+    if q.ndim != 2 or q.shape[1] != 2 or not np.all(np.isfinite(q)):
+        raise GearError("points", f"array of shape {q.shape}", "a finite (N, 2) array of numbers (mm)")
+    return q
+
+
 def rotate(pts, ang) -> np.ndarray:
     """Points (..., 2) turned counter-clockwise by ``ang`` (rad; a scalar or an array that
     broadcasts against the points' leading shape)."""

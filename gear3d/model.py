@@ -15,7 +15,7 @@ import numpy as np
 from .envelope import circle_loop, pattern, signed_area, trim
 from .errors import GearError, check_number
 from .corners import chords_near, corner_angle, exact_crossing, new_vertices, refine
-from .geometry import point_segment_distance, segment_foot
+from .geometry import check_points, point_segment_distance, segment_foot
 from .tessellate import chord_deviation, tessellate
 
 #: Clipper2 (inside manifold3d) rounds to 1e-8 mm; half a unit in each axis
@@ -98,7 +98,7 @@ class Profile:
         """Distance (mm) from ``points`` to a reference build 50x finer (an independent
         check of :meth:`exact_distance` for tests and benchmarks; its own error is at most
         ``reference().tolerance``)."""
-        pts = _check_points(points)
+        pts = check_points(points)
         return loops_distance(self.reference().loops, pts)
 
     def thickness_at(self, radius: float) -> float:
@@ -124,19 +124,6 @@ class Profile:
 
 
 # ------------------------------------------------------------------- measurements
-
-def _check_points(points) -> np.ndarray:
-    """``points`` as a finite (N, 2) float array (mm), or GearError naming ``points``."""
-    try:
-        q = np.asarray(points, float)
-    except (TypeError, ValueError):
-        raise GearError("points", type(points).__name__, "an (N, 2) array of numbers (mm)") from None
-    if q.ndim == 1 and q.shape == (2,):
-        q = q[None, :]
-    if q.ndim != 2 or q.shape[1] != 2 or not np.all(np.isfinite(q)):
-        raise GearError("points", f"array of shape {q.shape}", "a finite (N, 2) array of numbers (mm)")
-    return q
-
 
 def loops_distance(loops, pts: np.ndarray) -> np.ndarray:
     """Distance (mm) from points (N,2) to the boundary of closed loops, via an R-tree."""
