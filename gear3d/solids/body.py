@@ -1,9 +1,13 @@
-"""Gear bodies: a profile extruded and turned by a twist law, plus hub features.
+"""Gear bodies: a profile stacked in layers turned by a twist law, plus hub features.
 
-Construction: ``CrossSection(loops, FillRule.Positive).extrude(W, n)`` then one
-``warp_batch`` that (1) moves the uniform extrusion layers to planned heights, (2) insets
-vertices in the chamfer bands and (3) turns each layer by θ(z). Every body is manifold by
-construction; features are manifold booleans.
+Construction. A plain body (no chamfer, gap or hub feature; a bore at most) is built
+directly as a closed triangle mesh (:func:`twisted_mesh`): each layer is the profile
+polygon turned exactly by θ(z), side quads are split on the diagonal that runs with the
+turn, the end faces come from manifold3d's polygon triangulation; its ``Manifold`` is made
+from that mesh only when something asks for it. Other bodies use
+``CrossSection(loops).extrude(W, n)`` and one ``warp_batch`` that moves the layers to
+their heights, insets the chamfer bands and turns each layer by θ(z); features are
+manifold booleans.
 
 Error budget (mm). The finished surface deviates from the exactly turned profile by at most
 
@@ -14,13 +18,14 @@ Error budget (mm). The finished surface deviates from the exactly turned profile
                zig-zag of long edges; L is capped by inserting collinear profile vertices)
   + ρ·θ''·Δz²/8 (the law's own curvature between layers, chevron-arch only)
 
-A twisted body rebuilds its profile at half the body tolerance when the profile's measured
-error leaves too little room for the twist terms; the layer count and the edge-length cap
-are chosen together to meet the rest with the fewest triangles. The result is then
-*measured*: slices at layer heights and mid-layer heights, turned back by -θ(z), are
-compared with the exact profile (:meth:`Profile.exact_distance`, densified along every
-slice edge); ``report["max_error"]`` is that measurement and a body that misses its
-tolerance raises :class:`ToleranceError` instead of being returned.
+The profile gets :data:`PROFILE_SHARE` of a twisted body's tolerance (all of a spur
+body's) and is built once at that share by the CLI and by scenes. The layer plan starts
+from :data:`TWIST_OPTIMISM` times the budget this worst-case bound allows; the result is
+*measured* (:func:`measure_mesh`: sample points on the side triangles of one tooth in
+every distinct layer band, turned back by -θ(z), distance to the exact profile on its
+exact evaluators); a miss shrinks the twist budget by what the measurement says, and a
+body that cannot meet its tolerance raises :class:`ToleranceError` instead of being
+returned. ``report["max_error"]`` is that measurement.
 """
 from __future__ import annotations
 
