@@ -40,6 +40,28 @@ def segment_foot(p: np.ndarray, a: np.ndarray, b: np.ndarray):
     return np.sqrt(dx * dx + dy * dy), s
 
 
+def circle_crossings(loop, radius: float):
+    """Where the closed polyline ``loop`` (N, 2) crosses the circle of ``radius`` (mm) about
+    the origin, exactly per edge: (points (M, 2), edge indices (M,), fractions s in [0, 1)
+    along the edges). Entry crossings of each edge come first, then exit crossings."""
+    a = np.asarray(loop, float)
+    d = np.roll(a, -1, axis=0) - a
+    A = np.einsum("ij,ij->i", d, d)
+    B = 2 * np.einsum("ij,ij->i", a, d)
+    C = np.einsum("ij,ij->i", a, a) - radius * radius
+    disc = B * B - 4 * A * C
+    ok = (disc >= 0) & (A > 0)
+    sq = np.sqrt(np.where(ok, disc, 0.0))
+    idx, frac = [], []
+    for sgn in (-1.0, 1.0):
+        s = (-B + sgn * sq) / (2 * np.where(A > 0, A, 1.0))
+        m = np.nonzero(ok & (s >= 0) & (s < 1))[0]
+        idx.append(m)
+        frac.append(s[m])
+    idx, frac = np.concatenate(idx), np.concatenate(frac)
+    return a[idx] + frac[:, None] * d[idx], idx, frac
+
+
 def point_segment_distance(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """Distance (mm) from points ``p`` to segments ``a``-``b``; all (..., 2), broadcast."""
     return segment_foot(p, a, b)[0]

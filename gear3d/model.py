@@ -15,7 +15,7 @@ import numpy as np
 from .envelope import circle_loop, pattern, signed_area, trim
 from .errors import GearError, check_number
 from .corners import chords_near, corner_angle, exact_crossing, new_vertices, refine
-from .geometry import check_points, point_segment_distance, segment_foot
+from .geometry import check_points, circle_crossings, point_segment_distance, segment_foot
 from .tessellate import chord_deviation, tessellate
 
 #: Clipper2 (inside manifold3d) rounds to 1e-8 mm; half a unit in each axis
@@ -147,21 +147,7 @@ def loops_distance(loops, pts: np.ndarray) -> np.ndarray:
 def tooth_crossings(loop: np.ndarray, radius: float):
     """Angles (rad) of the crossings of ``loop`` with the circle of ``radius`` nearest to
     angle 0 on each side: (theta_left < 0 <= theta_right), NaN if absent. Exact per segment."""
-    a = np.asarray(loop, float)
-    b = np.roll(a, -1, axis=0)
-    d = b - a
-    A = np.einsum("ij,ij->i", d, d)
-    B = 2 * np.einsum("ij,ij->i", a, d)
-    C = np.einsum("ij,ij->i", a, a) - radius * radius
-    disc = B * B - 4 * A * C
-    ok = (disc >= 0) & (A > 0)
-    sq = np.sqrt(np.where(ok, disc, 0))
-    ts = []
-    for sgn in (-1, 1):
-        s = (-B + sgn * sq) / (2 * np.where(A > 0, A, 1))
-        m = ok & (s >= 0) & (s < 1)
-        ts.append(a[m] + s[m, None] * d[m])
-    pts = np.concatenate(ts)
+    pts, _, _ = circle_crossings(loop, radius)
     if len(pts) == 0:
         return math.nan, math.nan
     ang = np.arctan2(pts[:, 1], pts[:, 0])

@@ -12,6 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..geometry import circle_crossings, rotate
 from .involute_measure import inv
 
 #: pin gauges come in 0.01 mm steps (0.001 mm below 0.5 mm): the default pin is the ideal
@@ -137,38 +138,21 @@ def _crossings(loop: np.ndarray, radius: float, centre: float, half: float, smoo
     tangent is the crossing edge's direction, or with ``smooth`` the vertices' central
     differences interpolated along the edge (second order: the curve's own tangent to
     O(h^2), where the chord's is only O(h))."""
-    a = loop
-    b = np.roll(loop, -1, axis=0)
-    d = b - a
-    A = np.einsum("ij,ij->i", d, d)
-    B = 2 * np.einsum("ij,ij->i", a, d)
-    C = np.einsum("ij,ij->i", a, a) - radius * radius
-    disc = B * B - 4 * A * C
-    ok = (disc >= 0) & (A > 0)
-    sq = np.sqrt(np.where(ok, disc, 0.0))
+    P, e, s = circle_crossings(loop, radius)
+    d = np.roll(loop, -1, axis=0) - loop
     if smooth:
         tv = np.roll(loop, -1, axis=0) - np.roll(loop, 1, axis=0)
         tv /= np.maximum(np.hypot(tv[:, 0], tv[:, 1]), 1e-300)[:, None]
-    P, D = [], []
-    for sgn in (-1.0, 1.0):
-        s = (-B + sgn * sq) / (2 * np.where(A > 0, A, 1.0))
-        m = ok & (s >= 0) & (s < 1)
-        P.append(a[m] + s[m, None] * d[m])
-        if smooth:
-            t = (1 - s[m, None]) * tv[m] + s[m, None] * np.roll(tv, -1, axis=0)[m]
-            D.append(t / np.maximum(np.hypot(t[:, 0], t[:, 1]), 1e-300)[:, None])
-        else:
-            D.append(d[m] / np.sqrt(A[m])[:, None])
-    P, D = np.concatenate(P), np.concatenate(D)
+        t = (1 - s[:, None]) * tv[e] + s[:, None] * np.roll(tv, -1, axis=0)[e]
+        D = t / np.maximum(np.hypot(t[:, 0], t[:, 1]), 1e-300)[:, None]
+    else:
+        D = d[e] / np.hypot(d[e, 0], d[e, 1])[:, None]
     rel = (np.arctan2(P[:, 1], P[:, 0]) - centre + math.pi) % (2 * math.pi) - math.pi
     keep = np.abs(rel) <= half
     return P[keep], D[keep], rel[keep]
 
 
-def _rot(p, ang):
-    c, s = np.cos(ang), np.sin(ang)
-    p = np.asarray(p, float)
-    return np.stack([c * p[..., 0] - s * p[..., 1], s * p[..., 0] + c * p[..., 1]], axis=-1)
+_rot = rotate
 
 
 def _seg_dist(p, a, b):
