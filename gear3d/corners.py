@@ -13,7 +13,7 @@ import math
 import numpy as np
 
 from .geometry import point_segment_distance, rotate
-from .tessellate import MAX_VERTICES, chord_deviation
+from .tessellate import MAX_VERTICES, split_chords
 
 
 _rot = rotate
@@ -63,37 +63,44 @@ def corner_angle(loop: np.ndarray, i: int) -> float:
     return float(math.acos(np.clip(np.dot(u, v) / (nu * nv), -1, 1)))
 
 
-def chords_near(q: np.ndarray, pts: np.ndarray, teeth: int, dist: float):
-    """Chords of a piece's samples ``pts`` (tooth 0) within ``dist`` of ``q`` in any tooth copy.
-
-    Returns a list of (chord index, copy k) with the copy rotated by 2*pi*k/teeth.
+def chords_near(q: np.ndarray, pts_list, teeth: int, dist: float):
+    """Chords of every piece's samples (``pts_list``, tooth 0) within ``dist`` (mm) of
+    ``q`` in any tooth copy: one list of (chord index, copy k) per piece, the copy rotated
+    by 2*pi*k/teeth. (The point is turned back instead of the chords, and all pieces are
+    searched in one distance pass.)
     """
-    out = []
-    for k in range(-1, 2) if teeth > 1 else (0,):
-        p = _rot(pts, 2 * math.pi * k / teeth) if k else pts
-        d = point_segment_distance(q[None, :], p[:-1], p[1:])
-        for j in np.nonzero(d <= dist)[0]:
-            out.append((int(j), k))
+    ks = np.arange(-1, 2) if teeth > 1 else np.zeros(1, int)
+    qk = _rot(np.broadcast_to(np.asarray(q, float), (len(ks), 2)), -2 * math.pi * ks / teeth)
+    a = np.concatenate([p[:-1] for p in pts_list])
+    b = np.concatenate([p[1:] for p in pts_list])
+    starts = np.cumsum([0] + [len(p) - 1 for p in pts_list])
+    d = point_segment_distance(qk[:, None, :], a[None], b[None])
+    kk, jj = np.nonzero(d <= dist)
+    owner = np.searchsorted(starts, jj, side="right") - 1
+    out = [[] for _ in pts_list]
+    for i in np.lexsort((jj, kk)):
+        out[owner[i]].append((int(jj[i] - starts[owner[i]]), int(ks[kk[i]])))
     return out
 
 
-def refine(f, t: np.ndarray, chords, target: float, max_iter: int = 40) -> np.ndarray:
+def refine(f, t: np.ndarray, pts: np.ndarray, dev: np.ndarray, chords, target: float, max_iter: int = 40):
     """Bisect the chords ``chords`` (indices into ``t``) and their neighbours until each of
-    them deviates at most ``target`` (mm) from the exact curve ``f``."""
+    them deviates at most ``target`` (mm) from the exact curve ``f``.
+
+    ``pts``/``dev``: the samples' points (mm) and every chord's measured deviation (mm);
+    returns the new ``(t, pts, dev)``, each new chord measured."""
     lo = max(min(chords) - 1, 0)
     hi = min(max(chords) + 2, len(t) - 1)
     ta, tb = t[lo], t[hi]
     for _ in range(max_iter):
-        sel = np.nonzero((t >= ta) & (t <= tb))[0]
-        tt = t[sel]
-        dev = chord_deviation(f, tt)
-        bad = dev > target
+        win = (t[:-1] >= ta) & (t[1:] <= tb)
+        bad = win & (dev > target)
         if not bad.any():
             break
-        if np.any(np.diff(tt)[bad] < 1e-15) or len(t) > MAX_VERTICES:
+        if np.any(np.diff(t)[bad] < 1e-15) or len(t) > MAX_VERTICES:
             break      # the measured corner error then tells (the builder refuses if > tol)
-        t = np.sort(np.concatenate([t, 0.5 * (tt[:-1][bad] + tt[1:][bad])]))
-    return t
+        t, pts, dev = split_chords(f, t, pts, dev, np.nonzero(bad)[0])
+    return t, pts, dev
 
 
 def exact_crossing(fa, ta0, ta1, fb, tb0, tb1, rot_b: float, q0: np.ndarray, iters: int = 30,

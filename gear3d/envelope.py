@@ -57,14 +57,14 @@ class EnvelopePiece:
         self.smooth = smooth
 
     def __call__(self, t):
-        return self._evaluate(np.asarray(t, float))[0]
+        return self._evaluate(np.asarray(t, float), False)[0]
 
     def tool_tangent(self, t):
-        return self._evaluate(np.asarray(t, float))[1] if self.smooth else None
+        return self._evaluate(np.asarray(t, float), True)[1] if self.smooth else None
 
     def evaluate_with_tangent(self, t):
         """(G(t), tool tangent at t) in one evaluation (smooth pieces)."""
-        return self._evaluate(np.asarray(t, float))
+        return self._evaluate(np.asarray(t, float), True)
 
 
 def rack_envelope_piece(el, radius: float, shift: float, internal: bool):
@@ -76,18 +76,27 @@ def rack_envelope_piece(el, radius: float, shift: float, internal: bool):
     """
     sigma = -1.0 if internal else 1.0
 
-    def evaluate(t):
+    def evaluate(t, tangent=True):
         u, v, du, dv = rack_element_uvn(el, t)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            slope = np.where(np.abs(du) > 1e-300, dv / du, np.nan)
         h = v - shift
-        ycon = -h * slope                       # Y of the contact point (X axis through pitch point)
-        ycon = np.where(np.isfinite(ycon), ycon, np.where(np.abs(h) < 1e-15, 0.0, np.nan))
-        d = ycon - u                            # rack translation at contact
+        with np.errstate(divide="ignore", invalid="ignore"):
+            ycon = -h * (dv / du)               # Y of the contact point (X axis through pitch point)
+        bad = ~np.isfinite(ycon)
+        if bad.any():                           # normal parallel to the datum: contact only on it
+            ycon[bad] = np.where(np.abs(h[bad]) < 1e-15, 0.0, np.nan)
+        phi = (ycon - u) / radius               # the rack translation at contact, over r
+        c, s = np.cos(phi), np.sin(phi)
         X = radius - sigma * h
-        phi = d / radius
-        tang = _rot(np.stack([-sigma * dv, du], axis=-1), -phi)
-        return _rot(np.stack([X, ycon], axis=-1), -phi), tang
+        G = np.empty(ycon.shape + (2,))
+        G[..., 0] = c * X + s * ycon
+        G[..., 1] = c * ycon - s * X
+        if not tangent:
+            return G, None
+        tx, ty = -sigma * dv, du
+        T = np.empty_like(G)
+        T[..., 0] = c * tx + s * ty
+        T[..., 1] = c * ty - s * tx
+        return G, T
     return EnvelopePiece(evaluate, not isinstance(el, Corner))
 
 
@@ -110,7 +119,7 @@ def wheel_envelope_piece(point_normal, r1: float, r2: float, internal: bool, smo
     k = 1.0 if internal else -1.0          # direction from tool centre to pitch point is k*x
     o1 = r2 - k * r1
 
-    def evaluate(t):
+    def evaluate(t, tangent=True):
         p, n = point_normal(t)
         pn = np.einsum("ij,ij->i", p, n)
         nn = np.einsum("ij,ij->i", n, n)

@@ -1,6 +1,8 @@
 """Small vectorised 2D helpers (mm, rad) shared by the engine, the measurements and the bodies."""
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 
@@ -22,9 +24,16 @@ def rotate(pts, ang) -> np.ndarray:
     """Points (..., 2) turned counter-clockwise by ``ang`` (rad; a scalar or an array that
     broadcasts against the points' leading shape)."""
     pts = np.asarray(pts, float)
-    c, s = np.cos(ang), np.sin(ang)
+    if np.ndim(ang) == 0:
+        c, s = math.cos(ang), math.sin(ang)
+        out = np.empty(pts.shape)
+    else:
+        c, s = np.cos(ang), np.sin(ang)
+        out = np.empty(np.broadcast_shapes(pts.shape[:-1], np.shape(c)) + (2,))
     x, y = pts[..., 0], pts[..., 1]
-    return np.stack([c * x - s * y, s * x + c * y], axis=-1)
+    out[..., 0] = c * x - s * y
+    out[..., 1] = s * x + c * y
+    return out
 
 
 def segment_foot(p: np.ndarray, a: np.ndarray, b: np.ndarray):
@@ -32,10 +41,9 @@ def segment_foot(p: np.ndarray, a: np.ndarray, b: np.ndarray):
     s in [0, 1] along each segment; all (..., 2), broadcast."""
     abx, aby = b[..., 0] - a[..., 0], b[..., 1] - a[..., 1]
     apx, apy = p[..., 0] - a[..., 0], p[..., 1] - a[..., 1]
-    den = abx * abx + aby * aby
-    with np.errstate(invalid="ignore", divide="ignore"):
-        s = np.where(den > 0, (apx * abx + apy * aby) / np.where(den > 0, den, 1.0), 0.0)
-    s = np.clip(s, 0.0, 1.0)
+    # a zero-length segment has a zero dot product too: s = 0 there
+    den = np.maximum(abx * abx + aby * aby, 1e-300)
+    s = np.clip((apx * abx + apy * aby) / den, 0.0, 1.0)
     dx, dy = apx - s * abx, apy - s * aby
     return np.sqrt(dx * dx + dy * dy), s
 

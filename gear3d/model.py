@@ -199,15 +199,21 @@ def build_profile(family: str, params: dict, pieces, teeth: int, pitch_radius: f
     budget = tol * (1 - 1 / 50) - CLIPPER_ROUNDING
     tess = [tessellate(f, budget) for f in fs]
     ts = [x.t for x in tess]
+    pts_list = [x.points for x in tess]
+    devs = [x.deviation for x in tess]   # every chord's measured deviation (mm), kept up to date
     # the resource budget, before the period is repeated and trimmed
     from . import budget as _budget
     _budget.check_profile(teeth * sum(len(t) - 1 for t in ts), "teeth" if teeth > 1000 else "tolerance",
                           teeth if teeth > 1000 else tol)
     minv = float(sum(x.min_vertices for x in tess))
     # singular points become samples, so the physical branches end exactly there
-    ts = [_with_transitions(G, t) for G, t in zip(pieces, ts)]
+    for i, G in enumerate(pieces):
+        t2 = _with_transitions(G, ts[i])
+        if len(t2) != len(ts[i]):
+            ts[i], pts_list[i] = t2, fs[i](t2)
+            devs[i] = chord_deviation(fs[i], t2, pts_list[i])
     # the blank is decided from the first tessellation
-    chain, label = _chain(fs, ts)
+    chain, label = _chain(fs, ts, pts_list)
     rc = np.hypot(chain[:, 0], chain[:, 1])
     if nominal_tip_radius is None:
         nominal_tip_radius = float(rc.min() if internal else rc.max())
@@ -230,11 +236,13 @@ def build_profile(family: str, params: dict, pieces, teeth: int, pitch_radius: f
     if clip_binding:
         # the turned tip circle joins the corner machinery as one more exact piece
         fs.append(_arc_piece(rb, teeth))
-        ts.append(tessellate(fs[-1], budget).t)
+        arc_tess = tessellate(fs[-1], budget)
+        ts.append(arc_tess.t)
+        pts_list.append(arc_tess.points)
+        devs.append(arc_tess.deviation)
     shrink = 1.0
     for _attempt in range(4):
         for it in range(5):
-            pts_list = [f(t) for f, t in zip(fs, ts)]
             chain, label = _chain(fs[:nraw], ts[:nraw], pts_list[:nraw])
             raw = pattern(chain, teeth)
             if clip_binding:
@@ -254,7 +262,6 @@ def build_profile(family: str, params: dict, pieces, teeth: int, pitch_radius: f
             if len(nv):
                 ang = np.arctan2(tl[nv, 1], tl[nv, 0])
                 nv = nv[np.abs(ang) <= math.pi / teeth + 1e-9] if teeth > 1 else nv
-            devs = {}          # chord deviations per piece, measured once per pass
             for i in nv:
                 q = tl[i]
                 theta = corner_angle(tl, i)
@@ -262,19 +269,14 @@ def build_profile(family: str, params: dict, pieces, teeth: int, pitch_radius: f
                 gamma = min(theta, math.pi - theta)
                 target = shrink * tol * max(math.sin(gamma), 0.01) / 3
                 near = []
-                for pi_, (f, pts) in enumerate(zip(fs, pts_list)):
-                    ch = chords_near(q, pts, teeth, 2 * tol + 1e-9)
+                for pi_, (f, ch) in enumerate(zip(fs, chords_near(q, pts_list, teeth, 2 * tol + 1e-9))):
                     near += [(pi_, j, k) for j, k in ch]
                     idx = [j for j, _ in ch]
                     if idx:
                         sub = np.unique(np.clip(np.concatenate([np.array(idx) + o for o in (-1, 0, 1)]), 0, len(ts[pi_]) - 2))
-                        if pi_ not in devs:
-                            devs[pi_] = chord_deviation(f, ts[pi_], pts)
-                        dev = devs[pi_][sub]
-                        if (dev > target).any() and not final:
-                            ts[pi_] = refine(f, ts[pi_], idx, target)
-                            pts_list[pi_] = f(ts[pi_])
-                            devs.pop(pi_, None)
+                        if (devs[pi_][sub] > target).any() and not final:
+                            ts[pi_], pts_list[pi_], devs[pi_] = refine(f, ts[pi_], pts_list[pi_], devs[pi_],
+                                                                       idx, target)
                             changed = True
                 corners.append((q, theta, near))
             if not changed:
@@ -284,7 +286,8 @@ def build_profile(family: str, params: dict, pieces, teeth: int, pitch_radius: f
         if not corner_errs or max(corner_errs) <= tol - 2 * CLIPPER_ROUNDING:
             break
         shrink /= 4          # a corner missed the budget: tighten its chords and trim again
-    max_err = max(float(chord_deviation(f, t).max(initial=0.0)) for f, t in zip(fs, ts))
+    # every chord was measured when it was made (tessellation, refinement)
+    max_err = max(float(d.max(initial=0.0)) for d in devs)
     arc_piece = fs[nraw] if clip_binding else None
     arc_t = ts[nraw] if clip_binding else None
     max_err = max([max_err, *corner_errs]) + CLIPPER_ROUNDING + getattr(trim, "moved", 0.0)

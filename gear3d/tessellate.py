@@ -23,11 +23,14 @@ MIN_TOLERANCE = 1e-7  # mm; below this double precision on a 1 m part cannot cer
 
 def chord_deviation(f, t: np.ndarray, pts: np.ndarray | None = None) -> np.ndarray:
     """Measured max distance (mm) of the exact curve ``f`` to each chord of samples ``t``."""
-    if pts is None:
-        pts = f(t)
     t0, t1 = t[:-1], t[1:]
-    tp = t0[:, None] + (t1 - t0)[:, None] * _PROBE[None, :]
-    q = f(tp.ravel()).reshape(tp.shape + (2,))
+    tp = (t0[:, None] + (t1 - t0)[:, None] * _PROBE[None, :]).ravel()
+    if pts is None:                      # one evaluation for the samples and the probes
+        both = f(np.concatenate([t, tp]))
+        pts, q = both[:len(t)], both[len(t):]
+    else:
+        q = f(tp)
+    q = q.reshape(len(t0), len(_PROBE), 2)
     d = point_segment_distance(q, pts[:-1, None, :], pts[1:, None, :])
     return d.max(axis=1)
 
@@ -65,6 +68,37 @@ class Tessellation:
     points: np.ndarray
     max_error: float
     min_vertices: float  # the equal-sag estimate of the fewest chords the tolerance allows
+    deviation: np.ndarray  # measured distance (mm) of the exact curve to each chord
+
+
+def split_chords(f, t: np.ndarray, pts: np.ndarray, dev: np.ndarray, chords: np.ndarray):
+    """Bisect chords ``chords`` (indices) of samples ``t`` / ``pts`` of piece ``f``.
+
+    Only the new midpoints and the new chords' probes are evaluated (one call); the new
+    chords are measured like every other (:func:`chord_deviation`). Returns the new
+    ``(t, pts, dev)`` with ``dev`` the measured deviation (mm) of every chord."""
+    ib = np.asarray(chords, int)
+    tm = 0.5 * (t[ib] + t[ib + 1])
+    a = np.concatenate([t[ib], tm])              # the new chords: [t_i, m_i] and [m_i, t_i+1]
+    b = np.concatenate([tm, t[ib + 1]])
+    tp = (a[:, None] + (b - a)[:, None] * _PROBE[None, :]).ravel()
+    ev = f(np.concatenate([tm, tp]))
+    pm, q = ev[:len(tm)], ev[len(tm):].reshape(len(a), len(_PROBE), 2)
+    pa = np.concatenate([pts[ib], pm])
+    pb = np.concatenate([pm, pts[ib + 1]])
+    dnew = point_segment_distance(q, pa[:, None, :], pb[:, None, :]).max(axis=1)
+    n = len(ib)
+    # chord i becomes chords (i, i + 1) in the new list: old chords shift by the number of
+    # split chords before them
+    shift = np.zeros(len(t) - 1, int)
+    shift[ib] = 1
+    pos = np.arange(len(t) - 1) + np.cumsum(shift) - shift
+    dev2 = np.empty(len(t) - 1 + n)
+    dev2[pos] = dev
+    dev2[pos[ib]] = dnew[:n]
+    dev2[pos[ib] + 1] = dnew[n:]
+    ins = ib + 1                                 # insert the midpoints after t_i
+    return np.insert(t, ins, tm), np.insert(pts, ins, pm, axis=0), dev2
 
 
 def tessellate(f, tol: float, n0: int = 512) -> Tessellation:
@@ -74,20 +108,19 @@ def tessellate(f, tol: float, n0: int = 512) -> Tessellation:
                              "finer than double precision can certify on parts up to 1 m")
     t = _equal_sag_params(f, tol, n0)
     min_v = float(len(t) - 1)
+    pts = f(t)
+    dev = chord_deviation(f, t, pts)
     for _ in range(60):
-        pts = f(t)
-        dev = chord_deviation(f, t, pts)
         bad = dev > tol
         if not bad.any():
-            return Tessellation(t, pts, float(dev.max(initial=0.0)), min_v)
-        mids = 0.5 * (t[:-1][bad] + t[1:][bad])
+            return Tessellation(t, pts, float(dev.max(initial=0.0)), min_v, dev)
         if np.any(np.diff(t)[bad] < 1e-14):
             raise ToleranceError("tolerance", tol, "a coarser value",
                                  "the curve cannot be resolved in double precision")
-        t = np.sort(np.concatenate([t, mids]))
-        if len(t) > MAX_VERTICES:
+        if len(t) + int(bad.sum()) > MAX_VERTICES:
             raise ToleranceError("tolerance", tol, "a coarser value",
                                  f"more than {MAX_VERTICES} vertices per piece would be needed: the "
                                  "curve jumps (a tool normal that never meets the pitch circle) or the "
                                  "tolerance is far too fine for the part")
+        t, pts, dev = split_chords(f, t, pts, dev, np.nonzero(bad)[0])
     raise ToleranceError("tolerance", tol, "a coarser value", "refinement did not converge")
