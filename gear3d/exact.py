@@ -241,13 +241,19 @@ class ExactBoundary:
     def _clamp(self, pc: _Piece, q: np.ndarray, chord: np.ndarray, t_off: np.ndarray) -> np.ndarray:
         """Distance from ``q`` to the exact curve ``pc`` with the foot pulled back from
         ``t_off`` (past a trimmed corner) to the last parameter, toward the chord's surviving
-        end, whose point still lies on the trimmed polygon (bisection, 2^-16 of the step)."""
+        end, whose point still lies on the trimmed polygon (16-section, 2^-16 of the step)."""
         t_a = np.where(pc.alive[chord], pc.t[chord], pc.t[chord + 1])
         lo, hi = t_a, t_off
-        for _ in range(16):
-            mid = 0.5 * (lo + hi)
-            on = self._poly_dist(pc.f(mid)) <= self._slack
-            lo, hi = np.where(on, mid, lo), np.where(on, hi, mid)
+        frac = np.arange(1, 16) / 16
+        rows = np.arange(len(q))
+        for _ in range(4):
+            x = lo[:, None] + (hi - lo)[:, None] * frac[None, :]
+            on = (self._poly_dist(pc.f(x.ravel())) <= self._slack).reshape(x.shape)
+            # the last grid point still on the polygon, counting from lo (all on: the last)
+            k = np.where(on.all(axis=1), len(frac), np.argmin(on, axis=1)) - 1
+            new_lo = np.where(k >= 0, x[rows, np.maximum(k, 0)], lo)
+            hi = np.where(k + 1 < len(frac), x[rows, np.minimum(k + 1, len(frac) - 1)], hi)
+            lo = new_lo
         d = np.hypot(*(pc.f(lo) - q).T)
         return np.where(np.isfinite(d), d, np.inf)
 

@@ -22,6 +22,9 @@ from .tessellate import chord_deviation, tessellate
 CLIPPER_ROUNDING = 0.5e-8 * math.sqrt(2)
 #: rounds of the tip/root radius search: each keeps 2 of 32 intervals, 16^5 ~ 1e6 x narrower
 EXTREME_ROUNDS = 5
+#: singular points: grid points per bracket and rounds (64^9 > 2^52: to double precision)
+TRANSITION_GRID = 64
+TRANSITION_ROUNDS = 9
 
 
 @dataclass(eq=False)
@@ -472,17 +475,25 @@ def _with_transitions(piece, t):
     flips = np.nonzero(np.sign(g[:-1]) * np.sign(g[1:]) < 0)[0]
     if not len(flips):
         return t
-    extra = []
-    for j in flips:
-        a, b, ga = t[j], t[j + 1], g[j]
-        for _ in range(50):
-            m = 0.5 * (a + b)
-            gm = _regularity(piece, np.array([m]))[0]
-            if np.sign(gm) == np.sign(ga):
-                a, ga = m, gm
-            else:
-                b = m
-        extra.append(a if ga >= 0 else b)   # the sample on the regular side
+    # all sign changes at once: each round evaluates TRANSITION_GRID points per bracket and
+    # keeps the one sub-interval where the sign flips (to the last representable parameter)
+    a, b, ga = t[flips].copy(), t[flips + 1].copy(), g[flips].copy()
+    frac = np.linspace(0.0, 1.0, TRANSITION_GRID + 1)[1:-1]
+    for _ in range(TRANSITION_ROUNDS):
+        x = a[:, None] + (b - a)[:, None] * frac[None, :]
+        gx = _regularity(piece, x.ravel()).reshape(x.shape)
+        same = np.sign(gx) == np.sign(ga)[:, None]
+        # the last grid point on a's side: same sign up to it (the branch is regular there)
+        k = np.where(same.all(axis=1), len(frac), np.argmin(same, axis=1)) - 1
+        rows = np.arange(len(a))
+        has = k >= 0
+        a2 = np.where(has, x[rows, np.maximum(k, 0)], a)
+        ga = np.where(has, gx[rows, np.maximum(k, 0)], ga)
+        b = np.where(k + 1 < len(frac), x[rows, np.minimum(k + 1, len(frac) - 1)], b)
+        a = a2
+        if np.all(b - a <= 4e-16 * np.maximum(1.0, np.abs(a))):
+            break
+    extra = np.where(ga >= 0, a, b)          # the sample on the regular side
     return np.unique(np.concatenate([t, extra]))
 
 
