@@ -1,10 +1,11 @@
 """Trimmed corners: where two exact curves cross, chords must be tighter than the tolerance.
 
-Two chords that each stay within ``tol`` of their curves can cross up to
-``tol / sin(theta/2)`` away from the exact crossing (theta: the angle between the curves).
+Two chords that each stay within ``d`` of their curves, where the curves cross at angle
+gamma, cross within ``d / sin(gamma / 2)`` (<= ``2 d / sin(gamma)``) of the exact crossing.
 So after a first trim, the chords that meet at a new (Clipper-made) vertex are refined to
-``tol * sin(theta/2) / 2``, and the corner error is *measured*: Newton's method finds the
-exact crossing of the two exact curves and its distance to the polygon corner.
+``d = tol * sin(gamma) / 3`` (:data:`gear3d.model.CORNER_SHARE`), which bounds the corner
+by (2/3) tol, and the corner error is then *measured*: Newton's method finds the exact
+crossing of the two exact curves and its distance to the polygon corner.
 """
 from __future__ import annotations
 

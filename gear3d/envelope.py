@@ -29,6 +29,11 @@ from .racks import Corner, Rack, Smooth
 
 _rot = rotate
 
+#: share of the tolerance notch pruning may move a vertex (:func:`prune_spikes`)
+PRUNE_SHARE = 1 / 50
+#: share of the tolerance a ring's rim polygon may sag (the rest is left for rounding)
+RIM_SHARE = 0.9
+
 
 def rack_element_uvn(el, t):
     """Rack point (u, v) and tangent slope terms for element ``el`` at params ``t``.
@@ -176,7 +181,10 @@ def circle_loop(radius: float, tol: float, ccw: bool = True, phase: float = 0.0)
 
 def trim(raw_loop: np.ndarray, internal: bool, rim_radius: float | None, tol: float,
          blank: tuple | None = None, prune: bool = True):
-    """Cut the raw envelope loop down to what a cutter leaves. Returns (loops, raw_area).
+    """Cut the raw envelope loop down to what a cutter leaves.
+
+    Returns (loops, raw_area in mm^2, moved): ``moved`` is the largest distance (mm) notch
+    pruning moved a vertex, which the caller adds to the error budget.
 
     The raw loop is oriented so that the material lies on its left (CCW for a gear,
     CW for the hole of a ring) and filled with the positive rule; ``rim_radius`` closes a
@@ -198,7 +206,7 @@ def trim(raw_loop: np.ndarray, internal: bool, rim_radius: float | None, tol: fl
         loop = loop[::-1]
     paths = [loop]
     if internal:
-        paths.append(circle_loop(rim_radius, 0.9 * tol, ccw=True))   # 10 % left for rounding
+        paths.append(circle_loop(rim_radius, RIM_SHARE * tol, ccw=True))
     cs = CrossSection(paths, FillRule.Positive)
     if blank is not None:
         rmin, rmax = (b if b is None or np.ndim(b) else circle_loop(b, tol) for b in blank)
@@ -208,7 +216,7 @@ def trim(raw_loop: np.ndarray, internal: bool, rim_radius: float | None, tol: fl
             cs = cs - CrossSection([rmin], FillRule.Positive)
     parts = cs.decompose()
     if not parts:
-        return [], abs(area)
+        return [], abs(area), 0.0
     main = max(parts, key=lambda c: c.area())
     polys = [np.asarray(p, float) for p in main.to_polygons()]
     # a cutter coming from outside leaves no enclosed cavity: a hole other than a ring's
@@ -220,8 +228,7 @@ def trim(raw_loop: np.ndarray, internal: bool, rim_radius: float | None, tol: fl
     else:
         polys = [outer]
     pruned = [prune_spikes(p, tol) if prune else (p, 0.0) for p in polys]
-    trim.moved = max([m for _, m in pruned], default=0.0)
-    return [p for p, _ in pruned], abs(area)
+    return [p for p, _ in pruned], abs(area), max([m for _, m in pruned], default=0.0)
 
 
 def prune_spikes(loop: np.ndarray, tol: float = 0.0, max_angle_deg: float = 3.0):
@@ -231,7 +238,7 @@ def prune_spikes(loop: np.ndarray, tol: float = 0.0, max_angle_deg: float = 3.0)
       ``max_angle_deg``): chord-level leftovers of a swallowtail, zero material in the
       exact geometry, no gear feature is that sharp;
     * a sharp vertex (interior angle below 60 deg) lying close to the chord of
-      its neighbours (within tol/50): a swallowtail far below the tolerance.
+      its neighbours (within tol x PRUNE_SHARE): a swallowtail far below the tolerance.
     Returns (loop, max distance moved by the second kind), which the caller adds to the
     error budget.
     """
@@ -248,7 +255,7 @@ def prune_spikes(loop: np.ndarray, tol: float = 0.0, max_angle_deg: float = 3.0)
         cos = np.where(ok, np.einsum("ij,ij->i", a, b) / np.where(ok, na * nb, 1), 1.0)
         dev = point_segment_distance(loop, prv, nxt)
         needle = (cos > cmin) | ~ok
-        notch = (cos > c60) & (dev < tol / 50)
+        notch = (cos > c60) & (dev < tol * PRUNE_SHARE)
         bad = needle | notch
         if not bad.any():
             return loop, moved

@@ -12,7 +12,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .envelope import circle_loop, pattern, signed_area, trim
+from .envelope import PRUNE_SHARE, RIM_SHARE, circle_loop, pattern, signed_area, trim
 from .errors import GearError, check_number
 from .corners import chords_near, corner_angle, exact_crossing, new_vertices, refine
 from .geometry import check_points, circle_crossings, point_segment_distance, segment_foot
@@ -25,6 +25,28 @@ EXTREME_ROUNDS = 5
 #: singular points: grid points per bracket and rounds (64^9 > 2^52: to double precision)
 TRANSITION_GRID = 64
 TRANSITION_ROUNDS = 9
+#: the blank's radius lies this many tolerances beyond the nominal tip (its chords sag
+#: by up to one tolerance and must never touch the true tip)
+BLANK_MARGIN = 2
+#: trimmed corners: chords near a corner are refined to CORNER_SHARE x tol x sin(gamma),
+#: which puts the corner within (2/3) tol of the exact crossing (see _trim_and_refine)
+CORNER_SHARE = 1 / 3
+#: the smallest crossing angle's sine the refinement target uses (a grazing crossing
+#: would otherwise ask for endless refinement; the measured corner error still decides)
+MIN_CORNER_SINE = 0.01
+#: chords within NEAR_CHORDS x tol of a corner are the ones that may make it
+NEAR_CHORDS = 2
+#: refine-and-trim passes per attempt; attempts, each shrinking the chords' share by
+#: CORNER_SHRINK, before the builder refuses the tolerance
+REFINE_PASSES = 5
+CORNER_ATTEMPTS = 4
+CORNER_SHRINK = 4
+#: a raw sample within SURVIVED x tol of the trimmed polygon survived trimming (the
+#: polygon is within tol of the exact boundary, the sample on it: 2 tol with room)
+SURVIVED = 2
+#: a tooth is *pointed* when its flanks cross more than POINTED_SHORTFALL x tol short of
+#: the tip circle it was cut for (the blank's own margin and chords stay below that)
+POINTED_SHORTFALL = 4
 
 
 @dataclass(eq=False)
@@ -180,6 +202,42 @@ def _cusps(chain: np.ndarray, tol: float) -> np.ndarray:
     return idx[rev + 1]
 
 
+@dataclass
+class _Samples:
+    """The builder's working samples: per exact piece ``f`` its parameters ``t``, points
+    (mm) and every chord's *measured* deviation from the exact curve (mm)."""
+    fs: list
+    ts: list
+    pts: list
+    devs: list
+
+    def add(self, f, tess):
+        self.fs.append(f)
+        self.ts.append(tess.t)
+        self.pts.append(tess.points)
+        self.devs.append(tess.deviation)
+
+    def refine(self, i: int, chords, target: float):
+        self.ts[i], self.pts[i], self.devs[i] = refine(self.fs[i], self.ts[i], self.pts[i], self.devs[i],
+                                                       chords, target)
+
+    def max_deviation(self) -> float:
+        """The largest measured chord deviation (mm): every chord was measured when made."""
+        return max(float(d.max(initial=0.0)) for d in self.devs)
+
+
+@dataclass
+class _Trimmed:
+    """What trimming left: the loops, tooth 0's loop, its trimmed corners (point, angle,
+    nearby chords), the exact crossings' parameters per piece, the measured corner errors
+    (mm) and how far notch pruning moved a vertex (mm)."""
+    loops: list
+    corners: list
+    corner_cuts: dict
+    corner_errs: list
+    moved: float
+
+
 def build_profile(family: str, params: dict, pieces, teeth: int, pitch_radius: float, *,
                   internal: bool, tolerance: float, rim_radius: float | None = None,
                   clip_radius=None, extra_report: dict | None = None,
@@ -192,113 +250,39 @@ def build_profile(family: str, params: dict, pieces, teeth: int, pitch_radius: f
     the undercut depth is how far the cutter went into them.
     Raises :class:`GearError` naming ``addendum_coeff`` when the trimmed result has no
     proper teeth.
+
+    Stages: :func:`_sample` (tessellate each piece within the budget, singular points as
+    samples) → :func:`_blank` (the turned blank the cutter works on) →
+    :func:`_trim_and_refine` (pattern, trim, tighten the chords at trimmed corners, measure
+    the corners) → :func:`_measured_error` → the report.
     """
     from .progress import stage
     stage("profile")
     tol = tolerance
     fs = [_finite(G) for G in pieces]
-    # Clipper rounds every vertex to 1e-8 mm and notch pruning may move a vertex by up
-    # to tol/50 (see envelope.prune_spikes): keep both inside the budget
-    budget = tol * (1 - 1 / 50) - CLIPPER_ROUNDING
-    tess = [tessellate(f, budget) for f in fs]
-    ts = [x.t for x in tess]
-    pts_list = [x.points for x in tess]
-    devs = [x.deviation for x in tess]   # every chord's measured deviation (mm), kept up to date
-    # the resource budget, before the period is repeated and trimmed
-    from . import budget as _budget
-    _budget.check_profile(teeth * sum(len(t) - 1 for t in ts), "teeth" if teeth > 1000 else "tolerance",
-                          teeth if teeth > 1000 else tol)
-    minv = float(sum(x.min_vertices for x in tess))
-    # singular points become samples, so the physical branches end exactly there
-    for i, G in enumerate(pieces):
-        t2 = _with_transitions(G, ts[i])
-        if len(t2) != len(ts[i]):
-            ts[i], pts_list[i] = t2, fs[i](t2)
-            devs[i] = chord_deviation(fs[i], t2, pts_list[i])
+    # the share of the tolerance the chords may use: Clipper rounds every vertex to 1e-8 mm
+    # and notch pruning may move a vertex by up to tol * PRUNE_SHARE (envelope.prune_spikes)
+    budget = tol * (1 - PRUNE_SHARE) - CLIPPER_ROUNDING
+    samples, minv = _sample(pieces, fs, teeth, tol, budget)
+    nraw = len(fs)
     # the blank is decided from the first tessellation
-    chain, label = _chain(fs, ts, pts_list)
+    chain, label = _chain(fs, samples.ts, samples.pts)
     rc = np.hypot(chain[:, 0], chain[:, 1])
     if nominal_tip_radius is None:
         nominal_tip_radius = float(rc.min() if internal else rc.max())
-    # the blank: the nominal tip circle (outside by 2 tol so its chords never touch the
-    # true tip) or the user's turned tip radius, which is an exact cut
-    clip_binding = False
-    if internal:
-        rb = nominal_tip_radius - 2 * tol
-        if clip_radius is not None and clip_radius[0] is not None and clip_radius[0] > rb:
-            rb, clip_binding = clip_radius[0], True
-        blank = (max(rb, tol), None)
-    else:
-        rb = nominal_tip_radius + 2 * tol
-        if clip_radius is not None and clip_radius[1] is not None and clip_radius[1] < rb:
-            rb, clip_binding = clip_radius[1], True
-        blank = (None, rb)
-    # trim; refine the chords that meet at trimmed corners; trim again
-    corners = []
-    nraw = len(fs)
+    blank, rb, clip_binding = _blank(nominal_tip_radius, clip_radius, internal, tol)
     if clip_binding:
         # the turned tip circle joins the corner machinery as one more exact piece
-        fs.append(_arc_piece(rb, teeth))
-        arc_tess = tessellate(fs[-1], budget)
-        ts.append(arc_tess.t)
-        pts_list.append(arc_tess.points)
-        devs.append(arc_tess.deviation)
-    shrink = 1.0
-    for _attempt in range(4):
-        for it in range(5):
-            chain, label = _chain(fs[:nraw], ts[:nraw], pts_list[:nraw])
-            raw = pattern(chain, teeth)
-            if clip_binding:
-                ring = pattern(pts_list[-1], teeth)
-                blank = (ring, None) if internal else (None, ring)
-                raw_all = np.concatenate([raw, ring])
-            else:
-                raw_all = raw
-            loops, raw_area = trim(raw, internal, rim_radius, tol, blank,
-                                   prune=any(getattr(G, "tool_tangent", None) is not None for G in pieces))
-            if not loops:
-                break
-            tl = _tooth_loop(loops, internal)
-            corners, changed = [], False
-            final = it == 4
-            nv = new_vertices(tl, raw_all, sector=math.pi / teeth + 1e-9 if teeth > 2 else None)
-            if len(nv):
-                ang = np.arctan2(tl[nv, 1], tl[nv, 0])
-                nv = nv[np.abs(ang) <= math.pi / teeth + 1e-9] if teeth > 1 else nv
-            for i in nv:
-                q = tl[i]
-                theta = corner_angle(tl, i)
-                # two chords within d of their curves, crossing at angle g, cross within ~2d/sin(g)
-                gamma = min(theta, math.pi - theta)
-                target = shrink * tol * max(math.sin(gamma), 0.01) / 3
-                near = []
-                for pi_, (f, ch) in enumerate(zip(fs, chords_near(q, pts_list, teeth, 2 * tol + 1e-9))):
-                    near += [(pi_, j, k) for j, k in ch]
-                    idx = [j for j, _ in ch]
-                    if idx:
-                        sub = np.unique(np.clip(np.concatenate([np.array(idx) + o for o in (-1, 0, 1)]), 0, len(ts[pi_]) - 2))
-                        if (devs[pi_][sub] > target).any() and not final:
-                            ts[pi_], pts_list[pi_], devs[pi_] = refine(f, ts[pi_], pts_list[pi_], devs[pi_],
-                                                                       idx, target)
-                            changed = True
-                corners.append((q, theta, near))
-            if not changed:
-                break
-        corner_cuts = {}
-        corner_errs = _measure_corners(fs, ts, corners, teeth, corner_cuts)
-        if not corner_errs or max(corner_errs) <= tol - 2 * CLIPPER_ROUNDING:
-            break
-        shrink /= 4          # a corner missed the budget: tighten its chords and trim again
-    # every chord was measured when it was made (tessellation, refinement)
-    max_err = max(float(d.max(initial=0.0)) for d in devs)
-    arc_piece = fs[nraw] if clip_binding else None
-    arc_t = ts[nraw] if clip_binding else None
-    max_err = max([max_err, *corner_errs]) + CLIPPER_ROUNDING + getattr(trim, "moved", 0.0)
-    if internal:
-        # the rim is a polygon inscribed in its circle: its sag counts too
-        n_rim = len(circle_loop(rim_radius, 0.9 * tol))   # as trim() builds it
-        max_err = max(max_err, rim_radius * (1 - math.cos(math.pi / n_rim)) + CLIPPER_ROUNDING)
-    fs, ts = fs[:nraw], ts[:nraw]
+        arc = _arc_piece(rb, teeth)
+        samples.add(arc, tessellate(arc, budget))
+    prune = any(getattr(G, "tool_tangent", None) is not None for G in pieces)
+    tr = _trim_and_refine(samples, nraw, teeth, internal, rim_radius, tol, blank, clip_binding, prune)
+    chain, label = _chain(fs, samples.ts[:nraw], samples.pts[:nraw])
+    loops, corners, corner_cuts = tr.loops, tr.corners, tr.corner_cuts
+    max_err = _measured_error(samples, tr, internal, rim_radius, tol)
+    arc_piece = samples.fs[nraw] if clip_binding else None
+    arc_t = samples.ts[nraw] if clip_binding else None
+    fs, ts = fs[:nraw], samples.ts[:nraw]
     if max_err > tol * (1 + 1e-9):
         from .errors import ToleranceError
         raise ToleranceError("tolerance", tol, "a coarser value",
@@ -320,10 +304,10 @@ def build_profile(family: str, params: dict, pieces, teeth: int, pitch_radius: f
     dist = _sector_distance(tl, chain, teeth)
     # tip and root radii of the exact curve, not of the polygon's vertices: refine the
     # extreme surviving sample on its exact piece (a trimmed corner stays as it is)
-    keep = dist <= 2 * tol + 1e-9
+    keep = dist <= SURVIVED * tol + 1e-9
     tip = _exact_extreme(fs, ts, label, chain, keep, tip, largest=not internal)
     root = _exact_extreme(fs, ts, label, chain, keep, root, largest=internal)
-    removed = dist > 2 * tol + 1e-9
+    removed = dist > SURVIVED * tol + 1e-9
     tip_side = (rc < pitch_radius) if internal else (rc > pitch_radius)
     cusp_idx = _cusps(chain, tol)
     # undercut: points on regular (physical) branches of the working flank that another
@@ -334,7 +318,7 @@ def build_profile(family: str, params: dict, pieces, teeth: int, pitch_radius: f
     root_cusp = bool(np.any(~tip_side[cusp_idx])) if len(cusp_idx) else False
     # pointed: the flanks cross before the tooth reaches the tip circle it was cut for
     shortfall = (tip - nominal_tip_radius) if internal else (nominal_tip_radius - tip)
-    pointed = bool(shortfall > 4 * tol + 1e-9)
+    pointed = bool(shortfall > POINTED_SHORTFALL * tol + 1e-9)
     land = 0.0
     if not pointed:
         land = arc_thickness(tl, tip + (tol if internal else -tol))
@@ -382,6 +366,111 @@ def build_profile(family: str, params: dict, pieces, teeth: int, pitch_radius: f
     return prof
 
 
+def _sample(pieces, fs, teeth: int, tol: float, budget: float):
+    """Stage 1: tessellate every piece within ``budget`` (mm, measured); check the
+    resource budget before the period is repeated; add the singular points as samples, so
+    the physical branches end exactly there. Returns (samples, fewest vertices per tooth)."""
+    tess = [tessellate(f, budget) for f in fs]
+    samples = _Samples(list(fs), [x.t for x in tess], [x.points for x in tess], [x.deviation for x in tess])
+    from . import budget as _budget
+    _budget.check_profile(teeth * sum(len(t) - 1 for t in samples.ts), "teeth" if teeth > 1000 else "tolerance",
+                          teeth if teeth > 1000 else tol)
+    for i, G in enumerate(pieces):
+        t2 = _with_transitions(G, samples.ts[i])
+        if len(t2) != len(samples.ts[i]):
+            samples.ts[i], samples.pts[i] = t2, fs[i](t2)
+            samples.devs[i] = chord_deviation(fs[i], t2, samples.pts[i])
+    return samples, float(sum(x.min_vertices for x in tess))
+
+
+def _blank(nominal_tip_radius: float, clip_radius, internal: bool, tol: float):
+    """Stage 2: the turned blank (r_min, r_max) the cutter works on (mm): the nominal tip
+    circle, BLANK_MARGIN x tol outside the tip so that its chords never touch the true tip,
+    or the user's turned tip radius (``clip_radius``), which is an exact cut.
+    Returns (blank, its radius, whether the user's radius binds)."""
+    clip_binding = False
+    if internal:
+        rb = nominal_tip_radius - BLANK_MARGIN * tol
+        if clip_radius is not None and clip_radius[0] is not None and clip_radius[0] > rb:
+            rb, clip_binding = clip_radius[0], True
+        return (max(rb, tol), None), rb, clip_binding
+    rb = nominal_tip_radius + BLANK_MARGIN * tol
+    if clip_radius is not None and clip_radius[1] is not None and clip_radius[1] < rb:
+        rb, clip_binding = clip_radius[1], True
+    return (None, rb), rb, clip_binding
+
+
+def _trim_and_refine(samples: _Samples, nraw: int, teeth: int, internal: bool, rim_radius, tol: float,
+                     blank, clip_binding: bool, prune: bool) -> _Trimmed:
+    """Stage 3: pattern the period, trim it (Clipper), and tighten the chords that meet at
+    trimmed corners until the corners' measured errors fit the tolerance.
+
+    A trimmed corner is where two chords cross; each chord lies within d of its curve, so
+    if the curves cross at angle gamma the polygon corner lies within d / sin(gamma / 2)
+    (<= 2 d / sin gamma) of the exact crossing. The chords near a corner are refined to
+    d = CORNER_SHARE x tol x sin(gamma) (at most (2/3) tol at the corner), trimmed again,
+    and the corner is then *measured* (Newton on the exact curves, :func:`_measure_corners`).
+    A corner that still misses shrinks d by CORNER_SHRINK, at most CORNER_ATTEMPTS times."""
+    corners, loops, moved, corner_cuts, corner_errs = [], [], 0.0, {}, []
+    shrink = 1.0
+    fs = samples.fs
+    for _attempt in range(CORNER_ATTEMPTS):
+        for it in range(REFINE_PASSES):
+            chain, _ = _chain(fs[:nraw], samples.ts[:nraw], samples.pts[:nraw])
+            raw = pattern(chain, teeth)
+            if clip_binding:
+                ring = pattern(samples.pts[-1], teeth)
+                blank = (ring, None) if internal else (None, ring)
+                raw_all = np.concatenate([raw, ring])
+            else:
+                raw_all = raw
+            loops, _raw_area, moved = trim(raw, internal, rim_radius, tol, blank, prune=prune)
+            if not loops:
+                return _Trimmed([], [], {}, [], 0.0)
+            tl = _tooth_loop(loops, internal)
+            corners, changed = [], False
+            final = it == REFINE_PASSES - 1
+            nv = new_vertices(tl, raw_all, sector=math.pi / teeth + 1e-9 if teeth > 2 else None)
+            if len(nv):
+                ang = np.arctan2(tl[nv, 1], tl[nv, 0])
+                nv = nv[np.abs(ang) <= math.pi / teeth + 1e-9] if teeth > 1 else nv
+            for i in nv:
+                q = tl[i]
+                theta = corner_angle(tl, i)
+                gamma = min(theta, math.pi - theta)
+                target = shrink * tol * max(math.sin(gamma), MIN_CORNER_SINE) * CORNER_SHARE
+                near = []
+                for pi_, ch in enumerate(chords_near(q, samples.pts, teeth, NEAR_CHORDS * tol + 1e-9)):
+                    near += [(pi_, j, k) for j, k in ch]
+                    idx = [j for j, _ in ch]
+                    if idx:
+                        sub = np.unique(np.clip(np.concatenate([np.array(idx) + o for o in (-1, 0, 1)]),
+                                                0, len(samples.ts[pi_]) - 2))
+                        if (samples.devs[pi_][sub] > target).any() and not final:
+                            samples.refine(pi_, idx, target)
+                            changed = True
+                corners.append((q, theta, near))
+            if not changed:
+                break
+        corner_cuts = {}
+        corner_errs = _measure_corners(fs, samples.ts, corners, teeth, corner_cuts)
+        if not corner_errs or max(corner_errs) <= tol - 2 * CLIPPER_ROUNDING:
+            break
+        shrink /= CORNER_SHRINK
+    return _Trimmed(loops, corners, corner_cuts, corner_errs, moved)
+
+
+def _measured_error(samples: _Samples, tr: _Trimmed, internal: bool, rim_radius, tol: float) -> float:
+    """Stage 4: the profile's measured error (mm): the largest of every chord's measured
+    deviation and every trimmed corner's measured distance to the exact crossing, plus
+    Clipper's rounding and what notch pruning moved; a ring's rim polygon sags too."""
+    max_err = max([samples.max_deviation(), *tr.corner_errs]) + CLIPPER_ROUNDING + tr.moved
+    if internal:
+        n_rim = len(circle_loop(rim_radius, RIM_SHARE * tol))   # as trim() builds it
+        max_err = max(max_err, rim_radius * (1 - math.cos(math.pi / n_rim)) + CLIPPER_ROUNDING)
+    return max_err
+
+
 def _boundary(fs, ts, keep, tl, teeth, tol, internal, rim_radius, arc_piece, arc_t, max_err, corner_cuts):
     """The exact boundary of the trimmed profile: every piece with its samples that survived
     trimming (within 2 tol of the trimmed polygon) and, on a chord that runs into a trimmed
@@ -399,7 +488,7 @@ def _boundary(fs, ts, keep, tl, teeth, tol, internal, rim_radius, arc_piece, arc
             k = keep[start:start + n] if i == 0 else keep[start - 1:start - 1 + n]
             start += n if i == 0 else n - 1
         else:
-            k = _sector_distance(tl, f(t), teeth) <= 2 * tol + 1e-9
+            k = _sector_distance(tl, f(t), teeth) <= SURVIVED * tol + 1e-9
         cuts = {}
         for c in cs:
             j = int(np.clip(np.searchsorted(t, c) - 1, 0, n - 2))
@@ -416,7 +505,7 @@ def _boundary(fs, ts, keep, tl, teeth, tol, internal, rim_radius, arc_piece, arc
             ok = np.isfinite(pm).all(axis=1)
             near = np.zeros(len(tm), bool)
             if ok.any():
-                near[ok] = _sector_distance(tl, pm[ok], teeth) <= 2 * tol + 1e-9
+                near[ok] = _sector_distance(tl, pm[ok], teeth) <= SURVIVED * tol + 1e-9
             mid_alive[dead] = near.reshape(-1, 3).any(axis=1)
         pieces.append((f, t, k, cuts, mid_alive))
     circles = [rim_radius] if internal and rim_radius else []
