@@ -3,10 +3,10 @@
 * profiles: finite, non-empty loops that form a valid shapely polygon (shell + holes, every
   ring simple), and a two-sided measured error within the tolerance (polygon vertices and
   chord quarter points against a 50x finer build, and that build's vertices against the
-  polygon: :func:`gear3d.bench.profile_error`);
+  polygon: :func:`gear3d.measure.profile_error`);
 * bodies: every edge shared by exactly two triangles with opposite orientation (closed,
   oriented 2-manifold, counted with numpy on the mesh), positive volume, and slices off
-  the layer grid within the tolerance (:func:`gear3d.bench.body_slice_error`).
+  the layer grid within the tolerance (:func:`gear3d.measure.body_slice_error`).
 """
 from __future__ import annotations
 
@@ -32,7 +32,7 @@ def attempt(fn, *args, **kwargs):
 def check_profile(prof, tol=None):
     """Assert ``prof`` is a valid, simple, finite polygon set within its tolerance."""
     import shapely
-    from gear3d.bench import profile_error
+    from gear3d.measure import profile_error
     tol = prof.tolerance if tol is None else tol
     assert prof.loops, "empty profile"
     for l in prof.loops:
@@ -87,7 +87,7 @@ def check_manifold(man):
 
 def check_body(b, tol=None):
     """Assert body ``b`` is watertight and within its tolerance; return its volume (mm^3)."""
-    from gear3d.bench import body_slice_error
+    from gear3d.measure import body_slice_error
     tol = b.report["tolerance"] if tol is None else tol
     vol = check_manifold(b.manifold)
     assert b.report["max_error"] <= tol

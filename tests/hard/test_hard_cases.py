@@ -299,7 +299,7 @@ def test_cycloid_disc_in_its_pin_ring():
 # ----------------------------------------------------------------- 1000 teeth, module 0.05
 
 def test_thousand_teeth_module_005():
-    from gear3d.bench import chord_points, involute_flank_distance
+    from gear3d.measure import chord_points, involute_flank_distance
     m, z, tol = 0.05, 1000, 1e-3
     p = gear3d.profile("involute", teeth=z, module=m, tolerance=tol)
     assert p.teeth == z
@@ -403,7 +403,7 @@ _CHILD = r"""
 import json, sys
 import gear3d
 from gear3d.errors import GearError
-from gear3d.bench import chord_points, involute_flank_distance
+from gear3d.measure import chord_points, involute_flank_distance
 import numpy as np
 tol = float(sys.argv[1])
 try:
