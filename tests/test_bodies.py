@@ -16,7 +16,8 @@ from hypothesis import given, settings, strategies as st
 
 import gear3d
 from gear3d import GearError
-from gear3d.solids import body, mate_body, place_pair, TwistLaw
+from gear3d.solids import mate_body, place_pair, twist_law
+from gear3d.solids.body import body
 
 TOL = 1e-2
 
@@ -133,7 +134,7 @@ def test_herringbone_mirror_symmetry(p17):
 
 def test_chevron_arch_continuity():
     W, r, beta, R = 12.0, 10.0, 30.0, 4.0
-    law = TwistLaw("chevron-arch", W, r, 1.0, beta, 0.0, R)
+    law = twist_law("chevron-arch", W, r, 1.0, beta, 0.0, R)
     zt = W / 2 + R * math.sin(math.radians(beta))       # tangent point (seed 003 geometry)
     h = 1e-6
     for z0 in (zt, W - zt):
@@ -159,7 +160,7 @@ def test_chevron_arch_continuity():
 
 
 def test_mate_law():
-    law = TwistLaw("chevron-arch", 10.0, 8.0, 1.0, 25.0, 0.0, 3.0)
+    law = twist_law("chevron-arch", 10.0, 8.0, 1.0, 25.0, 0.0, 3.0)
     z = np.linspace(0, 10, 31)
     assert np.allclose(law.mate(20.0)(z), -law(z) * 8 / 20)
     assert np.allclose(law.mate(20.0, internal=True)(z), law(z) * 8 / 20)
@@ -263,11 +264,17 @@ def test_xy_offset(p17):
 
 def test_chamfers(p17):
     W, c = 6.0, 0.2
-    plain = body(p17, kind="helical", width=W, helix_angle_deg=15)
-    b = body(p17, kind="helical", width=W, helix_angle_deg=15, chamfer=c)
+    # fine bodies: each body's volume may differ from the exact one by up to perimeter x
+    # width x tolerance, which at 10 µm (6 mm³) would hide the 4 mm³ the chamfers remove
+    p = gear3d.profile("involute", teeth=17, module=1.0, tolerance=0.001)
+    plain = body(p, kind="helical", width=W, helix_angle_deg=15, tolerance=0.002)
+    b = body(p, kind="helical", width=W, helix_angle_deg=15, chamfer=c, tolerance=0.002)
     assert b.mesh.is_watertight and b.mesh.is_volume
     removed = plain.report["volume"] - b.report["volume"]
-    assert removed == pytest.approx(2 * perimeter(p17) * c * c / 2, rel=0.1)
+    assert removed == pytest.approx(2 * perimeter(p) * c * c / 2, rel=0.1)
+    # a 45° chamfer: halfway up it the section is inset by c/2 (area A - P c/2, first order)
+    for z in (c / 2, W - c / 2):
+        assert b.manifold.slice(z).area() == pytest.approx(p.area - perimeter(p) * c / 2, rel=0.002)
     ef = body(p17, width=W, elephant_foot=c)
     # the first layer is inset by c: its area is A - P c (first order), the top is full
     bottom = ef.manifold.slice(1e-6).area()

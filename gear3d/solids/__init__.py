@@ -1,6 +1,11 @@
-"""3D gear bodies (manifold3d): twist laws, hub features, print compensation, pair placement."""
-from .body import Body, body, mate_body, measure, place_pair
-from .twist import KINDS, TwistLaw, default_arch_radius
+"""3D gear bodies (manifold3d): twist laws, hub features, print compensation, pair placement.
 
-__all__ = ["Body", "body", "mate_body", "place_pair", "measure", "TwistLaw", "KINDS",
-           "default_arch_radius"]
+The builder is :func:`gear3d.body` (defined in :mod:`gear3d.solids.body`); it is not
+re-exported here, so that ``gear3d.solids.body`` is the module, not the function.
+"""
+from .body import Body, mate_body, measure, place_pair
+from .twist import (KINDS, LAWS, ChevronArchLaw, HelicalLaw, HerringboneLaw, SpurLaw, TwistLaw,
+                    default_arch_radius, twist_law)
+
+__all__ = ["Body", "mate_body", "place_pair", "measure", "TwistLaw", "KINDS", "LAWS", "SpurLaw",
+           "HelicalLaw", "HerringboneLaw", "ChevronArchLaw", "twist_law", "default_arch_radius"]

@@ -38,7 +38,7 @@ from ..geometry import rotate
 from ..errors import GearError, ToleranceError, check_choice, check_number
 from .features import (apply_features, chamfer_vectors, offset_loops,
                        plan_features, subdivide)
-from .twist import KINDS, TwistLaw, default_arch_radius
+from .twist import KINDS, TwistLaw, default_arch_radius, twist_law
 
 #: smallest body tolerance with a twist (part of it goes to the profile, whose floor is 1e-7 mm)
 MIN_TWIST_TOLERANCE = 2e-7
@@ -205,7 +205,7 @@ def body(profile, kind="spur", width=10.0, helix_angle_deg=0.0, hand="right", ga
 
     # ---- the law and the error budget
     sign = 1.0 if hand == "right" else -1.0
-    law = _law if _law is not None else TwistLaw(kind, W, prof.pitch_radius, sign, beta, gap, R)
+    law = _law if _law is not None else twist_law(kind, W, prof.pitch_radius, sign, beta, gap, R)
     e_off = tol / 8 if delta else 0.0
     tp = profile_tolerance(tol, kind, bool(delta))
     if prof.report["max_error"] > tp * (1 + 1e-9):
@@ -566,9 +566,11 @@ _BARY = np.array([[.5, .5, 0], [0, .5, .5], [.5, 0, .5], [1 / 3, 1 / 3, 1 / 3],
 
 def _measured_bands(knots, law, skip):
     """Layer bands (index k: knots[k]..knots[k+1]) to measure: one of every distinct shape
-    (layer height, turn, curvature of the law), outside the chamfer bands and the gap.
-    Bands of the same shape are the same surface turned (the warp turns whole layers of
-    one profile polygon), so one of each stands for all of them."""
+    (layer height, signed turn, curvature of the law), outside the chamfer bands and the
+    gap. Bands of the same shape are the same surface turned (the warp turns whole layers of
+    one profile polygon), so one of each stands for all of them. The turn's sign counts: a
+    band turning the other way (a herringbone's upper half) meets its quads' diagonals the
+    other way round and is a different surface."""
     K = len(knots)
     dz = np.diff(knots)
     th = law(knots)
@@ -576,7 +578,7 @@ def _measured_bands(knots, law, skip):
     mid = 0.5 * (knots[:-1] + knots[1:])
     d2 = np.abs(law.d2theta(mid))
     scale = max(float(np.abs(dz).max()), 1e-300)
-    sig = np.stack([np.round(dz / scale, 9), np.round(np.abs(dth), 12), np.round(d2, 9)], axis=1)
+    sig = np.stack([np.round(dz / scale, 9), np.round(dth, 12), np.round(d2, 9)], axis=1)
     _, first = np.unique(sig, axis=0, return_index=True)
     idx = sorted(set(first.tolist()))
     out = []
