@@ -21,7 +21,7 @@ CHILD = r"""
 import json, resource, sys, time
 t0 = time.perf_counter()
 import gear3d
-from gear3d.solids import body
+from gear3d.solids.body import body
 tol = float(sys.argv[1])
 t1 = time.perf_counter()
 p = gear3d.profile("involute", teeth=20, module=1.0, tolerance=tol)

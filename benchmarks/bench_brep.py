@@ -26,7 +26,7 @@ import numpy as np
 
 import gear3d
 from gear3d.export import step_brep
-from gear3d.solids import body
+from gear3d.solids.body import body
 
 
 def faces_error(shape, b, n=13):

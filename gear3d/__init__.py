@@ -12,7 +12,7 @@ __version__ = "0.1.0"
 
 #: public name -> module that defines it (imported on first use)
 _LAZY = {
-    "body": "gear3d.solids",
+    "body": "gear3d.solids.body",
     "Body": "gear3d.solids",
     "place_pair": "gear3d.solids",
     "check_pair": "gear3d.analysis.pairs",

@@ -125,7 +125,7 @@ def body_row(family: str, kind: str, tol: float, params: dict, out_dir: Path) ->
     from . import profile
     from .errors import GearError
     from .export import write
-    from .solids import body
+    from .solids.body import body
     base = {"family": family, "body": kind, "tolerance": tol}
     stl = out_dir / "bench_body.stl"
     t0 = time.perf_counter()
@@ -350,7 +350,7 @@ def run(quick: bool = False, json_path=None, out_dir="out/bench", families=None,
     import shapely  # noqa: F401
     import trimesh  # noqa: F401
     from . import profile
-    from .solids import body
+    from .solids.body import body
     body(profile("involute", tolerance=1e-2), width=1.0)
     jobs = []
     for f in fams:

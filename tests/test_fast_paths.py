@@ -20,7 +20,7 @@ import numpy as np
 import pytest
 
 import gear3d
-from gear3d.solids import body
+from gear3d.solids.body import body
 
 
 def involute_points(z=20, m=1.0, alpha_deg=20.0, radii=None):

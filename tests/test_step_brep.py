@@ -16,7 +16,7 @@ import pytest
 import gear3d
 from gear3d.errors import GearError, ToleranceError
 from gear3d.export import write
-from gear3d.solids import body
+from gear3d.solids.body import body
 
 # --------------------------------------------------------------------------- helpers
 

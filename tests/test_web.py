@@ -108,7 +108,7 @@ def test_bad_input_is_the_clis_message_and_never_a_path(app, capsys):
 
 
 def test_busy_answers_503_and_the_budget_refuses_before_building(app, monkeypatch, tmp_path):
-    import gear3d.solids
+    import gear3d.solids.body as solids_body
     slots = app.state.slots
     assert slots.sem.acquire(blocking=False)          # one build running (max_builds=1)
     try:
@@ -118,13 +118,13 @@ def test_busy_answers_503_and_the_budget_refuses_before_building(app, monkeypatc
         slots.sem.release()
     st, _, body = _asgi_get(app, "/api/profile", "family=involute&teeth=20")
     assert st == 200
-    calls, real = [], gear3d.solids.body
+    calls, real = [], solids_body.body
 
     @functools.wraps(real)
     def spy(*a, **k):
         calls.append(1)
         return real(*a, **k)
-    monkeypatch.setattr(gear3d.solids, "body", spy)
+    monkeypatch.setattr(solids_body, "body", spy)
     st, _, body = _asgi_get(app, "/api/download", "family=involute&teeth=50000&b.width=100&tolerance=0.001&fmt=stl")
     err = _strict(body)
     assert st == 400 and err["param"] == "teeth" and "budget" in err["error"] and not calls

@@ -63,7 +63,7 @@ def body_params(args) -> dict:
 def run(args) -> int:
     from .. import profile
     from ..errors import GearError
-    from ..solids import body
+    from ..solids.body import body
     out = args.output
     if out is not None:
         from ..export import check_output

@@ -280,7 +280,7 @@ def as_bodies(obj, width=None, **body_opts) -> list:
     if isinstance(obj, Profile):
         if width is None:
             raise GearError("width", None, "a number > 0 mm to extrude a profile into a body")
-        from ..solids import body
+        from ..solids.body import body
         return [body(obj, kind="spur", width=width, **body_opts)]
     if isinstance(obj, (list, tuple)):
         return list(obj)

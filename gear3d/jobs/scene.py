@@ -79,7 +79,7 @@ def run_profile(stage):
 
 
 def run_body(stage, prof, like=None):
-    from ..solids import body, mate_body
+    from ..solids.body import body, mate_body
     kw = dict(stage.inputs["body"])
     kw.pop("mate", None)
     try:

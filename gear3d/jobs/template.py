@@ -266,7 +266,7 @@ def check_param(file, key, family, name, value, sig):
 
 
 def body_signature():
-    from ..solids import body
+    from ..solids.body import body
     sig = inspect.signature(body)
     out = {n: p.default for n, p in sig.parameters.items()
            if n not in ("profile", "_law", "tolerance", "name")}

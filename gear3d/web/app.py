@@ -115,7 +115,7 @@ def _preview_body(family, pk, bk):
     """The 3D preview: the CLI's body at the print tolerance (the coarser of 0.01 mm and the
     form's), its profile built at the share of it the CLI gives the profile."""
     from .. import profile
-    from ..solids import body
+    from ..solids.body import body
     user = min(pk.get("tolerance", PREVIEW_TOLERANCE), bk.get("tolerance") or math.inf)
     tol = max(user, PREVIEW_TOLERANCE)
     for t in ((tol, user) if user < tol else (tol,)):

@@ -127,7 +127,7 @@ def families() -> list:
 
 
 def _body_fields() -> list:
-    from ..solids import body
+    from ..solids.body import body
     acts = cli_parsers()["body"][1]
     return [_field(p.name, p.default, acts.get(p.name), p.name in REQUIRED["body"])
             for p in inspect.signature(body).parameters.values()

@@ -18,7 +18,7 @@ from scipy.optimize import brentq
 
 import gear3d
 from gear3d.errors import GearError, ToleranceError
-from gear3d.solids import body
+from gear3d.solids.body import body
 
 from ._checks import attempt, check_body, check_manifold, check_profile
 

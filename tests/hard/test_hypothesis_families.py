@@ -13,7 +13,7 @@ import pytest
 from hypothesis import HealthCheck, given, settings, strategies as st
 
 import gear3d
-from gear3d.solids import body
+from gear3d.solids.body import body
 
 from ._checks import attempt, check_body, check_profile
 
