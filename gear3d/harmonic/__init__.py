@@ -2,20 +2,23 @@
 
 * :mod:`.synthesis` -- :func:`double_harmonic`, :func:`single_harmonic`, :func:`seed002_design`
 * :mod:`.parts` -- flexspline tube / cup, circular splines, wave generator, :func:`assembly`
-* :mod:`.deform` -- the deflected flexspline and the rolling mesh check :func:`mesh_check`
+* :mod:`.deflection` -- the flexspline deflected by the wave generator (:func:`neutral_line`)
+* :mod:`.deform` -- the rolling mesh check of the deflected teeth :func:`mesh_check`
 
 Heavy modules (manifold3d, shapely) load on first use of the functions that need them.
 """
-from .synthesis import (HarmonicDesign, SEED002, double_harmonic, seed002_design,  # noqa: F401
-                        single_harmonic)
+from .synthesis import HarmonicDesign, SEED002, double_harmonic, seed002_design, single_harmonic
 
 _LAZY = {
     "Part": "parts", "flexspline_tube": "parts", "flexspline_cup": "parts",
     "circular_spline": "parts", "mobile_wheel": "parts", "wave_generator": "parts",
     "build_parts": "parts", "assembly": "parts",
-    "deformed_teeth": "deform", "mesh_check": "deform", "neutral_line": "deform",
+    "mesh_check": "deform", "neutral_line": "deflection",
+    "deform_manifold": "deflection",
     "mesh_figure": "deform",
 }
+
+__all__ = ["HarmonicDesign", "SEED002", "double_harmonic", "seed002_design", "single_harmonic", *_LAZY]
 
 
 def __getattr__(name):

@@ -371,19 +371,19 @@ def assembly(design: HarmonicDesign, *, tooth="triangular", tolerance=1e-3, bear
              wg_angle_deg=0.0, deformed=True, parts=None, **tooth_params) -> list:
     """All parts placed around the z axis with the wave generator's major axis at
     ``wg_angle_deg``. The flexspline (and bearing ring) are deflected by the wave
-    generator (:func:`gear3d.harmonic.deform.deform_manifold`) when ``deformed``; the rigid
+    generator (:func:`gear3d.harmonic.deflection.deform_manifold`) when ``deformed``; the rigid
     wheels are turned so that a space faces the flex tooth on each engagement axis.
     Double drive: flexspline z in [0, l]; fixed ring teeth on [0, b] with its flange
     below z = 0; mobile wheel on [l - l4, l]; cam from z = 0. Returns named parts with
     ``.transform`` holding the placement; ``.manifold`` stays in the local frame except
     for the deflected parts, whose solid is the deflected one."""
-    from .deform import deform_manifold
+    from .deflection import deform_manifold
     if parts is None:
         parts = build_parts(design, tooth=tooth, tolerance=tolerance,
                             bearing_thickness=bearing_thickness, **tooth_params)
     psi = math.radians(check_number("wg_angle_deg", wg_angle_deg, -360, 360, unit="deg"))
     f = design.flexspline
-    ri, ro = f["inner_diameter"] / 2, f["outer_diameter"] / 2
+    ri = f["inner_diameter"] / 2
     st1 = design.stages[0]
     out = []
     for p in parts:

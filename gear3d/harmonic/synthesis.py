@@ -310,7 +310,7 @@ def double_harmonic(module, z2, z3, z2_inner, z4, *, w0=None, w0_inner=None,
     df2 = m * z2 - 2 * hf
     flex = _flex_body(df2, m, wall, wall_coeff, face_width, face_coeff, length, length_coeff,
                       wall_step, face_step, length_step)
-    di, s, b, l = flex["inner_diameter"], flex["wall"], flex["face_width"], flex["length"]
+    di, b, l = flex["inner_diameter"], flex["face_width"], flex["length"]
     # inner teeth: tips inside the bore, roots inside the tube's outer surface
     d2i_root = m * z2i + 2 * hf
     d2i_tip = m * z2i - 2 * ha
