@@ -21,10 +21,15 @@ def add_parser(sub):
     p.add_argument("--tip-correction", action="store_true",
                    help="lower/raise the tips until the pair meshes (seed 001 Fig. 20)")
     p.add_argument("-o", "--output", default=None, help=".json report or .png/.svg figure")
+    from ..rack_part import add_rack_flags
+    add_rack_flags(p, pair=True)
     return p
 
 
 def run(args) -> int:
+    if getattr(args, "rack", False):
+        from ..rack_part import run_pair_cli
+        return run_pair_cli(args)
     from ..errors import GearError
     from ..analysis.pairs import check_pair, largest_addendum, tip_correction
     from ..export import check_path

@@ -1,0 +1,250 @@
+"""Pinion against rack, by rolling (issue #14 item 1): interference, backlash, contact ratio.
+
+Frame: the rack's (:mod:`gear3d.rack_part`): pitch line y = 0, teeth up. The pinion's own
+frame (tooth 0 on +x) is turned by -90 deg so that its tooth 0 points down at the rack,
+and its centre sits at (x0 - r phi, r + x m) when it has turned by phi (CCW): it rolls
+without slipping on the line y = x m, which is how the tool that cut it moved. ``x0`` is
+the rack's ``phase_x`` (the cutter's space centre, where the gear's tooth 0 was cut) plus
+whole pitches.
+
+Each roll position is checked both ways with exact distances: pinion vertices that fall
+under the rack's top are measured against the rack's exact pieces
+(:meth:`gear3d.rack_part.RackPart.top_distance`, Newton), rack vertices inside the pinion
+against the pinion's exact boundary (:meth:`gear3d.model.Profile.exact_distance`). Both
+polygons' vertices lie on their exact curves, so touching flanks measure about 0 and a
+penetration above 2 tol is interference. The rack is endless here (periodic): the check is
+of the tooth form, not of the rack's length.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..errors import GearError, check_number
+from ..geometry import rotate
+
+#: steps per pitch of roll (at least; finer when the tolerance asks)
+STEPS_PER_PITCH = 24
+#: bisection rounds for the ends of contact and the backlash
+BISECT = 30
+
+
+class Mesh:
+    """A pinion ``prof`` (a :class:`gear3d.model.Profile`) placed on ``rack`` (a
+    :class:`gear3d.rack_part.RackPart`) with its centre at height ``cy`` (mm) and at
+    x = ``x0`` (mm) at roll 0."""
+
+    def __init__(self, prof, rack, cy: float, x0: float, tol: float):
+        self.prof, self.rack, self.cy, self.x0, self.tol = prof, rack, cy, x0, tol
+        self.r = prof.pitch_radius
+        loop = np.asarray(prof.tooth_loop, float)
+        rho = np.hypot(*loop.T)
+        reach = cy - rack.report["tip_y"] - 2 * tol        # pinion radii that can reach the rack
+        self.pts = loop[rho >= reach]
+        self.r_tip = float(rho.max())
+        ang = np.arctan2(self.pts[:, 1], self.pts[:, 0])
+        # tooth 0's leading flank (the pinion turns CCW): polar angle in (0, pi/z)
+        self.lead = (ang > 0) & (ang < math.pi / prof.teeth)
+        import shapely
+        self.poly = shapely.Polygon(loop)
+        shapely.prepare(self.poly)
+        p = rack.pitch
+        k = np.arange(-math.ceil(self.r_tip / p) - 4, math.ceil(self.r_tip / p) + 5)
+        per = rack.chain[:-1]
+        self.rack_pts = (per[None, :, :] + np.stack([k * p, 0 * k], 1)[:, None, :]).reshape(-1, 2)
+
+    def centre(self, phi):
+        return np.stack([self.x0 - self.r * np.asarray(phi, float), np.full(np.shape(phi), self.cy)], -1)
+
+    def to_rack(self, pts, phi):
+        """Pinion-frame points (N, 2) to the rack frame at roll ``phi`` (scalar, rad)."""
+        g = rotate(pts, phi - math.pi / 2)
+        return g + self.centre(phi)
+
+    def to_pinion(self, pts, phi):
+        return rotate(pts - self.centre(phi), -(phi - math.pi / 2))
+
+    def state(self, phi, dx=0.0):
+        """(penetration mm, where (rack frame), lead-flank gap mm) at roll ``phi`` with the
+        rack moved by ``dx`` (mm) along x."""
+        import shapely
+        rk = self.rack
+        q = self.to_rack(self.pts, phi) - np.array([dx, 0.0])
+        near = q[:, 1] <= rk.report["tip_y"] + 3 * self.tol
+        pen, where = 0.0, None
+        gap_lead = math.inf
+        if near.any():
+            d = rk.top_distance(q[near], periodic=True)
+            ins = rk.inside(q[near])
+            if ins.any():
+                i = int(np.argmax(np.where(ins, d, -1.0)))
+                pen, where = float(d[i]), q[near][i] + np.array([dx, 0.0])
+            lead = self.lead[near]
+            if lead.any():
+                gl = np.where(ins[lead], 0.0, d[lead])
+                gap_lead = float(gl.min())
+        c = self.centre(phi)[0] - np.array([dx, 0.0])
+        rp = self.rack_pts[np.hypot(*(self.rack_pts - c).T) <= self.r_tip + 2 * self.tol]
+        if len(rp):
+            g = self.to_pinion(rp + np.array([dx, 0.0]), phi)
+            ins = shapely.contains_xy(self.poly, g[:, 0], g[:, 1])
+            if ins.any():
+                d = self.prof.exact_distance(g[ins])
+                i = int(np.argmax(d))
+                if d[i] > pen:
+                    pen, where = float(d[i]), rp[ins][i] + np.array([dx, 0.0])
+        return pen, where, gap_lead
+
+
+def check_rack_pair(pinion, rack, shift: float | None = None, x0: float | None = None,
+                    tolerance: float | None = None, backlash_phases: int = 4) -> dict:
+    """Roll ``pinion`` (a Profile) along ``rack`` (a RackPart) and report (mm, deg).
+
+    ``shift`` (mm): the pinion's profile shift x m (its centre sits at y = r + shift;
+    default: the pinion's own ``shift_coeff`` times its module); ``x0`` (mm): x of the
+    centre at roll 0 (default: the rack's ``phase_x``, the mesh phase); ``tolerance`` (mm)
+    sets the step and the contact threshold (default: the larger of the two tolerances).
+    Keys: ``interference``, ``max_penetration``, ``interference_at``, ``backlash`` (rack
+    play along the pitch line, min over ``backlash_phases`` roll positions; None when
+    interfering), ``contact_ratio`` (tooth 0's leading flank in contact, in pitches),
+    ``tip_root_clearance``, ``steps``.
+    """
+    from ..model import Profile
+    from ..rack_part import RackPart
+    if not isinstance(pinion, Profile):
+        raise GearError("pinion", type(pinion).__name__, "a gear3d Profile (gear3d.profile(...))")
+    if not isinstance(rack, RackPart):
+        raise GearError("rack", type(rack).__name__, "a gear3d RackPart (gear3d.rack(...))")
+    if pinion.internal:
+        raise GearError("pinion.internal", True, "False: a ring cannot mesh with a straight rack")
+    m1 = 2 * pinion.pitch_radius / pinion.teeth
+    if abs(m1 - rack.module) > 1e-9 * rack.module:
+        raise GearError("pinion.module", m1, f"the rack's module ({rack.module:g} mm)")
+    if shift is None:
+        shift = float(pinion.params.get("shift_coeff", 0.0) or 0.0) * m1
+    shift = check_number("shift", shift, -10 * m1, 10 * m1, unit="mm")
+    x0 = rack.phase_x if x0 is None else check_number("x0", x0, None, None, unit="mm")
+    tol = max(pinion.tolerance, rack.tolerance) if tolerance is None else check_number(
+        "tolerance", tolerance, 1e-7, None, lo_open=True, unit="mm")
+    r = pinion.pitch_radius
+    M = Mesh(pinion, rack, r + shift, x0, tol)
+    pitch_ang = 2 * math.pi / pinion.teeth
+    step = min(pitch_ang / STEPS_PER_PITCH, math.sqrt(8 * tol / M.r_tip) * 4)
+    span = 3.2 * pitch_ang
+    n = int(math.ceil(span / step)) + 1
+    phis = np.linspace(-span / 2, span / 2, n)
+    contact_tol = 2.5 * tol
+    pens, gaps, wheres = [], [], []
+    for ph in phis:
+        pen, where, gl = M.state(ph)
+        pens.append(pen)
+        gaps.append(gl)
+        wheres.append(where)
+    pens = np.array(pens)
+    gaps = np.array(gaps)
+    i = int(np.argmax(pens))
+    interference = bool(pens[i] > 2 * tol)
+    at = None
+    if wheres[i] is not None and pens[i] > 0:
+        w = wheres[i]
+        wp = M.to_pinion(np.asarray(w)[None], phis[i])[0]
+        at = {"phi_deg": math.degrees(phis[i]), "point": [float(w[0]), float(w[1])],
+              "pinion_radius": float(np.hypot(*wp)), "rack_height": float(w[1])}
+    # contact ratio as rolled: the roll during which tooth 0's leading flank is within
+    # contact_tol of the rack (an upper estimate: flanks part tangentially)
+    touch = gaps <= contact_tol
+    contact_ratio = None
+    if touch.any() and not (touch[0] or touch[-1]):
+        idx = np.nonzero(touch)[0]
+        lo = _edge(lambda ph: M.state(ph)[2] <= contact_tol, phis[idx[0]], phis[idx[0] - 1], tol / r / 8)
+        hi = _edge(lambda ph: M.state(ph)[2] <= contact_tol, phis[idx[-1]], phis[idx[-1] + 1], tol / r / 8)
+        contact_ratio = (hi - lo) / pitch_ang
+    # backlash: how far the rack can move either way along x before the teeth overlap
+    backlash = None
+    if not interference:
+        plays = []
+        for ph in np.linspace(0, pitch_ang, backlash_phases, endpoint=False):
+            both = []
+            for sgn in (1.0, -1.0):
+                both.append(_play(M, ph, sgn, tol, rack.pitch / 2))
+            plays.append(sum(both))
+        backlash = float(min(plays))
+    rp, rk = pinion.report, rack.report
+    return {
+        "family": rack.family, "pinion_teeth": pinion.teeth, "rack_teeth": rack.teeth,
+        "module": rack.module, "pitch_radius": r, "shift": shift,
+        "centre": [float(x0), float(r + shift)],
+        "tolerance": tol, "steps": int(n), "step_deg": math.degrees(phis[1] - phis[0]),
+        "interference": interference,
+        "max_penetration": float(pens[i]),
+        "interference_at": at,
+        "backlash": backlash,
+        "contact_ratio": willis_contact_ratio(rack, pinion, shift) if rack.family != "triangular" else None,
+        "contact_ratio_rolled": contact_ratio,
+        "tip_root_clearance": {
+            "pinion_tip_rack_root": (r + shift - rp["tip_radius"]) - rk["root_y"],
+            "rack_tip_pinion_root": (r + shift - rp["root_radius"]) - rk["tip_y"]},
+    }
+
+
+def willis_contact_ratio(rack, pinion, shift: float, samples: int = 4001):
+    """Contact ratio (pitches) of a rack-generated pinion on its rack, exactly: a point of
+    the rack's leading flank touches the pinion when its normal passes through the pitch
+    point on the rolling line y = ``shift`` (Willis), at roll x_I = x + (y - shift) y'/x';
+    it is in contact if the pinion is there (its radius from the centre (x_I, r + shift)
+    lies between the pinion's root and tip radii). The ratio is the range of x_I over the
+    flank points in contact, divided by the pitch."""
+    r = pinion.pitch_radius
+    r_tip, r_root = pinion.report["tip_radius"], pinion.report["root_radius"]
+    n = len(rack.pieces) // 2
+    xs = []
+    t = np.linspace(0.0, 1.0, samples)
+    h = 1e-7
+    for f in rack.pieces[n:]:                       # tooth 0's right flank: x >= 0
+        P = f(t)
+        d = (f(np.minimum(t + h, 1)) - f(np.maximum(t - h, 0)))
+        ok = np.abs(d[:, 0]) > 1e-12 * rack.module
+        flank = np.abs(d[:, 1]) > 1e-9 * np.hypot(*d.T)      # flats never touch a flank
+        xi = P[:, 0] + (P[:, 1] - shift) * np.where(ok, d[:, 1] / np.where(ok, d[:, 0], 1.0), 0.0)
+        xi = np.where(ok, xi, P[:, 0])
+        rho = np.hypot(P[:, 0] - xi, P[:, 1] - (r + shift))
+        on = flank & (rho <= r_tip) & (rho >= r_root)
+        xs.append(xi[on])
+    xs = np.concatenate(xs)
+    if not len(xs):
+        return 0.0
+    return float((xs.max() - xs.min()) / rack.pitch)
+
+
+def _edge(pred, inside, outside, step):
+    """Bisect between a roll where ``pred`` holds and one where it does not; return the
+    last roll (rad) where it holds."""
+    for _ in range(BISECT):
+        if abs(outside - inside) < step:
+            break
+        mid = 0.5 * (inside + outside)
+        if pred(mid):
+            inside = mid
+        else:
+            outside = mid
+    return inside
+
+
+def _play(M: Mesh, phi, sgn, tol, limit):
+    """How far (mm) the rack can move by ``sgn`` along x at roll ``phi`` before the teeth
+    overlap by more than ``tol``."""
+    def overlap(d):
+        return M.state(phi, sgn * d)[0] > tol
+    if not overlap(limit):
+        return limit
+    good, bad = 0.0, limit
+    for _ in range(BISECT):
+        if bad - good < tol / 8:
+            break
+        mid = 0.5 * (good + bad)
+        if overlap(mid):
+            bad = mid
+        else:
+            good = mid
+    return good

@@ -1,0 +1,807 @@
+"""Linear racks as parts (issue #14 item 1): the rack that meshes with a family's gears.
+
+Frame (mm): the pitch line is y = 0, teeth point to +y, tooth 0 is centred on x = 0 and
+tooth k on x = k p (p = pi m); the rack runs from x = -p/2 to x = (N - 1/2) p (both ends in
+the middle of a space) and its back is ``back_height`` below the root line.
+
+The rack part is the family's own tool rack (:mod:`gear3d.racks`, the cutter the one
+engine rolls to generate the family's gears) with the heights of a part: its tooth rises
+``addendum_coeff * m`` above the pitch line (the cutter's rose by the gear's dedendum) and
+its spaces go ``dedendum_coeff * m`` deep, so that a gear cut with the same coefficients
+keeps the clearance (dedendum - addendum) m at its root and at its tip:
+
+* ``involute``: straight flanks at the pressure angle, thickness pi m/2 - ``backlash`` on
+  the pitch line (ISO 53 basic rack; ``tip_radius_coeff`` rounds the tooth tip);
+* ``sine``: y = h cos(2x/m) with h = ``addendum_coeff`` m (seed 001; seed 000's harmonic
+  rack with ``unit_radius``/``amplitude``), epi and hypo are the same rack (the pinion's
+  phase differs by half a pitch); the sine tooth has no clearance of its own (the gear's
+  root and tip touch it), ``clearance_coeff`` flattens the rack's tips by that much and
+  the pinion of :func:`rack_pair` gets its tip turned by as much;
+* ``cycloidal``: the cycloids of a circle of radius ``rolling_radius_coeff`` m rolling on
+  the pitch line (on both sides), straight tip and root;
+* ``triangular``: straight flanks at ``half_angle_deg`` from the tooth axis, thickness
+  ``thickness_coeff`` p on the pitch line (seed 002 Table 1; the straight-sided gear is a
+  closed form, not rack-generated: its rack is the same tooth on a straight line).
+
+The outline is one closed CCW polygon (teeth and back). Every flank piece is an exact
+evaluator tessellated within the tolerance with every chord measured
+(:func:`gear3d.tessellate.tessellate`); lines are exact. :meth:`RackPart.exact_distance`
+measures points against the exact pieces by Newton's method (an independent check).
+"""
+from __future__ import annotations
+
+import math
+import sys
+from dataclasses import dataclass, field
+
+from .errors import GearError, ToleranceError, check_choice, check_number
+
+
+class _LazyNumpy:
+    """numpy, imported on first use: ``gear3d profile --help`` adds the --rack flags
+    from this module and must not pay for numpy."""
+
+    def __getattr__(self, name):
+        import numpy
+        globals()["np"] = numpy
+        return getattr(numpy, name)
+
+
+np = _LazyNumpy()
+
+
+def check_points(points):
+    from .geometry import check_points as cp
+    return cp(points)
+
+
+def rotate(pts, ang):
+    from .geometry import rotate as rot
+    return rot(pts, ang)
+
+
+def segment_foot(p, a, b):
+    from .geometry import segment_foot as sf
+    return sf(p, a, b)
+
+
+def signed_area(loop):
+    from .geometry import signed_area as sa
+    return sa(loop)
+
+#: families that have a rack part
+RACK_FAMILIES = ("involute", "sine", "cycloidal", "triangular")
+#: default back height below the root line, in modules
+BACK_HEIGHT_COEFF = 2.0
+#: zooms of nine exact points around a foot before Newton's method, and Newton steps
+ZOOMS = 3
+NEWTON_STEPS = 4
+
+
+@dataclass(eq=False)
+class RackPart:
+    """A rack outline (mm): ``loops`` = [one CCW loop], ``report`` (JSON-ready), and the exact
+    pieces of one tooth period (``pieces``: evaluators ``f(t) -> (N, 2)``, t in [0, 1],
+    in the rack frame, tooth 0, from x = -p/2 to p/2)."""
+    family: str
+    params: dict
+    teeth: int
+    module: float
+    tolerance: float
+    loops: list
+    report: dict
+    pieces: list = field(repr=False, default_factory=list)
+    samples: list = field(repr=False, default_factory=list)
+    #: x (mm) of the pinion centre at roll 0 (the tool's space centre, where the generated
+    #: gear's tooth 0 points), modulo the pitch
+    phase_x: float = 0.0
+    back_y: float = 0.0
+    #: one period's top polygon (mm), tooth 0, from x = -p/2 to p/2
+    chain: np.ndarray = field(repr=False, default=None)
+    #: per piece: True when it is a straight line (its chords are exact)
+    straight: list = field(repr=False, default_factory=list)
+
+    @property
+    def pitch(self) -> float:
+        return math.pi * self.module
+
+    @property
+    def length(self) -> float:
+        return self.teeth * self.pitch
+
+    def top_distance(self, points, periodic: bool = False) -> np.ndarray:
+        """Distance (mm) from ``points`` to the exact toothed top of the rack (Newton on
+        the exact pieces); ``periodic`` = an endless rack (every tooth), else teeth 0..N-1."""
+        q = check_points(points)
+        p = self.pitch
+        ks = np.round(q[:, 0] / p)[:, None] + np.array([-1.0, 0.0, 1.0])[None, :]
+        local = q[:, None, :] - np.stack([ks * p, np.zeros_like(ks)], axis=-1)
+        d = self._period_distance(local.reshape(-1, 2)).reshape(-1, 3)
+        if not periodic:
+            d[(ks < 0) | (ks > self.teeth - 1)] = np.inf
+        return d.min(axis=1)
+
+    def _period_distance(self, q, chunk: int = 1_000_000) -> np.ndarray:
+        """Distance (mm) from points (M, 2) to the exact pieces of tooth 0's period: the
+        nearest chord of all pieces picks the piece and the start parameter; Newton's method
+        finishes on the exact curve (straight pieces: the chord is the curve)."""
+        if not hasattr(self, "_chords"):
+            A, B, T0, T1, PC = [], [], [], [], []
+            for i, (t, pts) in enumerate(self.samples):
+                A.append(pts[:-1]), B.append(pts[1:]), T0.append(t[:-1]), T1.append(t[1:])
+                PC.append(np.full(len(t) - 1, i))
+            self._chords = tuple(np.concatenate(x) for x in (A, B, T0, T1, PC))
+            self._straight = [bool(self.straight[i]) for i in range(len(self.pieces))]
+        A, B, T0, T1, PC = self._chords
+        out = np.empty(len(q))
+        step = max(1, chunk // max(len(A), 1))
+        for s0 in range(0, len(q), step):
+            qq = q[s0:s0 + step]
+            d, s = segment_foot(qq[:, None, :], A[None], B[None])
+            j = np.argmin(d, axis=1)
+            rows = np.arange(len(qq))
+            best = d[rows, j]
+            pc = PC[j]
+            for i, f in enumerate(self.pieces):
+                sel = (pc == i)
+                if self._straight[i] or not sel.any():
+                    continue
+                # the chord is not the curve: distances to points on the curve only
+                best[sel] = newton_distance(f, T0[j[sel]], T1[j[sel]], qq[sel])
+            out[s0:s0 + step] = best
+        return out
+
+    def exact_distance(self, points) -> np.ndarray:
+        """Distance (mm) from ``points`` (N, 2) to the exact outline: the teeth (Newton on
+        the exact pieces) and the straight ends and back."""
+        q = check_points(points)
+        d = self.top_distance(q)
+        p, yr = self.pitch, self.report["root_y"]
+        x0, x1, yb = -p / 2, (self.teeth - 0.5) * p, self.back_y
+        corners = np.array([[x1, yr], [x1, yb], [x0, yb], [x0, yr]])
+        for a, b in zip(corners[:-1], corners[1:]):
+            d = np.minimum(d, segment_foot(q, a[None], b[None])[0])
+        return d
+
+    def inside(self, points, periodic: bool = True) -> np.ndarray:
+        """True where points (N, 2) lie under the toothed top (above the back for a finite
+        rack). The top is a function y(x) for every rack here; read off the polygon."""
+        q = check_points(points)
+        p = self.pitch
+        xs, ys = self.chain[:, 0], self.chain[:, 1]
+        xf = (q[:, 0] + p / 2) % p - p / 2
+        ins = q[:, 1] < np.interp(xf, xs, ys)
+        if not periodic:
+            ins &= (q[:, 0] > -p / 2) & (q[:, 0] < (self.teeth - 0.5) * p) & (q[:, 1] > self.back_y)
+        return ins
+
+    def figure(self, path=None, pinion=None, pinion_place=None, title=None):
+        """PNG/SVG figure of the rack (pitch line dashed), optionally with a placed pinion."""
+        return rack_figure(self, path, pinion, pinion_place, title)
+
+
+# ----------------------------------------------------------------------------- pieces
+
+def newton_distance(f, t0, t1, q) -> np.ndarray:
+    """Distance (mm) from points ``q`` (M, 2) to the exact curve ``f`` (t in [0, 1]) near
+    the parameter intervals [t0, t1] (one per point): nine exact points over the interval
+    widened by its own width, three zooms on the nearest, then Newton's method on
+    (f(t) - q).f'(t) = 0 (central differences). The result is the nearest of the exact
+    points found, so it never understates the distance (a parametrisation whose speed
+    vanishes, like a cycloid's at the pitch line, only slows Newton down)."""
+    t0, t1 = np.asarray(t0, float), np.asarray(t1, float)
+    w = t1 - t0
+    lo, hi = np.maximum(t0 - w, 0.0), np.minimum(t1 + w, 1.0)
+    n = len(q)
+    fr = np.linspace(0.0, 1.0, 9)
+    best_t = t0.copy()
+    best_d = np.full(n, np.inf)
+    for _ in range(ZOOMS + 1):
+        T = lo[:, None] + (hi - lo)[:, None] * fr[None, :]
+        G = f(T.ravel()).reshape(n, len(fr), 2)
+        D = np.hypot(G[..., 0] - q[:, None, 0], G[..., 1] - q[:, None, 1])
+        k = np.argmin(D, axis=1)
+        rows = np.arange(n)
+        better = D[rows, k] < best_d
+        best_d = np.where(better, D[rows, k], best_d)
+        best_t = np.where(better, T[rows, k], best_t)
+        span = (hi - lo) / 8
+        lo, hi = np.maximum(best_t - span, 0.0), np.minimum(best_t + span, 1.0)
+    tt = best_t.copy()
+    h = 1e-7
+    for _ in range(NEWTON_STEPS):
+        tp, tm = np.minimum(tt + h, 1.0), np.maximum(tt - h, 0.0)
+        g = f(np.concatenate([tt, tp, tm]))
+        G0, Gp, Gm = g[:n], g[n:2 * n], g[2 * n:]
+        hp = (tp - tm)[:, None]
+        d1 = (Gp - Gm) / hp
+        d2 = (Gp - 2 * G0 + Gm) / (hp / 2) ** 2
+        r = G0 - q
+        num = np.einsum("ij,ij->i", r, d1)
+        den = np.einsum("ij,ij->i", d1, d1) + np.einsum("ij,ij->i", r, d2)
+        tt = np.clip(tt - np.where(den > 0, num / np.where(den > 0, den, 1.0), 0.0), lo, hi)
+    return np.minimum(np.hypot(*(f(tt) - q).T), best_d)
+
+
+def _smooth_piece(el, t0, t1, dx):
+    """Evaluator of tool element ``el`` (a :class:`gear3d.racks.Smooth`) over [t0, t1] in the
+    rack frame: x = u + dx, y = v."""
+    def f(t):
+        u, v, _du, _dv = el.uv(t0 + (t1 - t0) * np.asarray(t, float))
+        return np.stack([u + dx, v], axis=-1)
+    return f
+
+
+def _mirror(f):
+    """The evaluator mirrored about x = 0 and reversed (left flank from the right one)."""
+    def g(t):
+        p = f(1.0 - np.asarray(t, float))
+        return np.stack([-p[..., 0], p[..., 1]], axis=-1)
+    return g
+
+
+def _flat(x0, x1, y):
+    def f(t):
+        t = np.asarray(t, float)
+        return np.stack([x0 + (x1 - x0) * t, np.full_like(t, y)], axis=-1)
+    return f
+
+
+# ----------------------------------------------------------------------------- families
+
+def _involute_half(m, a_deg, ha, hf, rho, b, name_a="addendum_coeff", name_f="dedendum_coeff"):
+    """Right half (x from 0 to p/2) of a trapezoid rack tooth from the ISO 53 tool rack."""
+    from .racks import Corner, involute_rack
+    p = math.pi * m
+    ta = math.tan(math.radians(a_deg))
+    half_top = p / 4 - b / 2 - ha * m * ta      # half width of the tooth's tip land
+    half_root = p / 4 - b / 2 + hf * m * ta     # half width at the root line
+    if half_top <= 0:
+        lim = (p / 4 - b / 2) / (m * ta)
+        raise GearError(name_a, ha, f"a number in (0, {lim:.6g}) for this flank angle and thickness",
+                        "the rack tooth would be pointed")
+    if half_root >= p / 2:
+        lim = (p / 4 + b / 2) / (m * ta)
+        raise GearError(name_f, hf, f"a number in (0, {lim:.6g}) for this flank angle and thickness",
+                        "the flanks of neighbouring teeth would meet above the root line")
+    # the cutter whose tooth is this rack's tooth: its height is our addendum, its depth
+    # our dedendum, its backlash thins our tooth (u = x - p/2)
+    try:
+        tool = involute_rack(m, a_deg, addendum_coeff=hf, dedendum_coeff=ha, tip_radius_coeff=rho,
+                             backlash=-b)
+    except GearError as e:
+        if e.param == "tip_radius_coeff":
+            raise
+        raise GearError(name_a, ha, "a smaller value", e.why) from None
+    els = tool.elements[:len(tool.elements) // 2]
+    return [_smooth_piece(e, 0.0, 1.0, p / 2) for e in els if not isinstance(e, Corner)], tool
+
+
+def _params(family, kw):
+    """Validated parameters of a rack part of ``family`` (mm, deg)."""
+    from .profiles import reject_unknown
+    fam = check_choice("family", family, RACK_FAMILIES)
+    kw = dict(kw)
+    z = check_number("teeth", kw.pop("teeth", 10), 1, 10_000, integer=True)
+    tol = kw.pop("tolerance", 1e-3)
+    back = kw.pop("back_height", None)
+    out = {"teeth": z}
+    if fam == "sine":
+        ur = kw.pop("unit_radius", None)
+        A = kw.pop("amplitude", None)
+        ds = kw.pop("displacement", None)
+        if ur is not None:
+            if kw.get("module") is not None:
+                raise GearError("module", kw["module"], "omitted when unit_radius (seed 000 form) is given")
+            ur = check_number("unit_radius", ur, 0, 500, lo_open=True, unit="mm")
+            kw["module"] = 2 * ur
+            A = check_number("amplitude", ur if A is None else A, 0, None, lo_open=True, unit="mm")
+            kw["addendum_coeff"] = A / kw["module"]
+            if ds is not None:
+                kw["shift_coeff"] = check_number("displacement", ds, None, None, unit="mm") / kw["module"]
+        else:
+            for k, v in (("amplitude", A), ("displacement", ds)):
+                if v is not None:
+                    raise GearError(k, v, "only with unit_radius (seed 000's rack); with module use "
+                                    + ("addendum_coeff" if k == "amplitude" else "shift_coeff"))
+    m = check_number("module", 1.0 if kw.get("module") is None else kw.pop("module"), 0, 1000,
+                     lo_open=True, unit="mm")
+    kw.pop("module", None)
+    from .tessellate import MIN_TOLERANCE
+    tol = check_number("tolerance", tol, MIN_TOLERANCE, m / 4, unit="mm (at most module/4)")
+    out.update(module=m, tolerance=tol)
+    if fam == "involute":
+        out["pressure_angle_deg"] = check_number("pressure_angle_deg", kw.pop("pressure_angle_deg", 20.0), 5, 45, unit="deg")
+        out["addendum_coeff"] = check_number("addendum_coeff", kw.pop("addendum_coeff", 1.0), 0, 3, lo_open=True)
+        out["dedendum_coeff"] = check_number("dedendum_coeff", kw.pop("dedendum_coeff", 1.25), 0, 3, lo_open=True)
+        out["tip_radius_coeff"] = check_number("tip_radius_coeff", kw.pop("tip_radius_coeff", 0.0), 0, 1)
+        out["backlash"] = check_number("backlash", kw.pop("backlash", 0.0), 0, math.pi * m / 4, unit="mm")
+        out["shift_coeff"] = check_number("shift_coeff", kw.pop("shift_coeff", 0.0), -3, 3)
+    elif fam == "sine":
+        out["addendum_coeff"] = check_number("addendum_coeff", kw.pop("addendum_coeff", 1.0), 0, 5, lo_open=True)
+        out["shift_coeff"] = check_number("shift_coeff", kw.pop("shift_coeff", 0.0), -5, 5)
+        out["form"] = check_choice("form", kw.pop("form", "epi"), ("epi", "hypo"))
+        out["clearance_coeff"] = check_number("clearance_coeff", kw.pop("clearance_coeff", 0.0), 0,
+                                              out["addendum_coeff"], hi_open=True)
+    elif fam == "cycloidal":
+        out["addendum_coeff"] = check_number("addendum_coeff", kw.pop("addendum_coeff", 1.0), 0, 5, lo_open=True)
+        out["dedendum_coeff"] = check_number("dedendum_coeff", kw.pop("dedendum_coeff", 1.25), 0, 5, lo_open=True)
+        out["rolling_radius_coeff"] = check_number("rolling_radius_coeff", kw.pop("rolling_radius_coeff", 1.5),
+                                                   0, 100, lo_open=True)
+    else:
+        from .profiles.triangular import DEFAULT_HALF_ANGLE_DEG
+        ha = kw.pop("half_angle_deg", None)
+        out["half_angle_deg"] = check_number("half_angle_deg", DEFAULT_HALF_ANGLE_DEG if ha is None else ha,
+                                             0, 80, lo_open=True, unit="deg")
+        out["addendum_coeff"] = check_number("addendum_coeff", kw.pop("addendum_coeff", 7 / 8), 0, 3, lo_open=True)
+        out["dedendum_coeff"] = check_number("dedendum_coeff", kw.pop("dedendum_coeff", 9 / 8), 0, 3, lo_open=True)
+        out["thickness_coeff"] = check_number("thickness_coeff", kw.pop("thickness_coeff", 7 / 16), 0, 1,
+                                              lo_open=True, hi_open=True)
+    if kw.get("internal"):
+        raise GearError("internal", kw["internal"], "False for a rack (a rack has no inside)")
+    kw.pop("internal", None)
+    kw = {k: v for k, v in kw.items() if v is not None}
+    reject_unknown(f"{fam} rack", kw)
+    out["back_height"] = check_number("back_height", BACK_HEIGHT_COEFF * m if back is None else back, 0, None,
+                                      lo_open=True, unit="mm")
+    return fam, out
+
+
+def rack(family: str, teeth: int = 10, module: float = 1.0, tolerance: float = 1e-3,
+         back_height: float | None = None, **params) -> RackPart:
+    """The rack part of ``family`` (one of :data:`RACK_FAMILIES`) with ``teeth`` teeth (mm, deg).
+
+    ``module`` m (mm), ``back_height`` (mm below the root line, default 2 m), ``tolerance``
+    (mm: every flank chord is measured within it). Family parameters as for
+    :func:`gear3d.profile` (``pressure_angle_deg``, ``addendum_coeff``, ``dedendum_coeff``,
+    ``tip_radius_coeff`` (rounds the rack's tooth tip, default 0), ``backlash`` (mm, thins
+    the rack tooth) for the involute; ``addendum_coeff``, ``form``, ``unit_radius``,
+    ``amplitude``, ``clearance_coeff`` for the sine; ``rolling_radius_coeff`` for the
+    cycloidal; ``half_angle_deg``, ``thickness_coeff`` for the triangular). ``shift_coeff``
+    (involute, sine) does not change the rack: it is the pinion's profile shift, used by
+    :func:`rack_pair` to place the pinion at y = r + x m.
+    Raises :class:`GearError` on bad input, :class:`ToleranceError` when the tolerance
+    cannot be met.
+    """
+    from . import budget as _budget
+    fam, P = _params(family, dict(params, teeth=teeth, module=module, tolerance=tolerance,
+                                  back_height=back_height))
+    z, m, tol = P["teeth"], P["module"], P["tolerance"]
+    p = math.pi * m
+    phase_x = p / 2
+    info = {}
+    if fam == "involute":
+        half, _tool = _involute_half(m, P["pressure_angle_deg"], P["addendum_coeff"], P["dedendum_coeff"],
+                                     P["tip_radius_coeff"], P["backlash"])
+        ha, hf = P["addendum_coeff"] * m, P["dedendum_coeff"] * m
+        s_nom = p / 2 - P["backlash"]
+        info = {"pressure_angle_deg": P["pressure_angle_deg"], "flank_angle_deg": P["pressure_angle_deg"]}
+    elif fam == "triangular":
+        b = p / 2 - P["thickness_coeff"] * p
+        half, _tool = _involute_half(m, P["half_angle_deg"], P["addendum_coeff"], P["dedendum_coeff"], 0.0, b)
+        ha, hf = P["addendum_coeff"] * m, P["dedendum_coeff"] * m
+        s_nom = P["thickness_coeff"] * p
+        info = {"half_angle_deg": P["half_angle_deg"], "flank_angle_deg": P["half_angle_deg"]}
+    elif fam == "sine":
+        from .racks import sine_rack
+        h = P["addendum_coeff"] * m
+        c = P["clearance_coeff"] * m
+        el = sine_rack(m, h).elements[0]          # v = -h cos(2u/m), u = (t - 1/2) p
+        # tooth 0 centred at x = 0: u = x - p/2; the right half is t in [0, 1/2]
+        xc = (m / 2) * math.acos(1 - c / h) if c > 0 else 0.0
+        half = [_smooth_piece(el, xc / p, 0.5, p / 2)]
+        if c > 0:
+            half = [_flat(0.0, xc, h - c)] + half
+        ha, hf = h - c, h
+        s_nom = p / 2
+        phase_x = p / 2 if P["form"] == "epi" else 0.0
+        info = {"amplitude": h, "clearance": c, "form": P["form"]}
+    else:
+        from .profiles.cycloid import cycloidal_rack
+        from .racks import Corner
+        rho = P["rolling_radius_coeff"] * m
+        ha, hf = P["addendum_coeff"] * m, P["dedendum_coeff"] * m
+        try:
+            tool = cycloidal_rack(m, rho, hf, ha)    # the cutter with our tooth: height ha, depth hf
+        except GearError as e:
+            raise GearError(e.param, e.value, e.allowed, e.why) from None
+        els = tool.elements[:len(tool.elements) // 2]
+        half = [_smooth_piece(e, 0.0, 1.0, p / 2) for e in els if not isinstance(e, Corner)]
+        s_nom = p / 2
+        info = {"rolling_radius": rho}
+    # tessellate the right half within the tolerance, every chord measured; the left half is
+    # its exact mirror image
+    from .tessellate import tessellate
+    tess = [tessellate(f, 0.98 * tol) for f in half]
+    _budget.check_profile(2 * z * sum(len(x.t) for x in tess), "teeth", z)
+    pieces = [_mirror(f) for f in reversed(half)] + half
+    samples = [(1.0 - x.t[::-1], _mirror_pts(x.points[::-1])) for x in reversed(tess)] + \
+              [(x.t, x.points) for x in tess]
+    max_err = max(float(x.max_error) for x in tess)
+    chain = np.concatenate([pts if i == 0 else pts[1:] for i, (_t, pts) in enumerate(samples)])
+    # N teeth along +x, then the back; CCW: along the back left to right, up, teeth right
+    # to left, down
+    per = chain[:-1]
+    top = np.concatenate([per + np.array([k * p, 0.0]) for k in range(z)] + [chain[-1:] + np.array([(z - 1) * p, 0.0])])
+    yb = chain[0, 1] - P["back_height"]
+    loop = np.concatenate([top, [[top[-1, 0], yb], [top[0, 0], yb]]])
+    if signed_area(loop) < 0:
+        loop = loop[::-1]
+    straight = [x.max_error <= 1e-12 * m for x in tess]
+    straight = straight[::-1] + straight
+    part = RackPart(fam, P, z, m, tol, [loop], {}, pieces, samples, phase_x, yb, chain, straight)
+    s_meas = _pitch_thickness(chain)
+    # the measured error: every chord of one period at nine interior points, against the
+    # exact pieces (Newton), and the chords' own probes (the tessellation's measurement)
+    fr = np.linspace(0.0, 1.0, 11)[1:-1]
+    a, bb = chain[:-1], chain[1:]
+    probe = (a[:, None, :] + fr[None, :, None] * (bb - a)[:, None, :]).reshape(-1, 2)
+    max_err = max(max_err, float(part._period_distance(probe).max(initial=0.0)))
+    if max_err > tol:
+        raise ToleranceError("tolerance", tol, "a coarser value", f"the outline measures {max_err:.3g} mm")
+    part.report = {
+        "family": fam, "rack": True, "teeth": z, "module": m, "pitch": p,
+        "tooth_thickness_at_pitch_line": s_meas,
+        "nominal_tooth_thickness": s_nom,
+        "space_at_pitch_line": p - s_meas,
+        "addendum": ha, "dedendum": hf,
+        "tip_y": float(chain[:, 1].max()), "root_y": float(chain[0, 1]),
+        "back_height": P["back_height"], "back_y": yb,
+        "length": z * p, "x_range": [float(top[0, 0]), float(top[-1, 0])],
+        "height": float(chain[:, 1].max() - yb),
+        "area": float(signed_area(loop)),
+        "max_error": max_err, "tolerance": tol,
+        "vertices": int(len(loop)), "vertices_per_tooth": int(len(per)),
+        "pinion_phase_x": phase_x,
+        "params": dict(P),
+        **info,
+    }
+    return part
+
+
+def _mirror_pts(pts):
+    return np.stack([-pts[:, 0], pts[:, 1]], axis=1)
+
+
+def _pitch_thickness(chain) -> float:
+    """Tooth thickness (mm) of tooth 0 on y = 0, from the polygon's exact-per-edge crossings."""
+    y = chain[:, 1]
+    xs = []
+    for i in np.nonzero(np.sign(y[:-1]) != np.sign(y[1:]))[0]:
+        f = y[i] / (y[i] - y[i + 1])
+        xs.append(chain[i, 0] + f * (chain[i + 1, 0] - chain[i, 0]))
+    xs = np.array(xs)
+    if len(xs) < 2:
+        return math.nan
+    return float(xs[xs >= 0].min() - xs[xs < 0].max())
+
+
+# ----------------------------------------------------------------------------- pairs
+
+#: parameters that shape only the pinion in :func:`rack_pair` (the rack stays standard)
+PINION_ONLY = {"involute": ("backlash", "tip_radius_coeff"), "sine": (), "cycloidal": (), "triangular": ()}
+#: parameters that shape only the rack
+RACK_ONLY = ("back_height", "clearance_coeff")
+
+
+def rack_pinion(rack_part: RackPart, teeth: int, **pinion_params):
+    """The family's gear (a :class:`gear3d.model.Profile`) with ``teeth`` teeth that meshes
+    with ``rack_part``: the same module and tool, generated by the one engine (mm)."""
+    from .profiles import profile
+    P = rack_part.params
+    fam = rack_part.family
+    keys = {"involute": ("module", "pressure_angle_deg", "addendum_coeff", "dedendum_coeff", "shift_coeff"),
+            "sine": ("module", "addendum_coeff", "shift_coeff", "form"),
+            "cycloidal": ("module", "addendum_coeff", "dedendum_coeff", "rolling_radius_coeff"),
+            "triangular": ("module", "addendum_coeff", "dedendum_coeff", "half_angle_deg", "thickness_coeff")}[fam]
+    kw = {k: P[k] for k in keys}
+    kw["tolerance"] = rack_part.tolerance
+    if fam == "sine" and P["clearance_coeff"] > 0 and "tip_radius" not in pinion_params:
+        m = P["module"]
+        z = check_number("teeth", teeth, 1, 100_000, integer=True)
+        kw["tip_radius"] = m * z / 2 + (P["shift_coeff"] + P["addendum_coeff"] - P["clearance_coeff"]) * m
+    kw.update(pinion_params)
+    return profile(fam, teeth=teeth, **kw)
+
+
+def rack_pair(family: str, teeth: int = 20, rack_teeth: int | None = None, **params):
+    """A pinion of ``teeth`` teeth in mesh with a rack of ``rack_teeth`` teeth (mm, deg).
+
+    ``params`` are the family's (as for :func:`rack`); ``backlash`` and ``tip_radius_coeff``
+    of the involute shape the pinion (the rack stays the standard basic rack),
+    ``back_height`` and ``clearance_coeff`` the rack. ``rack_teeth`` defaults to enough
+    teeth to run under the pinion's tip circle with two to spare on each side. The pinion
+    sits on the rack's middle space, centre (x0, r + x m), in phase.
+    Returns (pinion Profile, RackPart, report of
+    :func:`gear3d.analysis.rack_mesh.check_rack_pair` plus ``placement``).
+    """
+    from .analysis.rack_mesh import check_rack_pair
+    fam = check_choice("family", family, RACK_FAMILIES)
+    rk_kw = {k: v for k, v in params.items() if k not in PINION_ONLY[fam]}
+    pin_kw = {k: v for k, v in params.items() if k in PINION_ONLY[fam]}
+    z = check_number("teeth", teeth, 1, 100_000, integer=True)
+    probe = rack(fam, teeth=1, **rk_kw)
+    pin = rack_pinion(probe, z, **pin_kw)
+    p = probe.pitch
+    if rack_teeth is None:
+        rack_teeth = int(math.ceil(2 * pin.report["tip_radius"] / p)) + 4
+    n = check_number("rack_teeth", rack_teeth, 1, 10_000, integer=True)
+    part = rack(fam, teeth=n, **rk_kw)
+    # the middle space (or the one left of the middle)
+    k = math.floor(((n - 1) * p / 2 - part.phase_x) / p + 0.5)
+    x0 = part.phase_x + k * p
+    rep = check_rack_pair(pin, part, x0=x0)
+    rep["placement"] = {"pinion_centre": [x0, pin.pitch_radius + rep["shift"]], "pinion_angle_deg": -90.0,
+                        "note": "pinion frame turned by -90 deg (its tooth 0 points down) and moved to the centre"}
+    return pin, part, rep
+
+
+# ----------------------------------------------------------------------------- figures
+
+def rack_figure(part: RackPart, path=None, pinion=None, place=None, title=None, report=None):
+    """Figure (PNG/SVG by ``path``'s extension) of the rack outline with its pitch line;
+    ``pinion`` (a Profile) is drawn at ``place`` = (x0, y0) turned by -90 deg."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    L = part.loops[0]
+    fig, ax = plt.subplots(figsize=(9, 4.5) if pinion is None else (8, 8))
+    ax.fill(L[:, 0], L[:, 1], color="#9bb7d4", ec="#1f4e79", lw=0.8)
+    x0, x1 = part.report["x_range"]
+    ax.axhline(0.0, color="k", ls="--", lw=0.6)
+    ax.text(x1, 0.0, " pitch line", va="bottom", fontsize=8)
+    if pinion is not None:
+        c = np.asarray(place, float)
+        for lp in pinion.loops:
+            q = rotate(np.asarray(lp, float), -math.pi / 2) + c
+            ax.fill(q[:, 0], q[:, 1], color="#e8c07a", ec="#7a5a1f", lw=0.8, alpha=0.9)
+        t = np.linspace(0, 2 * math.pi, 400)
+        r = pinion.pitch_radius
+        ax.plot(c[0] + r * np.cos(t), c[1] + r * np.sin(t), "k--", lw=0.5)
+        if report and report.get("interference_at"):
+            w = report["interference_at"]["point"]
+            ax.plot([w[0]], [w[1]], "o", color="red", ms=6)
+    rp = part.report
+    ax.set_title(title or f"{part.family} rack: {part.teeth} teeth, m = {part.module:g} mm, "
+                 f"s = {rp['tooth_thickness_at_pitch_line']:.4f} mm, max error {rp['max_error']:.2g} mm",
+                 fontsize=9)
+    ax.set_aspect("equal")
+    ax.set_xlabel("x (mm)")
+    ax.set_ylabel("y (mm)")
+    fig.tight_layout()
+    if path is not None:
+        fig.savefig(path, dpi=150, format=str(path).rsplit(".", 1)[-1].lower()
+                    if str(path).lower().endswith((".png", ".svg")) else None)
+    plt.close(fig)
+    return fig
+
+
+# ----------------------------------------------------------------------------- bodies
+
+class RackBody:
+    """A straight or helical rack body (mm): the outline extruded along z over ``width``,
+    each layer shifted along x by z tan(beta) (a sheared prism: the side faces are planar
+    parallelograms, so two layers are exact). Exporters take it like a gear body
+    (``arrays()``, ``manifold``, ``mesh``, ``report``, ``name``, ``transform``)."""
+
+    def __init__(self, part: RackPart, V, F, report: dict, name: str = "rack"):
+        self.part, self._V, self._F, self.report, self.name = part, V, F, report, name
+        self.transform = np.eye(4)
+        self._manifold = None
+        self._mesh = None
+
+    def __repr__(self) -> str:
+        return f"RackBody(name={self.name!r}, triangles={self.report.get('triangles')})"
+
+    def arrays(self):
+        """(vertices (n, 3) float64 mm, faces (m, 3) int64)."""
+        return self._V, self._F
+
+    @property
+    def manifold(self):
+        if self._manifold is None:
+            from manifold3d import Manifold, Mesh64
+            self._manifold = Manifold(Mesh64(vert_properties=np.ascontiguousarray(self._V, np.float64),
+                                             tri_verts=np.ascontiguousarray(self._F, np.uint64)))
+        return self._manifold
+
+    @property
+    def mesh(self):
+        if self._mesh is None:
+            import trimesh
+            self._mesh = trimesh.Trimesh(self._V, self._F, process=False)
+        return self._mesh
+
+
+def rack_body(part: RackPart, width: float = 10.0, helix_angle_deg: float = 0.0, hand: str = "right",
+              name: str = "rack") -> RackBody:
+    """Extrude ``part`` over ``width`` (mm) along z; ``helix_angle_deg`` (deg, in [0, 60])
+    shears it: the layer at height z is shifted by +z tan(beta) along x (``hand="right"``;
+    it meshes with a right-hand gear3d pinion, whose section turns by +z tan(beta)/r) or
+    -z tan(beta) (``"left"``). The body's error is measured: points of every side face,
+    sheared back, against the exact outline (:meth:`RackPart.exact_distance`)."""
+    from . import budget as _budget
+    from .solids.body import mesh_properties, twisted_mesh
+    if not isinstance(part, RackPart):
+        raise GearError("part", type(part).__name__, "a gear3d RackPart (gear3d.rack(...))")
+    W = check_number("width", width, 0, 10_000, lo_open=True, unit="mm")
+    b = check_number("helix_angle_deg", helix_angle_deg, 0, 60, unit="deg")
+    hand = check_choice("hand", hand, ("right", "left"))
+    loop = part.loops[0]
+    _budget.check_body(4 * len(loop), "width", W)
+    V, F = twisted_mesh([loop], np.array([0.0, W]), lambda z: np.zeros(np.shape(z)))
+    k = (1.0 if hand == "right" else -1.0) * math.tan(math.radians(b))
+    V = V.copy()
+    V[:, 0] += k * V[:, 2]
+    # measure: side faces at 7 points each (vertices, edge midpoints, centroid), sheared back
+    tri = V[F]
+    side = np.abs(tri[:, :, 2].max(axis=1) - tri[:, :, 2].min(axis=1)) > 0
+    T = tri[side]
+    w = np.array([[1, 0, 0], [0, 1, 0], [0, 0, 1], [.5, .5, 0], [0, .5, .5], [.5, 0, .5], [1 / 3, 1 / 3, 1 / 3]])
+    S = np.einsum("kj,tjc->tkc", w, T).reshape(-1, 3)
+    back = np.stack([S[:, 0] - k * S[:, 2], S[:, 1]], axis=1)
+    err = float(part.exact_distance(back).max(initial=0.0))
+    max_err = max(err, part.report["max_error"])
+    props = mesh_properties(V, F)
+    rep = {"kind": "helical" if b > 0 else "spur", "rack": True, "family": part.family,
+           "teeth": part.teeth, "module": part.module, "width": W, "helix_angle_deg": b, "hand": hand,
+           "shift_per_mm": k, "triangles": int(len(F)), "vertices": int(len(V)),
+           "max_error": max_err, "tolerance": part.tolerance, "measured_side_points": int(len(S)),
+           **props, "profile": part.report}
+    if max_err > part.tolerance * (1 + 1e-9):
+        raise ToleranceError("tolerance", part.tolerance, "a coarser value",
+                             f"the body measures {max_err:.3g} mm")
+    return RackBody(part, V, F, rep, name)
+
+
+# ----------------------------------------------------------------------------- writing
+
+def write_rack(part: RackPart, path, width=None) -> str:
+    """Write a rack outline atomically: .json (loops + report), .svg/.png (figure), .dxf
+    (one closed LWPOLYLINE, mm), or a mesh format (a spur rack ``width`` mm wide)."""
+    from .export import atomic_path, write
+    from .export.json_format import dumps
+    ext = str(path).lower().rsplit(".", 1)[-1]
+    if ext in ("json", "svg", "png", "dxf"):
+        if width is not None:
+            raise GearError("width", width, "only with a 3D output (.stl .3mf .step .obj .ply .vtu)")
+        with atomic_path(path) as tmp:
+            if ext == "json":
+                with open(tmp, "w", encoding="utf-8") as fh:
+                    fh.write(dumps({"family": part.family, "rack": True, "params": part.params,
+                                    "loops": [l.tolist() for l in part.loops], "report": part.report}) + "\n")
+            elif ext == "dxf":
+                import ezdxf
+                doc = ezdxf.new("R2000", units=ezdxf.units.MM)
+                doc.header["$INSUNITS"] = 4
+                doc.modelspace().add_lwpolyline(part.loops[0].tolist(), close=True)
+                doc.saveas(tmp)
+            else:
+                rack_figure(part, tmp if ext == "svg" else tmp, title=None)
+        return ""
+    if width is None:
+        raise GearError("width", None, "a number > 0 mm for a 3D output (--width)")
+    return write(rack_body(part, width), path) or ""
+
+
+# ----------------------------------------------------------------------------- CLI
+
+def add_rack_flags(p, pair: bool = False):
+    """``--rack`` and its flags (``gear3d profile|body|pair``)."""
+    from .cli import number
+    p.add_argument("--rack", action="store_true", help="a linear rack of the family (issue #14): "
+                   "--teeth rack teeth" + (" ; the pinion has --teeth, the rack --rack-teeth" if pair else ""))
+    p.add_argument("--back-height", type=number("float", 0, None, lo_open=True, unit="mm"), default=None,
+                   help="rack: back height below the root line (mm), default 2 module")
+    p.add_argument("--clearance-coeff", type=number("float", 0, None, unit="modules"), default=None,
+                   help="sine rack: flattens the rack tips by this many modules (default 0)")
+    if pair:
+        p.add_argument("--rack-teeth", type=number("int", 1, 10_000), default=None,
+                       help="rack teeth for --rack (default: the pinion's tip diameter + 4 pitches)")
+
+
+def _rack_kw(args, output=None, mesh=False) -> dict:
+    from .commands.profile import family_params
+    kw = family_params(args, output, mesh)
+    for k in ("back_height", "clearance_coeff"):
+        v = getattr(args, k, None)
+        if v is not None:
+            kw[k] = v
+    return kw
+
+
+def _check_given(args, names, what):
+    for n in names:
+        v = getattr(args, n, None)
+        if v not in (None, False):
+            raise GearError(n.removeprefix("b_"), v, f"not an option of {what}")
+
+
+def run_profile_cli(args) -> int:
+    """``gear3d profile FAMILY --rack ...``"""
+    out = args.output
+    if out is not None:
+        from .export import check_path
+        check_path(out, "output", (".json", ".svg", ".png", ".dxf", ".stl", ".3mf", ".step", ".stp",
+                                   ".obj", ".ply", ".vtu"))
+    _check_given(args, ("kerf", "lead_in", "start_angle_deg", "dxf_version", "spline", "no_pitch_circle"),
+                 "a rack outline")
+    part = rack(args.family, **_rack_kw(args, out))
+    if out is None:
+        from .export.json_format import dumps
+        if args.width is not None:
+            raise GearError("width", args.width, "only with an output file (-o)")
+        sys.stdout.write(dumps(part.report) + "\n")
+        return 0
+    info = write_rack(part, out, args.width)
+    r = part.report
+    sys.stdout.write(f"wrote {out}: {part.family} rack {r['teeth']} teeth, s={r['tooth_thickness_at_pitch_line']:.6g} mm, "
+                     f"max_error={r['max_error']:.3g} mm (tolerance {r['tolerance']:g} mm)"
+                     + (f" {info}" if info else "") + "\n")
+    return 0
+
+
+def run_body_cli(args) -> int:
+    """``gear3d body FAMILY --rack --width W [--helix-angle B] ...``"""
+    out = args.output
+    if out is not None:
+        from .export import check_output
+        check_output(out, kinds="body")
+    if args.b_width is None:
+        raise GearError("width", None, "a number > 0 mm (--width)")
+    if args.kind not in ("spur", "helical"):
+        raise GearError("kind", args.kind, "spur or helical for a rack")
+    _check_given(args, ("b_gap", "b_arch_radius", "b_bore", "b_hub_diameter", "b_hub_length", "b_set_screw",
+                        "b_lightening_holes", "b_web_thickness", "b_xy_offset", "b_elephant_foot",
+                        "b_chamfer", "b_rim_diameter", "keyway", "step"), "a rack body")
+    kw = _rack_kw(args, out, mesh=True)
+    if args.b_tolerance is not None:
+        kw["tolerance"] = args.b_tolerance
+    beta = args.b_helix_angle_deg or 0.0
+    if args.kind == "helical" and not beta:
+        raise GearError("helix_angle_deg", args.b_helix_angle_deg, "a number in (0, 60] deg for --kind helical")
+    b = rack_body(rack(args.family, **kw), args.b_width, beta, args.hand, args.b_name or "rack")
+    if out is None:
+        from .export.json_format import dumps
+        sys.stdout.write(dumps(b.report) + "\n")
+        return 0
+    from .export import write
+    info = write(b, out)
+    r = b.report
+    sys.stdout.write(f"wrote {out}: {r['kind']} {r['family']} rack {r['teeth']} teeth, {r['triangles']} triangles, "
+                     f"max_error={r['max_error']:.3g} mm (tolerance {r['tolerance']:g} mm)"
+                     + (f" {info}" if info else "") + "\n")
+    return 0
+
+
+def run_pair_cli(args) -> int:
+    """``gear3d pair FAMILY --rack --teeth Z [--rack-teeth N] [-o x.json|x.png|x.svg]``"""
+    out = args.output
+    if out is not None:
+        from .export import check_path
+        check_path(out, "output", (".json", ".png", ".svg"))
+    _check_given(args, ("largest_addendum", "tip_correction", "mate_teeth", "internal"), "a rack pair")
+    if getattr(args, "mate", "same") != "same":
+        raise GearError("mate", args.mate, "same for a rack pair (the pinion is the family's gear)")
+    kw = _rack_kw(args, out)
+    z = kw.pop("teeth", 20)
+    pin, part, rep = rack_pair(args.family, z, getattr(args, "rack_teeth", None), **kw)
+    if out is not None and out.lower().endswith((".png", ".svg")):
+        from .export import atomic_path
+        with atomic_path(out) as tmp:
+            rack_figure(part, tmp, pin, rep["placement"]["pinion_centre"], report=rep,
+                        title=f"{part.family} pinion z={z} on a {part.teeth}-tooth rack: "
+                              f"{'INTERFERENCE' if rep['interference'] else 'no interference'}, "
+                              f"max penetration {rep['max_penetration'] * 1000:.2f} um")
+        sys.stdout.write(f"wrote {out}: interference={rep['interference']} "
+                         f"max_penetration={rep['max_penetration']:.4g} mm\n")
+        return 0
+    from .export.json_format import dumps
+    if out is None:
+        sys.stdout.write(dumps(rep) + "\n")
+    else:
+        from .export import atomic_path
+        with atomic_path(out) as tmp, open(tmp, "w", encoding="utf-8") as fh:
+            fh.write(dumps(rep) + "\n")
+        sys.stdout.write(f"wrote {out}\n")
+    return 0
