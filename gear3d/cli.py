@@ -13,11 +13,15 @@ from __future__ import annotations
 
 import argparse
 import importlib
-import math
+import os
 import signal
 import sys
 
-import os
+from . import __version__
+from .cliargs import number
+
+#: ``number`` stays importable from here for command modules not yet moved to gear3d.cliargs
+__all__ = ["main", "build_parser", "number", "COMMANDS", "SIGNAL_EXIT"]
 
 # one BLAS thread: gear3d's arrays are small, and idle BLAS threads only add CPU time to
 # every process (set before numpy is first imported; a user's own setting wins)
@@ -25,7 +29,7 @@ for _v in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ.setdefault(_v, "1")
 
 #: sub-command modules, in help order; each defines ``add_parser(subparsers)`` and ``run(args)``
-COMMANDS = ["profile", "inspect", "body", "pair", "check", "drive", "harmonic", "build", "batch", "bench", "families", "serve"]
+COMMANDS = ["profile", "inspect", "body", "pair", "check", "harmonic", "drive", "build", "batch", "bench", "families", "serve"]
 
 #: exit codes of the signals the CLI handles
 SIGNAL_EXIT = {signal.SIGINT: 130, signal.SIGTERM: 143}
@@ -59,34 +63,6 @@ def _param_first(message: str) -> str:
     return message
 
 
-def number(kind: str = "float", lo=None, hi=None, *, lo_open=False, hi_open=False, unit: str = ""):
-    """An argparse ``type=`` that reads a finite number in a range and says the range when it
-    refuses: ``--teeth x`` -> ``argument --teeth: 'x' is not allowed: an integer in [1, 100000]``.
-
-    ``kind`` is ``"int"`` or ``"float"``; ``lo``/``hi`` bound it (None = unbounded); the
-    family builders still check their own, tighter, ranges.
-    """
-    from .errors import allowed_range
-    integer = kind == "int"
-    allowed = allowed_range(lo, hi, lo_open=lo_open, hi_open=hi_open, integer=integer, unit=unit)
-
-    def parse(text: str):
-        try:
-            if not text.isascii():      # no full-width or Arabic-Indic digits
-                raise ValueError(text)
-            v = int(text, 10) if integer else float(text)
-            ok = math.isfinite(v) and (lo is None or v > lo or (v == lo and not lo_open)) \
-                and (hi is None or v < hi or (v == hi and not hi_open))
-        except (ValueError, OverflowError):
-            ok = False
-        if not ok:
-            from .errors import _show
-            raise argparse.ArgumentTypeError(f"{_show(text)} is not allowed: {allowed}")
-        return v
-    parse.__name__ = "integer" if integer else "number"
-    return parse
-
-
 def build_parser(only=None) -> argparse.ArgumentParser:
     """The argument parser; ``only`` (a list of command names) imports just those command
     modules (a run of one command needs only its own module and flags)."""
@@ -95,15 +71,10 @@ def build_parser(only=None) -> argparse.ArgumentParser:
                         "4,000,000 triangles; a profile vertex counts as eight); bigger jobs are "
                         "refused before any work. Exit codes: 0 ok, 1 a batch with failed parts, 2 bad input (one line on "
                         "stderr), 130 interrupted, 143 terminated.")
-    ap.add_argument("--version", action="version", version="gear3d 0.1.0")
+    ap.add_argument("--version", action="version", version=f"gear3d {__version__}")
     sub = ap.add_subparsers(dest="command", parser_class=_Parser, metavar="COMMAND")
     for name in (only or COMMANDS):
-        try:
-            mod = importlib.import_module(f"gear3d.commands.{name}")
-        except ModuleNotFoundError as e:  # a command not shipped yet
-            if e.name == f"gear3d.commands.{name}":
-                continue
-            raise
+        mod = importlib.import_module(f"gear3d.commands.{name}")  # a broken command fails loudly
         p = mod.add_parser(sub)
         p.set_defaults(_run=mod.run)
     return ap

@@ -18,7 +18,7 @@ def one_line(text) -> str:
     return "".join(c if c.isprintable() else repr(c)[1:-1] for c in s)
 
 
-def _show(value) -> str:
+def show(value) -> str:
     """A value for a message: ``repr`` (strings quoted), at most 200 characters."""
     try:
         r = repr(value)
@@ -34,7 +34,7 @@ class GearError(ValueError):
 
     def __init__(self, param: str, value, allowed: str, why: str = ""):
         self.param, self.value, self.allowed, self.why = param, value, allowed, why
-        msg = f"{one_line(param)} = {one_line(_show(value))} is not allowed: {one_line(allowed)}"
+        msg = f"{one_line(param)} = {one_line(show(value))} is not allowed: {one_line(allowed)}"
         if why:
             msg += f" ({one_line(why)})"
         super().__init__(msg)

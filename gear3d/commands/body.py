@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import sys
 
-from ..cli import number
+from ..cliargs import number
 from .profile import FLOAT, add_profile_flags, family_params
 
 #: CLI flag -> body() keyword

@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import sys
 
-from ..cli import number
+from ..cliargs import number
 
 #: mm: the default tolerance of mesh outputs (printing), and of everything else (DXF, EDM)
 MESH_TOLERANCE = 0.01

@@ -228,8 +228,8 @@ def _kinds(file, key, v, allowed=OUTPUT_KINDS):
 
 def family_signature(family):
     """{parameter: default} of a registered family builder (tolerance excluded)."""
-    from ..profiles import FAMILIES, _load
-    _load()
+    from ..profiles import FAMILIES, families
+    families()                  # imports every family module
     sig = inspect.signature(FAMILIES[family])
     return {n: p.default for n, p in sig.parameters.items()
             if p.kind not in (p.VAR_KEYWORD, p.VAR_POSITIONAL) and n != "tolerance"}

@@ -118,8 +118,8 @@ def _field(name: str, default, action, required: bool = False) -> dict:
 
 def families() -> list:
     """Families a form can build: those whose builder takes only CLI parameters (not ``mate``)."""
-    from ..profiles import FAMILIES, _load
-    _load()
+    from ..profiles import FAMILIES, families as registered
+    registered()                # imports every family module
     acts = cli_parsers()["profile"][1]
     return [name for name in sorted(FAMILIES)
             if all(p.kind is p.VAR_KEYWORD or p.name in acts

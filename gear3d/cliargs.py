@@ -1,0 +1,36 @@
+"""Argument types shared by :mod:`gear3d.cli` and the command modules (:mod:`gear3d.commands`).
+
+Kept apart from :mod:`gear3d.cli` so that a command never imports the entry point that
+loads it."""
+from __future__ import annotations
+
+import argparse
+import math
+
+
+def number(kind: str = "float", lo=None, hi=None, *, lo_open=False, hi_open=False, unit: str = ""):
+    """An argparse ``type=`` that reads a finite number in a range and says the range when it
+    refuses: ``--teeth x`` -> ``argument --teeth: 'x' is not allowed: an integer in [1, 100000]``.
+
+    ``kind`` is ``"int"`` or ``"float"``; ``lo``/``hi`` bound it (None = unbounded); the
+    family builders still check their own, tighter, ranges.
+    """
+    from .errors import allowed_range
+    integer = kind == "int"
+    allowed = allowed_range(lo, hi, lo_open=lo_open, hi_open=hi_open, integer=integer, unit=unit)
+
+    def parse(text: str):
+        try:
+            if not text.isascii():      # no full-width or Arabic-Indic digits
+                raise ValueError(text)
+            v = int(text, 10) if integer else float(text)
+            ok = math.isfinite(v) and (lo is None or v > lo or (v == lo and not lo_open)) \
+                and (hi is None or v < hi or (v == hi and not hi_open))
+        except (ValueError, OverflowError):
+            ok = False
+        if not ok:
+            from .errors import show
+            raise argparse.ArgumentTypeError(f"{show(text)} is not allowed: {allowed}")
+        return v
+    parse.__name__ = "integer" if integer else "number"
+    return parse
