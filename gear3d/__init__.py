@@ -20,6 +20,10 @@ _LAZY = {
     "write": "gear3d.export",
     "Profile": "gear3d.model",
     "simulate_cut": "gear3d.analysis.cutting",
+    "rack": "gear3d.rack_part",
+    "rack_body": "gear3d.rack_part",
+    "rack_pair": "gear3d.rack_part",
+    "check_rack_pair": "gear3d.analysis.rack_mesh",
 }
 
 __all__ = ["GearError", "ToleranceError", "profile", "families", *_LAZY]
