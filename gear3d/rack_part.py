@@ -688,7 +688,7 @@ def write_rack(part: RackPart, path, width=None) -> str:
 
 def add_rack_flags(p, pair: bool = False):
     """``--rack`` and its flags (``gear3d profile|body|pair``)."""
-    from .cli import number
+    from .cliargs import number
     p.add_argument("--rack", action="store_true", help="a linear rack of the family (issue #14): "
                    "--teeth rack teeth" + (" ; the pinion has --teeth, the rack --rack-teeth" if pair else ""))
     p.add_argument("--back-height", type=number("float", 0, None, lo_open=True, unit="mm"), default=None,
