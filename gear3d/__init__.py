@@ -16,7 +16,7 @@ _LAZY = {
     "Body": "gear3d.solids",
     "place_pair": "gear3d.solids",
     "check_pair": "gear3d.analysis.pairs",
-    "mate": "gear3d.analysis.pairs",
+    "mate": "gear3d.profiles.mate",
     "write": "gear3d.export",
     "Profile": "gear3d.model",
     "simulate_cut": "gear3d.analysis.cutting",

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import gear3d
-from gear3d.analysis.mate import mate
+from gear3d.profiles.mate import mate
 from gear3d.analysis.pairs import check_pair, largest_addendum, tip_correction
 
 

@@ -16,7 +16,6 @@ import math
 import numpy as np
 
 from ..errors import GearError, check_number
-from .mate import mate  # noqa: F401  (public: gear3d.mate)
 
 
 def _rot(p, a):
@@ -295,7 +294,7 @@ class _ContactProbe:
         """True when tooth 0's drive flank has an exact contact point (normal through the
         pitch point, on the exact pieces) that lies on wheel 2 (within the contact band)."""
         import shapely
-        from .mate import tool_elements
+        from ..profiles.mate import tool_elements
         if not hasattr(self, "_els"):
             self._els = tool_elements(p1)
         w = math.pi / p1.teeth if p1.teeth > 1 else math.pi
@@ -328,7 +327,7 @@ class _ContactProbe:
         contact travels along each profile; wheel 2's frame points lie on wheel 2's flank).
         Reported at the contact radii on both wheels.
         """
-        from .mate import tool_elements
+        from ..profiles.mate import tool_elements
         if not hasattr(self, "_els"):
             self._els = tool_elements(p1)
         r1 = p1.pitch_radius

@@ -13,7 +13,7 @@ from . import register
 @register("mate")
 def conjugate(tool=None, teeth=None, internal=False, tolerance=None, tip_radius=None, rim_radius=None):
     """The wheel with ``teeth`` teeth conjugate to ``tool`` (a Profile); see gear3d.mate."""
-    from ..analysis.mate import mate
+    from .mate import mate
     from ..model import Profile
     if not isinstance(tool, Profile):
         raise GearError("tool", type(tool).__name__, "a gear3d Profile (the wheel used as the cutter)")

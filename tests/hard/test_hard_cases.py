@@ -257,7 +257,7 @@ def test_mate_generated_ring_difference_one():
     (Fig. 16) finds the envelope is exactly the rack-generated SGP ring, and the pair rolls
     without interference."""
     import shapely
-    from gear3d.analysis.mate import mate
+    from gear3d.profiles.mate import mate
     from gear3d.analysis.pairs import check_pair
     from gear3d.model import loops_distance
     tol = 2e-3
@@ -275,7 +275,7 @@ def test_mate_generated_ring_difference_one():
 
 
 def test_mate_profile_exact_distance():
-    from gear3d.analysis.mate import mate
+    from gear3d.profiles.mate import mate
     a = gear3d.profile("sine", teeth=20, addendum_coeff=0.5, tolerance=2e-3)
     ring = mate(a, 21, internal=True)
     assert ring.exact_distance(ring.tooth_loop).max() <= 2e-3
