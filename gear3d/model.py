@@ -137,16 +137,6 @@ class Profile:
         r = check_number("radius", radius, 0, None, lo_open=True, unit="mm")
         return tooth_crossings(self.tooth_loop, r)
 
-    def figure(self, path=None, **kw):
-        """Render a PNG/SVG figure of the profile (see :mod:`gear3d.figures`)."""
-        if path is not None:
-            import os
-            folder = os.path.dirname(os.path.abspath(str(path)))
-            if not os.path.isdir(folder):
-                raise GearError("path", str(path), "a file in an existing folder", f"no folder {folder}")
-        from .figures import profile_figure
-        return profile_figure(self, path, **kw)
-
 
 # ------------------------------------------------------------------- measurements
 
@@ -601,27 +591,6 @@ def _chain(fs, ts, pts_list=None):
     chains = [p if i == 0 else p[1:] for i, p in enumerate(pts_list)]
     labels = [np.full(len(c), i) for i, c in enumerate(chains)]
     return np.concatenate(chains), np.concatenate(labels)
-
-
-def _working_branches(chain, label, cusp_idx, flank_pieces):
-    """Mask of chain points on the working flank: for each flank piece, the branch between
-    singular points that reaches the largest radius (the flank proper, not the swallowtail
-    beyond its cusp)."""
-    mask = np.zeros(len(chain), bool)
-    r = np.hypot(chain[:, 0], chain[:, 1])
-    cuts = set(int(i) for i in cusp_idx)
-    for pc in flank_pieces:
-        idx = np.nonzero(label == pc)[0]
-        if not len(idx):
-            continue
-        bounds = [idx[0]] + sorted(c for c in cuts if idx[0] < c <= idx[-1]) + [idx[-1] + 1]
-        best, best_r = None, -1.0
-        for a, b in zip(bounds[:-1], bounds[1:]):
-            if b > a and r[a:b].max() > best_r:
-                best, best_r = (a, b), r[a:b].max()
-        if best:
-            mask[best[0]:best[1]] = True
-    return mask
 
 
 def _exact_extreme(fs, ts, label, chain, keep, polygon_value, largest):
