@@ -276,16 +276,16 @@ def pair_figure(p1, p2, report: dict, path=None, *, positions: int = 60):
 
     import shapely
     plt = _plt()
-    from .analysis.pairs import _Placed, _setup
-    internal, a, c2, phase2, ratio = _setup(p1, p2, report.get("internal"), report.get("center_distance"))
+    from .analysis.pairs import Placed, setup
+    internal, a, c2, phase2, ratio = setup(p1, p2, report.get("internal"), report.get("center_distance"))
     fig, ax = plt.subplots(figsize=(7, 7))
-    B = _Placed(p2, (0.0, 0.0))           # wheel 2 in its own frame
+    B = Placed(p2, (0.0, 0.0))           # wheel 2 in its own frame
     PB = B.polygon(0.0)
     for l in p2.loops:
         q = np.vstack([l, l[:1]])
         (ln,) = ax.plot(q[:, 0], q[:, 1], color="black", lw=0.9)
         ln.set_gid("wheel2")
-    A = _Placed(p1, (0.0, 0.0))
+    A = Placed(p1, (0.0, 0.0))
     span = 2 * _m.pi * p2.pitch_radius / p1.pitch_radius      # wheel 1 turn for one turn of wheel 2
     n_hit = 0
     for k, ph in enumerate(np.linspace(0.0, span, positions, endpoint=False)):

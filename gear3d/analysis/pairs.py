@@ -23,7 +23,7 @@ def _rot(p, a):
     return np.stack([c * p[..., 0] - s * p[..., 1], s * p[..., 0] + c * p[..., 1]], axis=-1)
 
 
-class _Placed:
+class Placed:
     """A profile's polygon placed by rotation ``ang`` about its centre ``c``."""
 
     def __init__(self, prof, centre):
@@ -92,7 +92,9 @@ def _check_profiles(p1, p2):
             raise GearError(name, type(p).__name__, "a gear3d Profile (gear3d.profile(...))")
 
 
-def _setup(p1, p2, internal, center_distance):
+def setup(p1, p2, internal, center_distance):
+    """Validated pair layout (``internal``, centre distance ``a`` mm, wheel 2's centre ``c2``,
+    its mesh phase ``phase2`` rad, the ratio phi2/phi1): the frame of the module doc."""
     _check_profiles(p1, p2)
     if internal is not None:
         from ..errors import check_bool
@@ -141,12 +143,12 @@ def check_pair(p1, p2, internal=None, tolerance=None, center_distance=None, cycl
     """
     import shapely
     import shapely.affinity
-    internal, a, c2, phase2, ratio = _setup(p1, p2, internal, center_distance)
+    internal, a, c2, phase2, ratio = setup(p1, p2, internal, center_distance)
     tol = max(p1.tolerance, p2.tolerance) if tolerance is None else check_number(
         "tolerance", tolerance, 1e-7, None, lo_open=True, unit="mm")
     z1 = p1.teeth
-    A = _Placed(p1, (0.0, 0.0))
-    B = _Placed(p2, c2)
+    A = Placed(p1, (0.0, 0.0))
+    B = Placed(p2, c2)
     rmax = max(np.hypot(*np.concatenate(p1.loops).T).max(), 1e-9)
     # step: relative motion of a tip point between steps sags at most ~tol on its path
     pitch_ang = 2 * math.pi / z1

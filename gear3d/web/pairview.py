@@ -24,9 +24,9 @@ def pair_animation(p1, p2, report: dict, frames: int = 36) -> dict:
     area exceeds ``(2 tol)^2`` (what two inscribed polygons can explain), as in
     :func:`gear3d.figures.pair_figure`.
     """
-    from ..analysis.pairs import _Placed, _setup
-    internal, a, c2, phase2, ratio = _setup(p1, p2, report.get("internal"), report.get("center_distance"))
-    A, B = _Placed(p1, (0.0, 0.0)), _Placed(p2, c2)
+    from ..analysis.pairs import Placed, setup
+    internal, a, c2, phase2, ratio = setup(p1, p2, report.get("internal"), report.get("center_distance"))
+    A, B = Placed(p1, (0.0, 0.0)), Placed(p2, c2)
     pitch = 2 * math.pi / p1.teeth
     at = report.get("interference_at") or {}
     start = math.radians(at["phi1_deg"]) if at.get("phi1_deg") is not None else 0.0
