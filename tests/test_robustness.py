@@ -438,9 +438,9 @@ def test_self_touching_profile_polygon_is_repaired():
     touches itself within the tolerance. The rolling polygons are repaired once (valid,
     same area to the tolerance), and the intersection the roll needs now works."""
     import shapely
-    from gear3d.analysis.pairs import _Placed, _penetration, _valid_loops
+    from gear3d.analysis.pairs import Placed, _penetration, _valid_loops
     p = gear3d.profile("involute", teeth=12, tolerance=0.01)
-    A, B = _Placed(p, (0.0, 0.0)), _Placed(p, (12.0, 0.0))
+    A, B = Placed(p, (0.0, 0.0)), Placed(p, (12.0, 0.0))
     PA, PB = A.polygon(0.0), B.polygon(math.pi + math.pi / 12)
     assert PA.is_valid and PB.is_valid
     raw = shapely.Polygon(max(p.loops, key=len))
