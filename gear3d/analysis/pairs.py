@@ -99,14 +99,13 @@ def setup(p1, p2, internal, center_distance):
     if internal is not None:
         from ..errors import check_bool
         internal = check_bool("internal", internal)
-    r1, r2 = p1.pitch_radius, p2.pitch_radius
     if internal is None:
         internal = bool(p1.internal or p2.internal)
     if internal and not (p1.internal or p2.internal):
         raise GearError("internal", True, "a pair where one profile is a ring (internal=True)")
     if p1.internal and p2.internal:
         raise GearError("p2", "ring", "a pinion: both profiles are rings")
-    m1, m2 = 2 * r1 / p1.teeth, 2 * r2 / p2.teeth
+    m1, m2 = 2 * p1.pitch_radius / p1.teeth, 2 * p2.pitch_radius / p2.teeth
     if abs(m1 - m2) > 1e-9 * max(m1, m2):
         raise GearError("p2.module", m2, f"the module of p1 ({m1:g} mm)")
     if internal:
@@ -115,23 +114,24 @@ def setup(p1, p2, internal, center_distance):
             raise GearError("p2.teeth" if ring is p2 else "p1.teeth", ring.teeth,
                             f"an integer > {pin.teeth} for the ring",
                             "a ring needs more teeth than its pinion")
-    if internal:
-        a0 = abs(r2 - r1)
-    else:
-        a0 = r1 + r2
-    a = a0 if center_distance is None else check_number("center_distance", center_distance, 0, None, lo_open=True, unit="mm")
-    # wheel 2's centre, and the phase that puts a space of wheel 2 on the pitch point
-    if not internal:
-        c2 = (a, 0.0)
-        phase2 = math.pi + math.pi / p2.teeth
-        ratio = -r1 / r2
-    else:
-        # the ring's pitch circle passes through the pitch point (r1, 0): the other centre
-        # lies on the x axis, on the ring side (a = |r2 - r1| unless given)
-        c2 = (-a, 0.0) if p2.internal else (a, 0.0)
-        phase2 = math.pi / p2.teeth
-        ratio = r1 / r2
-    return internal, a, c2, phase2, ratio
+    pl = pair_placement(p1, p2, internal, center_distance)
+    return internal, pl["a"], pl["c2"], pl["phase2"], pl["ratio"]
+
+
+def pair_placement(p1, p2, internal, center_distance=None) -> dict:
+    """Wheel 2's placement in wheel 1's frame (module doc) from :func:`gear3d.placement.mesh_placement`:
+    ``a`` (mm; the standard centre distance unless ``center_distance`` is given), ``c2``,
+    ``phase2`` (rad), ``ratio`` and the operating pitch radius ``r1w`` (mm) of wheel 1."""
+    from ..placement import mesh_placement, standard_center_distance
+    a0 = standard_center_distance(p1.teeth, p2.teeth, 2 * p1.pitch_radius / p1.teeth, internal)
+    a = a0 if center_distance is None else check_number("center_distance", center_distance, 0, None,
+                                                         lo_open=True, unit="mm")
+    ring = 0 if not internal else (2 if p2.internal else 1)
+    pl = mesh_placement(p1.teeth, p2.teeth, a, ring)
+    # this module's frame keeps wheel 1 unturned: turn the layout by -turn1 (0 or pi)
+    t = pl["turn1"]
+    c2 = (math.cos(t) * pl["center2"][0], 0.0)
+    return {"a": a, "a0": a0, "c2": c2, "phase2": pl["turn2"] - t, "ratio": pl["ratio"], "r1w": pl["r1w"]}
 
 
 def check_pair(p1, p2, internal=None, tolerance=None, center_distance=None, cycles: float = 1.0,
@@ -201,7 +201,9 @@ def check_pair(p1, p2, internal=None, tolerance=None, center_distance=None, cycl
     tc = np.array(tooth0_contact)
     contact_ratio, sliding = 0.0, [None, None]
     if tc.any() and len(phis) > 1:
-        probe = _ContactProbe(A, B, t0_poly, c2, phase2, ratio, contact_tol)
+        from ..placement import operating_pitch_radii
+        probe = _ContactProbe(A, B, t0_poly, c2, phase2, ratio, contact_tol,
+                              operating_pitch_radii(a, p1.teeth, p2.teeth, internal)[0])
 
         i0, i1 = int(np.argmax(tc)), len(tc) - 1 - int(np.argmax(tc[::-1]))
         lo = phis[i0 - 1] if i0 > 0 else phis[i0]
@@ -235,6 +237,7 @@ def check_pair(p1, p2, internal=None, tolerance=None, center_distance=None, cycl
     rep = {
         "internal": internal,
         "center_distance": a,
+        "working_pressure_angle_deg": _working_angle(p1, p2, a, internal),
         "teeth": [p1.teeth, p2.teeth],
         "ratio": (p2.teeth / p1.teeth) * (1 if internal else -1),
         "tolerance": tol,
@@ -261,6 +264,86 @@ def check_pair(p1, p2, internal=None, tolerance=None, center_distance=None, cycl
     return rep
 
 
+def _working_angle(p1, p2, a, internal):
+    """Working pressure angle (deg) of two involute wheels of one rack at centre distance
+    ``a`` (mm), cos α_w = a0 cos α / a; None for other families or when a < a0 cos α."""
+    if p1.family != "involute" or p2.family != "involute":
+        return None
+    al = p1.params["pressure_angle_deg"]
+    if abs(al - p2.params["pressure_angle_deg"]) > 1e-12:
+        return None
+    from ..placement import pressure_angle_at
+    return pressure_angle_at(a, p1.teeth, p2.teeth, p1.module, al, internal)
+
+
+def interferes(p1, p2, internal=None, center_distance=None, tolerance=None) -> bool:
+    """True when ``p1`` and ``p2`` at ``center_distance`` (mm; default standard) overlap by
+    more than their two tolerances somewhere in one tooth cycle: :func:`check_pair`'s
+    interference verdict with its rolling step, stopping at the first overlap."""
+    internal, a, c2, phase2, ratio = setup(p1, p2, internal, center_distance)
+    tol = max(p1.tolerance, p2.tolerance) if tolerance is None else check_number(
+        "tolerance", tolerance, 1e-7, None, lo_open=True, unit="mm")
+    A, B = Placed(p1, (0.0, 0.0)), Placed(p2, c2)
+    rmax = max(np.hypot(*np.concatenate(p1.loops).T).max(), 1e-9)
+    pitch_ang = 2 * math.pi / p1.teeth
+    step = min(pitch_ang / 24, math.sqrt(8 * tol / rmax) * 4)
+    # all teeth alike: the mesh repeats after one pitch of wheel 1
+    span = pitch_ang * 1.05
+    for ph in np.linspace(-span / 2, span / 2, int(math.ceil(span / step)) + 1):
+        if _penetration(A.polygon(ph), B.polygon(phase2 + ratio * ph))[0] > 2 * tol:
+            return True
+    return False
+
+
+def working_center_distance(p1, p2, internal=None, precision: float = 0.01, tolerance=None) -> dict:
+    """The working centre distance of any pair found by rolling (mm): the smallest one free of
+    interference (external), or the largest (internal: the pinion moves into the ring).
+
+    Bisection on :func:`interferes` from the standard centre distance, to ``precision``
+    (modules). Returns ``center_distance`` (free), ``interfering_at`` (the bound that
+    interferes, ``precision`` modules or less away) and ``standard_center_distance`` (mm)."""
+    internal, a0, *_ = setup(p1, p2, internal, None)
+    precision = check_number("precision", precision, 1e-4, 0.5, unit="modules")
+    m = p1.module
+    sign = -1.0 if internal else 1.0           # direction that frees the pair
+
+    def bad(a):
+        return interferes(p1, p2, internal, a, tolerance)
+
+    lo_limit = m * 1e-3
+    step = 0.25 * m
+    if bad(a0):
+        bad_a, good_a = a0, None
+        for _ in range(12):
+            cand = a0 + sign * step
+            if cand > lo_limit and not bad(cand):
+                good_a = cand
+                break
+            bad_a, step = cand, 2 * step
+        if good_a is None:
+            raise GearError("center_distance", "auto", "a pair that meshes at some centre distance",
+                            f"it still interferes {step / m:g} modules from the standard one")
+    else:
+        good_a, bad_a = a0, None
+        for _ in range(12):
+            cand = a0 - sign * step
+            if cand <= lo_limit or bad(cand):
+                bad_a = max(cand, lo_limit)
+                break
+            good_a, step = cand, 2 * step
+        if bad_a is None:
+            raise GearError("center_distance", "auto", "a pair whose wheels touch somewhere",
+                            "no interference found below the standard centre distance")
+    while abs(good_a - bad_a) > precision * m:
+        mid = 0.5 * (good_a + bad_a)
+        if bad(mid):
+            bad_a = mid
+        else:
+            good_a = mid
+    return {"center_distance": float(good_a), "interfering_at": float(bad_a),
+            "standard_center_distance": float(a0), "precision": precision}
+
+
 def _nanmin(a):
     """Smallest value, or None when the wheels are locked at some phase (NaN)."""
     return None if np.isnan(a).any() else float(a.min())
@@ -278,8 +361,9 @@ def _tooth0_region(p1):
 class _ContactProbe:
     """Contact of tooth 0's drive flank at any wheel-1 angle: edges and sliding."""
 
-    def __init__(self, A, B, wedge, c2, phase2, ratio, contact_tol):
+    def __init__(self, A, B, wedge, c2, phase2, ratio, contact_tol, r1w):
         self.A, self.B, self.wedge, self.c2 = A, B, wedge, np.asarray(c2, float)
+        self.r1w = r1w      # operating pitch radius of wheel 1 (mm): the pitch point is (r1w, 0)
         self.phase2, self.ratio, self.tol = phase2, ratio, contact_tol
 
     def point(self, ph):
@@ -300,7 +384,7 @@ class _ContactProbe:
         if not hasattr(self, "_els"):
             self._els = tool_elements(p1)
         w = math.pi / p1.teeth if p1.teeth > 1 else math.pi
-        I1 = _rot(np.array([[p1.pitch_radius, 0.0]]), -ph)[0]
+        I1 = _rot(np.array([[self.r1w, 0.0]]), -ph)[0]
         PB = self.B.polygon(self.phase2 + self.ratio * ph)
         for q in _exact_contacts(self._els, I1):
             a = math.atan2(q[1], q[0])
@@ -332,7 +416,7 @@ class _ContactProbe:
         from ..profiles.mate import tool_elements
         if not hasattr(self, "_els"):
             self._els = tool_elements(p1)
-        r1 = p1.pitch_radius
+        r1 = self.r1w
         d = max(w / 40, 1e-7)
         import shapely
         pts = []
