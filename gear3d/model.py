@@ -16,6 +16,7 @@ from .envelope import PRUNE_SHARE, RIM_SHARE, circle_loop, pattern, signed_area,
 from .errors import GearError, check_number
 from .corners import chords_near, corner_angle, exact_crossing, new_vertices, refine
 from .geometry import check_points, circle_crossings, point_segment_distance, segment_foot
+from .reports import ProfileReport
 from .tessellate import chord_deviation, tessellate
 
 #: Clipper2 (inside manifold3d) rounds to 1e-8 mm; half a unit in each axis
@@ -63,7 +64,7 @@ class Profile:
     internal: bool
     tolerance: float
     loops: list
-    report: dict
+    report: "ProfileReport"
     pieces: list = field(repr=False, default_factory=list)
     raw_chain: np.ndarray | None = field(repr=False, default=None)
     piece_params: list = field(repr=False, default_factory=list)
@@ -314,7 +315,7 @@ def build_profile(family: str, params: dict, pieces, teeth: int, pitch_radius: f
         land = arc_thickness(tl, tip + (tol if internal else -tol))
         land = 0.0 if not math.isfinite(land) else land
     s_pitch = arc_thickness(tl, pitch_radius)
-    rep = {
+    rep = ProfileReport(**{
         "family": family,
         "teeth": teeth,
         "module": params.get("module"),
@@ -346,7 +347,7 @@ def build_profile(family: str, params: dict, pieces, teeth: int, pitch_radius: f
         "vertices_per_tooth": int(len(chain) - 1),
         "trimmed_corners": len(corners),
         "min_vertices_per_tooth": float(minv),
-    }
+    })
     if extra_report:
         rep.update(extra_report)
     prof.report = rep

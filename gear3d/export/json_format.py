@@ -3,13 +3,14 @@ from __future__ import annotations
 
 import json
 import math
+from collections.abc import Mapping
 
 import numpy as np
 
 
 def clean(x):
     """JSON-safe copy: numpy scalars/arrays to Python, NaN/inf to None, keys to str."""
-    if isinstance(x, dict):
+    if isinstance(x, Mapping):              # dicts and the typed reports (gear3d.reports)
         return {str(k): clean(v) for k, v in x.items()}
     if isinstance(x, (list, tuple)):
         return [clean(v) for v in x]

@@ -38,6 +38,7 @@ from ..geometry import rotate
 from ..errors import GearError, ToleranceError, check_choice, check_number
 from .features import (apply_features, chamfer_vectors, offset_loops,
                        plan_features, subdivide)
+from ..reports import BodyReport
 from .twist import KINDS, TwistLaw, default_arch_radius, twist_law
 
 #: smallest body tolerance with a twist (part of it goes to the profile, whose floor is 1e-7 mm)
@@ -253,7 +254,7 @@ def body(profile, kind="spur", width=10.0, helix_angle_deg=0.0, hand="right", ga
     n_bore = len(circle_loop(direct, tol)) if direct else 0
     min_v = minimum_vertices(prof, law, tol, W)
     rep = prof.report
-    report = {
+    report = BodyReport(**{
         "kind": kind, "width": W, "helix_angle_deg": beta, "hand": law.hand,
         "gap": gap, "arch_radius": R,
         "lead": (2 * math.pi * prof.pitch_radius / math.tan(math.radians(beta))) if twisted else math.inf,
@@ -272,7 +273,7 @@ def body(profile, kind="spur", width=10.0, helix_angle_deg=0.0, hand="right", ga
         "xy_offset": delta, "elephant_foot": ef, "chamfer": ch,
         "features": {k: v for k, v in vars(feats).items() if k != "volumes" and v},
         "feature_volumes": dict(feats.volumes),
-    }
+    })
     name = name or f"{prof.family}-z{prof.teeth}-{kind}"
     return Body(man, prof, law, report, str(name), arrays=arrays)
 

@@ -1,0 +1,134 @@
+"""Typed reports: what a profile or a body measured, as dataclasses with ``to_dict()``.
+
+Each report is a dataclass whose fields are the facts every profile (or body) has, in
+the order of the JSON keys; family-specific facts (``base_radius``, ``generated_tip_radius``,
+a cycloid disc's ``output_holes``, ...) go in ``extra``. ``to_dict()`` gives today's JSON
+keys. Reports also read like a mapping (``report["max_error"]``, ``report.get(...)``), so
+templates, the web page and user code that index them keep working.
+
+Units: mm, mm², degrees where a key says ``_deg``.
+"""
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass, field, fields
+
+
+class Report(Mapping):
+    """Mapping view and ``to_dict()`` of a report dataclass (fields first, then ``extra``)."""
+
+    extra: dict
+
+    def _names(self) -> list:
+        return [f.name for f in fields(self) if f.name != "extra"]
+
+    def to_dict(self) -> dict:
+        """The report as plain JSON keys (fields in order, then the extra facts)."""
+        d = {k: getattr(self, k) for k in self._names()}
+        d.update(self.extra)
+        return d
+
+    def __getitem__(self, key):
+        if key != "extra" and key in self._names():
+            return getattr(self, key)
+        return self.extra[key]
+
+    def __setitem__(self, key, value):
+        if key != "extra" and key in self._names():
+            setattr(self, key, value)
+        else:
+            self.extra[key] = value
+
+    def update(self, other=(), **kw):
+        for k, v in dict(other, **kw).items():
+            self[k] = v
+
+    def __iter__(self):
+        return iter(self._names() + [k for k in self.extra if k not in self._names()])
+
+    def __len__(self) -> int:
+        return len(list(iter(self)))
+
+    def __repr__(self) -> str:
+        return f"{type(self).__name__}({self.to_dict()!r})"
+
+
+@dataclass(eq=False, repr=False)
+class ProfileReport(Report):
+    """What :func:`gear3d.model.build_profile` measured on a profile (mm)."""
+    family: str
+    teeth: int
+    module: float | None
+    internal: bool
+    pitch_radius: float
+    tip_radius: float
+    root_radius: float
+    rim_radius: float | None
+    #: arc thickness of tooth 0 and the space beside it on the pitch circle
+    thickness_at_pitch: float
+    space_at_pitch: float
+    #: a singular point on the root side, or trimming cut into the working flank there
+    undercut: bool
+    undercut_depth: float
+    #: rings: what trimming took off the root side
+    root_trim_depth: float
+    #: the flanks cross short of the tip circle the tooth was cut for
+    pointed: bool
+    tip_shortfall: float
+    tip_land_width: float
+    singular_points: list
+    area: float
+    #: measured distance of the polygon from the exact curve, and the tolerance asked for
+    max_error: float
+    tolerance: float
+    vertices: int
+    vertices_per_tooth: int
+    trimmed_corners: int
+    min_vertices_per_tooth: float
+    extra: dict = field(default_factory=dict)
+
+
+@dataclass(eq=False, repr=False)
+class BodyReport(Report):
+    """What :func:`gear3d.solids.body.body` built and measured (mm, mm³, mm²)."""
+    kind: str
+    width: float
+    helix_angle_deg: float
+    hand: str
+    gap: float
+    arch_radius: float | None
+    lead: float
+    total_twist_deg: float
+    volume: float
+    surface_area: float
+    triangles: int
+    vertices: int
+    layers: int
+    max_edge_length: float
+    #: the stated model of the fewest vertices the tolerance allows, and vertices over it
+    min_vertices: float
+    vertex_ratio: float
+    #: measured distance of the tooth surface from the exactly turned profile
+    max_error: float
+    max_error_bound: float
+    measured_heights: list
+    tolerance: float
+    watertight: bool
+    genus: int
+    family: str
+    teeth: int
+    module: float | None
+    internal: bool
+    pitch_radius: float
+    tip_radius: float
+    root_radius: float
+    rim_radius: float | None
+    profile_area: float
+    profile_tolerance: float
+    profile_max_error: float
+    xy_offset: float
+    elephant_foot: float
+    chamfer: float
+    features: dict
+    feature_volumes: dict
+    extra: dict = field(default_factory=dict)
