@@ -291,10 +291,12 @@ def mate_body(profile2, like: Body, **features) -> Body:
                 hand=law.hand, gap=r["gap"], arch_radius=r["arch_radius"], _law=law, **features)
 
 
-def place_pair(body1: Body, body2: Body, internal: bool = False) -> list:
+def place_pair(body1: Body, body2: Body, internal: bool = False, center_distance=None) -> list:
     """Place two meshing bodies: body1 at the origin, body2 at the centre distance along +x
-    (r1 + r2 external, |r2 - r1| internal), in mesh phase: body1's tooth 0 and a space of
-    body2 face each other at the pitch point. Twisted pairs must carry mating laws
+    (mm; default the standard r1 + r2 external, |r2 - r1| internal; shifted involute wheels
+    run at :func:`gear3d.placement.operating_center_distance`), in mesh phase: body1's tooth
+    0 and a space of body2 face each other at the pitch point
+    (:func:`gear3d.placement.mesh_placement`). Twisted pairs must carry mating laws
     (:func:`mate_body`); then every transverse section meshes as the planar pair."""
     for nm, b in (("body1", body1), ("body2", body2)):
         if not isinstance(b, Body):
@@ -311,14 +313,11 @@ def place_pair(body1: Body, body2: Body, internal: bool = False) -> list:
     if not body2.twist.is_mate_of(body1.twist, internal):
         raise GearError("body2", body2.name, "a body whose twist law mates body1's "
                         "(build it with mate_body(profile2, like=body1))")
-    r1, r2 = p1.pitch_radius, p2.pitch_radius
-    a = r1 + r2 if not internal else abs(r2 - r1)
-    px = -r1 if p2.internal else r1          # the pitch point on the x axis
-    g1 = 0.0 if px > 0 else math.pi          # direction body1 centre -> pitch point
-    g2 = math.pi if px < a else 0.0          # direction body2 centre -> pitch point
-    t1 = _rigid(g1, 0.0)
-    t2 = _rigid(g2 - math.pi / p2.teeth, a)
-    return [body1.placed(t1), body2.placed(t2)]
+    from ..placement import mesh_placement, standard_center_distance
+    a = (standard_center_distance(p1.teeth, p2.teeth, p1.module, internal) if center_distance is None
+         else check_number("center_distance", center_distance, 0, None, lo_open=True, unit="mm"))
+    pl = mesh_placement(p1.teeth, p2.teeth, a, 0 if not internal else (2 if p2.internal else 1))
+    return [body1.placed(_rigid(pl["turn1"], 0.0)), body2.placed(_rigid(pl["turn2"], pl["center2"][0]))]
 
 
 # ------------------------------------------------------------------------ internals
