@@ -7,6 +7,7 @@ undercut, pointing, singular points. Nothing here is family specific.
 """
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass, field
 
@@ -69,8 +70,21 @@ class Profile:
     raw_chain: np.ndarray | None = field(repr=False, default=None)
     piece_params: list = field(repr=False, default_factory=list)
     _ref: "Profile | None" = field(repr=False, default=None)
-    #: the exact boundary (:class:`gear3d.exact.ExactBoundary`) the measurements use
-    boundary: object = field(repr=False, default=None)
+    #: the exact boundary (:class:`gear3d.exact.ExactBoundary`) the measurements use, or
+    #: a function that makes it on first use (see :attr:`boundary`)
+    _boundary: object = field(repr=False, default=None)
+
+    @property
+    def boundary(self):
+        """The exact boundary (:class:`gear3d.exact.ExactBoundary`), made on first use: a
+        profile that is only drawn or written as a polygon never needs it."""
+        if isinstance(self._boundary, functools.partial):
+            self._boundary = self._boundary()
+        return self._boundary
+
+    @boundary.setter
+    def boundary(self, value):
+        self._boundary = value
 
     # ---------------------------------------------------------------- accessors
     @property
@@ -352,8 +366,8 @@ def build_profile(family: str, params: dict, pieces, teeth: int, pitch_radius: f
         rep.update(extra_report)
     prof.report = rep
     # the raw evaluators (no-contact parameters give NaN, which the distance search skips)
-    prof.boundary = _boundary(list(pieces), ts, keep, tl, teeth, tol, internal, rim_radius, arc_piece,
-                              arc_t, max_err, corner_cuts)
+    prof.boundary = functools.partial(_boundary, list(pieces), ts, keep, tl, teeth, tol, internal, rim_radius,
+                                      arc_piece, arc_t, max_err, corner_cuts)
     return prof
 
 
