@@ -48,7 +48,7 @@ def _circle(ax, r, color, ls, gid, label, lw=0.8):
     return ln
 
 
-def _removed(profile):
+def removed_by_trimming(profile):
     """Raw tooth-period points that trimming removed, split into (undercut, pointed) masks."""
     from .model import loops_distance
     chain = profile.raw_chain
@@ -80,7 +80,7 @@ def profile_figure(profile, path=None, *, view: str = "both", title: str | None 
     rep = profile.report
     panels = ["full", "tooth"] if view == "both" else [view]
     fig, axes = plt.subplots(1, len(panels), figsize=(6 * len(panels), 6), squeeze=False)
-    chain, under, pointed = _removed(profile)
+    chain, under, pointed = removed_by_trimming(profile)
     for ax, pan in zip(axes[0], panels):
         for k, l in enumerate(profile.loops):
             ll = np.vstack([l, l[:1]])
@@ -285,7 +285,6 @@ def pair_figure(p1, p2, report: dict, path=None, *, positions: int = 60):
         q = np.vstack([l, l[:1]])
         (ln,) = ax.plot(q[:, 0], q[:, 1], color="black", lw=0.9)
         ln.set_gid("wheel2")
-    A = Placed(p1, (0.0, 0.0))
     span = 2 * _m.pi * p2.pitch_radius / p1.pitch_radius      # wheel 1 turn for one turn of wheel 2
     n_hit = 0
     for k, ph in enumerate(np.linspace(0.0, span, positions, endpoint=False)):

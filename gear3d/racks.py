@@ -48,7 +48,7 @@ class Rack:
     info: dict = field(default_factory=dict)
 
 
-def _line(u0, v0, u1, v1, name):
+def line_piece(u0, v0, u1, v1, name):
     du, dv = u1 - u0, v1 - v0
 
     def uv(t):
@@ -116,18 +116,18 @@ def involute_rack(module: float, pressure_angle_deg: float = 20.0, addendum_coef
             raise GearError("tip_radius_coeff", tip_radius_coeff,
                             f"a number in [0, {rmax / m:.4g}]", "the tool tip fillet does not fit")
         if uc > -p / 2:
-            half.append(_line(-p / 2, hc, uc, hc, "rack-tip"))
+            half.append(line_piece(-p / 2, hc, uc, hc, "rack-tip"))
         half.append(_arc(uc, vc, rho, math.pi / 2, a, "rack-tip-fillet"))
         fu, fv = uc + rho * math.cos(a), vc + rho * math.sin(a)
     else:
         fu, fv = u0 - hc * ta, hc
         if fu <= -p / 2:
             raise GearError("dedendum_coeff", dedendum_coeff, "a smaller value", "the rack tooth is pointed")
-        half.append(_line(-p / 2, hc, fu, hc, "rack-tip"))
+        half.append(line_piece(-p / 2, hc, fu, hc, "rack-tip"))
         half.append(Corner(fu, hc, math.pi / 2, a, "rack-tip-corner"))
-    half.append(_line(fu, fv, u_root, -hr, "rack-flank"))
+    half.append(line_piece(fu, fv, u_root, -hr, "rack-flank"))
     half.append(Corner(u_root, -hr, a, math.pi / 2, "rack-root-corner"))
-    half.append(_line(u_root, -hr, 0.0, -hr, "rack-root"))
+    half.append(line_piece(u_root, -hr, 0.0, -hr, "rack-root"))
     return symmetric(p, half, hc, hr, {"kind": "involute", "pressure_angle_deg": pressure_angle_deg})
 
 

@@ -29,10 +29,11 @@ import math
 
 import numpy as np
 
-from ..envelope import _rot, circle_loop, rack_envelope, signed_area
+from ..envelope import circle_loop, rack_envelope
+from ..geometry import rotate as _rot
 from ..errors import GearError, check_number
 from ..model import build_profile
-from ..racks import Corner, Smooth, _line, symmetric
+from ..racks import Corner, Smooth, line_piece, symmetric
 from ..tessellate import MIN_TOLERANCE
 from . import common, register, reject_unknown
 
@@ -103,14 +104,15 @@ def trochoid_piece(A, c, k, offset, centre, half_period, side=1):
     return G
 
 
-def _lobe_angles(A, c, k):
+def lobe_angles(A, c, k):
     """(phi of the largest radius, phi of the smallest radius) of T on its first lobe."""
     u_max = 0.0 if A * c > 0 else math.pi   # |T|^2 = A^2 + c^2 + 2Ac cos u
     L = k - 1
     return u_max / L, (math.pi - u_max) / L
 
 
-def _tol(tolerance, scale):
+def size_tolerance(tolerance, scale):
+    """``tolerance`` (mm) checked against a family's size scale (mm): at most a quarter of it."""
     return check_number("tolerance", tolerance, MIN_TOLERANCE, scale / 4,
                         unit=f"mm (at most {scale / 4:g}, a quarter of the size scale)")
 
@@ -147,7 +149,7 @@ def _trochoid_family(name, kind, teeth, module, eccentricity, tooth_radius, inte
             raise GearError("tooth_radius", off, f"a number in [0, {rho:.6g}) mm",
                             "the equidistant would have cusps: it must stay below the "
                             "minimum radius of curvature of the trochoid")
-    phi_max, phi_min = _lobe_angles(A, c, k)
+    phi_max, phi_min = lobe_angles(A, c, k)
     centre = phi_min if internal else phi_max
     half = math.pi / abs(k - 1)
     G = trochoid_piece(A, c, k, off, centre, half, side)
@@ -219,7 +221,7 @@ def reducer_design(pins, pin_circle_radius, pin_radius, eccentricity, offset_cor
                       unit="mm (neighbouring pins must not overlap: R sin(pi/N))")
     do = check_number("offset_correction", offset_correction, -rp, None, lo_open=True, unit="mm")
     dr = check_number("radial_correction", radial_correction, None, R, hi_open=True, unit="mm")
-    tol = _tol(tolerance, 2 * e)
+    tol = size_tolerance(tolerance, 2 * e)
     Rd = R - dr
     if not e * N < Rd:
         raise GearError("radial_correction", dr, f"a number below {R - e * N:.6g} mm",
@@ -238,7 +240,7 @@ def reducer_design(pins, pin_circle_radius, pin_radius, eccentricity, offset_cor
                 reach=R + 2 * e - rp)   # farthest point the disc sweeps in the ring frame
 
 
-def _reducer_report(d):
+def reducer_report(d):
     return {"pins": d["N"], "lobes": d["N"] - 1, "pin_circle_radius": d["R"], "pin_radius": d["rp"],
             "eccentricity": d["e"], "shortening_coefficient": d["k"],
             "min_curvature_radius": d["rho"], "max_pin_radius": d["rho"],
@@ -264,7 +266,7 @@ def cycloid_disc(pins=12, pin_circle_radius=30.0, pin_radius=3.0, eccentricity=1
                        radial_correction, tolerance, teeth)
     N, e, tol = d["N"], d["e"], d["tol"]
     A, c, k = d["Rd"], -e, float(N)
-    phi_max, _ = _lobe_angles(A, c, k)
+    phi_max, _ = lobe_angles(A, c, k)
     G = trochoid_piece(A, c, k, d["rp_disc"], phi_max, math.pi / (N - 1), 1)
     root = d["Rd"] - e - d["rp_disc"]
     holes, hole_err = _disc_holes(output_holes, output_hole_radius, output_circle_radius,
@@ -273,7 +275,7 @@ def cycloid_disc(pins=12, pin_circle_radius=30.0, pin_radius=3.0, eccentricity=1
                   offset_correction=d["do"], radial_correction=d["dr"], output_holes=output_holes,
                   output_hole_radius=output_hole_radius, output_circle_radius=output_circle_radius,
                   bore_radius=bore_radius, tolerance=tol)
-    rep = _reducer_report(d)
+    rep = reducer_report(d)
     prof = build_profile("cycloid-disc", params, [G], N - 1, (N - 1) * e, internal=False,
                          tolerance=tol, names=["disc-equidistant"], extra_report=rep)
     if holes:
@@ -340,7 +342,7 @@ def cycloid_pins(pins=12, pin_circle_radius=30.0, pin_radius=3.0, eccentricity=1
     pieces = pin_ring_pieces(N, R, rp, Rb)
     params = dict(pins=N, pin_circle_radius=R, pin_radius=rp, eccentricity=e,
                   bore_radius=bore_radius, rim_radius=rim_radius, internal=True, tolerance=tol)
-    rep = _reducer_report(d)
+    rep = reducer_report(d)
     rep["bore_radius"] = Rb
     return build_profile("cycloid-pins", params, pieces, N, N * e, internal=True, tolerance=tol,
                          rim_radius=rim, names=["bore", "pin", "bore"], extra_report=rep,
@@ -403,11 +405,11 @@ def cycloidal_rack(module: float, rolling_radius: float, addendum: float, dedend
         th = th_b * np.asarray(t, float)
         return (-p / 4 + rho * (th - np.sin(th)), -rho * (1 - np.cos(th)),
                 rho * (1 - np.cos(th)) * th_b, -rho * np.sin(th) * th_b)
-    half = [_line(-p / 2, dedendum, u_tip, dedendum, "rack-tip"),
+    half = [line_piece(-p / 2, dedendum, u_tip, dedendum, "rack-tip"),
             Corner(u_tip, dedendum, math.pi / 2, th_a / 2, "rack-tip-corner"),
             Smooth(upper, "hypo-flank"), Smooth(lower, "epi-flank"),
             Corner(u_root, -addendum, th_b / 2, math.pi / 2, "rack-root-corner"),
-            _line(u_root, -addendum, 0.0, -addendum, "rack-root")]
+            line_piece(u_root, -addendum, 0.0, -addendum, "rack-root")]
     return symmetric(p, half, dedendum, addendum, {"kind": "cycloidal", "rolling_radius": rho})
 
 

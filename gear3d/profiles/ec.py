@@ -22,11 +22,11 @@ import math
 
 import numpy as np
 
-from ..envelope import _rot
+from ..geometry import rotate as _rot
 from ..errors import GearError, check_number
 from ..model import build_profile
 from . import register, reject_unknown
-from .cycloid import _tol, min_curvature_radius, trochoid_left_normal, trochoid_point
+from .cycloid import size_tolerance, min_curvature_radius, trochoid_left_normal, trochoid_point
 
 
 def ec_design(teeth, mate_teeth, eccentricity, tooth_radius, center_distance, tolerance,
@@ -47,7 +47,7 @@ def ec_design(teeth, mate_teeth, eccentricity, tooth_radius, center_distance, to
     else:
         Aw = check_number("center_distance", center_distance, (eps + rho), 1e6, lo_open=True,
                           unit="mm (beyond eccentricity + tooth_radius)")
-    tol = _tol(tolerance, 2 * eps)
+    tol = size_tolerance(tolerance, 2 * eps)
     r1 = Aw / (n + 1)
     if not eps < r1:
         raise GearError("eccentricity", eps, f"a number in (0, {r1:.6g}) mm (the pinion pitch radius)",

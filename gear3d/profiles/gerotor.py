@@ -24,11 +24,12 @@ import math
 
 import numpy as np
 
-from ..envelope import _rot, pattern, wheel_envelope_piece
+from ..envelope import pattern, wheel_envelope_piece
+from ..geometry import rotate as _rot
 from ..errors import GearError, check_choice, check_number
 from ..model import build_profile
 from . import register, reject_unknown
-from .cycloid import (_lobe_angles, _reducer_report, _tol, min_curvature_radius, pin_ring_pieces,
+from .cycloid import (lobe_angles, reducer_report, size_tolerance, min_curvature_radius, pin_ring_pieces,
                       reducer_design, trochoid_left_normal, trochoid_piece, trochoid_point)
 
 
@@ -54,7 +55,7 @@ def gerotor_design(lobes, pin_circle_radius, pin_radius, eccentricity, variant, 
     rp = check_number("pin_radius", pin_radius, 0, lim, lo_open=True, hi_open=True,
                       unit="mm (no-cusp check: below the minimum concave curvature radius "
                            f"{rho:.6g} of the hypotrochoid, and arcs must not overlap)")
-    tol = _tol(tolerance, 2 * e)
+    tol = size_tolerance(tolerance, 2 * e)
     return dict(n=n, R=R, e=e, rp=rp, tol=tol, k=e * n / R, rho=rho, variant=variant)
 
 
@@ -76,11 +77,11 @@ def _pieces(d, outer):
     if d["variant"] == "epi":
         if outer:
             return pin_ring_pieces(n + 1, R, rp, R + e), ["bore", "arc", "bore"], n + 1, (n + 1) * e, 0.0
-        phi_max, _ = _lobe_angles(R, -e, n + 1.0)
+        phi_max, _ = lobe_angles(R, -e, n + 1.0)
         return ([trochoid_piece(R, -e, n + 1.0, rp, phi_max, math.pi / n, 1)], ["epitrochoid-equidistant"],
                 n, n * e, phi_max)
     if outer:
-        _, phi_min = _lobe_angles(R, e, -float(n))
+        _, phi_min = lobe_angles(R, e, -float(n))
         return ([trochoid_piece(R, e, -float(n), rp, phi_min, math.pi / (n + 1), -1)],
                 ["hypotrochoid-equidistant"], n + 1, (n + 1) * e, phi_min)
     G = wheel_envelope_piece(_hypo_outer_pn(d), (n + 1) * e, n * e, True)
@@ -98,7 +99,7 @@ def _build(family, d, outer, params, rim_radius):
            "center_distance": d["e"], "ratio": (d["n"] + 1) / d["n"],
            "shortening_coefficient": d["k"], "min_curvature_radius": d["rho"]}
     if d["variant"] == "epi":
-        rep.update({k: v for k, v in _reducer_report(d).items() if k not in ("ratio", "pins", "lobes")})
+        rep.update({k: v for k, v in reducer_report(d).items() if k not in ("ratio", "pins", "lobes")})
     rep.update(chamber_report(d))
     return build_profile(family, params, pieces, z, rp_, internal=outer, tolerance=d["tol"],
                          rim_radius=rim, names=names, extra_report=rep)

@@ -22,7 +22,7 @@ import numpy as np
 from ..errors import GearError, check_number
 from ..model import build_profile
 from . import register, reject_unknown
-from .cycloid import _tol
+from .cycloid import size_tolerance
 from .ec import pinion_piece
 
 
@@ -34,7 +34,7 @@ def _design(eccentricity, tooth_radius, rotor_lead, tolerance, teeth, mate_teeth
     rho = check_number("tooth_radius", tooth_radius, 0, 1e5, lo_open=True, unit="mm")
     e = check_number("eccentricity", eccentricity, 0, rho, lo_open=True, hi_open=True,
                      unit=f"mm (below tooth_radius = {rho:g}: the rotor axis stays inside its section)")
-    tol = _tol(tolerance, 2 * e)
+    tol = size_tolerance(tolerance, 2 * e)
     L = None if rotor_lead is None else check_number("rotor_lead", rotor_lead, 0, None, lo_open=True, unit="mm")
     rep = {"ratio": "1:2", "eccentricity": e, "tooth_radius": rho, "center_distance": e,
            "rotor_pitch_radius": e, "stator_pitch_radius": 2 * e, "lead_ratio": 2.0,

@@ -9,7 +9,7 @@ from __future__ import annotations
 from ..envelope import rack_envelope
 from ..errors import GearError, check_choice, check_number
 from ..model import build_profile
-from .involute import _nominal
+from .involute import nominal_tip
 from ..racks import sine_rack
 from . import blank_and_rim, common, register, reject_unknown
 
@@ -58,5 +58,5 @@ def sine(teeth=20, module=None, addendum_coeff=None, shift_coeff=0.0, internal=F
     return build_profile("sine", params, [p for p, _ in pieces], z, r, internal=bool(internal),
                          tolerance=tol, rim_radius=rim, clip_radius=clip,
                          names=[n for _, n in pieces],
-                         nominal_tip_radius=_nominal(r - x * m - ha if internal else r + x * m + ha, clip, internal),
+                         nominal_tip_radius=nominal_tip(r - x * m - ha if internal else r + x * m + ha, clip, internal),
                          extra_report={"addendum": ha, "mean_diameter": 2 * (r + x * m)})

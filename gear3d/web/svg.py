@@ -65,10 +65,10 @@ def neck(profile, samples: int = 24):
 
 def _marks(profile, nk) -> str:
     """Undercut / pointing / singular points / pointed tip / neck, on tooth 0 (SVG fragment)."""
-    from ..figures import _removed
+    from ..figures import removed_by_trimming
     rep = profile.report
     out = []
-    chain, under, pointed = _removed(profile)
+    chain, under, pointed = removed_by_trimming(profile)
     if chain is not None:
         for mask, cls, color in ((under, "undercut", COLORS["undercut"]), (pointed, "pointed", COLORS["pointed"])):
             if mask is None or not mask.any():
