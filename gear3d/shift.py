@@ -94,7 +94,8 @@ def split_shift(teeth1: int, teeth2: int, total: float, module: float = 1.0,
     """Split x1 + x2 = ``total`` between the wheels.
 
     External: equal specific sliding at the two roots (bisection on x1), then each
-    wheel's undercut limit (:func:`min_shift`) first. Internal: the pinion (wheel 1) at its
+    wheel's undercut limit (:func:`min_shift`) first (when the sum cannot free both, the
+    wheel with fewer teeth). Internal: the pinion (wheel 1) at its
     undercut limit, or 0 when that is negative; the ring takes the rest.
     Returns ``shift1``, ``shift2``, ``rule`` and the sliding ``zeta1``, ``zeta2`` (external).
     """
@@ -126,7 +127,11 @@ def split_shift(teeth1: int, teeth2: int, total: float, module: float = 1.0,
         else:
             hi = mid
     x1, rule = 0.5 * (lo + hi), "balanced specific sliding"
-    if x1 < xm1:
+    if total < xm1 + xm2:
+        # not both free of undercut: the wheel with fewer teeth first
+        x1, rule = (xm1, "undercut limit of wheel 1 (wheel 2 undercut)") if z1 <= z2 else \
+            (total - xm2, "undercut limit of wheel 2 (wheel 1 undercut)")
+    elif x1 < xm1:
         x1, rule = xm1, "undercut limit of wheel 1"
     elif total - x1 < xm2:
         x1, rule = total - xm2, "undercut limit of wheel 2"
