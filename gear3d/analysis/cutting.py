@@ -13,6 +13,9 @@ import numpy as np
 
 from ..racks import Corner, Rack
 
+#: rack positions united at a time (bounds the memory of the union)
+CHUNK = 250
+
 
 def rack_outline(rack: Rack, periods: int, samples: int = 200) -> np.ndarray:
     """Rack boundary (u, v) mm over ``2*periods+1`` periods, from point samples only."""
@@ -60,16 +63,22 @@ def simulate_cut(rack: Rack, teeth: int, module: float, shift_coeff: float = 0.0
     back = -(r + 2 * module) if internal else -(rack.dedendum + 3 * module)
     if window is None and internal:
         window = 0.75
-    polys = []
-    for d in np.linspace(-rolls * rack.pitch, rolls * rack.pitch, positions):
-        seg = uv if window is None else uv[np.abs(uv[:, 0] + d) <= window * rack.pitch]
-        poly_uv = np.vstack([seg, [[seg[-1, 0], back], [seg[0, 0], back]]])
-        X = r - sigma * (poly_uv[:, 1] - xm)
-        Y = poly_uv[:, 0] + d
-        phi = -d / r
-        c, s = math.cos(phi), math.sin(phi)
-        polys.append(shapely.Polygon(np.stack([c * X - s * Y, s * X + c * Y], axis=1)))
-    cut = shapely.union_all(shapely.make_valid(np.array(polys, dtype=object)))
+    # the union is taken in chunks of rack positions: GEOS then never holds more than
+    # one chunk's polygons (thousands of dense rack outlines at once took gigabytes)
+    ds = np.linspace(-rolls * rack.pitch, rolls * rack.pitch, positions)
+    cut = None
+    for c0 in range(0, positions, CHUNK):
+        polys = []
+        for d in ds[c0:c0 + CHUNK]:
+            seg = uv if window is None else uv[np.abs(uv[:, 0] + d) <= window * rack.pitch]
+            poly_uv = np.vstack([seg, [[seg[-1, 0], back], [seg[0, 0], back]]])
+            X = r - sigma * (poly_uv[:, 1] - xm)
+            Y = poly_uv[:, 0] + d
+            phi = -d / r
+            c, s = math.cos(phi), math.sin(phi)
+            polys.append(shapely.Polygon(np.stack([c * X - s * Y, s * X + c * Y], axis=1)))
+        part = shapely.union_all(shapely.make_valid(np.array(polys, dtype=object)))
+        cut = part if cut is None else shapely.union(cut, part)
     if internal:
         outer = r - xm + rack.addendum + 2 * module
         blank = shapely.Point(0, 0).buffer(outer, quad_segs=2048)
