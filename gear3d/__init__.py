@@ -22,7 +22,7 @@ _LAZY = {
     "simulate_cut": "gear3d.analysis.cutting",
     "rack": "gear3d.rack_part",
     "rack_body": "gear3d.rack_part",
-    "rack_pair": "gear3d.rack_part",
+    "rack_pair": "gear3d.analysis.rack_mesh",
     "check_rack_pair": "gear3d.analysis.rack_mesh",
 }
 

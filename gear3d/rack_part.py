@@ -16,7 +16,7 @@ keeps the clearance (dedendum - addendum) m at its root and at its tip:
   rack with ``unit_radius``/``amplitude``), epi and hypo are the same rack (the pinion's
   phase differs by half a pitch); the sine tooth has no clearance of its own (the gear's
   root and tip touch it), ``clearance_coeff`` flattens the rack's tips by that much and
-  the pinion of :func:`rack_pair` gets its tip turned by as much;
+  the pinion of :func:`gear3d.analysis.rack_mesh.rack_pair` gets its tip turned by as much;
 * ``cycloidal``: the cycloids of a circle of radius ``rolling_radius_coeff`` m rolling on
   the pitch line (on both sides), straight tip and root;
 * ``triangular``: straight flanks at ``half_angle_deg`` from the tooth axis, thickness
@@ -31,7 +31,6 @@ measures points against the exact pieces by Newton's method (an independent chec
 from __future__ import annotations
 
 import math
-import sys
 from dataclasses import dataclass, field
 
 from .errors import GearError, ToleranceError, check_choice, check_number
@@ -359,7 +358,7 @@ def rack(family: str, teeth: int = 10, module: float = 1.0, tolerance: float = 1
     ``amplitude``, ``clearance_coeff`` for the sine; ``rolling_radius_coeff`` for the
     cycloidal; ``half_angle_deg``, ``thickness_coeff`` for the triangular). ``shift_coeff``
     (involute, sine) does not change the rack: it is the pinion's profile shift, used by
-    :func:`rack_pair` to place the pinion at y = r + x m.
+    :func:`gear3d.analysis.rack_mesh.rack_pair` to place the pinion at y = r + x m.
     Raises :class:`GearError` on bad input, :class:`ToleranceError` when the tolerance
     cannot be met.
     """
@@ -502,38 +501,6 @@ def rack_pinion(rack_part: RackPart, teeth: int, **pinion_params):
         kw["tip_radius"] = m * z / 2 + (P["shift_coeff"] + P["addendum_coeff"] - P["clearance_coeff"]) * m
     kw.update(pinion_params)
     return profile(fam, teeth=teeth, **kw)
-
-
-def rack_pair(family: str, teeth: int = 20, rack_teeth: int | None = None, **params):
-    """A pinion of ``teeth`` teeth in mesh with a rack of ``rack_teeth`` teeth (mm, deg).
-
-    ``params`` are the family's (as for :func:`rack`); ``backlash`` and ``tip_radius_coeff``
-    of the involute shape the pinion (the rack stays the standard basic rack),
-    ``back_height`` and ``clearance_coeff`` the rack. ``rack_teeth`` defaults to enough
-    teeth to run under the pinion's tip circle with two to spare on each side. The pinion
-    sits on the rack's middle space, centre (x0, r + x m), in phase.
-    Returns (pinion Profile, RackPart, report of
-    :func:`gear3d.analysis.rack_mesh.check_rack_pair` plus ``placement``).
-    """
-    from .analysis.rack_mesh import check_rack_pair
-    fam = check_choice("family", family, RACK_FAMILIES)
-    rk_kw = {k: v for k, v in params.items() if k not in PINION_ONLY[fam]}
-    pin_kw = {k: v for k, v in params.items() if k in PINION_ONLY[fam]}
-    z = check_number("teeth", teeth, 1, 100_000, integer=True)
-    probe = rack(fam, teeth=1, **rk_kw)
-    pin = rack_pinion(probe, z, **pin_kw)
-    p = probe.pitch
-    if rack_teeth is None:
-        rack_teeth = int(math.ceil(2 * pin.report["tip_radius"] / p)) + 4
-    n = check_number("rack_teeth", rack_teeth, 1, 10_000, integer=True)
-    part = rack(fam, teeth=n, **rk_kw)
-    # the middle space (or the one left of the middle)
-    k = math.floor(((n - 1) * p / 2 - part.phase_x) / p + 0.5)
-    x0 = part.phase_x + k * p
-    rep = check_rack_pair(pin, part, x0=x0)
-    rep["placement"] = {"pinion_centre": [x0, pin.pitch_radius + rep["shift"]], "pinion_angle_deg": -90.0,
-                        "note": "pinion frame turned by -90 deg (its tooth 0 points down) and moved to the centre"}
-    return pin, part, rep
 
 
 # ----------------------------------------------------------------------------- figures
@@ -682,126 +649,3 @@ def write_rack(part: RackPart, path, width=None) -> str:
     if width is None:
         raise GearError("width", None, "a number > 0 mm for a 3D output (--width)")
     return write(rack_body(part, width), path) or ""
-
-
-# ----------------------------------------------------------------------------- CLI
-
-def add_rack_flags(p, pair: bool = False):
-    """``--rack`` and its flags (``gear3d profile|body|pair``)."""
-    from .cliargs import number
-    p.add_argument("--rack", action="store_true", help="a linear rack of the family (issue #14): "
-                   "--teeth rack teeth" + (" ; the pinion has --teeth, the rack --rack-teeth" if pair else ""))
-    p.add_argument("--back-height", type=number("float", 0, None, lo_open=True, unit="mm"), default=None,
-                   help="rack: back height below the root line (mm), default 2 module")
-    p.add_argument("--clearance-coeff", type=number("float", 0, None, unit="modules"), default=None,
-                   help="sine rack: flattens the rack tips by this many modules (default 0)")
-    if pair:
-        p.add_argument("--rack-teeth", type=number("int", 1, 10_000), default=None,
-                       help="rack teeth for --rack (default: the pinion's tip diameter + 4 pitches)")
-
-
-def _rack_kw(args, output=None, mesh=False) -> dict:
-    from .commands.profile import family_params
-    kw = family_params(args, output, mesh)
-    for k in ("back_height", "clearance_coeff"):
-        v = getattr(args, k, None)
-        if v is not None:
-            kw[k] = v
-    return kw
-
-
-def _check_given(args, names, what):
-    for n in names:
-        v = getattr(args, n, None)
-        if v not in (None, False):
-            raise GearError(n.removeprefix("b_"), v, f"not an option of {what}")
-
-
-def run_profile_cli(args) -> int:
-    """``gear3d profile FAMILY --rack ...``"""
-    out = args.output
-    if out is not None:
-        from .export import check_path
-        check_path(out, "output", (".json", ".svg", ".png", ".dxf", ".stl", ".3mf", ".step", ".stp",
-                                   ".obj", ".ply", ".vtu"))
-    _check_given(args, ("kerf", "lead_in", "start_angle_deg", "dxf_version", "spline", "no_pitch_circle"),
-                 "a rack outline")
-    part = rack(args.family, **_rack_kw(args, out))
-    if out is None:
-        from .export.json_format import dumps
-        if args.width is not None:
-            raise GearError("width", args.width, "only with an output file (-o)")
-        sys.stdout.write(dumps(part.report) + "\n")
-        return 0
-    info = write_rack(part, out, args.width)
-    r = part.report
-    sys.stdout.write(f"wrote {out}: {part.family} rack {r['teeth']} teeth, s={r['tooth_thickness_at_pitch_line']:.6g} mm, "
-                     f"max_error={r['max_error']:.3g} mm (tolerance {r['tolerance']:g} mm)"
-                     + (f" {info}" if info else "") + "\n")
-    return 0
-
-
-def run_body_cli(args) -> int:
-    """``gear3d body FAMILY --rack --width W [--helix-angle B] ...``"""
-    out = args.output
-    if out is not None:
-        from .export import check_output
-        check_output(out, kinds="body")
-    if args.b_width is None:
-        raise GearError("width", None, "a number > 0 mm (--width)")
-    if args.kind not in ("spur", "helical"):
-        raise GearError("kind", args.kind, "spur or helical for a rack")
-    _check_given(args, ("b_gap", "b_arch_radius", "b_bore", "b_hub_diameter", "b_hub_length", "b_set_screw",
-                        "b_lightening_holes", "b_web_thickness", "b_xy_offset", "b_elephant_foot",
-                        "b_chamfer", "b_rim_diameter", "keyway", "step"), "a rack body")
-    kw = _rack_kw(args, out, mesh=True)
-    if args.b_tolerance is not None:
-        kw["tolerance"] = args.b_tolerance
-    beta = args.b_helix_angle_deg or 0.0
-    if args.kind == "helical" and not beta:
-        raise GearError("helix_angle_deg", args.b_helix_angle_deg, "a number in (0, 60] deg for --kind helical")
-    b = rack_body(rack(args.family, **kw), args.b_width, beta, args.hand, args.b_name or "rack")
-    if out is None:
-        from .export.json_format import dumps
-        sys.stdout.write(dumps(b.report) + "\n")
-        return 0
-    from .export import write
-    info = write(b, out)
-    r = b.report
-    sys.stdout.write(f"wrote {out}: {r['kind']} {r['family']} rack {r['teeth']} teeth, {r['triangles']} triangles, "
-                     f"max_error={r['max_error']:.3g} mm (tolerance {r['tolerance']:g} mm)"
-                     + (f" {info}" if info else "") + "\n")
-    return 0
-
-
-def run_pair_cli(args) -> int:
-    """``gear3d pair FAMILY --rack --teeth Z [--rack-teeth N] [-o x.json|x.png|x.svg]``"""
-    out = args.output
-    if out is not None:
-        from .export import check_path
-        check_path(out, "output", (".json", ".png", ".svg"))
-    _check_given(args, ("largest_addendum", "tip_correction", "mate_teeth", "internal"), "a rack pair")
-    if getattr(args, "mate", "same") != "same":
-        raise GearError("mate", args.mate, "same for a rack pair (the pinion is the family's gear)")
-    kw = _rack_kw(args, out)
-    z = kw.pop("teeth", 20)
-    pin, part, rep = rack_pair(args.family, z, getattr(args, "rack_teeth", None), **kw)
-    if out is not None and out.lower().endswith((".png", ".svg")):
-        from .export import atomic_path
-        with atomic_path(out) as tmp:
-            rack_figure(part, tmp, pin, rep["placement"]["pinion_centre"], report=rep,
-                        title=f"{part.family} pinion z={z} on a {part.teeth}-tooth rack: "
-                              f"{'INTERFERENCE' if rep['interference'] else 'no interference'}, "
-                              f"max penetration {rep['max_penetration'] * 1000:.2f} um")
-        sys.stdout.write(f"wrote {out}: interference={rep['interference']} "
-                         f"max_penetration={rep['max_penetration']:.4g} mm\n")
-        return 0
-    from .export.json_format import dumps
-    if out is None:
-        sys.stdout.write(dumps(rep) + "\n")
-    else:
-        from .export import atomic_path
-        with atomic_path(out) as tmp, open(tmp, "w", encoding="utf-8") as fh:
-            fh.write(dumps(rep) + "\n")
-        sys.stdout.write(f"wrote {out}\n")
-    return 0

@@ -10,8 +10,8 @@ import pytest
 from hypothesis import given, settings, strategies as st
 
 from gear3d import GearError
-from gear3d.analysis.rack_mesh import check_rack_pair
-from gear3d.rack_part import rack, rack_body, rack_pair, rack_pinion
+from gear3d.analysis.rack_mesh import check_rack_pair, rack_pair
+from gear3d.rack_part import rack, rack_body, rack_pinion
 
 
 def _edges_points(loop, n=11):

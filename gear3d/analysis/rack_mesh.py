@@ -21,7 +21,7 @@ import math
 
 import numpy as np
 
-from ..errors import GearError, check_number
+from ..errors import GearError, check_choice, check_number
 from ..geometry import rotate
 
 #: steps per pitch of roll (at least; finer when the tolerance asks)
@@ -248,3 +248,34 @@ def _play(M: Mesh, phi, sgn, tol, limit):
         else:
             good = mid
     return good
+
+
+def rack_pair(family: str, teeth: int = 20, rack_teeth: int | None = None, **params):
+    """A pinion of ``teeth`` teeth in mesh with a rack of ``rack_teeth`` teeth (mm, deg).
+
+    ``params`` are the family's (as for :func:`gear3d.rack_part.rack`); ``backlash`` and ``tip_radius_coeff``
+    of the involute shape the pinion (the rack stays the standard basic rack),
+    ``back_height`` and ``clearance_coeff`` the rack. ``rack_teeth`` defaults to enough
+    teeth to run under the pinion's tip circle with two to spare on each side. The pinion
+    sits on the rack's middle space, centre (x0, r + x m), in phase.
+    Returns (pinion Profile, RackPart, report of :func:`check_rack_pair` plus ``placement``).
+    """
+    from ..rack_part import PINION_ONLY, RACK_FAMILIES, rack, rack_pinion
+    fam = check_choice("family", family, RACK_FAMILIES)
+    rk_kw = {k: v for k, v in params.items() if k not in PINION_ONLY[fam]}
+    pin_kw = {k: v for k, v in params.items() if k in PINION_ONLY[fam]}
+    z = check_number("teeth", teeth, 1, 100_000, integer=True)
+    probe = rack(fam, teeth=1, **rk_kw)
+    pin = rack_pinion(probe, z, **pin_kw)
+    p = probe.pitch
+    if rack_teeth is None:
+        rack_teeth = int(math.ceil(2 * pin.report["tip_radius"] / p)) + 4
+    n = check_number("rack_teeth", rack_teeth, 1, 10_000, integer=True)
+    part = rack(fam, teeth=n, **rk_kw)
+    # the middle space (or the one left of the middle)
+    k = math.floor(((n - 1) * p / 2 - part.phase_x) / p + 0.5)
+    x0 = part.phase_x + k * p
+    rep = check_rack_pair(pin, part, x0=x0)
+    rep["placement"] = {"pinion_centre": [x0, pin.pitch_radius + rep["shift"]], "pinion_angle_deg": -90.0,
+                        "note": "pinion frame turned by -90 deg (its tooth 0 points down) and moved to the centre"}
+    return pin, part, rep

@@ -46,7 +46,7 @@ def add_parser(sub):
     p.add_argument("-o", "--output", default=None, help="output file; extension picks the format")
     p.add_argument("--step", default=None, choices=["faceted", "brep"],
                    help="STEP flavour: faceted (default) or brep (exact B-spline surfaces, needs pip install 'gear3d[cad]')")
-    from ..rack_part import add_rack_flags
+    from .rackflags import add_rack_flags
     add_rack_flags(p)
     return p
 
@@ -64,8 +64,8 @@ def body_params(args) -> dict:
 
 def run(args) -> int:
     if getattr(args, "rack", False):
-        from ..rack_part import run_body_cli
-        return run_body_cli(args)
+        from .rackflags import run_body_cli
+        return run_body_cli(args, family_params)
     from .. import profile
     from ..errors import GearError
     from ..solids.body import body

@@ -106,15 +106,15 @@ def add_parser(sub):
     p.add_argument("--spline", action="store_true", help="DXF: SPLINE entities (control points) instead of arcs")
     p.add_argument("--no-pitch-circle", action="store_true", help="DXF: leave the pitch circle off")
     p.add_argument("-o", "--output", default=None, help="output file; extension picks the format")
-    from ..rack_part import add_rack_flags
+    from .rackflags import add_rack_flags
     add_rack_flags(p)
     return p
 
 
 def run(args) -> int:
     if getattr(args, "rack", False):
-        from ..rack_part import run_profile_cli
-        return run_profile_cli(args)
+        from .rackflags import run_profile_cli
+        return run_profile_cli(args, family_params)
     from .. import profile
     from ..errors import GearError
     out = args.output

@@ -1,0 +1,135 @@
+"""``--rack`` for ``gear3d profile|body|pair``: the flags and the runs (issue #14 item 1).
+
+The rack parts themselves are :mod:`gear3d.rack_part`; the pinion-and-rack check is
+:mod:`gear3d.analysis.rack_mesh`. The calling command passes its own ``family_params``
+(so this module never imports a command module back).
+"""
+from __future__ import annotations
+
+import sys
+
+from ..errors import GearError
+
+
+def add_rack_flags(p, pair: bool = False):
+    """``--rack`` and its flags (``gear3d profile|body|pair``)."""
+    from ..cliargs import number
+    p.add_argument("--rack", action="store_true", help="a linear rack of the family (issue #14): "
+                   "--teeth rack teeth" + (" ; the pinion has --teeth, the rack --rack-teeth" if pair else ""))
+    p.add_argument("--back-height", type=number("float", 0, None, lo_open=True, unit="mm"), default=None,
+                   help="rack: back height below the root line (mm), default 2 module")
+    p.add_argument("--clearance-coeff", type=number("float", 0, None, unit="modules"), default=None,
+                   help="sine rack: flattens the rack tips by this many modules (default 0)")
+    if pair:
+        p.add_argument("--rack-teeth", type=number("int", 1, 10_000), default=None,
+                       help="rack teeth for --rack (default: the pinion's tip diameter + 4 pitches)")
+
+
+def _rack_kw(args, family_params, output=None, mesh=False) -> dict:
+    kw = family_params(args, output, mesh)
+    for k in ("back_height", "clearance_coeff"):
+        v = getattr(args, k, None)
+        if v is not None:
+            kw[k] = v
+    return kw
+
+
+def _check_given(args, names, what):
+    for n in names:
+        v = getattr(args, n, None)
+        if v not in (None, False):
+            raise GearError(n.removeprefix("b_"), v, f"not an option of {what}")
+
+
+def run_profile_cli(args, family_params) -> int:
+    """``gear3d profile FAMILY --rack ...``; ``family_params(args, output, mesh)`` reads the family's flags."""
+    from ..rack_part import rack, write_rack
+    out = args.output
+    if out is not None:
+        from ..export import check_path
+        check_path(out, "output", (".json", ".svg", ".png", ".dxf", ".stl", ".3mf", ".step", ".stp",
+                                   ".obj", ".ply", ".vtu"))
+    _check_given(args, ("kerf", "lead_in", "start_angle_deg", "dxf_version", "spline", "no_pitch_circle"),
+                 "a rack outline")
+    part = rack(args.family, **_rack_kw(args, family_params, out))
+    if out is None:
+        from ..export.json_format import dumps
+        if args.width is not None:
+            raise GearError("width", args.width, "only with an output file (-o)")
+        sys.stdout.write(dumps(part.report) + "\n")
+        return 0
+    info = write_rack(part, out, args.width)
+    r = part.report
+    sys.stdout.write(f"wrote {out}: {part.family} rack {r['teeth']} teeth, s={r['tooth_thickness_at_pitch_line']:.6g} mm, "
+                     f"max_error={r['max_error']:.3g} mm (tolerance {r['tolerance']:g} mm)"
+                     + (f" {info}" if info else "") + "\n")
+    return 0
+
+
+def run_body_cli(args, family_params) -> int:
+    """``gear3d body FAMILY --rack --width W [--helix-angle B] ...``"""
+    from ..rack_part import rack, rack_body
+    out = args.output
+    if out is not None:
+        from ..export import check_output
+        check_output(out, kinds="body")
+    if args.b_width is None:
+        raise GearError("width", None, "a number > 0 mm (--width)")
+    if args.kind not in ("spur", "helical"):
+        raise GearError("kind", args.kind, "spur or helical for a rack")
+    _check_given(args, ("b_gap", "b_arch_radius", "b_bore", "b_hub_diameter", "b_hub_length", "b_set_screw",
+                        "b_lightening_holes", "b_web_thickness", "b_xy_offset", "b_elephant_foot",
+                        "b_chamfer", "b_rim_diameter", "keyway", "step"), "a rack body")
+    kw = _rack_kw(args, family_params, out, mesh=True)
+    if args.b_tolerance is not None:
+        kw["tolerance"] = args.b_tolerance
+    beta = args.b_helix_angle_deg or 0.0
+    if args.kind == "helical" and not beta:
+        raise GearError("helix_angle_deg", args.b_helix_angle_deg, "a number in (0, 60] deg for --kind helical")
+    b = rack_body(rack(args.family, **kw), args.b_width, beta, args.hand, args.b_name or "rack")
+    if out is None:
+        from ..export.json_format import dumps
+        sys.stdout.write(dumps(b.report) + "\n")
+        return 0
+    from ..export import write
+    info = write(b, out)
+    r = b.report
+    sys.stdout.write(f"wrote {out}: {r['kind']} {r['family']} rack {r['teeth']} teeth, {r['triangles']} triangles, "
+                     f"max_error={r['max_error']:.3g} mm (tolerance {r['tolerance']:g} mm)"
+                     + (f" {info}" if info else "") + "\n")
+    return 0
+
+
+def run_pair_cli(args, family_params) -> int:
+    """``gear3d pair FAMILY --rack --teeth Z [--rack-teeth N] [-o x.json|x.png|x.svg]``"""
+    from ..analysis.rack_mesh import rack_pair
+    from ..rack_part import rack_figure
+    out = args.output
+    if out is not None:
+        from ..export import check_path
+        check_path(out, "output", (".json", ".png", ".svg"))
+    _check_given(args, ("largest_addendum", "tip_correction", "mate_teeth", "internal"), "a rack pair")
+    if getattr(args, "mate", "same") != "same":
+        raise GearError("mate", args.mate, "same for a rack pair (the pinion is the family's gear)")
+    kw = _rack_kw(args, family_params, out)
+    z = kw.pop("teeth", 20)
+    pin, part, rep = rack_pair(args.family, z, getattr(args, "rack_teeth", None), **kw)
+    if out is not None and out.lower().endswith((".png", ".svg")):
+        from ..export import atomic_path
+        with atomic_path(out) as tmp:
+            rack_figure(part, tmp, pin, rep["placement"]["pinion_centre"], report=rep,
+                        title=f"{part.family} pinion z={z} on a {part.teeth}-tooth rack: "
+                              f"{'INTERFERENCE' if rep['interference'] else 'no interference'}, "
+                              f"max penetration {rep['max_penetration'] * 1000:.2f} um")
+        sys.stdout.write(f"wrote {out}: interference={rep['interference']} "
+                         f"max_penetration={rep['max_penetration']:.4g} mm\n")
+        return 0
+    from ..export.json_format import dumps
+    if out is None:
+        sys.stdout.write(dumps(rep) + "\n")
+    else:
+        from ..export import atomic_path
+        with atomic_path(out) as tmp, open(tmp, "w", encoding="utf-8") as fh:
+            fh.write(dumps(rep) + "\n")
+        sys.stdout.write(f"wrote {out}\n")
+    return 0

@@ -1,0 +1,193 @@
+"""Package layout (issue #17): the static import graph of gear3d has no cycles, no module
+imports another module's ``_private`` name, and the CLI plumbing keeps its promises
+(the version stated once, failing imports fail loudly, one strain-wave command).
+
+The graph is built from the source with :mod:`ast`, independently of what Python happens
+to have imported: every ``import``/``from ... import`` statement counts, including those
+inside functions (a lazy import is still a dependency).
+"""
+from __future__ import annotations
+
+import ast
+import importlib
+import re
+from pathlib import Path
+
+import pytest
+
+import gear3d
+
+ROOT = Path(gear3d.__file__).resolve().parent
+
+
+def _modules() -> dict:
+    """{dotted name: (path, is_package)} of every module of the gear3d package."""
+    out = {}
+    for path in sorted(ROOT.rglob("*.py")):
+        parts = list(path.relative_to(ROOT.parent).with_suffix("").parts)
+        package = parts[-1] == "__init__"
+        if package:
+            parts = parts[:-1]
+        out[".".join(parts)] = (path, package)
+    return out
+
+
+MODULES = _modules()
+
+
+def _owner(name: str):
+    """The gear3d module that ``name`` (a dotted module or module.attribute) lives in."""
+    while name and name not in MODULES:
+        name = name.rpartition(".")[0]
+    return name or None
+
+
+def _imports(module: str):
+    """(target module, imported name or None) for every gear3d import statement in ``module``."""
+    path, package = MODULES[module]
+    here = module if package else module.rpartition(".")[0]
+    for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"), str(path))):
+        if isinstance(node, ast.Import):
+            for alias in node.names:
+                if alias.name == "gear3d" or alias.name.startswith("gear3d."):
+                    yield _owner(alias.name), None
+        elif isinstance(node, ast.ImportFrom):
+            if node.level:
+                base = here.split(".")
+                base = base[:len(base) - (node.level - 1)]
+                source = ".".join(base + ([node.module] if node.module else []))
+            else:
+                source = node.module or ""
+            if source != "gear3d" and not source.startswith("gear3d."):
+                continue
+            for alias in node.names:
+                sub = f"{source}.{alias.name}"
+                if sub in MODULES:          # ``from gear3d import errors``: a submodule
+                    yield sub, None
+                else:
+                    yield _owner(source), alias.name
+
+
+def _graph() -> dict:
+    return {m: {t for t, _ in _imports(m) if t and t != m} for m in MODULES}
+
+
+def _cycles(graph: dict) -> list:
+    """Strongly connected components with more than one module (Tarjan, iterative)."""
+    index, low, stack, on, out, counter = {}, {}, [], set(), [], [0]
+    for root in graph:
+        if root in index:
+            continue
+        work = [(root, iter(sorted(graph[root])))]
+        index[root] = low[root] = counter[0]
+        counter[0] += 1
+        stack.append(root)
+        on.add(root)
+        while work:
+            v, it = work[-1]
+            w = next(it, None)
+            if w is not None:
+                if w not in index:
+                    index[w] = low[w] = counter[0]
+                    counter[0] += 1
+                    stack.append(w)
+                    on.add(w)
+                    work.append((w, iter(sorted(graph[w]))))
+                elif w in on:
+                    low[v] = min(low[v], index[w])
+                continue
+            work.pop()
+            if work:
+                low[work[-1][0]] = min(low[work[-1][0]], low[v])
+            if low[v] == index[v]:
+                comp = []
+                while True:
+                    w = stack.pop()
+                    on.discard(w)
+                    comp.append(w)
+                    if w == v:
+                        break
+                if len(comp) > 1:
+                    out.append(sorted(comp))
+    return out
+
+
+def _describe(graph, comp) -> str:
+    return "; ".join(f"{m} -> {', '.join(sorted(graph[m] & set(comp)))}" for m in comp)
+
+
+def test_the_graph_sees_lazy_and_relative_imports():
+    # an oracle for the walker itself: imports inside functions, relative and absolute
+    g = _graph()
+    assert "gear3d.errors" in g["gear3d.profiles"]                 # from ..errors import (top level)
+    assert "gear3d.profiles.mate" in g["gear3d.profiles.conjugate"]  # from .mate import (in a function)
+    assert "gear3d.cliargs" in g["gear3d.commands.harmonic"]
+    assert _cycles({"a": {"b"}, "b": {"c"}, "c": {"a"}, "d": {"a"}}) == [["a", "b", "c"]]
+    assert _cycles({"a": {"b"}, "b": set()}) == []
+
+
+def test_no_import_cycles():
+    g = _graph()
+    cycles = _cycles(g)
+    assert not cycles, "import cycles: " + " | ".join(_describe(g, c) for c in cycles)
+
+
+def test_no_private_names_across_modules():
+    bad = [f"{m} imports {name} from {target}"
+           for m in MODULES for target, name in _imports(m)
+           if name and name.startswith("_") and not name.startswith("__") and target != m]
+    assert not bad, "\n".join(bad)
+
+
+def test_no_command_imports_the_entry_point():
+    # gear3d.cli loads the commands by name; a command importing it back would close a loop
+    users = sorted(m for m, targets in _graph().items() if "gear3d.cli" in targets)
+    assert users in ([], ["gear3d.commands.check"]), users   # check.py: until its `number` import moves to cliargs
+
+
+def test_solids_body_is_the_module():
+    import types
+
+    import gear3d.solids.body as mod
+    assert isinstance(mod, types.ModuleType) and mod.__name__ == "gear3d.solids.body"
+    assert importlib.import_module("gear3d.solids").body is mod
+    assert gear3d.body is mod.body and callable(gear3d.body)
+
+
+def test_version_is_stated_once(capsys):
+    from gear3d.cli import main
+    assert re.fullmatch(r"\d+\.\d+\.\d+\S*", gear3d.__version__)
+    assert main(["--version"]) == 0
+    assert capsys.readouterr().out.strip() == f"gear3d {gear3d.__version__}"
+    toml = (ROOT.parent / "pyproject.toml").read_text(encoding="utf-8")
+    assert 'dynamic = ["version"]' in toml and 'version = {attr = "gear3d.__version__"}' in toml
+    assert not re.search(r'^version\s*=\s*"', toml, re.M)          # no second statement of it
+
+
+def test_a_broken_command_module_fails_loudly(monkeypatch):
+    from gear3d import cli
+    monkeypatch.setattr(cli, "COMMANDS", [*cli.COMMANDS, "no_such_command"])
+    with pytest.raises(ModuleNotFoundError, match="no_such_command"):
+        cli.build_parser()
+
+
+def test_a_broken_family_module_fails_loudly(monkeypatch):
+    import gear3d.profiles as profiles
+    monkeypatch.setattr(profiles, "FAMILY_MODULES", [*profiles.FAMILY_MODULES, "no_such_family"])
+    with pytest.raises(ModuleNotFoundError, match="no_such_family"):
+        profiles.families()
+
+
+def test_drive_harmonic_is_a_deprecated_alias(capsys, tmp_path):
+    from gear3d.cli import main
+    assert main(["harmonic", "design", "--seed002"]) == 0
+    new = capsys.readouterr()
+    assert main(["drive", "harmonic", "design", "--seed002"]) == 0
+    old = capsys.readouterr()
+    assert old.out == new.out and "-48.4694" in new.out              # seed 002: i = -48.47
+    assert new.err == "" and old.err.count("\n") == 1 and "deprecated" in old.err and "gear3d harmonic" in old.err
+    # bad input through the old spelling: the refusal alone, one line, exit 2
+    assert main(["drive", "harmonic", "design", "--seed002", "--json", str(tmp_path / "x.txt")]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and err.startswith("gear3d: error: json = ")
+    assert list(tmp_path.iterdir()) == []
