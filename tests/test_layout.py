@@ -139,6 +139,35 @@ def test_no_private_names_across_modules():
     assert not bad, "\n".join(bad)
 
 
+#: declared dependency -> why gear3d needs it although no gear3d module imports it
+INDIRECT = {"networkx": "trimesh's 3MF export walks the scene graph with it (export/threemf.py)"}
+
+
+def _external_imports() -> set:
+    out = set()
+    for path, _ in MODULES.values():
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if isinstance(node, ast.Import):
+                out |= {a.name.split(".")[0] for a in node.names}
+            elif isinstance(node, ast.ImportFrom) and not node.level and node.module:
+                out.add(node.module.split(".")[0])
+    return out
+
+
+def test_every_declared_dependency_is_used():
+    # every runtime dependency's distribution name is also its import name
+    toml = (ROOT.parent / "pyproject.toml").read_text(encoding="utf-8")
+    block = toml.split("\ndependencies = [", 1)[1].split("\n]", 1)[0]
+    names = [re.match(r"[A-Za-z0-9_.-]+", line.strip().strip('"')).group(0)
+             for line in block.splitlines() if line.strip().startswith('"')]
+    assert "numpy" in names and "networkx" in names
+    used = _external_imports()
+    unused = [n for n in names if n not in used and n not in INDIRECT
+              and n != "tomli"]                         # tomli: Python < 3.11 only, jobs/template.py
+    assert not unused, unused
+    assert "tomli" in used
+
+
 def test_no_command_imports_the_entry_point():
     # gear3d.cli loads the commands by name; a command importing it back would close a loop
     users = sorted(m for m, targets in _graph().items() if "gear3d.cli" in targets)
