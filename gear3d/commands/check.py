@@ -190,6 +190,8 @@ def add_check_pair_flags(c):
     c.add_argument("--json", default=None, help="write the report as JSON")
     c.add_argument("--png", default=None, help="figure of the rolled positions (.png or .svg)")
     c.add_argument("-o", "--output", default=None, help="a .json report or a .png/.svg figure")
+    from .rackflags import add_rack_flags
+    add_rack_flags(c, pair=True)
 
 
 def add_parser(sub):
@@ -228,6 +230,8 @@ def run(args, alias: bool = False) -> int:
     from ..analysis.pairs import check_pair, largest_addendum, tip_correction
     if not alias and getattr(args, "check_what", None) != "pair":
         raise GearError("check", getattr(args, "check_what", None), "`pair` (see gear3d check pair --help)")
+    if getattr(args, "rack", False):
+        return _rack_pair(args, alias)
     js, fig = _outputs(args)
     notes = ["note: `gear3d pair` is deprecated: use `gear3d check pair` (same flags)"] if alias else []
     if args.max_safe_addendum:
@@ -289,6 +293,22 @@ def run(args, alias: bool = False) -> int:
     return 0
 
 
+def _rack_pair(args, alias: bool) -> int:
+    """``--rack``: the pinion on a rack of its family (:func:`gear3d.commands.rackflags.run_pair_cli`,
+    output by ``-o``)."""
+    from ..errors import GearError
+    from .profile import family_params
+    from .rackflags import run_pair_cli
+    for n in ("json", "png", "mate_shift_coeff", "center_distance", "max_safe_addendum"):
+        v = getattr(args, n, None)
+        if v not in (None, False):
+            raise GearError(n, v, "not given with --rack (a rack pair writes its report or figure with -o)")
+    rc = run_pair_cli(args, family_params)
+    if alias:
+        sys.stderr.write("note: `gear3d pair` is deprecated: use `gear3d check pair` (same flags)\n")
+    return rc
+
+
 def summary(rep: dict) -> str:
     """A short human summary of a check_pair report (mm)."""
     at = rep.get("interference_at") or {}
@@ -301,6 +321,9 @@ def summary(rep: dict) -> str:
     at_cd = (f"; centre distance {rep['center_distance']:.4f} mm"
              + (f" (working pressure angle {aw:.4f} deg)" if aw is not None else "")
              if "center_distance" in rep else "")
+    xs = rep.get("shift_coeffs") or []
+    if any(x not in (None, 0) for x in xs):
+        at_cd = "; shifts " + " / ".join("-" if x is None else f"{x:.4f}" for x in xs) + at_cd
     return (f"{'INTERFERENCE' if rep['interference'] else 'no interference'}{at_cd}: max penetration "
             f"{rep['max_penetration'] * 1000:.2f} um{where}; min clearance "
             f"{'locked' if mc is None else f'{mc * 1000:.2f} um'}; contact ratio {rep['contact_ratio']:.3f}; "
