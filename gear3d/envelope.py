@@ -24,7 +24,7 @@ import math
 import numpy as np
 
 from .geometry import point_segment_distance, rotate, signed_area
-from .racks import Corner, Rack, Smooth
+from .racks import Corner, Rack
 
 
 _rot = rotate

@@ -99,7 +99,7 @@ class ExactBoundary:
                 continue
             self.pieces.append(pc)
         self.circles = [float(r) for r in circles]
-        a, b, owner, t0, t1 = [], [], [], [], []
+        a, b, owner = [], [], []
         copies = (-1, 0, 1) if self.teeth > 1 else (0,)
         for i, pc in enumerate(self.pieces):
             idx = np.nonzero(pc.keep)[0]

@@ -116,7 +116,6 @@ def run(args) -> int:
         from .rackflags import run_profile_cli
         return run_profile_cli(args, family_params)
     from .. import profile
-    from ..errors import GearError
     out = args.output
     if out is not None:
         from ..export import check_output

@@ -289,7 +289,6 @@ def _scene_graph(scene, out_dir, only=None):
                                 fn=run_write, label=fname, phase=1,
                                 path=out_path(out_dir, fname, scene["file"], label), out_dir=out_dir)
             else:
-                from ..harmonic.synthesis import seed002_design
                 for pn in _harmonic_part_names(asm):
                     fname = f"{asm['name']}_{pn}{EXT[kind]}"
                     claim(fname, label)

@@ -157,8 +157,6 @@ def body(profile, kind="spur", width=10.0, helix_angle_deg=0.0, hand="right", ga
     Raises :class:`GearError` naming the bad parameter; :class:`ToleranceError` when the
     tolerance is out of reach (too fine or too many triangles).
     """
-    from manifold3d import CrossSection, FillRule, Manifold
-
     from ..progress import stage
     prof = _check_profile(profile)
     stage("body")
@@ -571,7 +569,6 @@ def _measured_bands(knots, law, skip):
     one profile polygon), so one of each stands for all of them. The turn's sign counts: a
     band turning the other way (a herringbone's upper half) meets its quads' diagonals the
     other way round and is a different surface."""
-    K = len(knots)
     dz = np.diff(knots)
     th = law(knots)
     dth = np.diff(th)
