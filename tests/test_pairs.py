@@ -79,6 +79,7 @@ def test_seed001_internal_pairs(zp, ch, interferes):
         assert r["interference_at"]["opposite_pitch_point"]
 
 
+@pytest.mark.slow
 def test_largest_addendum_matches_seed001():
     """Seed 001: tooth difference 1 meshes 'at the limit' with c_h = 0.5; difference 2 with 0.8."""
     c1 = largest_addendum("sine", 20, 21, internal=True, precision=0.02, tolerance=1e-3)
@@ -90,6 +91,7 @@ def test_largest_addendum_matches_seed001():
     assert c3 > c2 > c1
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("z", [12, 16])
 def test_largest_addendum_other_sizes(z):
     c1 = largest_addendum("sine", z, z + 1, internal=True, precision=0.04, tolerance=1e-3)
@@ -97,6 +99,7 @@ def test_largest_addendum_other_sizes(z):
     assert 0.3 < c1 < c2 <= 1.5
 
 
+@pytest.mark.slow
 def test_tip_correction_seed001():
     """Seed 001 Fig. 20: Z=20, Z'=21, c_h=1 meshes after turning both tips to about 0.23 m
     from the pitch circle, losing much of the contact."""
@@ -137,6 +140,7 @@ def test_scp_needs_a_rolled_mate():
     assert ring.internal and not check_pair(a, ring)["interference"]
 
 
+@pytest.mark.slow
 def test_mate_ring_tool_generates_pinion():
     ring = gear3d.profile("involute", teeth=40, internal=True, tolerance=1e-4)
     pin = mate(ring, 25)
@@ -214,6 +218,7 @@ def test_cli_harmonic_alias():
     assert "48.4" in r.stdout
 
 
+@pytest.mark.slow
 def test_difference_five_meshes_difference_three_needs_less_addendum():
     """Seed 001 Fig. 11: Z = 20 in Z' = 25 with c_h = 1 meshes (the tips are (Z'-Z) m/2 - 2 c_h m
     apart opposite the pitch point); with Z'-Z = 3 (Z = 12) c_h = 1 fouls and the largest

@@ -141,7 +141,8 @@ def test_sine_ch2_is_at_undercut_onset():
     assert p.report["pointed"]
 
 
-@pytest.mark.parametrize("z,rho,x", [(8, 0.0, 0.0), (12, 0.25, 0.0), (3, 0.25, 0.5), (25, 0.38, -0.2)])
+@pytest.mark.parametrize("z,rho,x", [pytest.param(8, 0.0, 0.0, marks=pytest.mark.slow), (12, 0.25, 0.0),
+                                     pytest.param(3, 0.25, 0.5, marks=pytest.mark.slow), (25, 0.38, -0.2)])
 def test_involute_brute_force(z, rho, x):
     tol = 2e-3
     p = gear3d.profile("involute", teeth=z, module=1.0, tip_radius_coeff=rho, shift_coeff=x, tolerance=tol)
