@@ -203,3 +203,18 @@ def design_pair(teeth1: int, teeth2: int, module: float = 1.0, shift1=0.0, shift
             "working_pressure_angle_deg": alw, "center_distance_modification_coeff": y,
             "tip_shortening_coeff": k, "tip_radius1": tips[0], "tip_radius2": tips[1],
             "shift_rule": rule}
+
+
+def pair_center_distance(p1, p2, internal: bool = False):
+    """The centre distance (mm) two built profiles run at by default: the operating one of
+    their shifts for two involute wheels of one rack (pressure angle and module), else None
+    (the standard one)."""
+    if getattr(p1, "family", None) != "involute" or getattr(p2, "family", None) != "involute":
+        return None
+    q1, q2 = p1.params, p2.params
+    if abs(q1["pressure_angle_deg"] - q2["pressure_angle_deg"]) > 1e-12 or abs(p1.module - p2.module) > 1e-12 * p1.module:
+        return None
+    if q1["shift_coeff"] == 0 and q2["shift_coeff"] == 0:
+        return None
+    return operating_center_distance(p1.teeth, p2.teeth, p1.module, q1["shift_coeff"], q2["shift_coeff"],
+                                     q1["pressure_angle_deg"], bool(internal))

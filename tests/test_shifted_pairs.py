@@ -229,3 +229,19 @@ def test_cli_refusals(tmp_path, args, param):
 def test_cli_sine_auto_refused():
     r = cli("check", "pair", "sine", "--teeth", "12", "--mate-teeth", "30", "--shift-coeff", "auto")
     assert r.returncode == 2 and r.stderr.count("\n") == 1 and "shift_coeff" in r.stderr
+
+
+def test_scene_pair_runs_at_the_operating_centre_distance(tmp_path):
+    """A [[pair]] of shifted involute parts is checked at a_w unless center_distance is given."""
+    base = ('[scene]\nname = "s"\noutputs = []\n[scene.tolerances]\ncheck = 0.002\n'
+            '[[part]]\nname = "a"\nfamily = "involute"\nteeth = 12\nshift_coeff = 0.5\n'
+            '[[part]]\nname = "b"\nfamily = "involute"\nteeth = 30\n'
+            '[[pair]]\nname = "m"\nparts = ["a", "b"]\noutputs = ["json"]\n')
+    for extra, cd, bad in (("", oracle_a_w(12, 30, 1, 0.5, 0.0), False), ("center_distance = 21.0\n", 21.0, True)):
+        f = tmp_path / "s.toml"
+        f.write_text(base + extra)
+        out = tmp_path / f"out{int(bad)}"
+        r = cli("build", str(f), "--out", str(out))
+        assert r.returncode == 0, r.stderr
+        rep = json.loads((out / "m.json").read_text())
+        assert rep["center_distance"] == pytest.approx(cd, abs=1e-9) and rep["interference"] is bad

@@ -125,7 +125,8 @@ def run_write(stage, obj):
 def run_check(stage, p1, p2):
     from ..analysis.pairs import check_pair
     try:
-        return check_pair(p1, p2, internal=stage.inputs["internal"], tolerance=stage.inputs["tolerance"])
+        return check_pair(p1, p2, internal=stage.inputs["internal"], tolerance=stage.inputs["tolerance"],
+                          center_distance=_center_distance(stage, p1, p2))
     except GearError as e:
         raise _wrap(stage, e) from None
 
@@ -133,9 +134,20 @@ def run_check(stage, p1, p2):
 def run_place(stage, b1, b2):
     from ..solids import place_pair
     try:
-        return place_pair(b1, b2, internal=bool(stage.inputs["internal"]))
+        return place_pair(b1, b2, internal=bool(stage.inputs["internal"]),
+                          center_distance=_center_distance(stage, b1.profile, b2.profile))
     except GearError as e:
         raise _wrap(stage, e) from None
+
+
+def _center_distance(stage, p1, p2):
+    """The pair's ``center_distance`` (mm), else the operating one of shifted involutes
+    (:func:`gear3d.shift.pair_center_distance`), else None (standard)."""
+    cd = stage.inputs.get("center_distance")
+    if cd is not None:
+        return cd
+    from ..shift import pair_center_distance
+    return pair_center_distance(p1, p2, bool(stage.inputs["internal"] or p1.internal or p2.internal))
 
 
 def run_harmonic(stage):
@@ -241,7 +253,8 @@ def _scene_graph(scene, out_dir, only=None):
             tc = tolerance_for(scene, "check")
             p1 = profile_stage(g, scene, a, tc, f"part[{a['name']}]")
             p2 = profile_stage(g, scene, b, tc, f"part[{b['name']}]")
-            t["check"] = g.add("check", {"internal": pair["internal"], "tolerance": tc}, [p1, p2],
+            t["check"] = g.add("check", {"internal": pair["internal"], "tolerance": tc,
+                                         "center_distance": pair.get("center_distance")}, [p1, p2],
                                fn=run_check, label=f"{pair['name']}: {a['name']} x {b['name']} @ {tc:g} mm",
                                file=scene["file"], prefix=label, keys=())
         for kind in pair["outputs"]:
@@ -255,7 +268,8 @@ def _scene_graph(scene, out_dir, only=None):
                 tol = tolerance_for(scene, kind)
                 b1 = body_stage(g, scene, a, tol, f"part[{a['name']}]", by)
                 b2 = body_stage(g, scene, b, tol, f"part[{b['name']}]", by)
-                src = g.add("place", {"internal": pair["internal"]}, [b1, b2], fn=run_place,
+                src = g.add("place", {"internal": pair["internal"],
+                                      "center_distance": pair.get("center_distance")}, [b1, b2], fn=run_place,
                             label=f"{pair['name']} @ {tol:g} mm", file=scene["file"], prefix=label, keys=())
                 inputs = {"kind": kind, "file": fname, "tolerance": tol, "names": pair["parts"]}
             t[kind] = g.add("write", inputs, [src], fn=run_write, label=fname, phase=1,
@@ -389,7 +403,8 @@ def _report(scene, g, owners, res) -> dict:
         d = {"outputs": {k: res[v] for k, v in t.items() if k != "check"}}
         if "check" in t:
             c = g.results[t["check"]]
-            d["check"] = {k: c[k] for k in ("internal", "center_distance", "teeth", "ratio", "tolerance",
+            d["check"] = {k: c[k] for k in ("internal", "center_distance", "working_pressure_angle_deg",
+                                              "teeth", "ratio", "tolerance",
                                               "interference", "max_penetration", "min_gap", "backlash",
                                               "tip_root_clearance", "contact_ratio", "transmission_error_pp")
                           if k in c}

@@ -35,6 +35,7 @@ Scene (``[scene]``, ``[[part]]``, ``[[pair]]``, ``[[assembly]]``)::
     [[pair]]                       # placed (place_pair) and checked (check_pair)
     name = "mesh"
     parts = ["pinion", "wheel"]
+    # center_distance = 21.46      # mm; default: the operating one of shifted involutes
     outputs = ["3mf", "json"]      # 3D kinds: the placed bodies; json: the check report
 
     [[assembly]]                   # harmonic drives (seed 002)
@@ -383,7 +384,7 @@ def check_part(file, key, raw, *, default_outputs, names=None, require_name=True
 # -------------------------------------------------------------------------- scene
 
 SCENE_KEYS = ("name", "description", "outputs", "tolerance", "tolerances", "options", "max_triangles")
-PAIR_KEYS = ("name", "parts", "internal", "check", "outputs")
+PAIR_KEYS = ("name", "parts", "internal", "center_distance", "check", "outputs")
 ASSEMBLY_KEYS = ("name", "kind", "design", "tooth", "bearing_thickness", "deformed", "outputs")
 
 
@@ -483,7 +484,10 @@ def _pair(file, i, rp, by, seen):
     internal = rp.get("internal", None)
     if internal is not None:
         _bool(file, f"{label}.internal", internal)
-    return {"name": name, "parts": list(ps), "internal": internal,
+    cd = rp.get("center_distance", None)
+    if cd is not None:
+        cd = _number(file, f"{label}.center_distance", cd, 0, 1e6, lo_open=True, unit="mm")
+    return {"name": name, "parts": list(ps), "internal": internal, "center_distance": cd,
             "check": _bool(file, f"{label}.check", rp.get("check", True)), "outputs": outs}
 
 
