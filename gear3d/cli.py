@@ -18,10 +18,6 @@ import signal
 import sys
 
 from . import __version__
-from .cliargs import number
-
-#: ``number`` stays importable from here for command modules not yet moved to gear3d.cliargs
-__all__ = ["main", "build_parser", "number", "COMMANDS", "SIGNAL_EXIT"]
 
 # one BLAS thread: gear3d's arrays are small, and idle BLAS threads only add CPU time to
 # every process (set before numpy is first imported; a user's own setting wins)
