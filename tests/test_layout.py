@@ -132,10 +132,40 @@ def test_no_import_cycles():
     assert not cycles, "import cycles: " + " | ".join(_describe(g, c) for c in cycles)
 
 
+def _private(name) -> bool:
+    return bool(name) and name.startswith("_") and not name.startswith("__")
+
+
+def _module_attribute_uses(module: str):
+    """(target module, attribute) for ``alias.attribute`` where ``alias`` names a gear3d
+    module imported into ``module`` (``from . import budget as b`` ... ``b._x``)."""
+    path, package = MODULES[module]
+    here = module if package else module.rpartition(".")[0]
+    tree = ast.parse(path.read_text(encoding="utf-8"))
+    aliases = {}
+    for node in ast.walk(tree):
+        if isinstance(node, ast.ImportFrom) and (node.level or (node.module or "").startswith("gear3d")):
+            base = here.split(".")
+            source = node.module or ""
+            if node.level:
+                source = ".".join(base[:len(base) - (node.level - 1)] + ([node.module] if node.module else []))
+            for alias in node.names:
+                if f"{source}.{alias.name}" in MODULES:
+                    aliases[alias.asname or alias.name] = f"{source}.{alias.name}"
+        elif isinstance(node, ast.Import):
+            for alias in node.names:
+                if alias.asname and alias.name in MODULES:
+                    aliases[alias.asname] = alias.name
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Attribute) and isinstance(node.value, ast.Name) and node.value.id in aliases:
+            yield aliases[node.value.id], node.attr
+
+
 def test_no_private_names_across_modules():
     bad = [f"{m} imports {name} from {target}"
-           for m in MODULES for target, name in _imports(m)
-           if name and name.startswith("_") and not name.startswith("__") and target != m]
+           for m in MODULES for target, name in _imports(m) if _private(name) and target != m]
+    bad += [f"{m} uses {target}.{attr}"
+            for m in MODULES for target, attr in _module_attribute_uses(m) if _private(attr) and target != m]
     assert not bad, "\n".join(bad)
 
 
