@@ -85,10 +85,7 @@ class Terminated(BaseException):
 
 
 def _remove_live_temps():
-    try:
-        from .export import remove_live_temps
-    except Exception:  # pragma: no cover - the exporters failed to import
-        return
+    from .export import remove_live_temps
     remove_live_temps()
 
 

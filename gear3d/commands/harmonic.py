@@ -132,15 +132,8 @@ def run(args) -> int:
         sys.stdout.write(design.table() + "\n")
         return 0
     if act == "build":
-        try:
-            from ..export import write
-        except ModuleNotFoundError as e:
-            if e.name and e.name.startswith("gear3d.export"):
-                raise GearError("output", args.output, "a folder, once gear3d.export is installed",
-                                "the exporters are not available") from None
-            raise
+        from ..export import make_out_dir, remove_dirs, write
         from ..harmonic.parts import assembly, build_parts
-        from ..export import make_out_dir, remove_dirs
         out = args.output
         parts = build_parts(design, tooth=args.tooth, tolerance=args.tolerance,
                             bearing_thickness=args.bearing_thickness)

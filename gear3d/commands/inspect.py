@@ -137,10 +137,7 @@ def _atomic(path: str, param: str):
     completes and is removed otherwise: no partial or temporary file is left. While it
     lives it is listed where the CLI's signal handler looks (``gear3d.export.LIVE_TEMPS``)."""
     from ..errors import GearError
-    try:
-        from ..export import LIVE_TEMPS
-    except ImportError:
-        LIVE_TEMPS = set()
+    from ..export import LIVE_TEMPS
     full = os.path.abspath(path)
     try:
         fd, tmp = tempfile.mkstemp(prefix="." + os.path.basename(full)[:100] + ".",

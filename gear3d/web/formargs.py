@@ -93,12 +93,8 @@ def body_kwargs(form: dict, output=None) -> tuple:
 
 def profile_tolerance(body_tol: float, kind: str, offset: bool) -> float:
     """The tolerance (mm) the CLI builds a body's profile at: the core's planned share of the
-    body tolerance (``gear3d.solids.body.profile_tolerance``), or all of it where the core
-    has no such plan."""
-    try:
-        from ..solids.body import profile_tolerance as share
-    except ImportError:
-        return body_tol
+    body tolerance (``gear3d.solids.body.profile_tolerance``)."""
+    from ..solids.body import profile_tolerance as share
     return share(body_tol, kind, offset)
 
 
