@@ -132,3 +132,36 @@ class BodyReport(Report):
     features: dict
     feature_volumes: dict
     extra: dict = field(default_factory=dict)
+
+
+@dataclass(eq=False, repr=False)
+class PairReport(Report):
+    """What :func:`gear3d.analysis.pairs.check_pair` found rolling two wheels through a
+    tooth cycle (mm, degrees; clearances are arcs on the second wheel's pitch circle)."""
+    internal: bool
+    center_distance: float
+    working_pressure_angle_deg: float | None
+    teeth: list
+    ratio: float
+    tolerance: float
+    steps: int
+    step_deg: float
+    interference: bool
+    #: deepest overlap of the two wheels, and where (phase, point, radii)
+    max_penetration: float
+    interference_at: dict | None
+    min_gap: float
+    drive_flank_clearance: float | None
+    coast_flank_clearance: float | None
+    min_clearance: float | None
+    backlash: float | None
+    tip_root_clearance: dict
+    contact_ratio: float | None
+    transmission_error_pp: float | None
+    contact_points: int
+    path_of_contact: list
+    path_length: float
+    #: specific sliding at the two ends of the path of contact
+    sliding_start: dict | None
+    sliding_end: dict | None
+    extra: dict = field(default_factory=dict)

@@ -16,6 +16,7 @@ import math
 import numpy as np
 
 from ..errors import GearError, check_number
+from ..reports import PairReport
 
 
 def _rot(p, a):
@@ -234,7 +235,7 @@ def check_pair(p1, p2, internal=None, tolerance=None, center_distance=None, cycl
     # transmission error: the drive-side play turns wheel 2 through (signed, mm on r2);
     # meaningful while the pair stays in contact (contact ratio >= 1)
     te = drive
-    rep = {
+    rep = PairReport(**{
         "internal": internal,
         "center_distance": a,
         "working_pressure_angle_deg": _working_angle(p1, p2, a, internal),
@@ -260,7 +261,7 @@ def check_pair(p1, p2, internal=None, tolerance=None, center_distance=None, cycl
         "path_length": float(sum(np.hypot(*(track[i + 1][3] - track[i][3])) for i in range(len(track) - 1))),
         "sliding_start": sliding[0],
         "sliding_end": sliding[1],
-    }
+    })
     return rep
 
 

@@ -1066,7 +1066,7 @@ def write(obj, path, **opts):
         shapes.append(s)
         infos.append(info)
         rep = getattr(b, "report", None)
-        if isinstance(rep, dict):
+        if rep is not None and hasattr(rep, "__setitem__"):   # dict or BodyReport
             rep["brep"] = {k: v for k, v in info.items() if k != "seconds"}
     if len(shapes) == 1:
         shape = shapes[0]

@@ -14,6 +14,7 @@ from __future__ import annotations
 import hashlib
 import json
 import os
+from collections.abc import Mapping
 
 from ..errors import GearError
 from .graph import Graph
@@ -103,7 +104,7 @@ def run_write(stage, obj):
         with atomic_path(path) as tmp:
             r = write_dxf(obj, tmp, tolerance=i["tolerance"], **i.get("options", {}))
         extra = {"max_error": r["max_error"], "arcs": r.get("arcs"), "lines": r.get("lines")}
-    elif kind == "json" and isinstance(obj, dict):
+    elif kind == "json" and isinstance(obj, Mapping):      # a pair's report (dict or PairReport)
         write_json(path, obj)
     else:
         if kind in MESH_KINDS:
