@@ -196,7 +196,7 @@ class ExactBoundary:
             piece, copy, chord = self._owner[j].T
             qc = rotate(q0[rows], -copy * self.pitch)       # in the chord's own copy frame
             dist = np.full(len(j), np.inf)
-            for i in np.unique(piece):
+            for i in sorted(set(piece.tolist())):
                 sel = np.nonzero(piece == i)[0]
                 pc = self.pieces[i]
                 d_i, foot, t_i = self._newton(pc, qc[sel], chord[sel], sj[sel])

@@ -20,6 +20,30 @@ def check_points(points) -> np.ndarray:
     return q
 
 
+def unique_sorted(a) -> np.ndarray:
+    """The distinct values of an ascending 1-D array. (``np.unique`` sorts again and, in
+    numpy 2, imports ``numpy.ma`` on first use: about 20 ms of every CLI run.)"""
+    a = np.asarray(a)
+    if len(a) < 2:
+        return a.copy()
+    keep = np.empty(len(a), bool)
+    keep[0] = True
+    np.not_equal(a[1:], a[:-1], out=keep[1:])
+    return a[keep]
+
+
+def first_unique_rows(a) -> np.ndarray:
+    """Ascending indices of the first occurrence of each distinct row of a 2-D array."""
+    a = np.asarray(a)
+    if len(a) == 0:
+        return np.zeros(0, int)
+    order = np.lexsort(a.T[::-1])          # stable: equal rows keep their index order
+    s = a[order]
+    new = np.ones(len(a), bool)
+    new[1:] = np.any(s[1:] != s[:-1], axis=1)
+    return np.sort(order[new])
+
+
 def rotate(pts, ang) -> np.ndarray:
     """Points (..., 2) turned counter-clockwise by ``ang`` (rad; a scalar or an array that
     broadcasts against the points' leading shape)."""

@@ -16,7 +16,7 @@ import numpy as np
 from .envelope import PRUNE_SHARE, RIM_SHARE, circle_loop, pattern, signed_area, trim
 from .errors import GearError, check_number
 from .corners import chords_near, corner_angle, exact_crossing, new_vertices, refine
-from .geometry import check_points, circle_crossings, point_segment_distance, segment_foot
+from .geometry import check_points, circle_crossings, point_segment_distance, segment_foot, unique_sorted
 from .reports import ProfileReport
 from .tessellate import chord_deviation, tessellate
 
@@ -449,8 +449,8 @@ def _trim_and_refine(samples: _Samples, nraw: int, teeth: int, internal: bool, r
                     near += [(pi_, j, k) for j, k in ch]
                     idx = [j for j, _ in ch]
                     if idx:
-                        sub = np.unique(np.clip(np.concatenate([np.array(idx) + o for o in (-1, 0, 1)]),
-                                                0, len(samples.ts[pi_]) - 2))
+                        sub = np.array(sorted({min(max(j + o, 0), len(samples.ts[pi_]) - 2)
+                                               for j in idx for o in (-1, 0, 1)}))
                         if (samples.devs[pi_][sub] > target).any() and not final:
                             samples.refine(pi_, idx, target)
                             changed = True
@@ -588,7 +588,7 @@ def _with_transitions(piece, t):
         if np.all(b - a <= 4e-16 * np.maximum(1.0, np.abs(a))):
             break
     extra = np.where(ga >= 0, a, b)          # the sample on the regular side
-    return np.unique(np.concatenate([t, extra]))
+    return unique_sorted(np.sort(np.concatenate([t, extra])))
 
 
 def _physical(piece, t):

@@ -13,7 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .errors import ToleranceError
-from .geometry import point_segment_distance
+from .geometry import point_segment_distance, unique_sorted
 
 #: interior parameters (fractions of a chord's t-interval) used to measure a chord
 _PROBE = np.array([0.0625, 0.1875, 0.3125, 0.4375, 0.5, 0.5625, 0.6875, 0.8125, 0.9375])
@@ -58,7 +58,7 @@ def _equal_sag_params(f, tol: float, n0: int) -> np.ndarray:
     n = max(int(np.ceil(cum[-1])), 1)
     levels = np.linspace(0.0, cum[-1], n + 1)
     tt = np.interp(levels, cum, t)
-    return np.unique(np.concatenate([[0.0], tt, [1.0]]))
+    return unique_sorted(np.concatenate([[0.0], np.clip(tt, 0.0, 1.0), [1.0]]))
 
 
 @dataclass

@@ -34,7 +34,7 @@ import math
 import numpy as np
 
 from ..envelope import circle_loop
-from ..geometry import rotate
+from ..geometry import first_unique_rows, rotate
 from ..errors import GearError, ToleranceError, check_choice, check_number
 from .features import (apply_features, chamfer_vectors, offset_loops,
                        plan_features, subdivide)
@@ -576,8 +576,7 @@ def _measured_bands(knots, law, skip):
     d2 = np.abs(law.d2theta(mid))
     scale = max(float(np.abs(dz).max()), 1e-300)
     sig = np.stack([np.round(dz / scale, 9), np.round(dth, 12), np.round(d2, 9)], axis=1)
-    _, first = np.unique(sig, axis=0, return_index=True)
-    idx = sorted(set(first.tolist()))
+    idx = first_unique_rows(sig).tolist()
     out = []
     for k in idx:
         a, b = knots[k], knots[k + 1]
@@ -629,7 +628,7 @@ def measure_mesh(V, F, law, prof, knots, delta=0.0, skip=(), min_radius=0.0):
     # points that turn back onto the same place (a spur wall: the quads' two triangles and
     # their neighbours share chord points) are measured once; the representative of a
     # group lies within 1e-10 mm of the others
-    _, first = np.unique(np.round(xy, 10), axis=0, return_index=True)
+    first = first_unique_rows(np.round(xy, 10))
     err = np.abs(prof.exact_distance(xy[first]) - abs(delta)) + (1e-10 if len(first) < len(xy) else 0.0)
     heights = sorted({float(knots[k]) for k in bands} | {float(knots[k + 1]) for k in bands})
     return max(float(err.max()), float(prof.report["max_error"])), heights
