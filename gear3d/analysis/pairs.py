@@ -16,12 +16,8 @@ import math
 import numpy as np
 
 from ..errors import GearError, check_number
+from ..geometry import rotate, signed_area
 from ..reports import PairReport
-
-
-def _rot(p, a):
-    c, s = math.cos(a), math.sin(a)
-    return np.stack([c * p[..., 0] - s * p[..., 1], s * p[..., 0] + c * p[..., 1]], axis=-1)
 
 
 class Placed:
@@ -34,8 +30,8 @@ class Placed:
 
     def polygon(self, ang):
         import shapely
-        ls = [_rot(l, ang) + self.c for l in self.loops]
-        outer = max(ls, key=lambda l: abs(_area(l)))
+        ls = [rotate(l, ang) + self.c for l in self.loops]
+        outer = max(ls, key=lambda l: abs(signed_area(l)))
         holes = [l for l in ls if l is not outer]
         return shapely.Polygon(outer, holes)
 
@@ -45,7 +41,7 @@ def _valid_loops(loops):
     within tolerance of a cusp can have): unchanged when valid, else repaired once with
     ``make_valid`` (largest polygon kept; rotations keep it valid)."""
     import shapely
-    outer = max(loops, key=lambda l: abs(_area(l)))
+    outer = max(loops, key=lambda l: abs(signed_area(l)))
     poly = shapely.Polygon(outer, [l for l in loops if l is not outer])
     if poly.is_valid:
         return loops
@@ -58,11 +54,6 @@ def _valid_loops(loops):
     best = max(parts, key=lambda g: g.area)
     return [np.asarray(best.exterior.coords, float)[:-1]] + \
         [np.asarray(r.coords, float)[:-1] for r in best.interiors]
-
-
-def _area(l):
-    x, y = l[:, 0], l[:, 1]
-    return 0.5 * float(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1)))
 
 
 def _penetration(A, B):
@@ -166,6 +157,7 @@ def check_pair(p1, p2, internal=None, tolerance=None, center_distance=None, cycl
     tooth0_contact = []
     track = []   # (phi1, contact point in frame 1, in frame 2, in the fixed frame)
     t0_poly = _tooth0_region(p1)
+    b_lo, b_hi = sorted((float(p2.report["tip_radius"]), float(p2.report["root_radius"])))
     for ph in phis:
         PA = A.polygon(ph)
         PB = B.polygon(phase2 + ratio * ph)
@@ -175,6 +167,9 @@ def check_pair(p1, p2, internal=None, tolerance=None, center_distance=None, cycl
         gap_min = min(gap_min, gap)
         # contact points: boundary vertices of A within contact_tol of B's boundary
         bA = shapely.get_coordinates(PA.boundary)
+        # only A's points in the annulus of B's teeth (about B's centre) can touch them
+        rc = np.hypot(bA[:, 0] - c2[0], bA[:, 1] - c2[1])
+        bA = bA[(rc >= b_lo - contact_tol) & (rc <= b_hi + contact_tol)]
         near = bA[np.asarray(shapely.dwithin(shapely.points(bA), PB.boundary, contact_tol))]
         contact_pts.append(near)
         # tooth 0 of wheel 1 (in its own frame: angle within half a pitch of 0)
@@ -185,15 +180,15 @@ def check_pair(p1, p2, internal=None, tolerance=None, center_distance=None, cycl
         if touching:
             line = shapely.shortest_line(T0, PB.boundary)
             cp = np.asarray(line.coords).mean(axis=0)
-            track.append((ph, _rot(cp[None], -ph)[0], _rot((cp - np.asarray(c2))[None], -(phase2 + ratio * ph))[0], cp))
+            track.append((ph, rotate(cp[None], -ph)[0], rotate((cp - np.asarray(c2))[None], -(phase2 + ratio * ph))[0], cp))
     # inscribed polygons bulge by up to their tolerance at concave flanks: a penetration
     # counts as interference once it exceeds what the two tolerances can explain
     interference = pen_max > 2 * tol
     where = None
     if pen_at is not None and pen_at[1] is not None:
         ph, pt = pen_at
-        w1 = _rot(np.asarray(pt)[None, :], -ph)[0]
-        w2 = _rot((np.asarray(pt) - np.asarray(c2))[None, :], -(phase2 + ratio * ph))[0]
+        w1 = rotate(np.asarray(pt)[None, :], -ph)[0]
+        w2 = rotate((np.asarray(pt) - np.asarray(c2))[None, :], -(phase2 + ratio * ph))[0]
         where = {"phi1_deg": math.degrees(ph), "point": [float(pt[0]), float(pt[1])],
                  "radius1": float(np.hypot(*w1)), "angle1_deg": math.degrees(math.atan2(w1[1], w1[0])),
                  "radius2": float(np.hypot(*w2)), "angle2_deg": math.degrees(math.atan2(w2[1], w2[0])),
@@ -385,12 +380,12 @@ class _ContactProbe:
         if not hasattr(self, "_els"):
             self._els = tool_elements(p1)
         w = math.pi / p1.teeth if p1.teeth > 1 else math.pi
-        I1 = _rot(np.array([[self.r1w, 0.0]]), -ph)[0]
+        I1 = rotate(np.array([[self.r1w, 0.0]]), -ph)[0]
         PB = self.B.polygon(self.phase2 + self.ratio * ph)
         for q in _exact_contacts(self._els, I1):
             a = math.atan2(q[1], q[0])
             if 0 <= a <= w:
-                f = _rot(q[None], ph)[0]
+                f = rotate(q[None], ph)[0]
                 if shapely.distance(shapely.Point(*f), PB.boundary) <= self.tol:
                     return True
         return False
@@ -422,19 +417,19 @@ class _ContactProbe:
         import shapely
         pts = []
         for x in (ph, ph + d):
-            I1 = _rot(np.array([[r1, 0.0]]), -x)[0]
+            I1 = rotate(np.array([[r1, 0.0]]), -x)[0]
             PB = self.B.polygon(self.phase2 + self.ratio * x)
             cands = _exact_contacts(self._els, I1)
             if not cands:
                 return None
-            fixed = [_rot(q[None], x)[0] for q in cands]
+            fixed = [rotate(q[None], x)[0] for q in cands]
             # the root that lies on wheel 2 (within the contact band) on the drive side
             dist = [float(shapely.distance(shapely.Point(*f), PB.boundary)) for f in fixed]
             best = int(np.argmin(dist))
             if dist[best] > self.tol:
                 return None
             cp = fixed[best]
-            pts.append((_rot(cp[None], -x)[0], _rot((cp - self.c2)[None], -(self.phase2 + self.ratio * x))[0]))
+            pts.append((rotate(cp[None], -x)[0], rotate((cp - self.c2)[None], -(self.phase2 + self.ratio * x))[0]))
         ds1 = float(np.hypot(*(pts[1][0] - pts[0][0])))
         ds2 = float(np.hypot(*(pts[1][1] - pts[0][1])))
         if ds1 <= 0 or ds2 <= 0:
