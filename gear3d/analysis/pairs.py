@@ -170,12 +170,16 @@ def check_pair(p1, p2, internal=None, tolerance=None, center_distance=None, cycl
         # only A's points in the annulus of B's teeth (about B's centre) can touch them
         rc = np.hypot(bA[:, 0] - c2[0], bA[:, 1] - c2[1])
         bA = bA[(rc >= b_lo - contact_tol) & (rc <= b_hi + contact_tol)]
-        near = bA[np.asarray(shapely.dwithin(shapely.points(bA), PB.boundary, contact_tol))]
+        # (an R-tree of A's points queried with B's boundary: ~10x faster than testing
+        # every point against the whole boundary)
+        hit = np.zeros(len(bA), bool)
+        hit[shapely.STRtree(shapely.points(bA)).query(PB.boundary, predicate="dwithin", distance=contact_tol)] = True
+        near = bA[hit]
         contact_pts.append(near)
         # tooth 0 of wheel 1 (in its own frame: angle within half a pitch of 0)
         # tooth 0's drive flank (wheel 1 turns CCW: the leading flank, angle 0..pitch/2)
         T0 = shapely.intersection(PA.boundary, shapely.affinity.rotate(t0_poly, ph, origin=(0, 0), use_radians=True))
-        touching = (not T0.is_empty) and float(shapely.distance(T0, PB.boundary)) <= contact_tol
+        touching = (not T0.is_empty) and bool(shapely.dwithin(T0, PB.boundary, contact_tol))
         tooth0_contact.append(touching)
         if touching:
             line = shapely.shortest_line(T0, PB.boundary)
@@ -367,7 +371,7 @@ class _ContactProbe:
         import shapely.affinity
         PA, PB = self.A.polygon(ph), self.B.polygon(self.phase2 + self.ratio * ph)
         T0 = shapely.intersection(PA.boundary, shapely.affinity.rotate(self.wedge, ph, origin=(0, 0), use_radians=True))
-        if T0.is_empty or shapely.distance(T0, PB.boundary) > self.tol:
+        if T0.is_empty or not shapely.dwithin(T0, PB.boundary, self.tol):
             return None
         cp = np.asarray(shapely.shortest_line(T0, PB.boundary).coords).mean(axis=0)
         return cp
@@ -442,7 +446,8 @@ def _exact_contacts(els, I1, n=400):
     """All points of the exact elements whose normal passes through ``I1`` (tool frame).
 
     The sign changes of (p - I1) x n on ``n`` samples bracket the contacts; all brackets of
-    an element are narrowed together, 31 interior points per round, to double precision."""
+    an element are narrowed together, 31 interior points per round, to 1e-13 in the
+    parameter (a contact point then moves by far less than a nanometre)."""
     out = []
     frac = np.arange(1, 32) / 32
     for pn, _smooth in els:
@@ -454,7 +459,7 @@ def _exact_contacts(els, I1, n=400):
             continue
         a, b, fa = t[j], t[j + 1], f[j]
         rows = np.arange(len(j))
-        for _ in range(11):                        # 32^11 > 2^52 x 400
+        for _ in range(8):                         # (1/399) / 32^8 < 1e-13
             x = a[:, None] + (b - a)[:, None] * frac[None, :]
             px, nx = pn(x.ravel())
             fx = ((px[:, 0] - I1[0]) * nx[:, 1] - (px[:, 1] - I1[1]) * nx[:, 0]).reshape(x.shape)
@@ -465,7 +470,7 @@ def _exact_contacts(els, I1, n=400):
             fa = np.where(has, fx[rows, np.maximum(k, 0)], fa)
             b = np.where(k + 1 < len(frac), x[rows, np.minimum(k + 1, len(frac) - 1)], b)
             a = a_new
-            if np.all(b - a <= 1e-16):
+            if np.all(b - a <= 1e-13):
                 break
         out.extend(pn(0.5 * (a + b))[0])
     return out
