@@ -84,24 +84,41 @@ def chords_near(q: np.ndarray, pts_list, teeth: int, dist: float):
     return out
 
 
+#: new samples one corner's refinement may add to a piece: a curve whose chords stop
+#: converging (an evaluator that is not smooth there) is left to the measured corner error
+REFINE_MAX_NEW = 4096
+
+
 def refine(f, t: np.ndarray, pts: np.ndarray, dev: np.ndarray, chords, target: float, max_iter: int = 40):
     """Bisect the chords ``chords`` (indices into ``t``) and their neighbours until each of
     them deviates at most ``target`` (mm) from the exact curve ``f``.
 
-    ``pts``/``dev``: the samples' points (mm) and every chord's measured deviation (mm);
-    returns the new ``(t, pts, dev)``, each new chord measured."""
-    lo = max(min(chords) - 1, 0)
-    hi = min(max(chords) + 2, len(t) - 1)
-    ta, tb = t[lo], t[hi]
+    Each run of neighbouring chord indices is refined in its own parameter window (chords
+    near a corner can come from far apart on one piece, in different tooth copies: one
+    window spanning them would refine the whole piece). ``pts``/``dev``: the samples'
+    points (mm) and every chord's measured deviation (mm); returns the new
+    ``(t, pts, dev, converged)``, each new chord measured; ``converged`` is False when the
+    chords stopped getting closer to the curve within :data:`REFINE_MAX_NEW` new samples."""
+    idx = sorted(set(int(c) for c in chords))
+    n0 = len(t)
+    runs, start = [], idx[0]
+    for a, b in zip(idx, idx[1:] + [None]):
+        if b is None or b > a + 3:
+            runs.append((t[max(start - 1, 0)], t[min(a + 2, len(t) - 1)]))
+            start = b
     for _ in range(max_iter):
-        win = (t[:-1] >= ta) & (t[1:] <= tb)
+        win = np.zeros(len(t) - 1, bool)
+        for ta, tb in runs:
+            win |= (t[:-1] >= ta) & (t[1:] <= tb)
         bad = win & (dev > target)
         if not bad.any():
             break
-        if np.any(np.diff(t)[bad] < 1e-15) or len(t) > MAX_VERTICES:
+        if len(t) > min(MAX_VERTICES, n0 + REFINE_MAX_NEW):
+            return t, pts, dev, False
+        if np.any(np.diff(t)[bad] < 1e-15):
             break      # the measured corner error then tells (the builder refuses if > tol)
         t, pts, dev = split_chords(f, t, pts, dev, np.nonzero(bad)[0])
-    return t, pts, dev
+    return t, pts, dev, True
 
 
 def exact_crossing(fa, ta0, ta1, fb, tb0, tb1, rot_b: float, q0: np.ndarray, iters: int = 30,

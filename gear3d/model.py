@@ -222,9 +222,16 @@ class _Samples:
         self.pts.append(tess.points)
         self.devs.append(tess.deviation)
 
-    def refine(self, i: int, chords, target: float):
-        self.ts[i], self.pts[i], self.devs[i] = refine(self.fs[i], self.ts[i], self.pts[i], self.devs[i],
-                                                       chords, target)
+    def refine(self, i: int, chords, target: float, tol: float):
+        """Tighten piece ``i``'s chords ``chords`` to ``target`` (mm); ToleranceError naming
+        ``tol`` when they stop converging (the curve is not smooth enough there to certify)."""
+        self.ts[i], self.pts[i], self.devs[i], ok = refine(self.fs[i], self.ts[i], self.pts[i], self.devs[i],
+                                                           chords, target)
+        if not ok:
+            from .errors import ToleranceError
+            raise ToleranceError("tolerance", tol, "a tolerance at which every trimmed corner can be certified",
+                                 f"near a trimmed corner the chords stop converging to the exact curve "
+                                 f"at {target:.2g} mm: its evaluator is not smooth at that scale")
 
     def max_deviation(self) -> float:
         """The largest measured chord deviation (mm): every chord was measured when made."""
@@ -419,8 +426,11 @@ def _trim_and_refine(samples: _Samples, nraw: int, teeth: int, internal: bool, r
     corners, loops, moved, corner_cuts, corner_errs = [], [], 0.0, {}, []
     shrink = 1.0
     fs = samples.fs
+    from . import budget as _budget
     for _attempt in range(CORNER_ATTEMPTS):
         for it in range(REFINE_PASSES):
+            # refinement adds vertices: the resource budget again, before patterning
+            _budget.check_profile(teeth * sum(len(t) - 1 for t in samples.ts), "tolerance", tol)
             chain, _ = _chain(fs[:nraw], samples.ts[:nraw], samples.pts[:nraw])
             raw = pattern(chain, teeth)
             if clip_binding:
@@ -452,7 +462,7 @@ def _trim_and_refine(samples: _Samples, nraw: int, teeth: int, internal: bool, r
                         sub = np.array(sorted({min(max(j + o, 0), len(samples.ts[pi_]) - 2)
                                                for j in idx for o in (-1, 0, 1)}))
                         if (samples.devs[pi_][sub] > target).any() and not final:
-                            samples.refine(pi_, idx, target)
+                            samples.refine(pi_, idx, target, tol)
                             changed = True
                 corners.append((q, theta, near))
             if not changed:
