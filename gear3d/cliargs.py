@@ -34,3 +34,18 @@ def number(kind: str = "float", lo=None, hi=None, *, lo_open=False, hi_open=Fals
         return v
     parse.__name__ = "integer" if integer else "number"
     return parse
+
+
+def number_or_auto(*args, **kw):
+    """An argparse ``type=``: the word ``auto`` or a number (:func:`number`)."""
+    num = number(*args, **kw)
+
+    def parse(text: str):
+        if text == "auto":
+            return "auto"
+        try:
+            return num(text)
+        except argparse.ArgumentTypeError as e:
+            raise argparse.ArgumentTypeError(f"{e} or auto") from None
+    parse.__name__ = "number_or_auto"
+    return parse

@@ -245,3 +245,32 @@ def test_scene_pair_runs_at_the_operating_centre_distance(tmp_path):
         assert r.returncode == 0, r.stderr
         rep = json.loads((out / "m.json").read_text())
         assert rep["center_distance"] == pytest.approx(cd, abs=1e-9) and rep["interference"] is bad
+
+
+@pytest.mark.parametrize("z,alpha,rho", [(12, 20.0, 0.25), (9, 25.0, 0.0), (15, 20.0, 0.38)])
+def test_single_gear_auto_shift_is_the_undercut_limit(z, alpha, rho):
+    """``shift_coeff="auto"``: the textbook limit x = h_f - rho (1 - sin a) - (z/2) sin^2 a
+    (rounded up to 1e-4); the gear built there is free of undercut, a little less is not."""
+    a = math.radians(alpha)
+    want = 1.25 - rho * (1 - math.sin(a)) - 0.5 * z * math.sin(a) ** 2
+    p = gear3d.profile("involute", teeth=z, pressure_angle_deg=alpha, tip_radius_coeff=rho,
+                       shift_coeff="auto", tolerance=1e-3)
+    assert want <= p.params["shift_coeff"] <= want + 1e-4 + 1e-12
+    assert not p.report["undercut"]
+    q = gear3d.profile("involute", teeth=z, pressure_angle_deg=alpha, tip_radius_coeff=rho,
+                       shift_coeff=want - 0.01, tolerance=1e-3)
+    assert q.report["undercut"]
+
+
+def test_auto_shift_cli_and_refusals(tmp_path):
+    out = tmp_path / "g.json"
+    r = subprocess.run([sys.executable, "-m", "gear3d.cli", "profile", "involute", "--teeth", "12",
+                        "--shift-coeff", "auto", "-o", str(out)], capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    assert json.loads(out.read_text())["params"]["shift_coeff"] == pytest.approx(0.3837, abs=1e-4)
+    for fam, extra in (("involute", ["--internal"]), ("sine", [])):
+        bad = tmp_path / f"{fam}.json"
+        r = subprocess.run([sys.executable, "-m", "gear3d.cli", "profile", fam, "--teeth", "40", *extra,
+                            "--shift-coeff", "auto", "-o", str(bad)], capture_output=True, text=True)
+        assert r.returncode == 2 and len(r.stderr.strip().splitlines()) == 1 and "shift_coeff" in r.stderr
+        assert not bad.exists()

@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import sys
 
-from ..cliargs import number
+from ..cliargs import number, number_or_auto
 from .profile import add_profile_flags, family_params
 
 #: families whose builder takes ``center_distance`` itself (not a pair placement)
@@ -26,22 +26,6 @@ CENTER_DISTANCE_FAMILIES = ("ec-pinion", "ec-wheel")
 
 #: bisection precision (in modules) accepted by --precision
 PRECISION_RANGE = (1e-4, 0.5)
-
-
-def number_or_auto(*args, **kw):
-    """An argparse ``type=``: the word ``auto`` or a number (:func:`gear3d.cliargs.number`)."""
-    import argparse
-    num = number(*args, **kw)
-
-    def parse(text: str):
-        if text == "auto":
-            return "auto"
-        try:
-            return num(text)
-        except argparse.ArgumentTypeError as e:
-            raise argparse.ArgumentTypeError(f"{e} or auto") from None
-    parse.__name__ = "number_or_auto"
-    return parse
 
 
 def add_pair_flags(c):

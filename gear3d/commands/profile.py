@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import sys
 
-from ..cliargs import number
+from ..cliargs import number, number_or_auto
 
 #: mm: the default tolerance of mesh outputs (printing), and of everything else (DXF, EDM)
 MESH_TOLERANCE = 0.01
@@ -23,7 +23,8 @@ PROFILE_FLAGS = [
     ("--module", number("float", 0, 1000, lo_open=True, unit="mm"), "module m (mm)"),
     ("--addendum-coeff", FLOAT, "addendum coefficient (x m)"),
     ("--dedendum-coeff", FLOAT, "dedendum coefficient (x m)"),
-    ("--shift-coeff", FLOAT, "profile shift / rack displacement coefficient (x m)"),
+    ("--shift-coeff", number_or_auto("float"), "profile shift / rack displacement coefficient (x m); "
+                                               "auto (involute): the smallest shift free of undercut with the actual tool"),
     ("--pressure-angle", FLOAT, "pressure angle (deg)", "pressure_angle_deg"),
     ("--tip-radius-coeff", FLOAT, "tool tip radius coefficient (x m), 0 = sharp"),
     ("--backlash", FLOAT, "backlash as arc thickness removed at the pitch circle (mm)"),

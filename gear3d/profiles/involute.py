@@ -18,7 +18,8 @@ def involute(teeth=20, module=1.0, pressure_angle_deg=20.0, addendum_coeff=1.0,
 
     ``addendum_coeff``/``dedendum_coeff``: gear addendum/dedendum in modules; the rack tool
     has tip radius ``tip_radius_coeff*m`` (0 = sharp). ``shift_coeff``: profile shift x
-    (positive = thicker teeth, for rings too). ``backlash`` (mm): arc thickness removed at
+    (positive = thicker teeth, for rings too), or ``"auto"``: the smallest shift that keeps
+    an external gear free of undercut with this tool (:func:`gear3d.shift.min_shift`). ``backlash`` (mm): arc thickness removed at
     the pitch circle. ``tip_radius`` (mm): optional turned tip (a blank smaller than the
     generated one). Rings get a rim at root radius + 2m unless ``rim_radius`` is given.
     """
@@ -28,6 +29,12 @@ def involute(teeth=20, module=1.0, pressure_angle_deg=20.0, addendum_coeff=1.0,
     ha = check_number("addendum_coeff", addendum_coeff, 0, 3, lo_open=True)
     hf = check_number("dedendum_coeff", dedendum_coeff, 0, 3, lo_open=True)
     rho = check_number("tip_radius_coeff", tip_radius_coeff, 0, 1)
+    if isinstance(shift_coeff, str) and shift_coeff == "auto":
+        if internal:
+            from ..errors import GearError
+            raise GearError("shift_coeff", shift_coeff, "a number in [-3, 3] for a ring (auto: external gears)")
+        from ..shift import min_shift
+        shift_coeff = min_shift(z, a, hf, rho)     # the smallest shift free of undercut
     x = check_number("shift_coeff", shift_coeff, -3, 3)
     b = check_number("backlash", backlash, 0, math.pi * m / 4, unit="mm")
     r = m * z / 2
