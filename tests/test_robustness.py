@@ -117,8 +117,8 @@ def test_dxf_refused_when_measured_error_exceeds_tolerance(tmp_path, monkeypatch
     p = gear3d.profile("involute", teeth=8, tolerance=0.05)
     real = dxf.measure
 
-    def over(path, exact, loops, kerf, tol):
-        r = real(path, exact, loops, kerf, tol)
+    def over(path, exact, loops, kerf, tol, *rest):
+        r = real(path, exact, loops, kerf, tol, *rest)
         return dict(r, max_error=1.01 * tol)
     monkeypatch.setattr(dxf, "measure", over)
     with pytest.raises(ToleranceError, match="tolerance"):
