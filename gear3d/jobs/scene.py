@@ -113,7 +113,7 @@ def run_write(stage, obj):
                 obj = [b.placed(b.transform, name=n) for b, n in zip(obj, i["names"])]
             elif name and not isinstance(obj, list) and kind != "stl":   # an STL stores no name
                 obj = obj.placed(obj.transform, name=name)
-        write(obj, path)
+        write(obj, path, **i.get("options", {}))
     if kind in MESH_KINDS:
         bodies = obj if isinstance(obj, list) else [obj]
         extra["triangles"] = int(sum(len(b.arrays()[1]) if hasattr(b, "arrays") else b.manifold.num_tri()
@@ -208,8 +208,10 @@ def part_targets(g: Graph, job, part, out_dir, parts_by_name=None) -> dict:
         else:
             src = profile_stage(g, job, part, tol, prefix)
         inputs = {"kind": kind, "file": fname, "tolerance": tol, "name": part["name"]}
-        if kind == "dxf" and job["options"].get("dxf"):
-            inputs["options"] = job["options"]["dxf"]
+        # exporter options: the scene's (or library's), then the part's own
+        opts = {**job["options"].get(kind, {}), **part.get("options", {}).get(kind, {})}
+        if opts:
+            inputs["options"] = opts
         targets[kind] = g.add("write", inputs, [src], fn=run_write, label=fname, phase=1,
                               path=path, out_dir=out_dir)
     return targets

@@ -323,16 +323,29 @@ def check_tolerances(file, key, top):
 
 
 def check_options(file, key, table):
-    """Exporter options per kind; only DXF takes options (kerf, lead_in, ...)."""
+    """Exporter options per kind: ``dxf`` (kerf, lead_in, ...) and ``step`` (``kind`` =
+    faceted | brep: planar facets, or exact B-rep surfaces through OpenCascade, which needs
+    ``pip install 'gear3d[cad]'``). Returns the writers' keyword arguments per kind."""
     from ..export.dxf import write_dxf
     _table(file, key, table)
     out = {}
     dxf_keys = [n for n in inspect.signature(write_dxf).parameters
                 if n not in ("profile", "path", "tolerance", "extra")]
     for kind, opts in table.items():
-        if kind != "dxf":
-            fail(file, f"{key}.{kind}", opts, "dxf (the only exporter with options)")
-        _table(file, f"{key}.dxf", opts)
+        if kind not in ("dxf", "step"):
+            fail(file, f"{key}.{kind}", opts, "dxf or step (the exporters with options)")
+        _table(file, f"{key}.{kind}", opts)
+        if kind == "step":
+            from ..export.step import STEP_KINDS
+            _unknown(file, f"{key}.step", opts, ["kind"])
+            flavour = _str(file, f"{key}.step.kind", opts.get("kind", "faceted"), STEP_KINDS)
+            if flavour == "brep":
+                import importlib.util
+                if importlib.util.find_spec("OCP") is None:
+                    fail(file, f"{key}.step.kind", flavour,
+                         "faceted, or brep after `pip install 'gear3d[cad]'` (OpenCascade is not installed)")
+            out["step"] = {"step": flavour}
+            continue
         _unknown(file, f"{key}.dxf", opts, dxf_keys)
         out["dxf"] = {k: _dxf_option(file, f"{key}.dxf.{k}", k, v) for k, v in opts.items()}
     return out
@@ -366,6 +379,7 @@ def check_part(file, key, raw, *, default_outputs, names=None, require_name=True
     fam = check_family(file, f"{key}.family", raw.pop("family", None))
     body = raw.pop("body", None)
     outs = raw.pop("outputs", None)
+    options = check_options(file, f"{key}.options", raw.pop("options", {}))
     sig = family_signature(fam)
     params = {k: check_param(file, f"{key}.{k}", fam, k, v, sig) for k, v in raw.items()}
     b = check_body(file, f"{key}.body", body, names=names) if body is not None else None
@@ -378,7 +392,7 @@ def check_part(file, key, raw, *, default_outputs, names=None, require_name=True
                 if k in MESH_KINDS:
                     fail(file, f"{key}.outputs", outs, "profile kinds (" + ", ".join(PROFILE_KINDS) +
                          ") for a part without a [part.body] table")
-    return {"name": name, "family": fam, "params": params, "body": b, "outputs": outs}
+    return {"name": name, "family": fam, "params": params, "body": b, "outputs": outs, "options": options}
 
 
 # -------------------------------------------------------------------------- scene
