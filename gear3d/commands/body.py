@@ -77,6 +77,9 @@ def run(args) -> int:
     if "width" not in kw:
         raise GearError("width", None, "a number > 0 mm (--width)")
     fp = family_params(args, out, mesh=True)
+    from ..conventions import uses_conventions
+    if uses_conventions(fp):                  # normal sizes are taken at the body's helix angle
+        fp["helix_angle_deg"] = kw.get("helix_angle_deg", 0.0)
     # build the profile once, at the share of the body tolerance the body plan gives it
     from ..solids.body import profile_tolerance
     kw.setdefault("tolerance", fp["tolerance"])

@@ -26,6 +26,11 @@ PROFILE_FLAGS = [
     ("--shift-coeff", number_or_auto("float"), "profile shift / rack displacement coefficient (x m); "
                                                "auto (involute): the smallest shift free of undercut with the actual tool"),
     ("--pressure-angle", FLOAT, "pressure angle (deg)", "pressure_angle_deg"),
+    ("--normal-module", FLOAT, "helical gears: normal module m_n (mm) instead of the transverse --module "
+                               "(m = m_n / cos beta, beta from --helix-angle; BOSL2's mod)"),
+    ("--normal-pressure-angle", FLOAT, "helical gears: normal pressure angle (deg) instead of the transverse "
+                                       "--pressure-angle (tan a_t = tan a_n / cos beta)", "normal_pressure_angle_deg"),
+    ("--diametral-pitch", FLOAT, "inch gears: diametral pitch P (teeth per inch) instead of --module (m = 25.4 / P)"),
     ("--tip-radius-coeff", FLOAT, "tool tip radius coefficient (x m), 0 = sharp"),
     ("--backlash", FLOAT, "backlash as arc thickness removed at the pitch circle (mm)"),
     ("--tip-radius", FLOAT, "turned tip radius (mm)"),

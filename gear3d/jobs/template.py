@@ -381,8 +381,21 @@ def check_part(file, key, raw, *, default_outputs, names=None, require_name=True
     outs = raw.pop("outputs", None)
     options = check_options(file, f"{key}.options", raw.pop("options", {}))
     sig = family_signature(fam)
+    # helical / inch conventions: normal_module, normal_pressure_angle_deg, diametral_pitch
+    from ..conventions import to_transverse, uses_conventions
+    conv = {k: raw.pop(k) for k in ("normal_module", "normal_pressure_angle_deg", "diametral_pitch") if k in raw}
     params = {k: check_param(file, f"{key}.{k}", fam, k, v, sig) for k, v in raw.items()}
     b = check_body(file, f"{key}.body", body, names=names) if body is not None else None
+    if conv:
+        for k, v in conv.items():
+            _number(file, f"{key}.{k}", v, 0, None, lo_open=True)
+        try:
+            params = to_transverse({**params, **conv}, (b or {}).get("helix_angle_deg", 0.0) or 0.0)
+        except GearError as e:
+            fail(file, f"{key}.{e.param}", e.value, e.allowed)
+        for k in ("module", "pressure_angle_deg"):
+            if k in params:
+                params[k] = check_param(file, f"{key}.{k}", fam, k, params[k], sig)
     if outs is None:
         outs = [k for k in default_outputs if b is not None or k in PROFILE_KINDS]
     else:

@@ -28,7 +28,11 @@ FAMILY_MODULE = {
 
 
 def profile(family: str, **params):
-    """Build a profile of ``family`` (see :data:`FAMILIES`) from keyword parameters (mm, deg)."""
+    """Build a profile of ``family`` (see :data:`FAMILIES`) from keyword parameters (mm, deg).
+
+    Sizes are transverse (``module``, ``pressure_angle_deg``); ``normal_module``,
+    ``normal_pressure_angle_deg`` (at ``helix_angle_deg``, default 0) and ``diametral_pitch``
+    (1/inch) are converted by :func:`gear3d.conventions.to_transverse`."""
     if isinstance(family, str) and family in FAMILY_MODULE and family not in FAMILIES:
         import importlib
         importlib.import_module(f"{__name__}.{FAMILY_MODULE[family]}")
@@ -37,6 +41,10 @@ def profile(family: str, **params):
     if not isinstance(family, str) or family not in FAMILIES:
         _load()
         raise GearError("family", family, "one of " + ", ".join(sorted(FAMILIES)))
+    from ..conventions import to_transverse, uses_conventions
+    if uses_conventions(params) or params.get("helix_angle_deg") is not None:
+        # normal module / normal pressure angle / diametral pitch -> the transverse plane
+        params = to_transverse(params)
     if "internal" in params:
         params["internal"] = check_bool("internal", params["internal"])
     if family != "mate" and params.get("rim_radius") is not None and not params.get("internal"):
