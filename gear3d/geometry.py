@@ -20,6 +20,20 @@ def check_points(points) -> np.ndarray:
     return q
 
 
+def bisect_edge(pred, yes: float, no: float, step: float, max_iter: int = 60) -> float:
+    """Narrow [yes, no] (``pred(yes)`` true, ``pred(no)`` false) until it is shorter than
+    ``step``; return the last point where ``pred`` holds (a roll angle, a shift: any unit)."""
+    for _ in range(max_iter):
+        if abs(no - yes) < step:
+            break
+        mid = 0.5 * (yes + no)
+        if pred(mid):
+            yes = mid
+        else:
+            no = mid
+    return yes
+
+
 def unique_sorted(a) -> np.ndarray:
     """The distinct values of an ascending 1-D array. (``np.unique`` sorts again and, in
     numpy 2, imports ``numpy.ma`` on first use: about 20 ms of every CLI run.)"""

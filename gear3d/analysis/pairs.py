@@ -16,7 +16,7 @@ import math
 import numpy as np
 
 from ..errors import GearError, check_number
-from ..geometry import rotate, signed_area
+from ..geometry import bisect_edge, rotate, signed_area
 from ..reports import PairReport
 
 
@@ -501,15 +501,7 @@ def _play(A, B, ph1, ph2, sign, r2, tol, max_deg=None):
 
 def _bisect(pred, bad, good, step):
     """Shrink [bad, good] (pred(bad) True, pred(good) False) to ``step``; return ``good``."""
-    for _ in range(60):
-        mid = 0.5 * (bad + good)
-        if pred(mid):
-            bad = mid
-        else:
-            good = mid
-        if abs(good - bad) < step:
-            break
-    return good
+    return bisect_edge(lambda x: not pred(x), good, bad, step)
 
 
 def _tip_root(p1, p2, a, internal):

@@ -22,7 +22,7 @@ import math
 import numpy as np
 
 from ..errors import GearError, check_choice, check_number
-from ..geometry import rotate
+from ..geometry import bisect_edge, rotate
 
 #: steps per pitch of roll (at least; finer when the tolerance asks)
 STEPS_PER_PITCH = 24
@@ -218,36 +218,18 @@ def willis_contact_ratio(rack, pinion, shift: float, samples: int = 4001):
 
 
 def _edge(pred, inside, outside, step):
-    """Bisect between a roll where ``pred`` holds and one where it does not; return the
-    last roll (rad) where it holds."""
-    for _ in range(BISECT):
-        if abs(outside - inside) < step:
-            break
-        mid = 0.5 * (inside + outside)
-        if pred(mid):
-            inside = mid
-        else:
-            outside = mid
-    return inside
+    """The last roll (rad) between ``inside`` (``pred`` holds) and ``outside`` where it holds."""
+    return bisect_edge(pred, inside, outside, step, BISECT)
 
 
 def _play(M: Mesh, phi, sgn, tol, limit):
     """How far (mm) the rack can move by ``sgn`` along x at roll ``phi`` before the teeth
     overlap by more than ``tol``."""
-    def overlap(d):
-        return M.state(phi, sgn * d)[0] > tol
-    if not overlap(limit):
+    def free(d):
+        return not M.state(phi, sgn * d)[0] > tol
+    if free(limit):
         return limit
-    good, bad = 0.0, limit
-    for _ in range(BISECT):
-        if bad - good < tol / 8:
-            break
-        mid = 0.5 * (good + bad)
-        if overlap(mid):
-            bad = mid
-        else:
-            good = mid
-    return good
+    return bisect_edge(free, 0.0, limit, tol / 8, BISECT)
 
 
 def rack_pair(family: str, teeth: int = 20, rack_teeth: int | None = None, **params):
