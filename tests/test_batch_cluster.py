@@ -15,7 +15,7 @@ import textwrap
 
 import pytest
 
-pytest.importorskip("dask.distributed")
+import dask.distributed  # noqa: E402,F401 - the test extra installs Dask
 
 from gear3d.cli import main  # noqa: E402
 from gear3d.jobs.batch import run_library  # noqa: E402

@@ -370,8 +370,7 @@ def test_cli_bad_input_exit_codes(capsys):
 
 
 def test_cli_writes_stl(tmp_path):
-    pytest.importorskip("gear3d.export")
-    pytest.importorskip("gear3d.export.stl")
+    import gear3d.export.stl  # noqa: F401 - must import (no skip)
     import trimesh
     from gear3d.cli import main
     out = tmp_path / "h.stl"

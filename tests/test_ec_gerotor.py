@@ -233,7 +233,7 @@ def test_moineau_sections():
     ("ec-pinion", "ec-wheel", {"teeth": 3, "mate_teeth": 20}, {"teeth": 20, "mate_teeth": 3}, False),
 ])
 def test_pairs_pass_rolling_check(a, b, kw1, kw2, internal):
-    pairs = pytest.importorskip("gear3d.analysis.pairs")
+    from gear3d.analysis import pairs
     A, B = gear3d.profile(a, **kw1), gear3d.profile(b, **kw2)
     r = pairs.check_pair(A, B, internal=internal)
     assert r["interference"] is False
@@ -241,7 +241,7 @@ def test_pairs_pass_rolling_check(a, b, kw1, kw2, internal):
 
 
 def test_oversized_disc_interferes():
-    pairs = pytest.importorskip("gear3d.analysis.pairs")
+    from gear3d.analysis import pairs
     A = gear3d.profile("cycloid-disc", offset_correction=-0.05)   # disc 0.05 mm too fat
     r = pairs.check_pair(A, gear3d.profile("cycloid-pins"), internal=True)
     assert r["interference"] is True and r["max_penetration"] >= 0.04

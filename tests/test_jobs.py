@@ -338,7 +338,7 @@ def test_resume_after_sigkill_gives_identical_manifest(tmp_path):
 
 
 def test_dask_local_cluster_matches_local(tmp_path):
-    pytest.importorskip("dask.distributed")
+    import dask.distributed  # noqa: F401 - the test extra installs Dask
     f = _lib(tmp_path, n_teeth=3)
     a, b = tmp_path / "local", tmp_path / "dask"
     run_library(load_library(f), str(a), workers=0, progress=False)
