@@ -42,6 +42,9 @@ def profile(family: str, **params):
         _load()
         raise GearError("family", family, "one of " + ", ".join(sorted(FAMILIES)))
     from ..conventions import to_transverse, uses_conventions
+    if family in FAMILY_MODULE and family != "mate":
+        from ..params import check_excludes, family_table
+        check_excludes(params, family_table(family))      # one size, one angle (declared in the table)
     if uses_conventions(params) or params.get("helix_angle_deg") is not None:
         # normal module / normal pressure angle / diametral pitch -> the transverse plane
         params = to_transverse(params)
@@ -50,6 +53,13 @@ def profile(family: str, **params):
     if family != "mate" and params.get("rim_radius") is not None and not params.get("internal"):
         raise GearError("rim_radius", params["rim_radius"], "only for a ring gear (internal=True)")
     return FAMILIES[family](**params)
+
+
+def table(family: str) -> dict:
+    """{name: :class:`gear3d.params.Param`} of ``family``'s builder keywords: the one table
+    its validation, the CLI, the TOML schema and the web form share."""
+    from ..params import by_name
+    return by_name(family, conventions=False)
 
 
 def families() -> list:
@@ -72,8 +82,9 @@ def common(teeth, module, tolerance, *, max_teeth=100_000):
     """Validate the parameters every family shares; return (teeth, module, tolerance)."""
     from ..errors import ToleranceError
     from ..tessellate import MIN_TOLERANCE
-    z = check_number("teeth", teeth, 1, max_teeth, integer=True)
-    m = check_number("module", module, 0, 1000, lo_open=True, unit="mm")
+    from ..params import MODULE, TEETH
+    z = TEETH.check(teeth) if max_teeth == TEETH.hi else check_number("teeth", teeth, 1, max_teeth, integer=True)
+    m = MODULE.check(module)
     t = check_number("tolerance", tolerance, 0, m / 4, lo_open=True, unit="mm (at most module/4)")
     if t < MIN_TOLERANCE:
         raise ToleranceError("tolerance", tolerance, f"a number in [{MIN_TOLERANCE:g}, {m / 4:g}] mm",

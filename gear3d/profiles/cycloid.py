@@ -35,7 +35,7 @@ from ..errors import GearError, check_number
 from ..model import build_profile
 from ..racks import Corner, Smooth, line_piece, symmetric
 from ..tessellate import MIN_TOLERANCE
-from . import common, register, reject_unknown
+from . import common, register, reject_unknown, table
 
 
 # ----------------------------------------------------------------------------- trochoids
@@ -208,12 +208,12 @@ def reducer_design(pins, pin_circle_radius, pin_radius, eccentricity, offset_cor
     radius (+ offset correction) at or above the minimum radius of curvature of the
     pin-centre trochoid (the no-cusp check).
     """
-    N = check_number("pins", pins, 3, 10_000, integer=True)
+    N = table("cycloid-disc")["pins"].check(pins)
     if teeth is not None and teeth != N - 1:
         raise GearError("teeth", teeth, f"{N - 1} (pins - 1) or omitted")
     if lobes is not None and lobes != N - 1:
         raise GearError("lobes", lobes, f"{N - 1} (pins - 1) or omitted")
-    R = check_number("pin_circle_radius", pin_circle_radius, 0, 1e5, lo_open=True, unit="mm")
+    R = table("cycloid-disc")["pin_circle_radius"].check(pin_circle_radius)
     e = check_number("eccentricity", eccentricity, 0, R / N, lo_open=True, hi_open=True,
                      unit=f"mm (shortening coefficient eN/R < 1 for N = {N}, R = {R:g})")
     rp_max_pitch = R * math.sin(math.pi / N)
@@ -290,7 +290,7 @@ def cycloid_disc(pins=12, pin_circle_radius=30.0, pin_radius=3.0, eccentricity=1
 def _disc_holes(n, r_h, r_w, r_b, root, tol):
     """CW hole loops (mm) of the output holes and the central bore, with their chord sag."""
     loops, err = [], 0.0
-    n = check_number("output_holes", n or 0, 0, 64, integer=True)
+    n = table("cycloid-disc")["output_holes"].check(n or 0)
     rb = 0.0
     if r_b is not None:
         rb = check_number("bore_radius", r_b, 0, root, lo_open=True, hi_open=True,
@@ -421,9 +421,10 @@ def cycloidal(teeth=20, module=1.0, addendum_coeff=1.0, dedendum_coeff=1.25,
     rolling circle of radius ``rolling_radius_coeff * module``."""
     reject_unknown("cycloidal", extra)
     z, m, tol = common(teeth, module, tolerance)
-    ca = check_number("addendum_coeff", addendum_coeff, 0, 5, lo_open=True)
-    cd = check_number("dedendum_coeff", dedendum_coeff, 0, 5, lo_open=True)
-    cr = check_number("rolling_radius_coeff", rolling_radius_coeff, 0, 100, lo_open=True)
+    P = table("cycloidal")
+    ca = P["addendum_coeff"].check(addendum_coeff)
+    cd = P["dedendum_coeff"].check(dedendum_coeff)
+    cr = P["rolling_radius_coeff"].check(rolling_radius_coeff)
     r = m * z / 2
     ha, hf, rho = ca * m, cd * m, cr * m
     if (hf if not internal else ha) >= r:

@@ -25,20 +25,21 @@ import numpy as np
 from ..geometry import rotate as _rot
 from ..errors import GearError, check_number
 from ..model import build_profile
-from . import register, reject_unknown
+from . import register, reject_unknown, table
 from .cycloid import size_tolerance, min_curvature_radius, trochoid_left_normal, trochoid_point
 
 
 def ec_design(teeth, mate_teeth, eccentricity, tooth_radius, center_distance, tolerance,
               pinion_is_self=True):
     """Validate an EC pair; return its quantities (mm). ``teeth`` is this part's count."""
-    z_self = check_number("teeth", teeth, 1, 10_000, integer=True)
-    z_mate = check_number("mate_teeth", mate_teeth, 1, 10_000, integer=True)
+    P = table("ec-pinion")
+    z_self = P["teeth"].check(teeth)
+    z_mate = P["mate_teeth"].check(mate_teeth)
     z1, z2 = (z_self, z_mate) if pinion_is_self else (z_mate, z_self)
     if z2 < 2 or z2 <= z1:
         raise GearError("teeth" if not pinion_is_self else "mate_teeth", z2,
                         f"an integer >= max(2, {z1 + 1}): the EC wheel has more teeth than its pinion")
-    rho = check_number("tooth_radius", tooth_radius, 0, 1e5, lo_open=True, unit="mm")
+    rho = P["tooth_radius"].check(tooth_radius)
     eps = check_number("eccentricity", eccentricity, 0, rho, lo_open=True, hi_open=True,
                        unit=f"mm (below tooth_radius = {rho:g}: the axis stays inside the tooth circle)")
     n = z2 / z1

@@ -26,17 +26,18 @@ import numpy as np
 
 from ..envelope import pattern, wheel_envelope_piece
 from ..geometry import rotate as _rot
-from ..errors import GearError, check_choice, check_number
+from ..errors import GearError, check_number
 from ..model import build_profile
-from . import register, reject_unknown
+from . import register, reject_unknown, table
 from .cycloid import (lobe_angles, reducer_report, size_tolerance, min_curvature_radius, pin_ring_pieces,
                       reducer_design, trochoid_left_normal, trochoid_piece, trochoid_point)
 
 
 def gerotor_design(lobes, pin_circle_radius, pin_radius, eccentricity, variant, tolerance, teeth,
                    outer):
-    variant = check_choice("variant", variant, ("epi", "hypo"))
-    n = check_number("lobes", lobes, 2, 1000, integer=True)
+    P = table("gerotor-outer" if outer else "gerotor-inner")
+    variant = P["variant"].check(variant)
+    n = P["lobes"].check(lobes)
     if teeth is not None and teeth != n + outer:
         raise GearError("teeth", teeth, f"{n + outer} (the {'outer' if outer else 'inner'} rotor of a "
                         f"{n}-lobe gerotor) or omitted")

@@ -7,7 +7,7 @@ from ..envelope import rack_envelope
 from ..errors import check_number
 from ..model import build_profile
 from ..racks import involute_rack
-from . import blank_and_rim, common, register, reject_unknown
+from . import blank_and_rim, common, register, reject_unknown, table
 
 
 @register("involute")
@@ -25,17 +25,18 @@ def involute(teeth=20, module=1.0, pressure_angle_deg=20.0, addendum_coeff=1.0,
     """
     reject_unknown("involute", extra)
     z, m, tol = common(teeth, module, tolerance)
-    a = check_number("pressure_angle_deg", pressure_angle_deg, 5, 45, unit="deg")
-    ha = check_number("addendum_coeff", addendum_coeff, 0, 3, lo_open=True)
-    hf = check_number("dedendum_coeff", dedendum_coeff, 0, 3, lo_open=True)
-    rho = check_number("tip_radius_coeff", tip_radius_coeff, 0, 1)
+    P = table("involute")
+    a = P["pressure_angle_deg"].check(pressure_angle_deg)
+    ha = P["addendum_coeff"].check(addendum_coeff)
+    hf = P["dedendum_coeff"].check(dedendum_coeff)
+    rho = P["tip_radius_coeff"].check(tip_radius_coeff)
     if isinstance(shift_coeff, str) and shift_coeff == "auto":
         if internal:
             from ..errors import GearError
             raise GearError("shift_coeff", shift_coeff, "a number in [-3, 3] for a ring (auto: external gears)")
         from ..shift import min_shift
         shift_coeff = min_shift(z, a, hf, rho)     # the smallest shift free of undercut
-    x = check_number("shift_coeff", shift_coeff, -3, 3)
+    x = P["shift_coeff"].check(shift_coeff)
     b = check_number("backlash", backlash, 0, math.pi * m / 4, unit="mm")
     r = m * z / 2
     rack = involute_rack(m, a, ha, hf, rho, b)

@@ -21,7 +21,7 @@ import numpy as np
 
 from ..errors import GearError, check_number
 from ..model import build_profile
-from . import register, reject_unknown
+from . import register, reject_unknown, table
 from .cycloid import size_tolerance
 from .ec import pinion_piece
 
@@ -31,11 +31,11 @@ def _design(eccentricity, tooth_radius, rotor_lead, tolerance, teeth, mate_teeth
         raise GearError("teeth", teeth, f"{own} (Moineau 1:2) or omitted")
     if mate_teeth is not None and mate_teeth != 3 - own:
         raise GearError("mate_teeth", mate_teeth, f"{3 - own} (Moineau 1:2) or omitted")
-    rho = check_number("tooth_radius", tooth_radius, 0, 1e5, lo_open=True, unit="mm")
+    rho = table("moineau-rotor")["tooth_radius"].check(tooth_radius)
     e = check_number("eccentricity", eccentricity, 0, rho, lo_open=True, hi_open=True,
                      unit=f"mm (below tooth_radius = {rho:g}: the rotor axis stays inside its section)")
     tol = size_tolerance(tolerance, 2 * e)
-    L = None if rotor_lead is None else check_number("rotor_lead", rotor_lead, 0, None, lo_open=True, unit="mm")
+    L = table("moineau-rotor")["rotor_lead"].check(rotor_lead)
     rep = {"ratio": "1:2", "eccentricity": e, "tooth_radius": rho, "center_distance": e,
            "rotor_pitch_radius": e, "stator_pitch_radius": 2 * e, "lead_ratio": 2.0,
            "flow_area": 8 * e * rho, "rotor_lead": L, "stator_lead": None if L is None else 2 * L,

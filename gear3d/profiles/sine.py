@@ -7,11 +7,11 @@ is the same rack with m = 2r, h_a = A, shift = dx (hypo = half a pitch shifted).
 from __future__ import annotations
 
 from ..envelope import rack_envelope
-from ..errors import GearError, check_choice, check_number
+from ..errors import GearError
 from ..model import build_profile
 from .involute import nominal_tip
 from ..racks import sine_rack
-from . import blank_and_rim, common, register, reject_unknown
+from . import blank_and_rim, common, register, reject_unknown, table
 
 
 @register("sine")
@@ -22,16 +22,16 @@ def sine(teeth=20, module=None, addendum_coeff=None, shift_coeff=0.0, internal=F
     000's ``unit_radius`` r, ``amplitude`` A, ``displacement`` dx (mm) and ``form`` epi|hypo.
     """
     reject_unknown("sine", extra)
-    form = check_choice("form", form, ("epi", "hypo"))
+    P = table("sine")
+    form = P["form"].check(form)
     if unit_radius is not None:
         if module is not None:
             raise GearError("module", module, "omitted when unit_radius (seed 000 form) is given")
-        ur = check_number("unit_radius", unit_radius, 0, 500, lo_open=True, unit="mm")
+        ur = P["unit_radius"].check(unit_radius)
         module = 2 * ur
-        A = check_number("amplitude", amplitude if amplitude is not None else ur, 0, None,
-                         lo_open=True, unit="mm")
+        A = P["amplitude"].check(amplitude if amplitude is not None else ur)
         addendum_coeff = A / module
-        shift_coeff = check_number("displacement", displacement or 0.0, None, None, unit="mm") / module
+        shift_coeff = P["displacement"].check(displacement or 0.0) / module
     else:
         for k, v in (("amplitude", amplitude), ("displacement", displacement)):
             if v is not None:
@@ -40,8 +40,8 @@ def sine(teeth=20, module=None, addendum_coeff=None, shift_coeff=0.0, internal=F
     module = 1.0 if module is None else module
     addendum_coeff = 1.0 if addendum_coeff is None else addendum_coeff
     z, m, tol = common(teeth, module, tolerance)
-    c = check_number("addendum_coeff", addendum_coeff, 0, 5, lo_open=True)
-    x = check_number("shift_coeff", shift_coeff, -5, 5)
+    c = P["addendum_coeff"].check(addendum_coeff)
+    x = P["shift_coeff"].check(shift_coeff)
     r = m * z / 2
     ha = c * m
     inner = (r + x * m - ha) if not internal else (r - x * m - ha)

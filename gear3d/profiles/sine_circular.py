@@ -12,7 +12,7 @@ import numpy as np
 
 from ..errors import GearError, check_number
 from ..model import build_profile
-from . import common, register, reject_unknown
+from . import common, register, reject_unknown, table
 
 
 @register("sine-circular")
@@ -21,7 +21,7 @@ def sine_circular(teeth=20, module=1.0, addendum_coeff=1.0, internal=False, tole
     """Sine circular profile (mm): r = R_p + h_a cos(Z phi) (ring: R_p - h_a cos(Z phi))."""
     reject_unknown("sine-circular", extra)
     z, m, tol = common(teeth, module, tolerance)
-    c = check_number("addendum_coeff", addendum_coeff, 0, 5, lo_open=True)
+    c = table("sine-circular")["addendum_coeff"].check(addendum_coeff)
     R, ha = m * z / 2, c * m
     if ha >= R:
         raise GearError("addendum_coeff", c, f"a number in (0, {z / 2:g}) for {z} teeth",

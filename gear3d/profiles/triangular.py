@@ -28,7 +28,7 @@ import numpy as np
 
 from ..errors import GearError, check_number
 from ..model import build_profile
-from . import common, register, reject_unknown
+from . import common, register, reject_unknown, table
 
 #: seed 002, Table 1: tooth half-angle alpha = arctg(pi / 5.76)
 DEFAULT_HALF_ANGLE_DEG = math.degrees(math.atan(math.pi / 5.76))
@@ -78,11 +78,12 @@ def triangular(teeth=200, module=0.3, addendum_coeff=7 / 8, dedendum_coeff=9 / 8
     """
     reject_unknown("triangular", extra)
     z, m, tol = common(teeth, module, tolerance)
-    ha = check_number("addendum_coeff", addendum_coeff, 0, 3, lo_open=True)
-    hf = check_number("dedendum_coeff", dedendum_coeff, 0, 3, lo_open=True)
+    P = table("triangular")
+    ha = P["addendum_coeff"].check(addendum_coeff)
+    hf = P["dedendum_coeff"].check(dedendum_coeff)
     a_deg = DEFAULT_HALF_ANGLE_DEG if half_angle_deg is None else half_angle_deg
-    a_deg = check_number("half_angle_deg", a_deg, 0, 80, lo_open=True, unit="deg")
-    kc = check_number("thickness_coeff", thickness_coeff, 0, 1, lo_open=True, hi_open=True)
+    a_deg = P["half_angle_deg"].check(a_deg)
+    kc = P["thickness_coeff"].check(thickness_coeff)
     internal = bool(internal)
     R = m * z / 2
     alpha = math.radians(a_deg)
