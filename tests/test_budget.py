@@ -85,7 +85,7 @@ def _run_in_pty(argv, env):
 
 
 def test_progress_bar_on_a_terminal_only(tmp_path):
-    argv = ["body", "involute", "--teeth", "20", "--kind", "helical", "--helix-angle", "20",
+    argv = ["body", "involute", "--teeth", "20", "--kind", "helical", "--helix-angle-deg", "20",
             "--width", "10", "--tolerance", "0.01", "-o", str(tmp_path / "g.stl")]
     env = dict(os.environ, GEAR3D_PROGRESS_DELAY="0")
     rc, out = _run_in_pty(argv, env)

@@ -472,7 +472,7 @@ def test_newline_in_template_name(cwd, capsys):
     ("--teeth", "2.5", "an integer in [1, 100000]"),
     ("--module", "-1", "a number in (0, 1000] mm"),
     ("--tolerance", "nan", "a number in (0, 1] mm"),
-    ("--backlash", "x", "a number in (-inf, inf)"),
+    ("--backlash", "x", "a number in [0, inf) mm"),          # the table's range (gear3d.params)
 ])
 def test_argparse_type_errors_give_range(flag, value, rng, cwd, capsys):
     line = refused(["profile", "involute", flag, value], capsys, cwd, flag, repr(value), rng)

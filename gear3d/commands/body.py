@@ -7,42 +7,31 @@ from __future__ import annotations
 
 import sys
 
-from ..cliargs import number
-from .profile import FLOAT, add_profile_flags, family_params
+from .profile import add_param_flag, add_profile_flags, family_params, print_notes
 
-#: CLI flag -> body() keyword
-BODY_FLAGS = [
-    ("--width", number("float", 0, None, lo_open=True, unit="mm"), "face width (mm)", "width"),
-    ("--helix-angle", FLOAT, "helix angle at the pitch circle (deg)", "helix_angle_deg"),
-    ("--gap", FLOAT, "herringbone central groove width (mm)", "gap"),
-    ("--arch-radius", FLOAT, "chevron-arch: arch radius R in the unrolled pitch cylinder (mm)", "arch_radius"),
-    ("--body-tolerance", FLOAT, "body tolerance (mm), default the profile --tolerance", "tolerance"),
-    ("--bore", FLOAT, "bore diameter (mm)", "bore"),
-    ("--hub-diameter", FLOAT, "hub boss diameter (mm)", "hub_diameter"),
-    ("--hub-length", FLOAT, "hub boss length above the top face (mm)", "hub_length"),
-    ("--set-screw", FLOAT, "radial set-screw hole diameter (mm)", "set_screw"),
-    ("--lightening-holes", number("int", 0, 64), "number of lightening holes in the web", "lightening_holes"),
-    ("--web-thickness", FLOAT, "web thickness (mm), faces recessed around the hub", "web_thickness"),
-    ("--xy-offset", FLOAT, "print compensation: XY offset of the profile (mm, + = more material)", "xy_offset"),
-    ("--elephant-foot", FLOAT, "45 deg chamfer of the bottom (first layer) edge (mm)", "elephant_foot"),
-    ("--chamfer", FLOAT, "45 deg chamfer of both tooth ends (mm)", "chamfer"),
-    ("--rim-diameter", FLOAT, "ring gears: outer rim diameter (mm)", "rim_diameter"),
-    ("--name", str, "part name (3MF object name)", "name"),
-]
+def body_flags() -> list:
+    """``[(flag, argparse type, help, dest, Param)]``: the ``body()`` keywords of the one
+    table (gear3d.params.BODY_PARAMS) but ``kind``, ``hand`` and ``keyway`` (choices and a
+    switch, added by :func:`add_parser`)."""
+    from ..params import BODY_PARAMS
+    from .profile import arg_type
+    return [(p.flag, arg_type(p), p.help_text(), p.name, p) for p in BODY_PARAMS
+            if p.name not in ("kind", "hand", "keyway")]
 
 
 def add_parser(sub):
-    p = sub.add_parser("body", help="a 3D gear body -> .stl .3mf .step .png .json")
+    from ..params import BODY
+    p = sub.add_parser("body", help="a 3D gear body -> .stl .3mf .step .png .json", add_help=False)
     add_profile_flags(p)
     for a in p._actions:        # a body is a mesh: its default is the printing tolerance
         if a.dest == "tolerance":
             a.help = "max deviation from the exact curve (mm); default 0.01 mm for mesh outputs (a body)"
-    p.add_argument("--kind", default="spur", choices=["spur", "helical", "herringbone", "chevron-arch"],
-                   help="twist law")
-    p.add_argument("--hand", default="right", choices=["right", "left"], help="helix hand")
-    p.add_argument("--keyway", action="store_true", help="DIN 6885 keyway groove for the bore")
-    for flag, typ, hlp, dest in BODY_FLAGS:
-        p.add_argument(flag, type=typ, dest="b_" + dest, default=None, help=hlp)
+    for name in ("kind", "hand"):
+        prm = BODY[name]
+        p.add_argument("--" + name, default=prm.default, choices=list(prm.choices), help=prm.help_text())
+    p.add_argument("--keyway", action="store_true", help=BODY["keyway"].help_text())
+    for flag, typ, hlp, dest, prm in body_flags():
+        add_param_flag(p, prm, "b_" + dest, typ, hlp).gear3d_param = None     # shown for every family
     p.add_argument("-o", "--output", default=None, help="output file; extension picks the format")
     p.add_argument("--step", default=None, choices=["faceted", "brep"],
                    help="STEP flavour: faceted (default) or brep (exact B-spline surfaces, needs pip install 'gear3d[cad]')")
@@ -55,7 +44,7 @@ def body_params(args) -> dict:
     kw = {"kind": args.kind, "hand": args.hand}
     if args.keyway:
         kw["keyway"] = True
-    for _flag, _typ, _hlp, dest in BODY_FLAGS:
+    for _flag, _typ, _hlp, dest, _prm in body_flags():
         v = getattr(args, "b_" + dest)
         if v is not None:
             kw[dest] = v
@@ -88,6 +77,7 @@ def run(args) -> int:
     if out is None:
         from ..export.json_format import dumps
         sys.stdout.write(dumps(b.report) + "\n")
+        print_notes(args)
         return 0
     from ..export import write
     step_opts = {"step": args.step} if args.step and out.lower().endswith((".step", ".stp")) else {}
@@ -96,4 +86,5 @@ def run(args) -> int:
     sys.stdout.write(f"wrote {out}: {r['kind']} {r['family']} z={r['teeth']} {r['triangles']} triangles, "
                      f"max_error={r['max_error']:.3g} mm (tolerance {r['tolerance']:g} mm)"
                      + (f" {info}" if info else "") + "\n")
+    print_notes(args)
     return 0

@@ -1,6 +1,7 @@
 """``gear3d profile FAMILY ... -o OUT``: one 2D profile, format picked by OUT's extension."""
 from __future__ import annotations
 
+import argparse
 import sys
 
 from ..cliargs import number, number_or_auto
@@ -16,49 +17,138 @@ TOLERANCE_HELP = (f"max deviation from the exact curve (mm); default {DEFAULT_TO
 #: a finite number (the families check their own ranges)
 FLOAT = number("float")
 
-#: CLI flag -> family keyword; only the flags a user gives are passed on, and a family
-#: refuses the ones it does not take (GearError naming the flag's parameter).
-PROFILE_FLAGS = [
-    ("--teeth", number("int", 1, 100_000), "number of teeth"),
-    ("--module", number("float", 0, 1000, lo_open=True, unit="mm"), "module m (mm)"),
-    ("--addendum-coeff", FLOAT, "addendum coefficient (x m)"),
-    ("--dedendum-coeff", FLOAT, "dedendum coefficient (x m)"),
-    ("--shift-coeff", number_or_auto("float"), "profile shift / rack displacement coefficient (x m); "
-                                               "auto (involute): the smallest shift free of undercut with the actual tool"),
-    ("--pressure-angle", FLOAT, "pressure angle (deg)", "pressure_angle_deg"),
-    ("--normal-module", FLOAT, "helical gears: normal module m_n (mm) instead of the transverse --module "
-                               "(m = m_n / cos beta, beta from --helix-angle; BOSL2's mod)"),
-    ("--normal-pressure-angle", FLOAT, "helical gears: normal pressure angle (deg) instead of the transverse "
-                                       "--pressure-angle (tan a_t = tan a_n / cos beta)", "normal_pressure_angle_deg"),
-    ("--diametral-pitch", FLOAT, "inch gears: diametral pitch P (teeth per inch) instead of --module (m = 25.4 / P)"),
-    ("--tip-radius-coeff", FLOAT, "tool tip radius coefficient (x m), 0 = sharp"),
-    ("--backlash", FLOAT, "backlash as arc thickness removed at the pitch circle (mm)"),
-    ("--tip-radius", FLOAT, "turned tip radius (mm)"),
-    ("--rim-radius", FLOAT, "ring gear rim radius (mm)"),
-    ("--form", str, "sine family: epi | hypo (seed 000)"),
-    ("--unit-radius", FLOAT, "sine family, seed 000: rack unit radius r (mm)"),
-    ("--amplitude", FLOAT, "sine family, seed 000: harmonic amplitude A (mm)"),
-    ("--displacement", FLOAT, "sine family, seed 000: rack displacement dx (mm)"),
-    ("--pins", number("int", 1, 100_000), "cycloid: number of pins N"),
-    ("--pin-circle-radius", FLOAT, "cycloid: pin circle radius R (mm)"),
-    ("--pin-radius", FLOAT, "cycloid: pin radius (mm)"),
-    ("--eccentricity", FLOAT, "cycloid / EC: eccentricity (mm)"),
-    ("--mate-teeth", number("int", 1, 100_000), "EC / pairs: teeth of the mating wheel"),
-    ("--tooth-radius", FLOAT, "EC: tooth circle radius rho (mm)"),
-    ("--center-distance", FLOAT, "centre distance (mm)"),
-    ("--lobes", number("int", 1, 100_000), "gerotor: lobes of the inner rotor"),
-    ("--variant", str, "gerotor: epi | hypo (seed 000's two variants)"),
-    ("--offset-correction", FLOAT, "cycloid disc: equidistant correction for clearance (mm)"),
-    ("--radial-correction", FLOAT, "cycloid disc: pin-circle radius correction (mm)"),
-    ("--output-holes", number("int", 0, 64), "cycloid disc: number of output holes"),
-    ("--output-hole-radius", FLOAT, "cycloid disc: output hole radius (mm)"),
-    ("--output-circle-radius", FLOAT, "cycloid disc: output hole circle radius (mm)"),
-    ("--bore-radius", FLOAT, "cycloid disc: central bore radius (mm)"),
-    ("--rotor-lead", FLOAT, "Moineau: rotor lead (mm)"),
-    ("--rolling-radius-coeff", FLOAT, "cycloidal rack: rolling circle radius (x m)"),
-    ("--half-angle", FLOAT, "triangular teeth: tooth half-angle (deg)", "half_angle_deg"),
-    ("--thickness-coeff", FLOAT, "triangular teeth: tooth thickness on the pitch circle (x p)"),
-]
+
+def _pair_params():
+    """Parameters the pair commands give every family (the mate's teeth)."""
+    from ..params import Param
+    return {"mate_teeth": Param("mate_teeth", int, "", 1, 100_000, help="EC, Moineau and pairs: teeth of the mating wheel")}
+
+
+def _flag_params(helix: bool = False) -> list:
+    """[(dest, Param)] of the family flags: one per parameter name over all family tables
+    (gear3d.params), its range the union of the families' (each family's own range is
+    checked after parsing, :func:`family_params`). ``internal`` and ``tolerance`` are added
+    by :func:`add_profile_flags` itself."""
+    from ..params import CONV_HELIX, all_params, union
+    extra = _pair_params()
+    out = []
+    for name, ps in all_params().items():
+        if name in ("internal", "tolerance") or (name == "helix_angle_deg" and not helix):
+            continue
+        if name == "helix_angle_deg":
+            ps = [CONV_HELIX]
+        out.append((name, union(ps + ([extra[name]] if name in extra else []))))
+    return out
+
+
+def flag_table(helix: bool = False) -> list:
+    """``[(flag, argparse type, help, dest, Param)]`` of the family flags, from the one table
+    (gear3d.params). Only the flags a user gives are passed on, and a family refuses the
+    ones it does not take (GearError naming the flag's parameter)."""
+    out = []
+    for dest, p in _flag_params(helix):
+        out.append((p.flag, arg_type(p), p.help_text(), dest, p))
+    return out
+
+
+def arg_type(p):
+    if p.kind is int:
+        return number("int", p.lo, p.hi, lo_open=p.lo_open, hi_open=p.hi_open, unit=p.unit_text)
+    if p.kind is float:
+        make = number_or_auto if p.auto else number
+        return make("float", p.lo, p.hi, lo_open=p.lo_open, hi_open=p.hi_open, unit=p.unit_text)
+    return str
+
+
+class DeprecatedFlag(argparse.Action):
+    """An older spelling of a flag: stores like the flag and records a one-line note
+    (printed on stderr by :func:`print_notes` when the command succeeds)."""
+
+    def __init__(self, option_strings, dest, canonical="", **kw):
+        self.canonical = canonical
+        super().__init__(option_strings, dest, **kw)
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        setattr(namespace, self.dest, values)
+        notes = list(getattr(namespace, "deprecation_notes", None) or [])
+        note = f"note: {option_string} is deprecated: use {self.canonical}"
+        if note not in notes:
+            notes.append(note)
+        namespace.deprecation_notes = notes
+
+
+def add_param_flag(p, param, dest: str, typ=None, help_text: str | None = None):
+    """Add ``param``'s flag (and its deprecated spellings) to parser ``p``; the action
+    carries the parameter's name as ``gear3d_param``."""
+    typ = arg_type(param) if typ is None else typ
+    if param.kind is bool:
+        act = p.add_argument(param.flag, action="store_true", dest=dest,
+                             help=help_text if help_text is not None else param.help_text())
+    else:
+        act = p.add_argument(param.flag, type=typ, dest=dest, default=None, metavar=_metavar(param),
+                             help=help_text if help_text is not None else param.help_text())
+    act.gear3d_param = param.name
+    for alias in param.aliases:
+        a = p.add_argument(alias, type=typ, dest=dest, default=None, action=DeprecatedFlag,
+                           canonical=param.flag, help=argparse.SUPPRESS)
+        a.gear3d_param = param.name
+    return act
+
+
+def _metavar(param) -> str:
+    if param.choices:
+        return "{" + ",".join(param.choices) + "}"
+    return {"mm": "MM", "deg": "DEG", "1/inch": "P", "x m": "COEFF", "x p": "COEFF"}.get(
+        param.unit, "N" if param.kind is int else ("TEXT" if param.kind is str else "X"))
+
+
+def print_notes(args) -> None:
+    """The deprecation notes the flags recorded, one line each, on stderr."""
+    for note in getattr(args, "deprecation_notes", None) or ():
+        sys.stderr.write(note + "\n")
+
+
+class FamilyHelp(argparse.Action):
+    """``-h/--help``: with a family given first (``gear3d profile involute --help``), only
+    that family's flags, with their units, ranges and defaults; without one, the list of
+    families."""
+
+    def __init__(self, option_strings, dest=argparse.SUPPRESS, default=argparse.SUPPRESS, help=None):
+        super().__init__(option_strings, dest=dest, default=default, nargs=0, help=help)
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        show_family_help(parser, getattr(namespace, "family", None))
+        parser.exit()
+
+
+def show_family_help(parser, family) -> None:
+    """Print ``parser``'s help for ``family`` (None or unknown: the families and the other flags)."""
+    from ..params import FAMILY_PARAMS, by_name
+    tab = by_name(family) if family in FAMILY_PARAMS else {}
+    saved = [(a, a.help) for a in parser._actions]
+    saved_epilog = parser.epilog
+    try:
+        for a in parser._actions:
+            name = getattr(a, "gear3d_param", None)
+            if name is None or a.help == argparse.SUPPRESS:
+                continue
+            if name in tab:
+                a.help = tab[name].help_text()
+            elif name != "helix_angle_deg" or not tab or "module" not in tab:
+                a.help = argparse.SUPPRESS
+        if not tab:
+            parser.epilog = ("families: " + ", ".join(FAMILY_PARAMS) + ". `" + parser.prog +
+                             " FAMILY --help` lists that family's parameters (units, ranges, defaults); "
+                             "docs/parameters.md lists them all.")
+        else:
+            parser.epilog = (f"{family}: the flags above are its parameters (docs/parameters.md); "
+                             "deprecated spellings (--helix-angle, --pressure-angle, ...) still work.")
+        parser.print_help()
+    finally:
+        for a, h in saved:
+            a.help = h
+        parser.epilog = saved_epilog
+
 
 #: DXF writer options of ``gear3d profile ... -o x.dxf``
 DXF_FLAGS = [
@@ -69,16 +159,19 @@ DXF_FLAGS = [
 ]
 
 
-def add_profile_flags(p):
-    """Add the family parameter flags (shared with ``gear3d body``)."""
-    p.add_argument("family", help="gear family (see `gear3d families`)")
-    for spec in PROFILE_FLAGS:
-        flag, typ, hlp = spec[:3]
-        dest = spec[3] if len(spec) > 3 else flag[2:].replace("-", "_")
-        p.add_argument(flag, type=typ, dest=dest, default=None, help=hlp)
-    p.add_argument("--internal", action="store_true", help="ring (internal) gear")
-    p.add_argument("--tolerance", type=number("float", 0, 1, lo_open=True, unit="mm"), default=None,
-                   help=TOLERANCE_HELP)
+def add_profile_flags(p, helix: bool = False):
+    """Add the family parameter flags (shared with ``gear3d body`` and ``gear3d check pair``),
+    read off the one table (gear3d.params), and the family-aware ``-h/--help``. ``helix``:
+    ``--helix-angle-deg`` for the normal module of a profile alone (a body has its own)."""
+    if "--help" not in p._option_string_actions:     # a parser made with add_help=False
+        p.add_argument("-h", "--help", action=FamilyHelp, help="show the flags of the FAMILY given before it")
+    p.add_argument("family", help="gear family (see `gear3d families`; `FAMILY --help` for its flags)")
+    for flag, typ, hlp, dest, param in flag_table(helix):
+        add_param_flag(p, param, dest, typ, hlp)
+    from ..params import INTERNAL, TOLERANCE
+    add_param_flag(p, INTERNAL, "internal").gear3d_param = None          # every family: always shown
+    add_param_flag(p, TOLERANCE, "tolerance", number("float", 0, 1, lo_open=True, unit="mm"),
+                   TOLERANCE_HELP).gear3d_param = None
 
 
 def default_tolerance(output=None, mesh: bool = False) -> float:
@@ -92,20 +185,34 @@ def family_params(args, output=None, mesh: bool = False) -> dict:
     """Family keywords from the flags given; ``tolerance`` defaults by the output (see
     :func:`default_tolerance`)."""
     kw = {}
-    for spec in PROFILE_FLAGS:
-        dest = spec[3] if len(spec) > 3 else spec[0][2:].replace("-", "_")
-        v = getattr(args, dest)
+    for dest, _p in _flag_params(helix=True):
+        v = getattr(args, dest, None)
         if v is not None:
             kw[dest] = v
     if args.internal:
         kw["internal"] = True
+    _check_family(args.family, kw)
     kw["tolerance"] = args.tolerance if args.tolerance is not None else default_tolerance(output, mesh)
     return kw
 
 
+def _check_family(family, kw) -> None:
+    """The given flags against ``family``'s own table (ranges, exclusions); flags the family
+    does not take are left to its builder, which refuses them by name (the pair commands
+    take ``mate_teeth`` and ``center_distance`` off first)."""
+    from ..params import FAMILY_PARAMS, by_name, check_excludes
+    if family not in FAMILY_PARAMS:
+        return
+    tab = by_name(family)
+    for k, v in kw.items():
+        if k in tab and not (isinstance(v, str) and v == "auto"):
+            kw[k] = tab[k].check(v)
+    check_excludes(kw, tab.values())
+
+
 def add_parser(sub):
-    p = sub.add_parser("profile", help="a 2D gear profile -> .json .dxf .svg .png .stl")
-    add_profile_flags(p)
+    p = sub.add_parser("profile", help="a 2D gear profile -> .json .dxf .svg .png .stl", add_help=False)
+    add_profile_flags(p, helix=True)
     p.add_argument("--width", type=number("float", 0, None, lo_open=True, unit="mm"), default=None, help="extrusion width for .stl (mm)")
     for flag, typ, hlp, dest in DXF_FLAGS:
         p.add_argument(flag, type=typ, dest=dest, default=None, help=hlp)
@@ -127,16 +234,24 @@ def run(args) -> int:
         from ..export import check_output
         check_output(out, kinds="profile")
     opts = _write_options(args, out)
-    prof = profile(args.family, **family_params(args, out))
+    kw = family_params(args, out)
+    given = [k for k in ("normal_module", "normal_pressure_angle_deg") if kw.get(k) is not None]
+    if given and kw.get("helix_angle_deg") is None:
+        from ..errors import GearError
+        raise GearError("helix_angle_deg", None, f"a number in [0, 80] deg with --{given[0].replace('_', '-')} "
+                        "(the helix angle its normal plane is taken at; 0 for a spur gear)")
+    prof = profile(args.family, **kw)
     if out is None:
         from ..export.json_format import dumps
         sys.stdout.write(dumps(prof.report) + "\n")
+        print_notes(args)
         return 0
     from ..export import write
     info = write(prof, out, **opts)
     r = prof.report
     sys.stdout.write(f"wrote {out}: {args.family} z={r['teeth']} max_error={r['max_error']:.3g} mm "
                      f"(tolerance {r['tolerance']:g} mm)" + (f" {info}" if info else "") + "\n")
+    print_notes(args)
     return 0
 
 
