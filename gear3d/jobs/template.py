@@ -244,11 +244,46 @@ def check_family(file, key, family):
     return _str(file, key, family, fams)
 
 
-def check_param(file, key, family, name, value, sig):
-    """One family parameter: known name, type by the builder's default, a few ranges."""
+#: sweep keys ranged before any build (the others: by each part's build)
+SWEEP_RANGED = ("teeth", "module", "normal_module", "diametral_pitch")
+
+
+def typed(file, key, param, value, ranged: bool = True):
+    """``value`` checked against ``param`` (gear3d.params.Param): the TOML type (an integer
+    for an int, a number but never a string or a boolean, true/false, a string or one of
+    the choices) and, when ``ranged``, the table's range (a library sweep checks types up
+    front and leaves ranges to each part's build, so one bad part fails alone and is
+    recorded in the manifest)."""
+    if param.kind is bool:
+        return _bool(file, key, value)
+    if param.kind is str:
+        return _str(file, key, value, param.choices)
+    if param.auto and isinstance(value, str) and value == "auto":
+        return value
+    if value is None or (param.kind is int and isinstance(value, float)):
+        fail(file, key, value, param.allowed())
+    try:
+        if not ranged:
+            from dataclasses import replace
+            return replace(param, lo=None, hi=None).check(value)
+        return param.check(value)
+    except GearError:
+        fail(file, key, value, param.allowed())
+
+
+def check_param(file, key, family, name, value, sig, ranged: bool = True):
+    """One family parameter: a key of the family's table (gear3d.params, the normal/inch
+    alternatives included), its type and (``ranged``) range."""
     if name == "tolerance":
         fail(file, key, value, "not a part key: set [scene] tolerance / [scene.tolerances] "
              "([library] tolerance / [library.tolerances])")
+    from ..params import FAMILY_PARAMS, by_name
+    if family in FAMILY_PARAMS:
+        tab = by_name(family)
+        if name not in tab:
+            fail(file, key, value, f"a parameter of the {family} family: " + ", ".join(sorted(tab)) +
+                 ", or name, family, outputs, body")
+        return typed(file, key, tab[name], value, ranged)
     if name not in sig:
         fail(file, key, value, f"a parameter of the {family} family: " + ", ".join(sorted(sig)) +
              ", or name, family, outputs, body")
@@ -267,41 +302,28 @@ def check_param(file, key, family, name, value, sig):
 
 
 def body_signature():
-    from ..solids.body import body
-    sig = inspect.signature(body)
-    out = {n: p.default for n, p in sig.parameters.items()
-           if n not in ("profile", "_law", "tolerance", "name")}
+    """{key: default} of a ``[part.body]`` table: the body table (gear3d.params) but the
+    tolerance and name (the scene's), plus ``mate``."""
+    from ..params import BODY_PARAMS
+    out = {p.name: p.default for p in BODY_PARAMS if p.name not in ("tolerance", "name")}
     out["mate"] = None
     return out
 
 
 def check_body(file, key, table, *, names=None):
-    """A ``[part.body]`` table (gear3d.solids.body keywords plus ``mate``)."""
-    from ..solids import KINDS
+    """A ``[part.body]`` table (gear3d.solids.body keywords plus ``mate``), typed and ranged
+    by the body table (gear3d.params.BODY_PARAMS)."""
+    from ..params import BODY
     _table(file, key, table)
     sig = body_signature()
     _unknown(file, key, table, sig)
     out = {}
     for k, v in table.items():
         kk = f"{key}.{k}"
-        if k == "kind":
-            out[k] = _str(file, kk, v, KINDS)
-        elif k == "hand":
-            out[k] = _str(file, kk, v, ("right", "left"))
-        elif k == "keyway":
-            out[k] = _bool(file, kk, v)
-        elif k == "lightening_holes":
-            out[k] = _number(file, kk, v, 0, 64, integer=True)
-        elif k == "mate":
+        if k == "mate":
             out[k] = _str(file, kk, v, names) if names is not None else _str(file, kk, v)
-        elif k == "width":
-            out[k] = _number(file, kk, v, 0, 100_000, lo_open=True, unit="mm")
-        elif k == "helix_angle_deg":
-            out[k] = _number(file, kk, v, 0, 90, hi_open=True, unit="deg")
-        elif k == "xy_offset":
-            out[k] = _number(file, kk, v, unit="mm")
         else:
-            out[k] = _number(file, kk, v, 0, None, unit="mm")
+            out[k] = typed(file, kk, BODY[k], v)
     if "width" not in out and "mate" not in out:
         fail(file, f"{key}.width", None, "required: a number > 0 mm")
     return out
@@ -382,13 +404,19 @@ def check_part(file, key, raw, *, default_outputs, names=None, require_name=True
     options = check_options(file, f"{key}.options", raw.pop("options", {}))
     sig = family_signature(fam)
     # helical / inch conventions: normal_module, normal_pressure_angle_deg, diametral_pitch
-    from ..conventions import to_transverse, uses_conventions
-    conv = {k: raw.pop(k) for k in ("normal_module", "normal_pressure_angle_deg", "diametral_pitch") if k in raw}
+    # (keys of the family's table, which excludes them against module / pressure_angle_deg)
+    from ..conventions import to_transverse
+    from ..params import FAMILY_PARAMS, check_excludes, family_table
     params = {k: check_param(file, f"{key}.{k}", fam, k, v, sig) for k, v in raw.items()}
+    if fam in FAMILY_PARAMS:
+        try:
+            check_excludes(params, family_table(fam))
+        except GearError as e:
+            fail(file, f"{key}.{e.param}", e.value, e.allowed)
+    conv = {k: params.pop(k) for k in ("normal_module", "normal_pressure_angle_deg", "diametral_pitch")
+            if k in params}
     b = check_body(file, f"{key}.body", body, names=names) if body is not None else None
     if conv:
-        for k, v in conv.items():
-            _number(file, f"{key}.{k}", v, 0, None, lo_open=True)
         try:
             params = to_transverse({**params, **conv}, (b or {}).get("helix_angle_deg", 0.0) or 0.0)
         except GearError as e:
@@ -641,7 +669,10 @@ def load_library(path, sets=()) -> dict:
             if k in ("family", "name", "outputs"):
                 fail(file, f"library.sweep.{k}", v, "family parameters or body = {...}")
             vals = _sweep_values(file, f"library.sweep.{k}", v)
-            vals = [check_param(file, f"library.sweep.{k}[{j}]", fam, k, x, sig) for j, x in enumerate(vals)]
+            # the sizes every part needs are ranged up front; the other values are typed here
+            # and ranged by each part's build (one bad part fails alone, in the manifest)
+            vals = [check_param(file, f"library.sweep.{k}[{j}]", fam, k, x, sig, ranged=k in SWEEP_RANGED)
+                    for j, x in enumerate(vals)]
             axes.append(((k,), vals))
     if base["body"] is None and any(a[0][0] == "body" for a in axes):
         fail(file, "library.sweep.body", sweep.get("body"), "a [library.part] body table to sweep")
