@@ -1,11 +1,10 @@
 """Parameter forms of the web page.
 
-There is no single parameter table per family yet, so :func:`form_schema` assembles one
-from what exists: the family builder's signature (``gear3d.profiles.FAMILIES[name]``:
-names and defaults) and the CLI's own argument parsers (``gear3d profile`` / ``body`` /
-``check pair``, built from ``PROFILE_FLAGS`` and ``BODY_FLAGS``: flag, type, help, choices,
-and the range the flag's type states when it refuses a value). A later redesign can swap
-this one function's source for the real table.
+Each family's form is read off the one parameter table (:mod:`gear3d.params`) that also
+drives the builders' validation, the CLI flags and the TOML schema: names, flags, types,
+units, ranges, defaults and help (``FAMILY_PARAMS[family]`` for the profile,
+``BODY_PARAMS`` for the body). The pair section (``--mate-teeth``, ``--mate``) is read off
+the ``gear3d check pair`` parser, as pairs have no table.
 
 Validation stays the CLI's and the builders' own (see :mod:`gear3d.web.formargs`): a
 ``GearError`` naming the parameter, shown next to that field.
@@ -116,22 +115,31 @@ def _field(name: str, default, action, required: bool = False) -> dict:
             "required": required}
 
 
+def table_field(param, required: bool = False) -> dict:
+    """One form field from a :class:`gear3d.params.Param`: name, CLI flag, type
+    (int|float|str|bool), default (None: the builder or the CLI picks it), unit ("mm",
+    "deg", "1/inch", "\u00d7 m", "\u00d7 p"), help, choices, range (the words of a refusal),
+    required."""
+    unit = param.unit.replace("x ", "\u00d7 ") if param.unit else None
+    rng = param.allowed() if param.kind in (int, float) else None
+    default = None if param.name in CLI_PICKS else param.default
+    return {"name": param.name, "flag": param.flag, "type": param.kind.__name__, "default": default,
+            "help": param.help, "unit": unit, "choices": list(param.choices) if param.choices else None,
+            "range": rng, "required": required}
+
+
 def families() -> list:
-    """Families a form can build: those whose builder takes only CLI parameters (not ``mate``)."""
-    from ..profiles import FAMILIES, families as registered
-    registered()                # imports every family module
-    acts = cli_parsers()["profile"][1]
-    return [name for name in sorted(FAMILIES)
-            if all(p.kind is p.VAR_KEYWORD or p.name in acts
-                   for p in inspect.signature(FAMILIES[name]).parameters.values())]
+    """Families a form can build: every family with a parameter table (not ``mate``, which
+    takes a Profile)."""
+    from ..params import FAMILY_PARAMS
+    from ..profiles import families as registered
+    registered()                # every family module imported: the page builds any of them
+    return sorted(FAMILY_PARAMS)
 
 
 def _body_fields() -> list:
-    from ..solids.body import body
-    acts = cli_parsers()["body"][1]
-    return [_field(p.name, p.default, acts.get(p.name), p.name in REQUIRED["body"])
-            for p in inspect.signature(body).parameters.values()
-            if p.name != "profile" and not p.name.startswith("_")]
+    from ..params import BODY_PARAMS
+    return [table_field(p, p.name in REQUIRED["body"]) for p in BODY_PARAMS]
 
 
 def _pair_fields() -> list:
@@ -143,20 +151,16 @@ def _pair_fields() -> list:
 def form_schema(family: str) -> dict:
     """The parameter form of ``family``: ``{"family", "profile": [...], "body": [...], "pair": [...]}``.
 
-    Each field is ``{name, flag, type, default, unit, help, choices, range, required}``;
-    ``default`` is the builder's (None: the builder or the CLI picks it), ``unit`` is "mm",
-    "deg", "\u00d7 m" or "\u00d7 p" where the help says so, ``range`` the text the CLI's flag
-    states ("an integer in [1, 100000]"), or None where only the builder knows it.
+    Each field is ``{name, flag, type, default, unit, help, choices, range, required}``
+    (:func:`table_field`), read off the family's table in its builder's keyword order.
     Raises ``GearError("family", ...)`` for a family no form can build.
     """
     names = families()
     if family not in names:
         raise GearError("family", family, "one of " + ", ".join(names))
-    from ..profiles import FAMILIES
-    acts = cli_parsers()["profile"][1]
-    prof = [_field(p.name, p.default, acts.get(p.name))
-            for p in inspect.signature(FAMILIES[family]).parameters.values() if p.kind is not p.VAR_KEYWORD]
-    return {"family": family, "profile": prof, "body": _body_fields(), "pair": _pair_fields()}
+    from ..params import FAMILY_PARAMS
+    return {"family": family, "profile": [table_field(p) for p in FAMILY_PARAMS[family]],
+            "body": _body_fields(), "pair": _pair_fields()}
 
 
 def parse_form(schema: dict, query) -> dict:
