@@ -13,7 +13,7 @@ parameters it excludes. The tables drive
 * the web form of ``gear3d serve`` (:mod:`gear3d.web.schema`),
 * the reference pages ``docs/parameters.md`` and ``docs/templates.md``
   (``python -m gear3d.params --markdown > docs/parameters.md``,
-  ``python -m gear3d.jobs.template --markdown > docs/templates.md``).
+  ``python -m gear3d.params --templates > docs/templates.md``).
 
 Names: a TOML key (and a Python keyword) is the parameter's name; its CLI flag is the same
 name with ``-`` for ``_`` (``helix_angle_deg`` <-> ``--helix-angle-deg``). Older flag
@@ -112,7 +112,7 @@ class Param:
         """The ``--help`` line: help, unit, range, default."""
         bits = [self.help]
         if self.kind not in (bool, str) or self.choices:
-            bits.append(f"[{self.allowed()}]")
+            bits.append(self.allowed())
         d = default_text if default_text is not None else self.default_text()
         if d:
             bits.append(f"default {d}")
@@ -127,9 +127,10 @@ class Param:
             return ""
         if self.kind is bool:
             return "on" if self.default else "off"
+        unit = f" {self.unit}" if self.unit in ("mm", "deg", "1/inch") else ""
         if isinstance(self.default, float):
-            return f"{self.default:g}" + (f" {self.unit_text}" if self.unit_text else "")
-        return str(self.default) + (f" {self.unit_text}" if self.unit_text and self.kind is int else "")
+            return f"{self.default:g}{unit}"
+        return str(self.default) + unit
 
 
 def _flag_of(name: str) -> str:
@@ -443,7 +444,7 @@ def _md_default(p: Param) -> str:
     return f"{p.default:g}" if isinstance(p.default, float) else str(p.default)
 
 
-def _md_rows(params) -> list:
+def md_rows(params) -> list:
     rows = ["| TOML key / keyword | CLI flag | type | unit | range | default | meaning |",
             "|---|---|---|---|---|---|---|"]
     for p in params:
@@ -479,14 +480,14 @@ def markdown() -> str:
            "(`module`, `normal_module` or `diametral_pitch`) and one angle (`pressure_angle_deg` or",
            "`normal_pressure_angle_deg`) at most. A profile alone (`gear3d profile`) takes the",
            "normal sizes at `--helix-angle-deg` and refuses them without it.", "",
-           *_md_rows(CONVENTIONS + (CONV_HELIX,)), ""]
+           *md_rows(CONVENTIONS + (CONV_HELIX,)), ""]
     out += ["## Families", ""]
     for fam in FAMILY_PARAMS:
-        out += [f"### `{fam}`", "", *_md_rows(FAMILY_PARAMS[fam]), ""]
+        out += [f"### `{fam}`", "", *md_rows(FAMILY_PARAMS[fam]), ""]
     out += ["## Bodies (`gear3d body`, `[part.body]`)", "",
             "`gear3d.solids.body.body(profile, ...)` keywords. On the command line the body's",
             "tolerance is `--body-tolerance` (`--tolerance` is the profile's).", "",
-            *_md_rows(BODY_PARAMS), ""]
+            *md_rows(BODY_PARAMS), ""]
     return "\n".join(out)
 
 
@@ -496,7 +497,11 @@ def main(argv=None) -> int:
     if args == ["--markdown"]:
         sys.stdout.write(markdown() + "\n")
         return 0
-    sys.stderr.write("usage: python -m gear3d.params --markdown\n")
+    if args == ["--templates"]:        # the TOML schema page, from the template checks' own tables
+        import importlib
+        sys.stdout.write(importlib.import_module("gear3d.jobs.template").markdown() + "\n")
+        return 0
+    sys.stderr.write("usage: python -m gear3d.params --markdown | --templates\n")
     return 2
 
 

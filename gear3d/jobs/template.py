@@ -728,3 +728,56 @@ def load_library(path, sets=()) -> dict:
 def tolerance_for(job: dict, kind: str) -> float:
     """The tolerance (mm) of an output kind (or "check") in a scene/library."""
     return job["tolerances"].get(kind, job["tolerance"])
+
+
+# ------------------------------------------------------------------ schema page
+
+def markdown() -> str:
+    """``docs/templates.md``: the TOML schema, generated from the same tables the checks
+    above use (``python -m gear3d.params --templates > docs/templates.md``)."""
+    from ..params import BODY_PARAMS, CONVENTIONS, FAMILY_PARAMS, md_rows
+    doc = (__doc__ or "").split("Scene (", 1)[1]
+    scene_doc, library_doc = doc.split("Library (", 1)
+
+    def block(text):
+        head, code = text.split("\n", 1)
+        return [head.rstrip(":").replace("``", "`") + ":", "", "```toml",
+                *[ln[4:] if ln.startswith("    ") else ln for ln in code.strip("\n").split("\n")], "```", ""]
+    body = [p for p in BODY_PARAMS if p.name not in ("tolerance", "name")]
+    lines = ["# Templates: the TOML schema", "",
+             "Generated from `gear3d/jobs/template.py` and `gear3d/params.py` by",
+             "`python -m gear3d.params --templates > docs/templates.md`; `tests/test_params.py`",
+             "checks that this page is up to date. Do not edit by hand.", "",
+             "A template is data (nothing in it is evaluated). Every problem (a wrong type, an unknown",
+             "key, an out-of-range value, a missing family, an unsafe output name) is refused before any",
+             "file is written, with one message naming the FILE, the KEY and the allowed values.", "",
+             "## Examples", "", *block("Scene (" + scene_doc), *block("Library (" + library_doc.split('"""')[0]),
+             "## Tables and keys", "",
+             "| table | keys |", "|---|---|",
+             f"| `[scene]` | {', '.join(f'`{k}`' for k in SCENE_KEYS)} |",
+             "| `[[part]]` | `name`, `family`, `outputs`, `body`, `options`, and the family's parameters |",
+             f"| `[[pair]]` | {', '.join(f'`{k}`' for k in PAIR_KEYS)} |",
+             f"| `[[assembly]]` | {', '.join(f'`{k}`' for k in ASSEMBLY_KEYS)} |",
+             f"| `[library]` | {', '.join(f'`{k}`' for k in LIBRARY_KEYS)} |",
+             "| `[library.part]` | as `[[part]]`, without `name` (the pattern names the parts) |",
+             "| `[library.sweep]` | family parameters and `body = {...}`: lists, ranges `{start, stop, step}` "
+             "(stop inclusive), `zip = true` |", "",
+             f"Output kinds: {', '.join(f'`{k}`' for k in OUTPUT_KINDS)} (mesh kinds need a `[part.body]`).",
+             f"Tolerances (mm, in [{TOL_RANGE[0]:g}, {TOL_RANGE[1]:g}]): `tolerance`, and per kind in "
+             f"`tolerances` ({', '.join(f'`{k}`' for k in TOLERANCE_KEYS)}); default "
+             f"{DEFAULT_TOLERANCE:g} mm, {MESH_TOLERANCE:g} mm for mesh kinds.",
+             f"A library expands to at most {MAX_LIBRARY_PARTS} parts. Sweeps check types up front and the",
+             f"ranges of {', '.join(f'`{k}`' for k in SWEEP_RANGED)}; other out-of-range values fail",
+             "their part alone (recorded in the manifest).", "",
+             "## Part keys: the family parameters", "",
+             "A part takes its family's parameters under their own names (the CLI flag is the same",
+             "name with `-` for `_`); see [parameters.md](parameters.md) for every family's table:",
+             "", *[f"* `{fam}`: " + ", ".join(f"`{p.name}`" for p in ps if p.name != "tolerance")
+                  for fam, ps in FAMILY_PARAMS.items()], "",
+             "Families with a module also take the helical / inch alternatives (taken at the body's",
+             "`helix_angle_deg`):", "", *md_rows(CONVENTIONS), "",
+             "## `[part.body]`", "",
+             "`mate = \"<part>\"` builds the body as the mate of that part's body; the other keys:", "",
+             *md_rows(body), ""]
+    return "\n".join(lines)
+
