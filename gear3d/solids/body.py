@@ -160,15 +160,16 @@ def body(profile, kind="spur", width=10.0, helix_angle_deg=0.0, hand="right", ga
     from ..progress import stage
     prof = _check_profile(profile)
     stage("body")
+    from ..params import BODY          # the one table (ranges stated once)
     kind = check_choice("kind", kind, KINDS)
-    W = check_number("width", width, 0, 100_000, lo_open=True, unit="mm")
+    W = BODY["width"].check(width if width is not None else float("nan"))
     if kind == "spur":
         beta = check_number("helix_angle_deg", helix_angle_deg, 0, 0, unit="deg for a spur body "
                             "(use kind='helical')")
     else:
         beta = check_number("helix_angle_deg", helix_angle_deg, 0, 90, lo_open=True, hi_open=True,
                             unit="deg")
-    hand = check_choice("hand", hand, ("right", "left"))
+    hand = BODY["hand"].check(hand if hand is not None else "")
     gap = check_number("gap", gap, 0, 0 if kind != "herringbone" else W, hi_open=kind == "herringbone",
                        unit="mm" if kind == "herringbone" else "mm (a gap is for herringbone bodies)")
     m = prof.module
