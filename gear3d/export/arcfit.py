@@ -1,37 +1,67 @@
-"""Arc-spline fitting: closed polylines -> lines and circular arcs (DXF bulges) within a tolerance.
+"""Biarc fitting: closed polylines -> G1 (tangent-continuous) chains of circular arcs within a tolerance.
 
 The input is a *fine reference* polyline whose vertices lie on the exact curve (to
 Clipper's 1e-8 mm rounding) and whose chords sag by far less than the requested
-tolerance. The fit is a C0 arc spline whose joints are reference vertices (so every joint
-is on the exact curve): a greedy sweep takes, from each joint, the longest run of
-reference vertices that one arc through its two end vertices can follow within the
-budget (exponential search, then bisection). For each candidate run the arc's one free
-parameter, the bulge ``b = tan(theta/4)``, is chosen to minimise the largest distance
-from the run's vertices to the arc. Sharp corners of the reference (turning > corner
-angle) are always joints, so corners are kept exactly.
+tolerance. The fit is a **G1 biarc spline** for wire EDM (the wire does not stop at a
+joint where the direction does not change):
 
-Greedy is optimal for this covering problem whenever every sub-run of a feasible run is
-feasible, which holds up to rounding for arcs following a smooth curve.
+1. **Corners.** A vertex is a *true corner* of the curve (a trimmed undercut or pointed
+   tip, a cusp, a polygon corner) when the polyline turns there by more than 25 deg, or
+   by more than 1 deg and more than 3x at either neighbour (a smooth curve sampled
+   adaptively turns by similar amounts at neighbouring vertices; on the shipped families
+   corners turn by >= 30 deg and smooth vertices by <= 15 deg). Corners stay corners.
+2. **Tangents.** At every smooth vertex the unit tangent is that of the circle through
+   the vertex and its two neighbours (second order in the chord length; for the chords'
+   directions a, b, c of p-q, q-r, p-r the tangent at q has the angle a + b - c). At a
+   corner each side gets its own one-sided estimate (the same circle rule, from two
+   vertices on that side).
+3. **Biarcs.** Between two joints P0, P1 with tangents T0, T1 the *equal tangent length*
+   biarc is used: control points Q0 = P0 + d T0, Q1 = P1 - d T1 with |Q1 - Q0| = 2d (the
+   one positive root of 2(1 - T0.T1) d^2 + 2 (P1 - P0).(T0 + T1) d - |P1 - P0|^2 = 0),
+   joined at J = (Q0 + Q1)/2 with the tangent Q1 - Q0. Each of the two arcs is tangent
+   at both of its ends, so consecutive segments share their tangent *by construction*:
+   the tangents' own estimation error changes the fit error, not the continuity.
+4. **Spans.** A greedy sweep takes, from each joint, the longest run of reference
+   vertices whose biarc stays within the budget of every vertex in the run (exponential
+   search, then bisection) with arcs of at most ``max_angle_deg``.
 
 Conventions (as in DXF): the arc from A to B with bulge b > 0 turns counter-clockwise,
-its included angle is 4 atan(b); b = 0 is a straight line. Units: mm, radians.
+its included angle is 4 atan(b); b = 0 is a straight line. Units: mm, radians inside.
 """
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
-__all__ = ["ArcSpline", "fit_arcs", "arc_distance", "arc_points", "corner_indices"]
+__all__ = ["ArcSpline", "fit_arcs", "arc_distance", "arc_points", "corner_indices", "tangent_jumps",
+           "segment_tangents", "biarc"]
+
+#: corner test (degrees): polyline turn above CORNER_DEG, or above CORNER_MIN_DEG and
+#: CORNER_RATIO x the turn at either neighbour
+CORNER_DEG = 25.0
+CORNER_MIN_DEG = 1.0
+CORNER_RATIO = 3.0
+#: |bulge| below this is written as a straight line (tangent change <= 4e-12 rad)
+LINE_BULGE = 1e-12
+#: mm: neighbours nearer than this are skipped by the tangent estimate (rounding noise)
+MIN_STENCIL = 1e-5
 
 
 @dataclass
 class ArcSpline:
     """A closed chain of segments: segment k runs from ``vertices[k]`` to
-    ``vertices[(k+1) % m]`` with bulge ``bulges[k]`` (0 = line)."""
+    ``vertices[(k+1) % m]`` with bulge ``bulges[k]`` (0 = line). ``corners[k]`` is True
+    where vertex k is a true corner of the curve (a tangent discontinuity kept on
+    purpose); every other joint is tangent-continuous."""
     vertices: np.ndarray
     bulges: np.ndarray
+    corners: np.ndarray = field(default=None)
+
+    def __post_init__(self):
+        if self.corners is None:
+            self.corners = np.zeros(len(self.vertices), bool)
 
     @property
     def arcs(self) -> int:
@@ -68,15 +98,11 @@ def _signed_circle_distance(Q, c, n, mid, b):
 
     Stable for b -> 0 (it becomes the signed distance to the chord's line): with
     q = Q - mid, f = b(|q|^2 - c^2/4) - (c/2)(b^2 - 1) q.n equals b(|Q-C|^2 - R^2), and the
-    distance d solves b d^2 + K d - f = 0 with K = c(1+b^2)/2. ``b`` may be an array (M,)
-    to evaluate several bulges at once: the result is then (N, M).
+    distance d solves b d^2 + K d - f = 0 with K = c(1+b^2)/2.
     """
     q = Q - mid
     qq = np.einsum("ij,ij->i", q, q) - 0.25 * c * c
     qn = q @ n
-    b = np.asarray(b, float)
-    if b.ndim:
-        qq, qn = qq[:, None], qn[:, None]
     f = b * qq - 0.5 * c * (b * b - 1.0) * qn
     K = 0.5 * c * (1.0 + b * b)
     disc = np.maximum(K * K + 4.0 * b * f, 0.0)
@@ -117,114 +143,205 @@ def arc_points(A, B, b, sag: float) -> np.ndarray:
     return P
 
 
-def corner_indices(loop: np.ndarray, corner_deg: float) -> np.ndarray:
-    """Vertices of a closed polyline where the direction turns by more than ``corner_deg``."""
+def segment_tangents(A, B, b):
+    """Unit tangents (start, end) of the arcs A[k] -> B[k] with bulges b[k] (arrays (N,2),
+    (N,2), (N,)), in the direction of travel."""
+    A, B, b = np.asarray(A, float), np.asarray(B, float), np.asarray(b, float)
+    d = B - A
+    u = d / np.maximum(np.hypot(d[:, 0], d[:, 1]), 1e-300)[:, None]
+    h = 2.0 * np.arctan(b)[:, None]      # the tangent at A is u turned by -h, at B by +h
+    ch, sh = np.cos(h), np.sin(h)
+    t0 = np.concatenate([u[:, :1] * ch + u[:, 1:] * sh, -u[:, :1] * sh + u[:, 1:] * ch], axis=1)
+    t1 = np.concatenate([u[:, :1] * ch - u[:, 1:] * sh, u[:, :1] * sh + u[:, 1:] * ch], axis=1)
+    return t0, t1
+
+
+def tangent_jumps(fit: ArcSpline) -> np.ndarray:
+    """Angle (deg) between the incoming and outgoing tangent at every joint of ``fit``."""
+    V = fit.vertices
+    t0, t1 = segment_tangents(V, np.roll(V, -1, axis=0), fit.bulges)
+    tin = np.roll(t1, 1, axis=0)
+    cross = tin[:, 0] * t0[:, 1] - tin[:, 1] * t0[:, 0]
+    dot = np.einsum("ij,ij->i", tin, t0)
+    return np.degrees(np.abs(np.arctan2(cross, dot)))
+
+
+def corner_indices(loop: np.ndarray, corner_deg: float = CORNER_DEG) -> np.ndarray:
+    """True corners of a closed fine polyline (see the module doc, step 1)."""
     d = np.roll(loop, -1, axis=0) - loop
     a = np.arctan2(d[:, 1], d[:, 0])
-    turn = np.abs((a - np.roll(a, 1) + np.pi) % (2 * np.pi) - np.pi)
-    return np.nonzero(turn > math.radians(corner_deg))[0]
+    turn = np.degrees(np.abs((a - np.roll(a, 1) + np.pi) % (2 * np.pi) - np.pi))
+    nb = np.maximum(np.roll(turn, 1), np.roll(turn, -1))
+    c = (turn > corner_deg) | ((turn > CORNER_MIN_DEG) & (turn > CORNER_RATIO * nb))
+    return np.nonzero(c)[0]
+
+
+def _unit(z):
+    return z / np.maximum(np.abs(z), 1e-300)
+
+
+def _circle_tangent(P, i, j, k, at):
+    """Unit tangent (complex) at P[at] of the circle through P[i], P[j], P[k] (in curve
+    order): the chord directions a (i-j), b (j-k), c (i-k) give the angles a + c - b at i,
+    a + b - c at j, b + c - a at k."""
+    z = P[:, 0] + 1j * P[:, 1]
+    a, b, c = _unit(z[j] - z[i]), _unit(z[k] - z[j]), _unit(z[k] - z[i])
+    return {"i": a * c / b, "j": a * b / c, "k": b * c / a}[at]
+
+
+def _tangents(P, corners):
+    """Unit tangents (n,2) in and out at every vertex of the closed polyline P (n,2)."""
+    n = len(P)
+    idx = np.arange(n)
+    z = P[:, 0] + 1j * P[:, 1]
+    # stencil: nearest vertex on each side at least MIN_STENCIL away (a few are nearer)
+    lft, rgt = (idx - 1) % n, (idx + 1) % n
+    short = np.nonzero((np.abs(z - z[lft]) < MIN_STENCIL) | (np.abs(z - z[rgt]) < MIN_STENCIL))[0]
+    for i in short:
+        for side, arr in ((-1, lft), (1, rgt)):
+            k = (i + side) % n
+            while abs(z[k] - z[i]) < MIN_STENCIL and k not in corners and (k + side) % n != i:
+                k = (k + side) % n
+            arr[i] = k
+    t = _circle_tangent(P, lft, idx, rgt, "j")
+    tin, tout = t.copy(), t.copy()
+    cs = np.asarray(sorted(corners), int)
+    if len(cs):
+        cset = set(cs.tolist())
+        for c in cs:
+            a, b = (c + 1) % n, (c + 2) % n             # out: two vertices ahead
+            if a in cset or b in cset or b == c:
+                tout[c] = _unit(z[a] - z[c])
+            else:
+                tout[c] = _circle_tangent(P, np.array([c]), np.array([a]), np.array([b]), "i")[0]
+            a, b = (c - 1) % n, (c - 2) % n             # in: two vertices behind
+            if a in cset or b in cset or b == c:
+                tin[c] = _unit(z[c] - z[a])
+            else:
+                tin[c] = _circle_tangent(P, np.array([b]), np.array([a]), np.array([c]), "k")[0]
+        # a smooth vertex next to a corner on a straight two-vertex run: the chord direction
+    return np.stack([tin.real, tin.imag], axis=1), np.stack([tout.real, tout.imag], axis=1)
+
+
+def _bulge(A, B, T):
+    """Bulge of the arc from A to B whose tangent at A is T (unit)."""
+    d = B - A
+    alpha = math.atan2(d[0] * T[1] - d[1] * T[0], d[0] * T[0] + d[1] * T[1])   # chord -> T
+    b = math.tan(-0.5 * alpha)
+    return 0.0 if abs(b) < LINE_BULGE else b
+
+
+def biarc(P0, T0, P1, T1):
+    """Equal-tangent-length biarc from P0 (tangent T0) to P1 (tangent T1), unit tangents.
+
+    Returns (J, b1, b2): the joint and the bulges of the arcs P0 -> J and J -> P1, or
+    None when no such biarc exists (the tangents point away from each other)."""
+    v = P1 - P0
+    t = T0 + T1
+    vv = float(v @ v)
+    vt = float(v @ t)
+    c1 = 1.0 - float(T0 @ T1)
+    den = vt + math.sqrt(max(vt * vt + 2.0 * c1 * vv, 0.0))
+    if vv == 0.0 or den <= 1e-12 * math.sqrt(vv):
+        return None
+    d = vv / den
+    Q0, Q1 = P0 + d * T0, P1 - d * T1
+    J = 0.5 * (Q0 + Q1)
+    Tm = Q1 - Q0
+    nm = math.hypot(*Tm)
+    if nm == 0.0:
+        return None
+    Tm = Tm / nm
+    if np.array_equal(J, P0) or np.array_equal(J, P1):
+        return None
+    return J, _bulge(P0, J, T0), _bulge(J, P1, Tm)
 
 
 # ---------------------------------------------------------------------- fitting
 
-def _best_bulge(Q, A, B, bmax):
-    """Bulge of the arc A->B minimising max distance to the interior points Q; (b, maxdist)."""
-    c, u, n, mid = _frame(A, B)
-    if len(Q) == 0:
-        return 0.0, 0.0
-    q = Q - mid
-    P = np.einsum("ij,ij->i", q, q) - 0.25 * c * c
-    N = q @ n
-    den = P + np.where(P >= 0, 1.0, -1.0) * np.sqrt(P * P + c * c * N * N)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        bk = np.where(den != 0, -c * N / den, 0.0)     # bulge of the circle through A, Q_k, B
-    lo, hi = float(np.clip(bk.min(), -bmax, bmax)), float(np.clip(bk.max(), -bmax, bmax))
-    best_b, best_e = lo, math.inf
-    for _ in range(3):
-        if hi <= lo:
-            grid = np.array([lo])
-        else:
-            grid = np.linspace(lo, hi, 17)
-        e = np.abs(_signed_circle_distance(Q, c, n, mid, grid)).max(axis=0)
-        i = int(np.argmin(e))
-        if e[i] < best_e:
-            best_b, best_e = float(grid[i]), float(e[i])
-        if len(grid) == 1:
-            break
-        h = grid[1] - grid[0]
-        lo, hi = best_b - h, best_b + h
-    return best_b, best_e
-
-
-def _try(P, i, j, budget, bmax):
-    """Fit one arc to P[i..j]; return bulge or None if no arc within ``budget``."""
-    A, B = P[i], P[j]
-    if np.array_equal(A, B):
+def _try(P, M, i, j, Tout, Tin, budget, bmax):
+    """The biarc from P[i] to P[j] if it is within ``budget`` of the vertices P[i+1..j-1]
+    and the chord midpoints M[i..j-1], else None."""
+    r = biarc(P[i], Tout[i], P[j], Tin[j])
+    if r is None:
         return None
-    Q = P[i + 1:j]
-    b, e = _best_bulge(Q, A, B, bmax)
-    if e > budget:
+    J, b1, b2 = r
+    if abs(b1) > bmax or abs(b2) > bmax:
         return None
-    if len(Q) and abs(b) * math.hypot(*(B - A)) * 0.5 <= budget:
-        if arc_distance(Q, A, B, 0.0).max() <= budget:
-            return 0.0                      # a straight line does it
-    if len(Q) and arc_distance(Q, A, B, b).max() > budget:
+    Q = np.concatenate([P[i + 1:j], M[i:j]])
+    d = np.minimum(arc_distance(Q, P[i], J, b1), arc_distance(Q, J, P[j], b2))
+    if d.max() > budget:
         return None
-    return b
+    return r
 
 
-def fit_open(P: np.ndarray, budget: float, breaks=(), max_angle_deg: float = 90.0):
-    """Greedy arc-spline through the polyline P (n,2) from P[0] to P[-1]; joints are
-    vertices of P and include ``breaks``. Returns (joint indices, bulges)."""
+def _fallback(P, i, Tout, Tin):
+    """Two adjacent vertices: the biarc if there is one, else a straight segment."""
+    r = biarc(P[i], Tout[i], P[i + 1], Tin[i + 1])
+    return r if r is not None else (None, 0.0, 0.0)
+
+
+def fit_open(P, Tout, Tin, budget: float, stops, max_angle_deg: float = 90.0):
+    """Greedy biarc chain along P (n,2) from P[0] to P[-1] through every index in
+    ``stops`` (sorted, includes n-1). Returns (vertices, bulges) of the segments (the
+    last point, P[-1], not included)."""
     n = len(P)
     bmax = math.tan(math.radians(max_angle_deg) / 4)
-    stops = sorted(set(int(k) for k in breaks if 0 < k < n - 1) | {n - 1})
-    idx, bul = [0], []
-    i = 0
-    si = 0
+    M = 0.5 * (P[:-1] + P[1:])
+    verts, buls = [], []
+    i, si, last = 0, 0, 2
     while i < n - 1:
         while stops[si] <= i:
             si += 1
         lim = stops[si]
-        # exponential search for an infeasible end, then bisection
-        good, good_b = i + 1, _try(P, i, i + 1, budget, bmax)
-        if good_b is None:
-            good_b = 0.0
-        step = 2
-        bad = None
+        good, good_r = i + 1, _try(P, M, i, i + 1, Tout, Tin, budget, bmax)
+        if good_r is None:
+            good_r = _fallback(P, i, Tout, Tin)
+        # exponential search from the previous span's length, then bisection
+        step, bad = max(2, last), None
         while True:
             j = min(i + step, lim)
             if j <= good:
                 break
-            b = _try(P, i, j, budget, bmax)
-            if b is None:
+            r = _try(P, M, i, j, Tout, Tin, budget, bmax)
+            if r is None:
                 bad = j
                 break
-            good, good_b = j, b
+            good, good_r = j, r
             if j == lim:
                 break
             step *= 2
         if bad is not None:
             while bad - good > 1:
                 j = (good + bad) // 2
-                b = _try(P, i, j, budget, bmax)
-                if b is None:
+                r = _try(P, M, i, j, Tout, Tin, budget, bmax)
+                if r is None:
                     bad = j
                 else:
-                    good, good_b = j, b
-        idx.append(good)
-        bul.append(good_b)
+                    good, good_r = j, r
+        last = good - i
+        J, b1, b2 = good_r
+        if J is None:
+            verts.append(P[i])
+            buls.append(0.0)
+        elif b1 == 0.0 and b2 == 0.0:
+            verts.append(P[i])                       # a straight span: one line
+            buls.append(0.0)
+        else:
+            verts += [P[i], J]
+            buls += [b1, b2]
         i = good
-    return np.array(idx), np.array(bul, float)
+    return verts, buls
 
 
 def fit_arcs(loop: np.ndarray, budget: float, *, start: int | None = None,
-             corner_deg: float = 30.0, max_angle_deg: float = 90.0) -> ArcSpline:
-    """Fit a closed polyline ``loop`` (n,2 mm, last vertex not repeated) with lines and
-    arcs whose distance to every loop vertex is <= ``budget`` (mm).
+             corner_deg: float = CORNER_DEG, max_angle_deg: float = 90.0) -> ArcSpline:
+    """Fit a closed polyline ``loop`` (n,2 mm, last vertex not repeated) with a G1 biarc
+    chain (arcs, and lines where the curve is straight) whose distance to every loop
+    vertex is <= ``budget`` (mm); true corners of the loop stay corners.
 
     ``start``: vertex index where the chain must begin (e.g. the wire's start point);
-    default: the sharpest corner, or vertex 0. Arcs span at most ``max_angle_deg``.
+    default: the first corner, or vertex 0. Arcs span at most ``max_angle_deg``.
     """
     loop = np.asarray(loop, float)
     if len(loop) > 1 and np.array_equal(loop[0], loop[-1]):
@@ -233,8 +350,19 @@ def fit_arcs(loop: np.ndarray, budget: float, *, start: int | None = None,
     corners = corner_indices(loop, corner_deg)
     if start is None:
         start = int(corners[0]) if len(corners) else 0
+    tin, tout = _tangents(loop, set(corners.tolist()))
     order = np.r_[np.arange(start, n), np.arange(0, start), start]
     P = loop[order]
-    breaks = (corners - start) % n
-    joints, bulges = fit_open(P, budget, breaks, max_angle_deg)
-    return ArcSpline(P[joints[:-1]].copy(), bulges)
+    Tin, Tout = tin[order], tout[order]
+    stops = sorted(set(int(k) for k in (corners - start) % n if 0 < k < n) | {n})
+    verts, buls = fit_open(P, Tout, Tin, budget, stops, max_angle_deg)
+    V = np.array(verts)
+    cset = set(((corners - start) % n).tolist())
+    is_corner = np.zeros(len(V), bool)
+    # joints that are reference vertices: find their reference index by identity
+    pos = {tuple(P[k]): k for k in range(n)}
+    for m, v in enumerate(V):
+        k = pos.get(tuple(v))
+        if k is not None and k in cset:
+            is_corner[m] = True
+    return ArcSpline(V, np.array(buls, float), is_corner)
