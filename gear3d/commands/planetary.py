@@ -1,0 +1,118 @@
+"""``gear3d planetary FAMILY --sun ZS --planet ZP --ring ZR --planets N --module M --width W
+-o set.3mf --json set.json [--carrier] [--spacing nearest] [--tolerance MM]``.
+
+Builds a standard planetary set (:func:`gear3d.planetary.planetary_set`): sun, planets and
+ring placed in phase, each distinct mesh rolled through the interference check, planet tip
+clearance checked, the ratios with each member held. ``-o`` writes the placed bodies as one
+file (.3mf: one named object per wheel; .stl .step .obj .ply .vtu as the exporters take a
+list of bodies); ``--json`` the full report (strict JSON). Without ``-o`` no body is built.
+The family flags are those of ``gear3d profile`` (one table, gear3d.params), shared by all
+wheels; ``--teeth``, ``--internal``, shifts and tip/rim radii are the set's own business
+and refused. Bad input: one line on stderr, exit 2, no file. Missing folders of the
+outputs are created once the set is built (and removed again when a write fails).
+"""
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+
+#: family flags a set does not take (hidden from --help, refused by the library)
+HIDDEN = ("teeth", "internal", "mate_teeth", "center_distance", "shift_coeff", "tip_radius", "rim_radius",
+          "helix_angle_deg", "normal_module", "normal_pressure_angle_deg")
+
+
+def add_parser(sub):
+    from ..params import BODY
+    from ..planetary import PLANETARY_PARAMS
+    from .profile import MESH_EXTS, add_param_flag, add_profile_flags
+    p = sub.add_parser("planetary", add_help=False,
+                       help="a planetary set: sun, planets, ring (+ carrier) in phase, checked -> .3mf + .json")
+    add_profile_flags(p)
+    for a in p._actions:
+        if a.dest in HIDDEN:
+            a.help = argparse.SUPPRESS
+        elif a.dest == "tolerance":
+            a.help = ("max deviation from the exact curve (mm), profiles, bodies and the rolling checks; "
+                      f"default 0.01 mm with a mesh output (-o), else 0.001 mm")
+    for prm in PLANETARY_PARAMS:
+        add_param_flag(p, prm, "pl_" + prm.name) if prm.kind is not str else \
+            p.add_argument("--" + prm.name, dest="pl_" + prm.name, default=prm.default,
+                           choices=list(prm.choices), help=prm.help_text())
+    w = BODY["width"]
+    add_param_flag(p, w, "pl_width", help_text=w.help_text(default_text="") + " (needed with -o)")
+    p.add_argument("-o", "--output", default=None,
+                   help="the placed bodies: " + " ".join(e for e in MESH_EXTS) + " (missing folders are created)")
+    p.add_argument("--json", default=None, help="the full report as strict JSON")
+    return p
+
+
+def _outputs(args):
+    """(-o path or None, --json path or None), checked before any work."""
+    from ..errors import GearError
+    from .profile import MESH_EXTS
+    out, js = args.output, args.json
+    if out is not None:
+        _check_new(out, "output", MESH_EXTS, " (the report goes to --json)")
+    if js is not None:
+        _check_new(js, "json", (".json",))
+    if out is not None and js is not None and os.path.abspath(out) == os.path.abspath(js):
+        raise GearError("json", js, "a file other than -o")
+    return out, js
+
+
+def _check_new(path, param, exts, note=""):
+    """A destination checked before any work (:func:`gear3d.export.check_path`); one whose
+    folder does not exist yet is checked for its extension and for a folder that can be made."""
+    from ..errors import GearError
+    from ..export import check_out_dir, check_path
+    if not isinstance(path, str) or not path or "\x00" in path:
+        raise GearError(param, path, "a file path (non-empty text)")
+    if not path.lower().endswith(tuple(exts)):
+        raise GearError(param, path, "a file name ending in " + " or ".join(exts) + note)
+    folder = os.path.dirname(os.path.abspath(path))
+    if not os.path.isdir(folder):
+        check_out_dir(folder, param)
+        return
+    check_path(path, param, tuple(exts))
+
+
+def run(args) -> int:
+    from ..errors import GearError
+    from ..planetary import planetary_set, summary
+    from .check import write_report
+    from .profile import family_params, print_notes
+    out, js = _outputs(args)
+    kw = family_params(args, out)
+    tol = kw.pop("tolerance")
+    if out is not None and args.pl_width is None:
+        raise GearError("width", None, "a number in (0, 100000] mm (--width) to build the bodies of -o")
+    s = planetary_set(args.family, args.pl_sun, args.pl_planet, args.pl_ring, args.pl_planets,
+                      kw.pop("module", None), args.pl_width if args.pl_width is not None else 10.0, tol,
+                      args.pl_carrier, spacing=args.pl_spacing, bodies=out is not None, **kw)
+    rep = s.report
+    msg = [summary(rep)]
+    from ..export import make_out_dir, remove_dirs
+    made = []
+    try:
+        for path, param in ((out, "output"), (js, "json")):
+            if path is not None:
+                made += make_out_dir(os.path.dirname(os.path.abspath(path)), param)
+        if out is not None:
+            from ..export import write
+            info = write(s.bodies, out, **({"title": "planetary"} if out.lower().endswith(".3mf") else {}))
+            msg.append(f"wrote {out}: {len(s.bodies)} bodies" + (f" ({info})" if info else ""))
+        if js is not None:
+            write_report(js, rep, "json")
+            msg.append(f"wrote {js}")
+    except BaseException:
+        if out is not None and js is not None and os.path.exists(out) and not os.path.exists(js):
+            try:
+                os.remove(out)     # the set's files come together or not at all
+            except OSError:
+                pass
+        remove_dirs(made)
+        raise
+    sys.stdout.write("\n".join(msg) + "\n")
+    print_notes(args)
+    return 0

@@ -1,0 +1,465 @@
+"""Planetary sets (issue #14 item 5): sun, planets and ring placed in phase, checked by rolling.
+
+:func:`planetary_set` builds a standard (unshifted) simple planetary set of one family: a
+sun of ``sun`` teeth at the origin, ``planets`` identical planets of ``planet`` teeth on the
+carrier circle a = m (z_sun + z_planet)/2, and an internal ring of ``ring`` teeth
+(``internal=True``), optionally a carrier (a plate below the wheels with one pin per
+planet, the planets bored to run on them). Units: mm, degrees in the report.
+
+Conditions (refused with :class:`~gear3d.errors.GearError`, exit 2 on the CLI):
+
+* ``ring`` = ``sun`` + 2 ``planet`` (standard set: the planets touch sun and ring on their
+  pitch circles);
+* assembly: planets equally spaced at 2πk/N mesh with sun and ring together only when
+  (z_sun + z_ring)/N is an integer. ``spacing="nearest"`` places planet k instead at the
+  allowed angle nearest 2πk/N: a multiple of 2π/(z_sun + z_ring) (the general phasing);
+* planet-planet tip clearance 2a sin(Δθ/2) − 2 r_tip,planet > 0 (Δθ: the smallest angle
+  between neighbouring planets; 2π/N when equally spaced).
+
+Phasing (frame: sun at the origin, its tooth 0 on +x, not turned). The phase of a wheel at
+a pitch point P is the fraction of a pitch between its tooth 0 and P, f = (angle of P −
+turn) z/2π: f = 0 puts a tooth on P, f = ½ a space. Along a mesh the phases satisfy
+f_A + f_B ≡ ½ (external) and f_pinion − f_ring ≡ ½ (internal): the symmetric mesh of
+:func:`gear3d.placement.mesh_placement`, rolled. Each planet's turn is therefore
+:func:`gear3d.placement.mesh_phase` (a space on the sun's pitch point) plus the roll that
+matches the sun's phase there; the ring's turn follows from planet 1 the same way and is
+checked against every other planet (``ring_phase_error``, ring pitches): it vanishes
+exactly when the assembly condition holds.
+
+Checks: every mesh of one kind is the same mesh at another phase (the planets are
+identical and in phase), so one rolling check (:func:`gear3d.analysis.pairs.check_pair`)
+per distinct mesh suffices: sun-planet and planet-ring. The placed set is also checked as
+it stands (shapely, every planet against the sun, the ring and its neighbours):
+``placed_penetration`` and the measured planet gap.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from dataclasses import dataclass, field
+
+from .errors import GearError, check_bool, check_choice, check_number
+from .params import BODY, TOLERANCE, Param
+from .reports import Report
+
+#: rack-generated families with a module whose same-family pairs mesh (issue #14 item 1)
+PLANETARY_FAMILIES = ("cycloidal", "involute", "sine", "triangular")
+SPACINGS = ("equal", "nearest")
+
+#: the set's own parameters (CLI flag = ``--`` + name, as gear3d.params)
+PLANETARY_PARAMS: tuple = (
+    Param("sun", int, "", 1, 10_000, help="teeth of the sun", default=None),
+    Param("planet", int, "", 1, 10_000, help="teeth of each planet", default=None),
+    Param("ring", int, "", 3, 30_000, help="teeth of the ring (standard set: sun + 2 planet)", default=None),
+    Param("planets", int, "", 1, 1000, default=3, help="number of planets"),
+    Param("spacing", str, default="equal", choices=SPACINGS,
+          help="equal: planets at 2 pi k/N, needs (sun + ring)/N integer; nearest: each at the "
+               "allowed angle (a multiple of 2 pi/(sun + ring)) nearest 2 pi k/N"),
+    Param("carrier", bool, default=False, help="add a carrier: a plate below the wheels with a pin per planet"),
+)
+PLANETARY = {p.name: p for p in PLANETARY_PARAMS}
+
+#: family parameters a set fixes itself (each wheel's teeth and kind, the placement)
+RESERVED = ("teeth", "internal", "tolerance", "mate_teeth", "center_distance", "tip_radius", "rim_radius",
+            "helix_angle_deg", "normal_module", "normal_pressure_angle_deg")
+
+#: carrier proportions: pin radius / planet root radius, radial pin clearance, axial gap and
+#: plate thickness (x module; the plate at least a quarter of the width)
+PIN_COEFF = 0.4
+PIN_CLEARANCE = 0.1
+AXIAL_GAP = 0.25
+PLATE_MIN = 1.0
+
+
+@dataclass(eq=False, repr=False)
+class PlanetaryReport(Report):
+    """What :func:`planetary_set` built and checked (mm, degrees)."""
+    family: str
+    teeth: dict
+    planets: int
+    module: float
+    width: float
+    tolerance: float
+    spacing: str
+    #: (z_sun + z_ring)/planets and whether it is an integer (equal spacing needs it)
+    assembly_quotient: float
+    assembly_condition: bool
+    #: carrier radius a = m (z_sun + z_planet)/2
+    center_distance: float
+    planet_angles_deg: list
+    #: every wheel's centre (mm) and turn (deg, tooth 0 from +x)
+    placements: list
+    #: sun/carrier (ring held), sun/ring (carrier held), ring/carrier (sun held)
+    ratios: dict
+    ratio_definitions: dict
+    #: planet-planet: tip circles 2a sin(dθ/2) - 2 r_tip, and measured between the placed profiles
+    planet_tip_radius: float
+    planet_clearance: float | None
+    planet_gap_measured: float | None
+    #: the ring's turn from each planet against planet 1's (ring pitches; 0 = all mesh)
+    ring_phase_error: float
+    #: deepest overlap of the placed profiles (sun-planet, planet-ring), as assembled
+    placed_penetration: dict
+    #: rolling checks, one per distinct mesh (None when not run)
+    meshes: dict | None
+    meshes_note: str
+    interference: bool | None
+    max_penetration: float | None
+    profiles: dict
+    bodies: dict | None
+    carrier: dict | None
+    #: the largest measured error of the profiles and bodies (mm)
+    max_error: float
+    extra: dict = field(default_factory=dict)
+
+
+class PlanetarySet:
+    """The built set: ``profiles`` (``sun``, ``planet``, ``ring``: :class:`gear3d.model.Profile`,
+    each in its own frame), ``placements`` (name, centre, turn rad), ``bodies`` (placed
+    bodies, sun, planet-1..N, ring[, carrier]; None when not built) and ``report``
+    (:class:`PlanetaryReport`)."""
+
+    def __init__(self, profiles, placements, bodies, report):
+        self.profiles, self.placements, self.bodies, self.report = profiles, placements, bodies, report
+
+    def __repr__(self):
+        r = self.report
+        return (f"PlanetarySet({r['family']} {r['teeth']['sun']}-{r['teeth']['planet']}-{r['teeth']['ring']}, "
+                f"planets={r['planets']}, ratio={r['ratios']['ring_fixed']:g})")
+
+
+# ---------------------------------------------------------------------- formulas
+
+def ratios(sun: int, ring: int) -> dict:
+    """The three ratios (input speed / output speed) of a simple planetary set:
+    ring fixed 1 + z_ring/z_sun (sun -> carrier), carrier fixed -z_ring/z_sun (sun -> ring),
+    sun fixed 1 + z_sun/z_ring (ring -> carrier)."""
+    zs = check_number("sun", sun, 1, None, integer=True)
+    zr = check_number("ring", ring, 1, None, integer=True)
+    return {"ring_fixed": 1 + zr / zs, "carrier_fixed": -zr / zs, "sun_fixed": 1 + zs / zr}
+
+
+RATIO_DEFINITIONS = {"ring_fixed": "sun speed / carrier speed, ring held",
+                     "carrier_fixed": "sun speed / ring speed, carrier held (the ring turns backwards)",
+                     "sun_fixed": "ring speed / carrier speed, sun held"}
+
+
+def planet_angles(sun: int, ring: int, planets: int, spacing: str = "equal") -> list:
+    """Planet angles (rad) on the carrier: 2πk/N (equal; needs (z_sun + z_ring)/N integer),
+    or each the multiple of 2π/(z_sun + z_ring) nearest 2πk/N (nearest)."""
+    s = sun + ring
+    if spacing == "equal":
+        return [2 * math.pi * k / planets for k in range(planets)]
+    return [2 * math.pi * round(k * s / planets) / s for k in range(planets)]
+
+
+def tip_clearance(center_distance: float, tip_radius: float, angles) -> float | None:
+    """Planet-planet clearance of the tip circles (mm): 2a sin(dθ/2) − 2 r_tip over the
+    smallest angle dθ between neighbours; None for one planet."""
+    if len(angles) < 2:
+        return None
+    a = sorted(x % (2 * math.pi) for x in angles)
+    gaps = [b - c for b, c in zip(a[1:], a[:-1])] + [a[0] + 2 * math.pi - a[-1]]
+    return 2 * center_distance * math.sin(min(gaps) / 2) - 2 * tip_radius
+
+
+def _phase(angle_p: float, turn: float, teeth: int) -> float:
+    """Phase (pitches, in [0, 1)) of a wheel turned by ``turn`` at a point at ``angle_p``
+    seen from its centre: 0 = a tooth centred there, 0.5 = a space."""
+    return ((angle_p - turn) * teeth / (2 * math.pi)) % 1.0
+
+
+def _mate_turn(teeth_b: int, toward_b: float, phase_a: float, internal: bool) -> float:
+    """Turn (rad) of wheel B that meshes with wheel A whose phase at the pitch point is
+    ``phase_a``: :func:`gear3d.placement.mesh_phase` (B's space on the pitch point, A's tooth
+    there) rolled by A's phase: f_B = ½ − f_A (external), f_A − ½ (B a ring)."""
+    from .placement import mesh_phase
+    pitch = 2 * math.pi / teeth_b
+    return mesh_phase(teeth_b, toward_b) + (-phase_a if internal else phase_a) * pitch
+
+
+def _divisors(n: int) -> list:
+    return [d for d in range(1, n + 1) if n % d == 0]
+
+
+def _allowed_planets(sun, ring, a, r_tip, spacing) -> list:
+    """Planet counts that assemble (``spacing``) and whose tips clear each other."""
+    s = sun + ring
+    cands = _divisors(s) if spacing == "equal" else range(1, s + 1)
+    out = []
+    for n in cands:
+        c = tip_clearance(a, r_tip, planet_angles(sun, ring, n, spacing))
+        if c is None or c > 0:
+            out.append(n)
+        elif spacing == "nearest" and n > 1:
+            break
+    return out
+
+
+def _list(ns) -> str:
+    ns = list(ns)
+    if len(ns) > 12:
+        return ", ".join(map(str, ns[:10])) + f", ... {ns[-1]}"
+    return ", ".join(map(str, ns))
+
+
+# ---------------------------------------------------------------------- the set
+
+def planetary_set(family: str, sun: int, planet: int, ring: int, planets: int = 3, module=None,
+                  width: float = 10.0, tolerance: float = 0.01, carrier: bool = False, *,
+                  spacing: str = "equal", check: bool = True, bodies: bool = True,
+                  **family_params) -> PlanetarySet:
+    """Build and check a standard planetary set of ``family`` (see the module doc).
+
+    ``module`` (mm, default 1; or ``diametral_pitch=`` in ``family_params``), ``width``
+    (mm, the bodies' face width), ``tolerance`` (mm: profiles, bodies and the rolling
+    checks). ``check=False`` skips the rolling checks, ``bodies=False`` the 3D bodies.
+    ``family_params``: the family's other parameters (pressure angle, addendum, ...), the
+    same for all wheels. Returns a :class:`PlanetarySet`.
+    """
+    from . import profile
+    if not isinstance(family, str) or family not in PLANETARY_FAMILIES:
+        raise GearError("family", family, "one of " + ", ".join(PLANETARY_FAMILIES)
+                        + " (rack-generated families with a module)")
+    zs = PLANETARY["sun"].check(sun) if sun is not None else _required("sun")
+    zp = PLANETARY["planet"].check(planet) if planet is not None else _required("planet")
+    zr = PLANETARY["ring"].check(ring) if ring is not None else _required("ring")
+    n = PLANETARY["planets"].check(planets)
+    if zr != zs + 2 * zp:
+        raise GearError("ring", zr, f"{zs + 2 * zp} (= sun + 2 planet: {zs} + 2 x {zp}) for a standard set",
+                        "the planets must touch sun and ring on their pitch circles")
+    spacing = check_choice("spacing", spacing, SPACINGS)
+    carrier = check_bool("carrier", carrier)
+    check = check_bool("check", check)
+    bodies = check_bool("bodies", bodies)
+    width = BODY["width"].check(width)
+    tol = TOLERANCE.check(tolerance)
+    fp = _family_params(family, module, family_params)
+    m = fp["module"]
+
+    # ---- profiles (each in its own frame), the same family parameters
+    p_sun = profile(family, teeth=zs, tolerance=tol, **fp)
+    p_pl = profile(family, teeth=zp, tolerance=tol, **fp)
+    p_ring = profile(family, teeth=zr, internal=True, tolerance=tol, **fp)
+    from .placement import standard_center_distance
+    a = standard_center_distance(zs, zp, m)
+    r_tip = float(p_pl.report["tip_radius"])
+
+    # ---- assembly condition and planet clearance
+    s = zs + zr
+    if spacing == "equal" and s % n:
+        ok = _allowed_planets(zs, zr, a, r_tip, "equal")
+        raise GearError("planets", n, f"one of {_list(ok)} (divisors of z_sun + z_ring = {s} whose planets "
+                        "clear each other)",
+                        f"(z_sun + z_ring)/planets = {s}/{n} = {s / n:.4g} is not an integer: equally spaced "
+                        "planets cannot all mesh; --spacing nearest (spacing='nearest') places them unequally")
+    angles = planet_angles(zs, zr, n, spacing)
+    clearance = tip_clearance(a, r_tip, angles)
+    if clearance is not None and clearance <= 0:
+        ok = _allowed_planets(zs, zr, a, r_tip, spacing)
+        what = f"divisors of z_sun + z_ring = {s}" if spacing == "equal" else "counts placed by spacing nearest"
+        raise GearError("planets", n, f"one of {_list(ok)} ({what} whose planets clear each other)",
+                        f"neighbouring planet tips overlap: 2a sin(dtheta/2) - 2 r_tip = {clearance:.4f} mm "
+                        f"(a = {a:g} mm, r_tip = {r_tip:.4f} mm)")
+
+    # ---- placement in phase
+    placements = [{"name": "sun", "center": (0.0, 0.0), "turn": 0.0}]
+    ring_turns = []
+    for k, th in enumerate(angles):
+        f_sun = _phase(th, 0.0, zs)                              # the sun at the sun-planet pitch point
+        t_pl = _mate_turn(zp, th + math.pi, f_sun, internal=False)
+        placements.append({"name": f"planet-{k + 1}", "center": (a * math.cos(th), a * math.sin(th)),
+                           "turn": t_pl})
+        f_pl = _phase(th, t_pl, zp)                              # the planet at the planet-ring pitch point
+        ring_turns.append(_mate_turn(zr, th, f_pl, internal=True))
+    t_ring = ring_turns[0]
+    pitch_r = 2 * math.pi / zr
+    phase_err = max(abs(((t - t_ring) / pitch_r + 0.5) % 1.0 - 0.5) for t in ring_turns)
+    placements.append({"name": "ring", "center": (0.0, 0.0), "turn": t_ring})
+    if phase_err > 1e-6:     # cannot happen past the assembly condition; a guard, not a check
+        raise GearError("planets", n, "a count that assembles", f"ring phase error {phase_err:.3g} pitches")
+
+    placed_pen, gap = _placed_check(p_sun, p_pl, p_ring, placements)
+
+    # ---- rolling checks, one per distinct mesh
+    meshes, interference, pen_max = None, None, None
+    if check:
+        from .analysis.pairs import check_pair
+        sp = check_pair(p_sun, p_pl, tolerance=tol)
+        pr = check_pair(p_pl, p_ring, internal=True, tolerance=tol)
+        meshes = {"sun_planet": sp.to_dict(), "planet_ring": pr.to_dict()}
+        interference = bool(sp["interference"] or pr["interference"])
+        pen_max = float(max(sp["max_penetration"], pr["max_penetration"]))
+
+    # ---- bodies
+    out_bodies, body_reps, carrier_rep = None, None, None
+    errs = [float(p.report["max_error"]) for p in (p_sun, p_pl, p_ring)]
+    if bodies:
+        out_bodies, body_reps, carrier_rep = _bodies(p_sun, p_pl, p_ring, placements, width, tol, carrier, a, m)
+        errs += [float(r["max_error"]) for r in body_reps.values() if r.get("max_error") is not None]
+    elif carrier:
+        raise GearError("carrier", True, "False without bodies (a carrier is a body)")
+
+    rats = ratios(zs, zr)
+    # the same ratios from the built wheels' pitch radii (Willis): a cross-check of the formulas
+    rs, rp, rr = (float(p.report["pitch_radius"]) for p in (p_sun, p_pl, p_ring))
+    willis = {"ring_fixed": 1 + rr / rs, "carrier_fixed": -rr / rs, "sun_fixed": 1 + rs / rr}
+    rep = PlanetaryReport(
+        family=family, teeth={"sun": zs, "planet": zp, "ring": zr}, planets=n, module=m, width=width,
+        tolerance=tol, spacing=spacing, assembly_quotient=s / n, assembly_condition=s % n == 0,
+        center_distance=a, planet_angles_deg=[math.degrees(t) for t in angles],
+        placements=[{"name": q["name"], "center": [float(q["center"][0]), float(q["center"][1])],
+                     "turn_deg": math.degrees(q["turn"])} for q in placements],
+        ratios=rats, ratio_definitions=dict(RATIO_DEFINITIONS),
+        planet_tip_radius=r_tip, planet_clearance=clearance, planet_gap_measured=gap,
+        ring_phase_error=phase_err, placed_penetration=placed_pen,
+        meshes=meshes,
+        meshes_note=("one rolling check per distinct mesh (sun-planet, planet-ring): the planets are "
+                     "identical and each is placed in the same mesh phase, so every sun-planet (planet-ring) "
+                     "mesh is the checked one at another roll angle") if check else "rolling checks not run",
+        interference=interference, max_penetration=pen_max,
+        profiles={name: {k: p.report[k] for k in ("teeth", "pitch_radius", "tip_radius", "root_radius",
+                                                   "undercut", "pointed", "max_error", "tolerance")}
+                  for name, p in (("sun", p_sun), ("planet", p_pl), ("ring", p_ring))},
+        bodies=body_reps, carrier=carrier_rep, max_error=max(errs),
+        extra={"ratios_from_pitch_radii": willis, "pitch_radii": {"sun": rs, "planet": rp, "ring": rr}})
+    return PlanetarySet({"sun": p_sun, "planet": p_pl, "ring": p_ring}, placements, out_bodies, rep)
+
+
+def _required(name):
+    raise GearError(name, None, PLANETARY[name].allowed() + f" (--{name})")
+
+
+def _family_params(family, module, given) -> dict:
+    """The family keywords every wheel shares: reserved names refused, the rest checked
+    against the family's table; ``module`` resolved (default 1 mm, or a diametral pitch)."""
+    from .conventions import to_transverse
+    from .params import check_family
+    fp = dict(given)
+    for k in RESERVED:
+        if k in fp and fp[k] is not None and not (k == "internal" and fp[k] is False):
+            why = {"tolerance": "give it as the set's tolerance",
+                   "teeth": "give sun, planet and ring"}.get(k, "the set fixes it for each wheel")
+            raise GearError(k, fp[k], "not given for a planetary set", why)
+        fp.pop(k, None)
+    if fp.get("shift_coeff") not in (None, 0, 0.0):
+        raise GearError("shift_coeff", fp["shift_coeff"], "0 (planetary sets are standard, unshifted)")
+    fp.pop("shift_coeff", None)
+    if module is not None:
+        fp["module"] = module
+    fp = check_family(family, {k: v for k, v in fp.items() if v is not None})
+    fp = to_transverse(fp, 0.0)
+    fp.setdefault("module", 1.0)
+    fp["module"] = check_number("module", fp["module"], 0, 1000, lo_open=True, unit="mm")
+    return fp
+
+
+def _placed_check(p_sun, p_pl, p_ring, placements):
+    """The set as assembled: deepest overlap of each planet with the sun and the ring (mm)
+    and the smallest gap between neighbouring planets (mm; None for one planet)."""
+    from .analysis.pairs import Placed, _penetration
+    by = {q["name"]: q for q in placements}
+    sun = Placed(p_sun, (0.0, 0.0)).polygon(0.0)
+    ring = Placed(p_ring, (0.0, 0.0)).polygon(by["ring"]["turn"])
+    pls = [Placed(p_pl, q["center"]).polygon(q["turn"]) for q in placements if q["name"].startswith("planet-")]
+    sp = max(_penetration(sun, p)[0] for p in pls)
+    pr = max(_penetration(p, ring)[0] for p in pls)
+    gap = None
+    if len(pls) > 1:
+        gap = min(float(pls[i].distance(pls[j])) for i in range(len(pls)) for j in range(i + 1, len(pls)))
+    return {"sun_planet": float(sp), "planet_ring": float(pr)}, gap
+
+
+def _transform(turn: float, center) -> np.ndarray:
+    c, s = math.cos(turn), math.sin(turn)
+    t = np.eye(4)
+    t[:2, :2] = [[c, -s], [s, c]]
+    t[0, 3], t[1, 3] = float(center[0]), float(center[1])
+    return t
+
+
+def carrier_dimensions(a, m, width, planet_root, sun_root, ring_tip) -> dict:
+    """The carrier's sizes (mm): pins of radius 0.4 x the planet root radius in planet bores
+    0.1 m larger, a plate max(m, width/4) thick 0.25 m below the wheels, from half the sun's
+    root radius to the ring's tip radius less m/2 (or a + the planet root radius)."""
+    pin = PIN_COEFF * planet_root
+    return {"pin_radius": pin, "bore_radius": pin + PIN_CLEARANCE * m,
+            "plate_thickness": max(PLATE_MIN * m, width / 4), "axial_gap": AXIAL_GAP * m,
+            "inner_radius": 0.5 * sun_root, "outer_radius": min(a + planet_root, ring_tip - 0.5 * m)}
+
+
+def _bodies(p_sun, p_pl, p_ring, placements, width, tol, with_carrier, a, m):
+    from .solids.body import body
+    by = {q["name"]: q for q in placements}
+    dims = None
+    if with_carrier:
+        dims = carrier_dimensions(a, m, width, float(p_pl.report["root_radius"]),
+                                  float(p_sun.report["root_radius"]), float(p_ring.report["tip_radius"]))
+    b_sun = body(p_sun, kind="spur", width=width, tolerance=tol, name="sun")
+    b_pl = body(p_pl, kind="spur", width=width, tolerance=tol, name="planet",
+                bore=2 * dims["bore_radius"] if dims else None)
+    b_ring = body(p_ring, kind="spur", width=width, tolerance=tol, name="ring")
+    out = [b_sun.placed(_transform(0.0, (0, 0)), name="sun")]
+    for q in placements:
+        if q["name"].startswith("planet-"):
+            out.append(b_pl.placed(_transform(q["turn"], q["center"]), name=q["name"]))
+    out.append(b_ring.placed(_transform(by["ring"]["turn"], (0, 0)), name="ring"))
+    keep = ("triangles", "volume", "max_error", "tolerance", "watertight", "genus")
+    reps = {"sun": {k: b_sun.report[k] for k in keep}, "planet": {k: b_pl.report[k] for k in keep},
+            "ring": {k: b_ring.report[k] for k in keep}}
+    crep = None
+    if dims:
+        part = _carrier(dims, [q["center"] for q in placements if q["name"].startswith("planet-")], width, tol)
+        out.append(part)
+        crep = dict(dims, volume=part.report["volume"], genus=part.report["genus"],
+                    triangles=part.report["triangles"], circle_tolerance=tol)
+        reps["carrier"] = {"triangles": part.report["triangles"], "volume": part.report["volume"],
+                           "max_error": None, "tolerance": tol, "watertight": True, "genus": part.report["genus"]}
+    return out, reps, crep
+
+
+def _carrier(dims, centers, width, tol):
+    """The carrier: an annular plate below the wheels and one pin per planet up to the top face."""
+    from manifold3d import CrossSection, FillRule, Manifold, OpType
+    from .envelope import circle_loop
+    from .harmonic.parts import Part
+    z0 = -dims["axial_gap"] - dims["plate_thickness"]
+    plate = CrossSection([circle_loop(dims["outer_radius"], tol),
+                          circle_loop(dims["inner_radius"], tol, ccw=False)], FillRule.Positive)
+    solids = [plate.extrude(dims["plate_thickness"]).translate((0.0, 0.0, z0))]
+    for c in centers:
+        pin = CrossSection([circle_loop(dims["pin_radius"], tol) + np.asarray(c, float)], FillRule.Positive)
+        solids.append(pin.extrude(width - z0).translate((0.0, 0.0, z0)))
+    man = Manifold.batch_boolean(solids, OpType.Add)
+    return Part("carrier", man, {"params": {k: float(v) for k, v in dims.items()}})
+
+
+def summary(rep) -> str:
+    """A short human summary of a :class:`PlanetaryReport` (several lines)."""
+    t = rep["teeth"]
+    r = rep["ratios"]
+    lines = [f"{rep['family']} planetary {t['sun']}-{t['planet']}-{t['ring']}, {rep['planets']} planets "
+             f"({rep['spacing']} spacing at {', '.join(f'{x:.2f}' for x in rep['planet_angles_deg'])} deg), "
+             f"module {rep['module']:g} mm, carrier radius {rep['center_distance']:.4f} mm",
+             f"ratios: ring fixed {r['ring_fixed']:.6g} (sun/carrier), carrier fixed {r['carrier_fixed']:.6g} "
+             f"(sun/ring), sun fixed {r['sun_fixed']:.6g} (ring/carrier)"]
+    c = rep["planet_clearance"]
+    lines.append("assembly: (z_sun + z_ring)/planets = " + f"{rep['assembly_quotient']:.6g}"
+                 + (" (integer)" if rep["assembly_condition"] else " (not an integer: nearest allowed angles)")
+                 + f"; ring phase error {rep['ring_phase_error']:.2g} pitches; planet tip clearance "
+                 + ("- (one planet)" if c is None else f"{c:.4f} mm (measured gap {rep['planet_gap_measured']:.4f} mm)"))
+    pp = rep["placed_penetration"]
+    if rep["meshes"]:
+        ms = []
+        for k, lab in (("sun_planet", "sun-planet"), ("planet_ring", "planet-ring")):
+            mr = rep["meshes"][k]
+            mc = mr.get("min_clearance")
+            ms.append(f"{lab} {'INTERFERENCE' if mr['interference'] else 'no interference'} "
+                      f"(max penetration {mr['max_penetration'] * 1000:.2f} um, contact ratio "
+                      f"{mr['contact_ratio']:.3f}, min clearance {'locked' if mc is None else f'{mc * 1000:.2f} um'})")
+        lines.append("rolled (one check per distinct mesh): " + "; ".join(ms))
+    lines.append(f"as placed: max overlap sun-planet {pp['sun_planet'] * 1000:.2f} um, planet-ring "
+                 f"{pp['planet_ring'] * 1000:.2f} um; max measured error {rep['max_error']:.3g} mm "
+                 f"(tolerance {rep['tolerance']:g} mm)")
+    return "\n".join(lines)
