@@ -358,17 +358,32 @@ def _family_params(family, module, given) -> dict:
 def _placed_check(p_sun, p_pl, p_ring, placements):
     """The set as assembled: deepest overlap of each planet with the sun and the ring (mm)
     and the smallest gap between neighbouring planets (mm; None for one planet)."""
-    from .analysis.pairs import Placed, _penetration
+    from .analysis.pairs import Placed
     by = {q["name"]: q for q in placements}
     sun = Placed(p_sun, (0.0, 0.0)).polygon(0.0)
     ring = Placed(p_ring, (0.0, 0.0)).polygon(by["ring"]["turn"])
     pls = [Placed(p_pl, q["center"]).polygon(q["turn"]) for q in placements if q["name"].startswith("planet-")]
-    sp = max(_penetration(sun, p)[0] for p in pls)
-    pr = max(_penetration(p, ring)[0] for p in pls)
+    sp = max(overlap_depth(sun, p) for p in pls)
+    pr = max(overlap_depth(p, ring) for p in pls)
     gap = None
     if len(pls) > 1:
         gap = min(float(pls[i].distance(pls[j])) for i in range(len(pls)) for j in range(i + 1, len(pls)))
     return {"sun_planet": float(sp), "planet_ring": float(pr)}, gap
+
+
+def overlap_depth(A, B) -> float:
+    """How deep two placed polygons (shapely) overlap (mm): the largest distance from a
+    vertex of one inside the other to the other's boundary; 0 when they do not overlap."""
+    import shapely
+    if not A.intersects(B) or A.intersection(B).area <= 0:
+        return 0.0
+    best = 0.0
+    for P, Q in ((A, B), (B, A)):
+        pts = shapely.get_coordinates(P.boundary)
+        inside = shapely.contains_xy(Q, pts[:, 0], pts[:, 1])
+        if inside.any():
+            best = max(best, float(shapely.distance(shapely.points(pts[inside]), Q.boundary).max()))
+    return best
 
 
 def _transform(turn: float, center) -> np.ndarray:

@@ -87,7 +87,9 @@ def run(args) -> int:
     tol = kw.pop("tolerance")
     if out is not None and args.pl_width is None:
         raise GearError("width", None, "a number in (0, 100000] mm (--width) to build the bodies of -o")
-    s = planetary_set(args.family, args.pl_sun, args.pl_planet, args.pl_ring, args.pl_planets,
+    from ..planetary import PLANETARY
+    n = args.pl_planets if args.pl_planets is not None else PLANETARY["planets"].default
+    s = planetary_set(args.family, args.pl_sun, args.pl_planet, args.pl_ring, n,
                       kw.pop("module", None), args.pl_width if args.pl_width is not None else 10.0, tol,
                       args.pl_carrier, spacing=args.pl_spacing, bodies=out is not None, **kw)
     rep = s.report

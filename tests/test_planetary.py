@@ -1,0 +1,237 @@
+"""Planetary sets (issue #14 item 5): gear3d.planetary.planetary_set and ``gear3d planetary``.
+
+Oracles: the textbook ratios (ring fixed 1 + z_r/z_s, carrier fixed -z_r/z_s, sun fixed
+1 + z_s/z_r), the carrier radius a = m (z_s + z_p)/2, the planet tip clearance
+2a sin(pi/N) - 2 r_tip with r_tip = pitch radius + addendum, and the placed geometry
+itself: every planet polygon against the sun's and the ring's (shapely, here), with a
+negative control (a ring turned by half a pitch collides). The 3MF is read back with
+trimesh. Coarse tolerances (0.01 mm) where the result does not depend on them.
+"""
+from __future__ import annotations
+
+import json
+import math
+
+import numpy as np
+import pytest
+
+from gear3d.cli import main
+from gear3d.errors import GearError
+from gear3d.planetary import planet_angles, planetary_set, ratios
+
+TOL = 0.01
+
+
+def _strict(text):
+    def bad(tok):
+        raise AssertionError(f"non-strict JSON token {tok}")
+    return json.loads(text, parse_constant=bad)
+
+
+def refused(argv, capsys, *words):
+    """Exit 2, one line on stderr naming ``words``, nothing on stdout."""
+    rc = main(argv)
+    err = capsys.readouterr().err
+    assert rc == 2, err
+    lines = err.strip().splitlines()
+    assert len(lines) == 1, err
+    assert "Traceback" not in err
+    for w in words:
+        assert w in lines[0], lines[0]
+    return lines[0]
+
+
+# ------------------------------------------------------------------ refusals
+
+SET = ["--sun", "6", "--planet", "18", "--ring", "42", "--module", "2", "--width", "10"]
+
+
+@pytest.mark.parametrize("extra,words", [
+    (["--planets", "5"], ("planets = 5", "one of 1, 2, 3", "48/5")),          # (6 + 42)/5 not an integer
+    (["--planets", "4"], ("planets = 4", "one of 1, 2, 3", "overlap")),        # assembles, tips clash
+    (["--planets", "0"], ("planets",)),
+])
+def test_planet_count_refused(extra, words, tmp_path, capsys):
+    out, js = tmp_path / "set.3mf", tmp_path / "set.json"
+    refused(["planetary", "cycloidal", *SET, *extra, "-o", str(out), "--json", str(js)], capsys, *words)
+    assert sorted(p.name for p in tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize("argv,words", [
+    (["cycloidal", "--sun", "6", "--planet", "18", "--ring", "44"], ("ring = 44", "42")),
+    (["cycloidal", "--sun", "6", "--planet", "18", "--ring", "42", "--teeth", "5"], ("teeth",)),
+    (["cycloidal", "--sun", "6", "--planet", "18", "--ring", "42", "--internal"], ("internal",)),
+    (["involute", "--sun", "12", "--planet", "18", "--ring", "48", "--shift-coeff", "0.2"], ("shift_coeff",)),
+    (["cycloid-disc", "--sun", "6", "--planet", "18", "--ring", "42"], ("family", "cycloidal")),
+    (["cycloidal", "--planet", "18", "--ring", "42"], ("sun",)),
+    (["cycloidal", "--sun", "6", "--planet", "18", "--ring", "42", "--spacing", "odd"], ("spacing",)),
+    (["cycloidal", "--sun", "6", "--planet", "18", "--ring", "42", "-o", "set.json"], ("output", ".3mf")),
+    (["cycloidal", "--sun", "6", "--planet", "18", "--ring", "42", "-o", "set.3mf"], ("width",)),
+    (["cycloidal", "--sun", "6", "--planet", "18", "--ring", "42", "--json", "set.txt"], ("json",)),
+])
+def test_bad_input_refused(argv, words, tmp_path, capsys, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    refused(["planetary", *argv, "--tolerance", "0.01"], capsys, *words)
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_api_refusals_name_the_parameter():
+    with pytest.raises(GearError, match="planets = 5"):
+        planetary_set("cycloidal", 6, 18, 42, 5, module=2, check=False, bodies=False)
+    with pytest.raises(GearError, match="ring = 42"):
+        planetary_set("involute", 12, 14, 42, 3, check=False, bodies=False)
+    with pytest.raises(GearError, match="carrier"):
+        planetary_set("involute", 12, 18, 48, 3, carrier=True, check=False, bodies=False)
+
+
+# ------------------------------------------------------------------ ratios
+
+@pytest.mark.parametrize("zs,zp,zr", [(6, 18, 42), (12, 18, 48), (20, 10, 40), (13, 20, 53)])
+def test_ratios_against_the_formulas(zs, zp, zr):
+    r = ratios(zs, zr)
+    assert r["ring_fixed"] == pytest.approx(1 + zr / zs, rel=1e-15)
+    assert r["carrier_fixed"] == pytest.approx(-zr / zs, rel=1e-15)
+    assert r["sun_fixed"] == pytest.approx(1 + zs / zr, rel=1e-15)
+    # Willis: (w_s - w_c)/(w_r - w_c) = -z_r/z_s, each member held in turn
+    i = -zr / zs
+    assert r["ring_fixed"] == pytest.approx(1 - i)                     # w_r = 0: w_s/w_c
+    assert r["sun_fixed"] == pytest.approx((i - 1) / i)                # w_s = 0: w_r/w_c
+    s = planetary_set("involute", zs, zp, zr, 1, module=1.5, tolerance=TOL, check=False, bodies=False)
+    assert s.report["ratios"] == r
+    for k, v in s.report["ratios_from_pitch_radii"].items():         # the built wheels' pitch radii
+        assert v == pytest.approx(r[k], rel=1e-9)
+
+
+def test_seed000_ratio_is_8():
+    assert ratios(6, 42)["ring_fixed"] == 8
+
+
+# ------------------------------------------------------------------ seed 000: cycloidal 6-18-42
+
+def _placed_overlaps(s, ring_extra=0.0):
+    """Deepest overlap (mm) of each placed planet with the sun and the ring (own shapely code)."""
+    import shapely
+    from gear3d.geometry import rotate
+
+    def poly(prof, turn, centre):
+        loops = [rotate(np.asarray(l, float), turn) + np.asarray(centre, float) for l in prof.loops]
+        outer = max(loops, key=lambda l: shapely.Polygon(l).area)
+        return shapely.make_valid(shapely.Polygon(outer, [l for l in loops if l is not outer]))
+    by = {q["name"]: q for q in s.placements}
+    sun = poly(s.profiles["sun"], by["sun"]["turn"], (0, 0))
+    ring = poly(s.profiles["ring"], by["ring"]["turn"] + ring_extra, (0, 0))
+    out = []
+    for q in s.placements:
+        if q["name"].startswith("planet-"):
+            p = poly(s.profiles["planet"], q["turn"], q["center"])
+            out.append((sun.intersection(p).area, ring.intersection(p).area))
+    return out
+
+
+def test_seed000_cycloidal_6_18_42(tmp_path, capsys):
+    out, js = tmp_path / "out" / "set.3mf", tmp_path / "out" / "set.json"   # the folder is created
+    rc = main(["planetary", "cycloidal", *SET, "--planets", "3", "--tolerance", str(TOL),
+               "-o", str(out), "--json", str(js)])
+    cap = capsys.readouterr()
+    assert rc == 0, cap.err
+    assert "ring fixed 8 " in cap.out and "no interference" in cap.out and "INTERFERENCE" not in cap.out
+    rep = _strict(js.read_text())
+    a = 2 * (6 + 18) / 2
+    assert rep["center_distance"] == pytest.approx(a, abs=1e-12)
+    assert rep["ratios"]["ring_fixed"] == 8
+    assert rep["interference"] is False
+    for k in ("sun_planet", "planet_ring"):
+        assert rep["meshes"][k]["interference"] is False
+        assert rep["meshes"][k]["max_penetration"] <= 2 * TOL
+        assert rep["placed_penetration"][k] <= 2 * TOL
+    assert "one rolling check per distinct mesh" in rep["meshes_note"]
+    # tip clearance: 2a sin(pi/3) - 2 r_tip, r_tip = m z_p/2 + m (addendum 1)
+    r_tip = 2 * 18 / 2 + 2
+    assert rep["planet_tip_radius"] == pytest.approx(r_tip, abs=1e-6)
+    assert rep["planet_clearance"] == pytest.approx(2 * a * math.sin(math.pi / 3) - 2 * r_tip, abs=1e-6)
+    assert rep["planet_clearance"] > 0
+    assert rep["planet_gap_measured"] >= rep["planet_clearance"] - 2 * TOL
+    assert rep["assembly_condition"] is True and rep["assembly_quotient"] == 16
+    assert rep["ring_phase_error"] < 1e-9
+    assert rep["max_error"] <= TOL
+    # planets at 2 pi k/3 on the carrier circle
+    pl = [q for q in rep["placements"] if q["name"].startswith("planet-")]
+    assert len(pl) == 3
+    for k, q in enumerate(pl):
+        assert math.hypot(*q["center"]) == pytest.approx(a, abs=1e-9)
+        assert math.degrees(math.atan2(q["center"][1], q["center"][0])) % 360 == pytest.approx(120 * k, abs=1e-9)
+    # the 3MF read back: sun, 3 planets, ring; watertight, planets placed at distance a
+    import trimesh
+    scene = trimesh.load(str(out))
+    assert len(scene.geometry) == 2 + 3
+    for g in scene.geometry.values():
+        assert g.is_watertight
+    centres = []
+    for node in scene.graph.nodes_geometry:
+        T, gname = scene.graph[node]
+        if gname.startswith("planet"):
+            centres.append(T[:2, 3])
+    assert len(centres) == 3
+    for c in centres:
+        assert math.hypot(*c) == pytest.approx(a, abs=1e-9)
+
+
+def test_placement_meshes_and_a_misphased_ring_collides():
+    s = planetary_set("cycloidal", 6, 18, 42, 3, module=2, tolerance=TOL, check=False, bodies=False)
+    # in phase: overlaps are a tolerance-sized sliver at most (area, mm^2)
+    for a_sun, a_ring in _placed_overlaps(s):
+        assert a_sun < 0.01 and a_ring < 0.01
+    # negative control: the ring turned by half a pitch puts its teeth on the planets' teeth
+    bad = _placed_overlaps(s, ring_extra=math.pi / 42)
+    assert min(r for _, r in bad) > 1.0
+
+
+def test_carrier_clears_every_wheel():
+    s = planetary_set("cycloidal", 6, 18, 42, 3, module=2, width=8, tolerance=TOL, carrier=True, check=False)
+    names = [b.name for b in s.bodies]
+    assert names == ["sun", "planet-1", "planet-2", "planet-3", "ring", "carrier"]
+    world = {b.name: b.manifold.transform(np.asarray(b.transform, float)[:3, :4]) for b in s.bodies}
+    for n, m in world.items():
+        if n != "carrier":
+            assert (world["carrier"] ^ m).volume() == pytest.approx(0.0, abs=1e-9), n
+    c = s.report["carrier"]
+    assert c["bore_radius"] > c["pin_radius"]
+    assert c["outer_radius"] < s.report["profiles"]["ring"]["tip_radius"]
+
+
+# ------------------------------------------------------------------ involute 12-18-48, 4 planets
+
+def test_involute_12_18_48_four_planets():
+    s = planetary_set("involute", 12, 18, 48, 4, module=2, width=6, tolerance=TOL)
+    rep = s.report
+    a = 2 * (12 + 18) / 2
+    assert rep["interference"] is False
+    assert rep["planet_clearance"] == pytest.approx(2 * a * math.sin(math.pi / 4) - 2 * (18 + 2), abs=1e-6)
+    assert rep["planet_clearance"] > 0
+    assert rep["ratios"] == {"ring_fixed": 5.0, "carrier_fixed": -4.0, "sun_fixed": 1.25}
+    assert len(s.bodies) == 2 + 4
+    for b in s.bodies:
+        assert b.report["watertight"]
+    for q in s.placements:
+        if q["name"].startswith("planet-"):
+            assert math.hypot(*q["center"]) == pytest.approx(a, abs=1e-9)
+    for a_sun, a_ring in _placed_overlaps(s):
+        assert a_sun < 0.01 and a_ring < 0.01
+    json.loads(json.dumps(rep.to_dict(), allow_nan=False))          # JSON-ready as it stands
+
+
+# ------------------------------------------------------------------ unequal spacing
+
+def test_nearest_spacing_places_planets_at_allowed_angles():
+    zs, zp, zr, n = 13, 20, 53, 4                                       # 66/4 = 16.5
+    with pytest.raises(GearError, match="spacing"):
+        planetary_set("involute", zs, zp, zr, n, module=2, tolerance=TOL, check=False, bodies=False)
+    s = planetary_set("involute", zs, zp, zr, n, module=2, tolerance=TOL, spacing="nearest",
+                      check=False, bodies=False)
+    step = 360 / (zs + zr)
+    for ang in s.report["planet_angles_deg"]:
+        assert ang / step == pytest.approx(round(ang / step), abs=1e-9)
+    assert s.report["ring_phase_error"] < 1e-9
+    for a_sun, a_ring in _placed_overlaps(s):
+        assert a_sun < 0.01 and a_ring < 0.01
+    assert planet_angles(zs, zr, n, "equal") != planet_angles(zs, zr, n, "nearest")
