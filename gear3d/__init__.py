@@ -18,6 +18,7 @@ _LAZY = {
     "check_pair": "gear3d.analysis.pairs",
     "mate": "gear3d.profiles.mate",
     "write": "gear3d.export",
+    "figure": "gear3d.figures",
     "Profile": "gear3d.model",
     "simulate_cut": "gear3d.analysis.cutting",
     "rack": "gear3d.rack_part",

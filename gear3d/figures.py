@@ -15,6 +15,9 @@ import numpy as np
 
 from .errors import GearError, check_choice
 
+#: file types of the annotated figures (matplotlib's writers)
+FIGURE_EXTS = ("svg", "png", "pdf")
+
 COLORS = {"profile": "#1f3b73", "pitch": "#2ca02c", "tip": "#7f7f7f", "root": "#7f7f7f",
           "base": "#9467bd", "undercut": "#d62728", "pointed": "#ff7f0e", "rack": "#8c564b",
           "neck": "#e377c2", "pin": "#17becf"}
@@ -33,11 +36,32 @@ def _save(fig, path):
     if path is None:
         return fig
     ext = os.path.splitext(str(path))[1].lower().lstrip(".")
-    if ext not in ("png", "svg"):
-        raise GearError("path", str(path), "a file name ending in .png or .svg")
-    meta = {"Date": None} if ext == "svg" else {}
+    if ext not in FIGURE_EXTS:
+        raise GearError("path", str(path), "a file name ending in " + " ".join("." + e for e in FIGURE_EXTS))
+    meta = {"svg": {"Date": None}, "pdf": {"CreationDate": None}}.get(ext, {})
     fig.savefig(path, format=ext, dpi=150, metadata=meta)
     plt.close(fig)
+    return str(path)
+
+
+def figure(obj, path, **opts) -> str:
+    """Write the annotated figure of ``obj`` to ``path`` (.svg, .png or .pdf by extension),
+    atomically; return the path. A :class:`gear3d.model.Profile`: :func:`profile_figure`
+    (circles, undercut and pointing marks, legend; ``inspection=``, ``view=``); a rack
+    (:func:`gear3d.rack`): its outline and pitch line; a body or list of bodies:
+    :func:`mesh_preview`. Not a cut outline: ``gear3d.write(profile, "x.svg")`` writes that
+    (1:1, mm, paths only)."""
+    from .export import atomic_path, check_path
+    from .model import Profile
+    check_path(path, "figure", exts=tuple("." + e for e in FIGURE_EXTS))
+    with atomic_path(path, "figure") as tmp:
+        if isinstance(obj, Profile):
+            profile_figure(obj, tmp, **opts)
+        elif type(obj).__name__ == "RackPart":
+            from .rack_part import rack_figure
+            rack_figure(obj, tmp, **opts)
+        else:
+            mesh_preview(obj, tmp, **opts)
     return str(path)
 
 

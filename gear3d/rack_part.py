@@ -537,8 +537,9 @@ def rack_figure(part: RackPart, path=None, pinion=None, place=None, title=None, 
     ax.set_ylabel("y (mm)")
     fig.tight_layout()
     if path is not None:
-        fig.savefig(path, dpi=150, format=str(path).rsplit(".", 1)[-1].lower()
-                    if str(path).lower().endswith((".png", ".svg")) else None)
+        ext = str(path).rsplit(".", 1)[-1].lower()
+        fig.savefig(path, dpi=150, format=ext if ext in ("png", "svg", "pdf") else None,
+                    metadata={"svg": {"Date": None}, "pdf": {"CreationDate": None}}.get(ext, {}))
     plt.close(fig)
     return fig
 
@@ -624,7 +625,8 @@ def rack_body(part: RackPart, width: float = 10.0, helix_angle_deg: float = 0.0,
 # ----------------------------------------------------------------------------- writing
 
 def write_rack(part: RackPart, path, width=None) -> str:
-    """Write a rack outline atomically: .json (loops + report), .svg/.png (figure), .dxf
+    """Write a rack outline atomically: .json (loops + report), .svg (1:1 outline in mm, the
+    measured polygon), .png (figure), .dxf
     (one closed LWPOLYLINE, mm), or a mesh format (a spur rack ``width`` mm wide)."""
     from .export import atomic_path, write
     from .export.json_format import dumps
@@ -643,8 +645,11 @@ def write_rack(part: RackPart, path, width=None) -> str:
                 doc.header["$INSUNITS"] = 4
                 doc.modelspace().add_lwpolyline(part.loops[0].tolist(), close=True)
                 doc.saveas(tmp)
+            elif ext == "svg":
+                from .export.svg_outline import write_polygons
+                write_polygons(part.loops, tmp)
             else:
-                rack_figure(part, tmp if ext == "svg" else tmp, title=None)
+                rack_figure(part, tmp, title=None)
         return ""
     if width is None:
         raise GearError("width", None, "a number > 0 mm for a 3D output (--width)")

@@ -17,14 +17,14 @@ def test_profile_svg_png_circles_and_zones(tmp_path):
     p = gear3d.profile("involute", teeth=8, module=1.0, tip_radius_coeff=0.0, tolerance=1e-3)
     assert p.report["undercut"]
     svg, png = tmp_path / "p.svg", tmp_path / "p.png"
-    gear3d.write(p, str(svg))
+    gear3d.figure(p, str(svg))
     gear3d.write(p, str(png))
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and png.stat().st_size > 10_000
     ids = _ids(svg)
     assert {"profile", "pitch-circle", "tip-circle", "root-circle", "base-circle",
             "undercut", "singular-points"} <= ids
     again = tmp_path / "q.svg"
-    gear3d.write(p, str(again))
+    gear3d.figure(p, str(again))
     assert svg.read_bytes() == again.read_bytes()
 
 
@@ -33,7 +33,7 @@ def test_sine_has_no_base_circle_and_pointed_zone(tmp_path):
     p = gear3d.profile("sine", teeth=20, module=1.0, addendum_coeff=1.5, tolerance=1e-3)
     assert p.report["pointed"]
     svg = tmp_path / "s.svg"
-    gear3d.write(p, str(svg))
+    gear3d.figure(p, str(svg))
     ids = _ids(svg)
     assert "base-circle" not in ids and "pitch-circle" in ids
     assert {"pointed", "pointed-tip"} <= ids

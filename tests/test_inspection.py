@@ -380,10 +380,10 @@ def test_cli_table_json_and_refusals(tmp_path, capsys):
 def test_figure_marks_the_neck_and_pins(tmp_path):
     p = gear3d.profile("sine", teeth=20, addendum_coeff=2.0)
     svg = tmp_path / "neck.svg"
-    gear3d.write(p, svg, view="tooth", inspection=inspect(p))
+    gear3d.figure(p, svg, view="tooth", inspection=inspect(p))
     text = svg.read_text()
     assert 'id="neck"' in text and 'id="neck-bulge"' in text and 'id="pins"' in text
     q = gear3d.profile("involute", teeth=30)
     svg2 = tmp_path / "plain.svg"
-    gear3d.write(q, svg2, view="full", inspection=inspect(q))
+    gear3d.figure(q, svg2, view="full", inspection=inspect(q))
     assert 'id="neck"' not in svg2.read_text() and 'id="pins"' in svg2.read_text()

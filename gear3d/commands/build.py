@@ -1,4 +1,4 @@
-"""``gear3d build SCENE.toml [--out DIR] [--only PART] [--set key=value ...] [--dry-run]``.
+"""``gear3d build SCENE.toml [--out DIR] [--only PART] [--set key=value ...] [--arrange] [--dry-run]``.
 
 Builds a scene template (see :mod:`gear3d.jobs.template`): only the stages its outputs
 need, identical stages once; writes the files and ``<scene>.report.json`` into ``--out``
@@ -8,6 +8,9 @@ naming the file, the key and the allowed values, and writes no file (nor an empt
 Tolerances: a template without ``[scene] tolerance`` builds mesh outputs (stl 3mf step obj
 ply vtu) at 0.01 mm and everything else (dxf, figures, JSON, pair checks) at 0.001 mm; the
 summary line and ``<scene>.report.json`` say which tolerance each output used.
+
+``--arrange`` (``--arrange-gap MM``) writes every 3MF laid out for printing: the parts flat
+on the bed, side by side (same as ``[scene.options.3mf] arrange = true`` / ``gap``).
 """
 from __future__ import annotations
 
@@ -26,16 +29,50 @@ def add_parser(sub):
     p.add_argument("--set", action="append", default=[], metavar="KEY=VALUE", dest="sets",
                    help="override a template value: scene.tolerance=0.01, part.pinion.teeth=24 (repeatable). "
                         "Default tolerances: 0.01 mm for mesh outputs, 0.001 mm for DXF and the rest")
+    add_arrange_flags(p, "the 3MF files (pairs, assemblies, parts)")
     p.add_argument("--dry-run", action="store_true", help="print the stages it would run; write nothing")
     p.add_argument("-q", "--quiet", action="store_true", help="no per-stage log")
     return p
+
+
+def add_arrange_flags(p, what: str):
+    """``--arrange`` and ``--arrange-gap MM``: lay ``what`` out flat on the print bed."""
+    from ..cliargs import number
+    from ..export.threemf import ARRANGE_GAP, MAX_GAP
+    p.add_argument("--arrange", action="store_true",
+                   help=f"lay {what} flat on the print bed, side by side without overlap, "
+                        "instead of in mesh (template: [scene.options.3mf] arrange = true)")
+    p.add_argument("--arrange-gap", type=number("float", 0, MAX_GAP, unit="mm"), default=None, metavar="MM",
+                   help=f"mm between arranged parts (default {ARRANGE_GAP:g}; template: [scene.options.3mf] gap)")
+
+
+def arrange_options(args) -> dict:
+    """The 3MF writer options of ``--arrange`` / ``--arrange-gap`` ({} when neither is given);
+    ``--arrange-gap`` alone is refused (it would change nothing)."""
+    from ..errors import GearError
+    if args.arrange_gap is not None and not args.arrange:
+        raise GearError("arrange_gap", args.arrange_gap, "given only with --arrange")
+    opts = {"arrange": True} if args.arrange else {}
+    if args.arrange_gap is not None:
+        opts["gap"] = args.arrange_gap
+    return opts
+
+
+def apply_arrange(scene: dict, opts: dict) -> dict:
+    """``--arrange``: the run's 3MF options win over the template's (scene and parts)."""
+    if opts:
+        for holder in [scene] + list(scene["parts"]):
+            holder.setdefault("options", {})
+            holder["options"]["3mf"] = {**holder["options"].get("3mf", {}), **opts}
+    return scene
 
 
 def run(args) -> int:
     from ..jobs.scene import build_scene
     from ..jobs.template import load_scene
     from ..export import check_out_dir
-    scene = load_scene(args.scene, args.sets)
+    opts = arrange_options(args)
+    scene = apply_arrange(load_scene(args.scene, args.sets), opts)
     out = args.out or os.path.join("out", scene["name"])
     check_out_dir(out, "out")
     if args.dry_run:

@@ -2,7 +2,8 @@
 
 * ``design``: the Table 1 synthesis as a table (stdout) and optionally JSON (``--json``);
 * ``build``: the parts as STL files in ``-o OUTDIR`` (and ``--3mf`` for the placed,
-  deflected assembly) through :mod:`gear3d.export`;
+  deflected assembly, or with ``--arrange`` its parts laid flat on the print bed) through
+  :mod:`gear3d.export`;
 * ``check``: the deformed-state mesh check of one stage (JSON to stdout, ``--png`` figure).
 
 Double drive: ``--z2 --z3 --z2-inner --z4``; single drive: ``--z-flex --z-circular``;
@@ -105,6 +106,8 @@ def add_actions(p):
                    help=f"max deviation from the exact curves (mm); default {BUILD_TOLERANCE:g} mm (mesh outputs)")
     b.add_argument("--bearing-thickness", type=number("float", 0, None, unit="mm"), default=0.0, help="flexible bearing ring thickness (mm), 0 = none")
     b.add_argument("--3mf", dest="threemf", action="store_true", help="also write the placed, deflected assembly as one 3MF")
+    from .build import add_arrange_flags
+    add_arrange_flags(b, "the --3mf assembly's parts")
     b.add_argument("-o", "--output", required=True, help="output folder")
     c = acts.add_parser("check", help="deformed-state mesh check of one stage -> JSON (+ --png)")
     _design_flags(c)
@@ -134,6 +137,7 @@ def run(args) -> int:
     if act == "build":
         from ..export import make_out_dir, remove_dirs, write
         from ..harmonic.parts import assembly, build_parts
+        _arrange_opts(args)                   # refused before any work
         out = args.output
         parts = build_parts(design, tooth=args.tooth, tolerance=args.tolerance,
                             bearing_thickness=args.bearing_thickness)
@@ -167,6 +171,16 @@ def run(args) -> int:
     return 0
 
 
+def _arrange_opts(args) -> dict:
+    """``--arrange`` / ``--arrange-gap``: the 3MF writer's options; only with ``--3mf``."""
+    from ..errors import GearError
+    from .build import arrange_options
+    opts = arrange_options(args)
+    if opts and not args.threemf:
+        raise GearError("arrange", True, "given only with --3mf (the STL files are one part each)")
+    return opts
+
+
 def _write_parts(args, design, parts, out, write, assembly):
     """The parts' STL files (+ the 3MF assembly) and design.json into ``out``."""
     for p in parts:
@@ -178,8 +192,9 @@ def _write_parts(args, design, parts, out, write, assembly):
         scene = assembly(design, tooth=args.tooth, tolerance=args.tolerance,
                          bearing_thickness=args.bearing_thickness, parts=parts)
         path = os.path.join(out, "assembly.3mf")
-        write(scene, path)
-        sys.stdout.write(f"wrote {path}: {len(scene)} parts\n")
+        info = write(scene, path, **_arrange_opts(args))
+        sys.stdout.write(f"wrote {path}: {len(scene)} parts"
+                         + (" arranged for printing" if args.arrange else "") + f" ({info})\n")
     _write_json(os.path.join(out, "design.json"),
                 {"design": design.report, "tolerance": args.tolerance,
                  "parts": {p.name: p.report for p in parts}}, "output")

@@ -217,8 +217,13 @@ def add_parser(sub):
     for flag, typ, hlp, dest in DXF_FLAGS:
         p.add_argument(flag, type=typ, dest=dest, default=None, help=hlp)
     p.add_argument("--spline", action="store_true", help="DXF: SPLINE entities (control points) instead of arcs")
-    p.add_argument("--no-pitch-circle", action="store_true", help="DXF: leave the pitch circle off")
-    p.add_argument("-o", "--output", default=None, help="output file; extension picks the format")
+    p.add_argument("--construction", action="store_true",
+                   help="DXF: also write the centre cross and pitch circle (layer CONSTRUCTION); default: cut geometry only")
+    p.add_argument("--no-pitch-circle", action="store_true", help="DXF with --construction: leave the pitch circle off")
+    p.add_argument("-o", "--output", default=None,
+                   help="output file; extension picks the format (.svg: 1:1 cut outline in mm, .png: figure)")
+    p.add_argument("--figure", default=None, metavar="FILE",
+                   help="also write the annotated figure (circles, undercut and pointing marks): .svg .png or .pdf")
     from .rackflags import add_rack_flags
     add_rack_flags(p)
     return p
@@ -233,6 +238,7 @@ def run(args) -> int:
     if out is not None:
         from ..export import check_output
         check_output(out, kinds="profile")
+    check_figure_arg(args)
     opts = _write_options(args, out)
     kw = family_params(args, out)
     given = [k for k in ("normal_module", "normal_pressure_angle_deg") if kw.get(k) is not None]
@@ -244,15 +250,33 @@ def run(args) -> int:
     if out is None:
         from ..export.json_format import dumps
         sys.stdout.write(dumps(prof.report) + "\n")
+        write_figure_arg(args, prof)
         print_notes(args)
         return 0
     from ..export import write
     info = write(prof, out, **opts)
+    write_figure_arg(args, prof)
     r = prof.report
     sys.stdout.write(f"wrote {out}: {args.family} z={r['teeth']} max_error={r['max_error']:.3g} mm "
                      f"(tolerance {r['tolerance']:g} mm)" + (f" {info}" if info else "") + "\n")
     print_notes(args)
     return 0
+
+
+def check_figure_arg(args):
+    """``--figure FILE`` checked before any work (extension, folder)."""
+    if getattr(args, "figure", None) is not None:
+        from ..export import check_path
+        from ..figures import FIGURE_EXTS
+        check_path(args.figure, "figure", exts=tuple("." + e for e in FIGURE_EXTS))
+
+
+def write_figure_arg(args, obj):
+    """Write ``--figure FILE`` (when given) and say so on stdout."""
+    if getattr(args, "figure", None) is not None:
+        from ..figures import figure
+        figure(obj, args.figure)
+        sys.stdout.write(f"wrote {args.figure}: figure\n")
 
 
 def _write_options(args, out) -> dict:
@@ -261,7 +285,7 @@ def _write_options(args, out) -> dict:
     opts = {}
     if out is None:
         given = [f for f in ("width", "kerf", "lead_in", "start_angle_deg", "dxf_version")
-                 if getattr(args, f) is not None] + [f for f in ("spline", "no_pitch_circle") if getattr(args, f)]
+                 if getattr(args, f) is not None] + [f for f in ("spline", "construction", "no_pitch_circle") if getattr(args, f)]
         if given:
             raise GearError(given[0], getattr(args, given[0]), "only with an output file (-o)")
         return opts
@@ -274,7 +298,11 @@ def _write_options(args, out) -> dict:
     dxf_opts = {dest: getattr(args, dest) for *_, dest in DXF_FLAGS if getattr(args, dest) is not None}
     if args.spline:
         dxf_opts["spline"] = True
+    if args.construction:
+        dxf_opts["construction"] = True
     if args.no_pitch_circle:
+        if not args.construction:
+            raise GearError("no_pitch_circle", True, "only with --construction (without it the DXF holds the cut geometry only)")
         dxf_opts["pitch_circle"] = False
     if out.lower().endswith(".dxf") and args.tolerance is not None:
         from ..export.dxf import DXF_MIN_TOLERANCE

@@ -49,16 +49,20 @@ def run_profile_cli(args, family_params) -> int:
         from ..export import check_path
         check_path(out, "output", (".json", ".svg", ".png", ".dxf", ".stl", ".3mf", ".step", ".stp",
                                    ".obj", ".ply", ".vtu"))
-    _check_given(args, ("kerf", "lead_in", "start_angle_deg", "dxf_version", "spline", "no_pitch_circle"),
-                 "a rack outline")
+    _check_given(args, ("kerf", "lead_in", "start_angle_deg", "dxf_version", "spline", "construction",
+                        "no_pitch_circle"), "a rack outline")
+    from .profile import check_figure_arg, write_figure_arg
+    check_figure_arg(args)
     part = rack(args.family, **_rack_kw(args, family_params, out))
     if out is None:
         from ..export.json_format import dumps
         if args.width is not None:
             raise GearError("width", args.width, "only with an output file (-o)")
         sys.stdout.write(dumps(part.report) + "\n")
+        write_figure_arg(args, part)
         return 0
     info = write_rack(part, out, args.width)
+    write_figure_arg(args, part)
     r = part.report
     sys.stdout.write(f"wrote {out}: {part.family} rack {r['teeth']} teeth, s={r['tooth_thickness_at_pitch_line']:.6g} mm, "
                      f"max_error={r['max_error']:.3g} mm (tolerance {r['tolerance']:g} mm)"

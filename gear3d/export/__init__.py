@@ -43,7 +43,7 @@ def register(ext: str, module: str, kinds, doc: str = ""):
 
 register(".json", "json_format", ("profile", "body"), "profile loops + report (body: report)")
 register(".dxf", "dxf", ("profile",), "DXF lines+arcs for wire EDM / laser / waterjet")
-register(".svg", "svg_png", ("profile",), "profile figure")
+register(".svg", "svg_outline", ("profile",), "1:1 cut outline in mm (paths only) for laser cutters")
 register(".png", "svg_png", ("profile", "body"), "profile figure / body preview")
 register(".stl", "stl", ("profile", "body"), "binary STL")
 register(".3mf", "threemf", ("profile", "body"), "3MF with names, units and metadata")

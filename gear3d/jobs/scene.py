@@ -6,6 +6,8 @@ output file. A pair adds a ``check`` (:func:`gear3d.analysis.pairs.check_pair` o
 profiles at the ``check`` tolerance) and a placed multi-body ``write`` per mesh kind
 (:func:`gear3d.solids.place_pair`; the second wheel of a twisted pair is a
 ``[part.body] mate = "<first>"`` body). A harmonic assembly builds the seed 002 parts.
+``[scene.options.3mf]`` (``arrange``, ``gap``) applies to the parts', pairs' and
+assemblies' 3MF files.
 The scene report ``<scene>.report.json`` lists every measured max error (profiles,
 bodies, DXF fits), the pair checks, each file's sha256 and the stage counts.
 """
@@ -275,6 +277,8 @@ def _scene_graph(scene, out_dir, only=None):
                                       "center_distance": pair.get("center_distance")}, [b1, b2], fn=run_place,
                             label=f"{pair['name']} @ {tol:g} mm", file=scene["file"], prefix=label, keys=())
                 inputs = {"kind": kind, "file": fname, "tolerance": tol, "names": pair["parts"]}
+                if kind == "3mf" and scene["options"].get("3mf"):
+                    inputs["options"] = dict(scene["options"]["3mf"])     # arrange, gap
             t[kind] = g.add("write", inputs, [src], fn=run_write, label=fname, phase=1,
                             path=path, out_dir=out_dir)
         owners["pairs"][pair["name"]] = t
@@ -302,7 +306,10 @@ def _scene_graph(scene, out_dir, only=None):
                 claim(fname, label)
                 src = g.add("assembly", {"deformed": asm["deformed"]}, [h], fn=run_assembly,
                             label=f"{asm['name']} placed")
-                t[kind] = g.add("write", {"kind": kind, "file": fname, "tolerance": tol}, [src],
+                inputs = {"kind": kind, "file": fname, "tolerance": tol}
+                if scene["options"].get("3mf"):
+                    inputs["options"] = dict(scene["options"]["3mf"])     # arrange, gap
+                t[kind] = g.add("write", inputs, [src],
                                 fn=run_write, label=fname, phase=1,
                                 path=out_path(out_dir, fname, scene["file"], label), out_dir=out_dir)
             else:

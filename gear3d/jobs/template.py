@@ -11,9 +11,10 @@ Scene (``[scene]``, ``[[part]]``, ``[[pair]]``, ``[[assembly]]``)::
 
     [scene]
     name = "demo"                  # safe file name
-    outputs = ["dxf", "stl"]       # kinds written for every part (OUTPUT_KINDS): dxf, svg,
-                                   # png, json (the profile: figure / loops + report) from the
-                                   # profile; stl, 3mf, step, obj, ply, vtu from the body
+    outputs = ["dxf", "stl"]       # kinds written for every part (OUTPUT_KINDS): dxf, svg
+                                   # (1:1 cut outline, mm), png (figure), json (loops +
+                                   # report) from the profile; stl, 3mf, step, obj, ply, vtu
+                                   # from the body
     tolerance = 0.001              # mm, default for every output kind; when it is not
                                    # given, 0.001 for dxf/svg/png/json and the pair check,
                                    # 0.01 for mesh kinds (stl 3mf step obj ply vtu: printing)
@@ -21,6 +22,8 @@ Scene (``[scene]``, ``[[part]]``, ``[[pair]]``, ``[[assembly]]``)::
     stl = 0.01
     [scene.options.dxf]            # exporter options (dxf: kerf, lead_in, ...)
     kerf = 0.0
+    [scene.options.3mf]            # 3mf: arrange = true lays the parts flat, gap mm apart
+    arrange = true
 
     [[part]]
     name = "pinion"
@@ -345,18 +348,26 @@ def check_tolerances(file, key, top):
 
 
 def check_options(file, key, table):
-    """Exporter options per kind: ``dxf`` (kerf, lead_in, ...) and ``step`` (``kind`` =
+    """Exporter options per kind: ``dxf`` (kerf, lead_in, ...), ``step`` (``kind`` =
     faceted | brep: planar facets, or exact B-rep surfaces through OpenCascade, which needs
-    ``pip install 'gear3d[cad]'``). Returns the writers' keyword arguments per kind."""
+    ``pip install 'gear3d[cad]'``) and ``3mf`` (``arrange`` = true: the parts laid flat and
+    side by side on the bed, ``gap`` mm apart). Returns the writers' keyword arguments per kind."""
     from ..export.dxf import write_dxf
     _table(file, key, table)
     out = {}
     dxf_keys = [n for n in inspect.signature(write_dxf).parameters
                 if n not in ("profile", "path", "tolerance", "extra")]
     for kind, opts in table.items():
-        if kind not in ("dxf", "step"):
-            fail(file, f"{key}.{kind}", opts, "dxf or step (the exporters with options)")
+        if kind not in ("dxf", "step", "3mf"):
+            fail(file, f"{key}.{kind}", opts, "dxf, step or 3mf (the exporters with options)")
         _table(file, f"{key}.{kind}", opts)
+        if kind == "3mf":
+            from ..export.threemf import MAX_GAP
+            _unknown(file, f"{key}.3mf", opts, ["arrange", "gap"])
+            o = {k: _bool(file, f"{key}.3mf.arrange", v) if k == "arrange" else
+                 _number(file, f"{key}.3mf.gap", v, 0, MAX_GAP, unit="mm") for k, v in opts.items()}
+            out["3mf"] = o
+            continue
         if kind == "step":
             from ..export.step import STEP_KINDS
             _unknown(file, f"{key}.step", opts, ["kind"])

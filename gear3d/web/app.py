@@ -45,9 +45,8 @@ DOWNLOADS = {"stl": ("body", "model/stl"), "3mf": ("body", "model/3mf"), "step":
 
 MAX_QUERY_ITEMS = 80
 
-#: formats whose writers use process-wide state (matplotlib's pyplot for the SVG figure,
-#: OpenCascade for a B-rep STEP): one at a time
-UNSHARED = ("svg", "step")
+#: formats whose writers use process-wide state (OpenCascade for a B-rep STEP): one at a time
+UNSHARED = ("step",)
 _UNSHARED = threading.Lock()
 _NO_LOCK = contextlib.nullcontext()
 
