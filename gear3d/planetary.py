@@ -295,11 +295,14 @@ def planetary_set(family: str, sun: int, planet: int, ring: int, planets: int = 
     # ---- bodies
     out_bodies, body_reps, carrier_rep = None, None, None
     errs = [float(p.report["max_error"]) for p in (p_sun, p_pl, p_ring)]
+    dims = None
+    if carrier:
+        dims = carrier_dimensions(a, m, width, float(p_pl.report["root_radius"]),
+                                  float(p_sun.report["root_radius"]), float(p_ring.report["tip_radius"]))
+        carrier_rep = dict(dims)
     if bodies:
-        out_bodies, body_reps, carrier_rep = _bodies(p_sun, p_pl, p_ring, placements, width, tol, carrier, a, m)
+        out_bodies, body_reps, carrier_rep = _bodies(p_sun, p_pl, p_ring, placements, width, tol, dims)
         errs += [float(r["max_error"]) for r in body_reps.values() if r.get("max_error") is not None]
-    elif carrier:
-        raise GearError("carrier", True, "False without bodies (a carrier is a body)")
 
     rats = ratios(zs, zr)
     # the same ratios from the built wheels' pitch radii (Willis): a cross-check of the formulas
@@ -404,13 +407,10 @@ def carrier_dimensions(a, m, width, planet_root, sun_root, ring_tip) -> dict:
             "inner_radius": 0.5 * sun_root, "outer_radius": min(a + planet_root, ring_tip - 0.5 * m)}
 
 
-def _bodies(p_sun, p_pl, p_ring, placements, width, tol, with_carrier, a, m):
+def _bodies(p_sun, p_pl, p_ring, placements, width, tol, dims):
+    """The placed bodies (sun, planet-1..N, ring[, carrier when ``dims``]) and their reports."""
     from .solids.body import body
     by = {q["name"]: q for q in placements}
-    dims = None
-    if with_carrier:
-        dims = carrier_dimensions(a, m, width, float(p_pl.report["root_radius"]),
-                                  float(p_sun.report["root_radius"]), float(p_ring.report["tip_radius"]))
     b_sun = body(p_sun, kind="spur", width=width, tolerance=tol, name="sun")
     b_pl = body(p_pl, kind="spur", width=width, tolerance=tol, name="planet",
                 bore=2 * dims["bore_radius"] if dims else None)

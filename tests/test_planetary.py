@@ -81,7 +81,9 @@ def test_api_refusals_name_the_parameter():
     with pytest.raises(GearError, match="ring = 42"):
         planetary_set("involute", 12, 14, 42, 3, check=False, bodies=False)
     with pytest.raises(GearError, match="carrier"):
-        planetary_set("involute", 12, 18, 48, 3, carrier=True, check=False, bodies=False)
+        planetary_set("involute", 12, 18, 48, 3, carrier="yes", check=False, bodies=False)
+    with pytest.raises(GearError, match="spacing"):
+        planetary_set("involute", 12, 18, 48, 3, spacing="random", check=False, bodies=False)
 
 
 # ------------------------------------------------------------------ ratios
@@ -235,3 +237,52 @@ def test_nearest_spacing_places_planets_at_allowed_angles():
     for a_sun, a_ring in _placed_overlaps(s):
         assert a_sun < 0.01 and a_ring < 0.01
     assert planet_angles(zs, zr, n, "equal") != planet_angles(zs, zr, n, "nearest")
+
+
+# ------------------------------------------------------------------ templates (gear3d planetary --template)
+
+ROOT = __import__("pathlib").Path(__file__).resolve().parents[1]
+
+
+def test_shipped_templates():
+    from gear3d.commands.planetary import read_template
+    cyc = read_template(ROOT / "templates" / "planetary-cycloidal.toml")
+    assert (cyc["family"], cyc["sun"], cyc["planet"], cyc["ring"], cyc["planets"]) == ("cycloidal", 6, 18, 42, 3)
+    assert cyc["params"]["module"] == 2.0 and cyc["carrier"] is True
+    inv = read_template(ROOT / "templates" / "planetary-involute.toml")
+    assert (inv["family"], inv["sun"], inv["planet"], inv["ring"], inv["planets"]) == ("involute", 12, 18, 48, 4)
+    for t in (cyc, inv):          # both assemble and clear: the set builds (profiles only here)
+        s = planetary_set(t["family"], t["sun"], t["planet"], t["ring"], t["planets"], t["params"]["module"],
+                          tolerance=TOL, check=False, bodies=False,
+                          **{k: v for k, v in t["params"].items() if k != "module"})
+        assert s.report["planet_clearance"] > 0 and s.report["ring_phase_error"] < 1e-9
+    assert ratios(6, 42)["ring_fixed"] == 8 and ratios(12, 48)["ring_fixed"] == 5
+
+
+@pytest.mark.parametrize("text,words", [
+    ('[planetary]\nfamily = "involute"\nsun = 12\nplanet = 18\nring = 48\nwidthh = 3\n', ("planetary.widthh",)),
+    ('[planetary]\nfamily = "involute"\nsun = 12\nplanet = 18\nring = 48\nplanets = 4.5\n', ("planetary.planets",)),
+    ('[planetary]\nfamily = "involute"\nsun = 12\nplanet = 18\nring = 48\npressure_angle_deg = 60\n',
+     ("planetary.pressure_angle_deg", "[5, 45]")),
+    ('[planetary]\nfamily = "gerotor-inner"\n', ("planetary.family",)),
+    ('[scene]\nname = "x"\n', ("scene", "[planetary]")),
+    ('[planetary]\nfamily = "cycloidal"\nsun = 6\nplanet = 18\nring = 42\nplanets = 5\n', ("planets = 5",)),
+])
+def test_bad_templates_refused(text, words, tmp_path, capsys, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "t.toml").write_text(text)
+    refused(["planetary", "--template", "t.toml", "-o", "set.3mf", "--width", "5"], capsys, *words)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["t.toml"]
+
+
+def test_flags_win_over_the_template(tmp_path, capsys, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    js = tmp_path / "two.json"
+    rc = main(["planetary", "--template", str(ROOT / "templates" / "planetary-cycloidal.toml"), "--planets", "2",
+               "--module", "1", "--json", str(js)])
+    assert rc == 0, capsys.readouterr().err
+    rep = _strict(js.read_text())
+    assert rep["planets"] == 2 and rep["module"] == 1 and rep["teeth"] == {"sun": 6, "planet": 18, "ring": 42}
+    assert rep["tolerance"] == TOL            # the template's
+    assert rep["carrier"]["pin_radius"] > 0   # sizes reported without bodies
+    assert rep["bodies"] is None

@@ -10,6 +10,13 @@ The family flags are those of ``gear3d profile`` (one table, gear3d.params), sha
 wheels; ``--teeth``, ``--internal``, shifts and tip/rim radii are the set's own business
 and refused. Bad input: one line on stderr, exit 2, no file. Missing folders of the
 outputs are created once the set is built (and removed again when a write fails).
+
+``--template FILE.toml`` reads the set from a ``[planetary]`` table (``templates/planetary-*.toml``):
+its keys are the flags' names (``family``, ``sun``, ``planet``, ``ring``, ``planets``,
+``spacing``, ``carrier``, ``width``, ``tolerance``, ``description`` and the family's own
+parameters, ``module``, ``addendum_coeff``, ...); flags given on the command line win. A bad
+template names the file and the key (exit 2). Planetary sets are not a ``gear3d build``
+scene kind: their templates run through this command.
 """
 from __future__ import annotations
 
@@ -30,6 +37,8 @@ def add_parser(sub):
                        help="a planetary set: sun, planets, ring (+ carrier) in phase, checked -> .3mf + .json")
     add_profile_flags(p)
     for a in p._actions:
+        if a.dest == "family":            # may come from --template
+            a.nargs, a.default = "?", None
         if a.dest in HIDDEN:
             a.help = argparse.SUPPRESS
         elif a.dest == "tolerance":
@@ -37,14 +46,70 @@ def add_parser(sub):
                       f"default 0.01 mm with a mesh output (-o), else 0.001 mm")
     for prm in PLANETARY_PARAMS:
         add_param_flag(p, prm, "pl_" + prm.name) if prm.kind is not str else \
-            p.add_argument("--" + prm.name, dest="pl_" + prm.name, default=prm.default,
+            p.add_argument("--" + prm.name, dest="pl_" + prm.name, default=None,
                            choices=list(prm.choices), help=prm.help_text())
     w = BODY["width"]
     add_param_flag(p, w, "pl_width", help_text=w.help_text(default_text="") + " (needed with -o)")
     p.add_argument("-o", "--output", default=None,
                    help="the placed bodies: " + " ".join(e for e in MESH_EXTS) + " (missing folders are created)")
     p.add_argument("--json", default=None, help="the full report as strict JSON")
+    p.add_argument("--template", default=None, metavar="FILE.toml",
+                   help="read the set from a [planetary] table (templates/planetary-*.toml); flags win")
     return p
+
+
+#: keys of a ``[planetary]`` template table besides the family's parameters
+TEMPLATE_KEYS = ("family", "description", "sun", "planet", "ring", "planets", "spacing", "carrier", "width",
+                 "tolerance")
+
+
+def read_template(path) -> dict:
+    """A ``[planetary]`` template, validated: {key: value} with the set's keys typed and
+    ranged, the family's parameters checked against its table. Every problem names the
+    file and the key (:class:`gear3d.jobs.template.TemplateError`)."""
+    from ..errors import GearError
+    from ..jobs.template import fail, read_toml
+    from ..params import BODY, TOLERANCE, check_family
+    from ..planetary import PLANETARY, PLANETARY_FAMILIES
+    file = str(path)
+    data = read_toml(file)
+    for k in data:
+        if k != "planetary":
+            fail(file, k, data[k], "one [planetary] table (a planetary set template)")
+    t = data.get("planetary")
+    if not isinstance(t, dict):
+        fail(file, "planetary", t, "a [planetary] table")
+    out, fam = {}, {}
+    family = t.get("family")
+    if family not in PLANETARY_FAMILIES:
+        fail(file, "planetary.family", family, "one of " + ", ".join(PLANETARY_FAMILIES))
+    for k, v in t.items():
+        key = f"planetary.{k}"
+        try:
+            if k in ("family", "description"):
+                if not isinstance(v, str):
+                    fail(file, key, v, "a string")
+                out[k] = v
+            elif k in PLANETARY:
+                out[k] = PLANETARY[k].check(v, key)
+            elif k == "width":
+                out[k] = BODY["width"].check(v, key)
+            elif k == "tolerance":
+                out[k] = TOLERANCE.check(v, key)
+            else:
+                fam[k] = v
+        except GearError as e:
+            if getattr(e, "file", None):
+                raise
+            fail(file, key, v, e.allowed, e.why)
+    try:
+        out["params"] = check_family(family, fam)
+    except GearError as e:
+        allowed = e.allowed
+        if "not a parameter" in allowed:
+            allowed = "a key among " + ", ".join(TEMPLATE_KEYS) + f" or a parameter of the {family} family"
+        fail(file, f"planetary.{e.param}", e.value, allowed, e.why)
+    return out
 
 
 def _outputs(args):
@@ -79,19 +144,31 @@ def _check_new(path, param, exts, note=""):
 
 def run(args) -> int:
     from ..errors import GearError
-    from ..planetary import planetary_set, summary
+    from ..planetary import PLANETARY, planetary_set, summary
     from .check import write_report
-    from .profile import family_params, print_notes
+    from .profile import default_tolerance, family_params, print_notes
     out, js = _outputs(args)
+    tpl = read_template(args.template) if args.template is not None else {}
+    if args.family is None:
+        if "family" not in tpl:
+            raise GearError("family", None, "a family (gear3d planetary FAMILY ...) or --template FILE.toml")
+        args.family = tpl["family"]
     kw = family_params(args, out)
-    tol = kw.pop("tolerance")
-    if out is not None and args.pl_width is None:
+    kw.pop("tolerance")
+    tol = args.tolerance if args.tolerance is not None else tpl.get("tolerance", default_tolerance(out))
+    fam_kw = dict(tpl.get("params", {})) if tpl.get("family") == args.family else {}
+    fam_kw.update(kw)
+
+    def pick(name):
+        v = getattr(args, "pl_" + name)
+        return v if v is not None else tpl.get(name, PLANETARY[name].default if name in PLANETARY else None)
+    width = pick("width")
+    if out is not None and width is None:
         raise GearError("width", None, "a number in (0, 100000] mm (--width) to build the bodies of -o")
-    from ..planetary import PLANETARY
-    n = args.pl_planets if args.pl_planets is not None else PLANETARY["planets"].default
-    s = planetary_set(args.family, args.pl_sun, args.pl_planet, args.pl_ring, n,
-                      kw.pop("module", None), args.pl_width if args.pl_width is not None else 10.0, tol,
-                      args.pl_carrier, spacing=args.pl_spacing, bodies=out is not None, **kw)
+    s = planetary_set(args.family, pick("sun"), pick("planet"), pick("ring"), pick("planets"),
+                      fam_kw.pop("module", None), width if width is not None else 10.0, tol,
+                      bool(args.pl_carrier or tpl.get("carrier", False)), spacing=pick("spacing"),
+                      bodies=out is not None, **fam_kw)
     rep = s.report
     msg = [summary(rep)]
     from ..export import make_out_dir, remove_dirs
