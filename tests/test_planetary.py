@@ -286,3 +286,15 @@ def test_flags_win_over_the_template(tmp_path, capsys, monkeypatch):
     assert rep["tolerance"] == TOL            # the template's
     assert rep["carrier"]["pin_radius"] > 0   # sizes reported without bodies
     assert rep["bodies"] is None
+
+
+@pytest.mark.parametrize("kw", [
+    dict(sun="6"), dict(sun=10 ** 400), dict(planets=True), dict(width="x"), dict(width=float("nan")),
+    dict(tolerance=0), dict(module="2"), dict(module=float("inf")), dict(bogus=1), dict(teeth=6),
+    dict(internal=True), dict(rim_radius=60), dict(family=None), dict(family="mate"),
+])
+def test_api_raises_gear_errors_only(kw):
+    args = dict(family="cycloidal", sun=6, planet=18, ring=42, planets=3, module=2, check=False, bodies=False)
+    args.update(kw)
+    with pytest.raises(GearError):
+        planetary_set(**args)
