@@ -298,3 +298,13 @@ def test_api_raises_gear_errors_only(kw):
     args.update(kw)
     with pytest.raises(GearError):
         planetary_set(**args)
+
+
+def test_family_help_shows_the_set_flags(capsys):
+    assert main(["planetary", "involute", "--help"]) == 0
+    out = capsys.readouterr().out
+    for flag in ("--sun", "--planet ", "--ring", "--planets", "--spacing", "--carrier", "--width", "--template",
+                 "--pressure-angle-deg", "--module"):
+        assert flag in out, flag
+    for flag in ("--teeth", "--internal", "--shift-coeff", "--mate-teeth"):
+        assert flag not in out, flag

@@ -44,12 +44,14 @@ def add_parser(sub):
         elif a.dest == "tolerance":
             a.help = ("max deviation from the exact curve (mm), profiles, bodies and the rolling checks; "
                       f"default 0.01 mm with a mesh output (-o), else 0.001 mm")
-    for prm in PLANETARY_PARAMS:
-        add_param_flag(p, prm, "pl_" + prm.name) if prm.kind is not str else \
+    for prm in PLANETARY_PARAMS:      # the set's own flags: shown for every family (gear3d_param None)
+        if prm.kind is str:
             p.add_argument("--" + prm.name, dest="pl_" + prm.name, default=None,
                            choices=list(prm.choices), help=prm.help_text())
+        else:
+            add_param_flag(p, prm, "pl_" + prm.name).gear3d_param = None
     w = BODY["width"]
-    add_param_flag(p, w, "pl_width", help_text=w.help_text(default_text="") + " (needed with -o)")
+    add_param_flag(p, w, "pl_width", help_text=w.help_text(default_text="") + " (needed with -o)").gear3d_param = None
     p.add_argument("-o", "--output", default=None,
                    help="the placed bodies: " + " ".join(e for e in MESH_EXTS) + " (missing folders are created)")
     p.add_argument("--json", default=None, help="the full report as strict JSON")
