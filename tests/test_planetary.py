@@ -68,6 +68,9 @@ def test_planet_count_refused(extra, words, tmp_path, capsys):
     (["cycloidal", "--sun", "6", "--planet", "18", "--ring", "42", "-o", "set.json"], ("output", ".3mf")),
     (["cycloidal", "--sun", "6", "--planet", "18", "--ring", "42", "-o", "set.3mf"], ("width",)),
     (["cycloidal", "--sun", "6", "--planet", "18", "--ring", "42", "--json", "set.txt"], ("json",)),
+    (["cycloidal", "--sun", "6", "--planet", "18", "--ring", "42", "--arrange"], ("arrange",)),
+    (["cycloidal", "--sun", "6", "--planet", "18", "--ring", "42", "--width", "5", "-o", "s.stl", "--arrange"],
+     ("arrange", ".3mf")),
 ])
 def test_bad_input_refused(argv, words, tmp_path, capsys, monkeypatch):
     monkeypatch.chdir(tmp_path)

@@ -1,11 +1,12 @@
 """``gear3d planetary FAMILY --sun ZS --planet ZP --ring ZR --planets N --module M --width W
--o set.3mf --json set.json [--carrier] [--spacing nearest] [--tolerance MM]``.
+-o set.3mf --json set.json [--carrier] [--spacing nearest] [--tolerance MM] [--arrange]``.
 
 Builds a standard planetary set (:func:`gear3d.planetary.planetary_set`): sun, planets and
 ring placed in phase, each distinct mesh rolled through the interference check, planet tip
 clearance checked, the ratios with each member held. ``-o`` writes the placed bodies as one
 file (.3mf: one named object per wheel; .stl .step .obj .ply .vtu as the exporters take a
-list of bodies); ``--json`` the full report (strict JSON). Without ``-o`` no body is built.
+list of bodies; ``--arrange``: the parts laid flat side by side for printing, 3MF only);
+``--json`` the full report (strict JSON). Without ``-o`` no body is built.
 The family flags are those of ``gear3d profile`` (one table, gear3d.params), shared by all
 wheels; ``--teeth``, ``--internal``, shifts and tip/rim radii are the set's own business
 and refused. Bad input: one line on stderr, exit 2, no file. Missing folders of the
@@ -55,6 +56,8 @@ def add_parser(sub):
     p.add_argument("-o", "--output", default=None,
                    help="the placed bodies: " + " ".join(e for e in MESH_EXTS) + " (missing folders are created)")
     p.add_argument("--json", default=None, help="the full report as strict JSON")
+    from .build import add_arrange_flags
+    add_arrange_flags(p, "the set's parts (-o .3mf)")
     p.add_argument("--template", default=None, metavar="FILE.toml",
                    help="read the set from a [planetary] table (templates/planetary-*.toml); flags win")
     return p
@@ -150,6 +153,10 @@ def run(args) -> int:
     from .check import write_report
     from .profile import default_tolerance, family_params, print_notes
     out, js = _outputs(args)
+    from .build import arrange_options
+    arrange = arrange_options(args)
+    if arrange and (out is None or not out.lower().endswith(".3mf")):
+        raise GearError("arrange", True, "given only with -o FILE.3mf (the parts laid out for printing)")
     tpl = read_template(args.template) if args.template is not None else {}
     if args.family is None:
         if "family" not in tpl:
@@ -181,7 +188,8 @@ def run(args) -> int:
                 made += make_out_dir(os.path.dirname(os.path.abspath(path)), param)
         if out is not None:
             from ..export import write
-            info = write(s.bodies, out, **({"title": "planetary"} if out.lower().endswith(".3mf") else {}))
+            opts = dict(arrange, title=f"planetary {args.family}") if out.lower().endswith(".3mf") else {}
+            info = write(s.bodies, out, **opts)
             msg.append(f"wrote {out}: {len(s.bodies)} bodies" + (f" ({info})" if info else ""))
         if js is not None:
             write_report(js, rep, "json")
