@@ -236,13 +236,13 @@ def planetary_set(family: str, sun: int, planet: int, ring: int, planets: int = 
     width = BODY["width"].check(width)
     tol = TOLERANCE.check(tolerance)
     fp = _family_params(family, module, family_params)
-    m = fp["module"]
 
     # ---- profiles (each in its own frame), the same family parameters
     p_sun = profile(family, teeth=zs, tolerance=tol, **fp)
     p_pl = profile(family, teeth=zp, tolerance=tol, **fp)
     p_ring = profile(family, teeth=zr, internal=True, tolerance=tol, **fp)
     from .placement import standard_center_distance
+    m = float(p_sun.module)                        # the module the wheels were built with (mm)
     a = standard_center_distance(zs, zp, m)
     r_tip = float(p_pl.report["tip_radius"])
 
@@ -353,8 +353,9 @@ def _family_params(family, module, given) -> dict:
         fp["module"] = module
     fp = check_family(family, {k: v for k, v in fp.items() if v is not None})
     fp = to_transverse(fp, 0.0)
-    fp.setdefault("module", 1.0)
-    fp["module"] = check_number("module", fp["module"], 0, 1000, lo_open=True, unit="mm")
+    if fp.get("unit_radius") is None:              # (seed 000's sine form sizes by its unit radius)
+        fp.setdefault("module", 1.0)
+        fp["module"] = check_number("module", fp["module"], 0, 1000, lo_open=True, unit="mm")
     return fp
 
 

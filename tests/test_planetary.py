@@ -311,3 +311,16 @@ def test_family_help_shows_the_set_flags(capsys):
         assert flag in out, flag
     for flag in ("--teeth", "--internal", "--shift-coeff", "--mate-teeth"):
         assert flag not in out, flag
+
+
+@pytest.mark.parametrize("kw,m", [(dict(unit_radius=1.0), 2.0), (dict(unit_radius=1.0, form="hypo"), 2.0),
+                                  (dict(module=None, diametral_pitch=12.7), 2.0)])
+def test_sizes_by_unit_radius_or_diametral_pitch(kw, m):
+    """Seed 000's sine form sizes by its unit radius (m = 2 r), inch sets by P (m = 25.4/P)."""
+    args = dict(module=None, tolerance=TOL, check=False, bodies=False)
+    args.update(kw)
+    s = planetary_set("sine", 6, 18, 42, 3, **args)
+    assert s.report["module"] == pytest.approx(m, rel=1e-12)
+    assert s.report["center_distance"] == pytest.approx(m * 24 / 2, rel=1e-12)
+    for a_sun, a_ring in _placed_overlaps(s):
+        assert a_sun < 0.01 and a_ring < 0.01
