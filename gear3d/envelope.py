@@ -110,7 +110,26 @@ def rack_envelope(rack: Rack, radius: float, shift: float = 0.0, internal: bool 
     return [(rack_envelope_piece(el, radius, shift, internal), el.name) for el in rack.elements]
 
 
-def wheel_envelope_piece(point_normal, r1: float, r2: float, internal: bool, smooth: bool = True):
+def _wheel_roots(p, n, r1, branch):
+    """lambda of the pitch point W = p + lambda n on the tool's pitch circle |W| = r1.
+
+    ``branch``: 0 the root nearer the tool point (the contact in the mesh zone; it flips
+    where p.n changes sign), +1 the root (-p.n + sqrt(disc))/|n|^2, -1 (-p.n - sqrt)/|n|^2.
+    NaN where the normal line misses the circle (disc < 0)."""
+    pn = np.einsum("ij,ij->i", p, n)
+    nn = np.einsum("ij,ij->i", n, n)
+    pp = np.einsum("ij,ij->i", p, p)
+    disc = pn * pn - nn * (pp - r1 * r1)
+    with np.errstate(invalid="ignore"):
+        sq = np.sqrt(disc)
+    l1, l2 = (-pn - sq) / nn, (-pn + sq) / nn
+    if branch == 0:
+        return np.where(np.abs(l1) < np.abs(l2), l1, l2)
+    return l2 if branch > 0 else l1
+
+
+def wheel_envelope_piece(point_normal, r1: float, r2: float, internal: bool, smooth: bool = True,
+                         branch: int = 0):
     """Exact evaluator of the envelope of a wheel tool on the generated wheel's frame.
 
     ``point_normal(t) -> (p, n)`` gives tool points and normals (mm) in the tool frame,
@@ -119,21 +138,16 @@ def wheel_envelope_piece(point_normal, r1: float, r2: float, internal: bool, smo
     the generated wheel's pitch circle r2. External pairs: centre distance r1 + r2;
     internal: |r2 - r1| (the ring is the larger one). The generated wheel's centre is the
     origin and the pitch point sits at (r2, 0). ``smooth=False`` marks a corner fan (its
-    points do not move, so it has no tangent).
+    points do not move, so it has no tangent). ``branch``: which root of the contact
+    condition (see :func:`_wheel_roots`); :func:`wheel_envelope_pieces` fixes it per
+    sub-piece so that no piece jumps.
     """
     k = 1.0 if internal else -1.0          # direction from tool centre to pitch point is k*x
     o1 = r2 - k * r1
 
     def evaluate(t, tangent=True):
         p, n = point_normal(t)
-        pn = np.einsum("ij,ij->i", p, n)
-        nn = np.einsum("ij,ij->i", n, n)
-        pp = np.einsum("ij,ij->i", p, p)
-        disc = pn * pn - nn * (pp - r1 * r1)
-        with np.errstate(invalid="ignore"):
-            sq = np.sqrt(disc)
-        l1, l2 = (-pn - sq) / nn, (-pn + sq) / nn
-        lam = np.where(np.abs(l1) < np.abs(l2), l1, l2)
+        lam = _wheel_roots(p, n, r1, branch)
         w = p + lam[:, None] * n                 # pitch point in the tool frame
         # w = k r1 (cos phi1, -sin phi1)
         phi1 = np.arctan2(-k * w[:, 1], k * w[:, 0])
@@ -142,6 +156,84 @@ def wheel_envelope_piece(point_normal, r1: float, r2: float, internal: bool, smo
         tang = _rot(_rot(np.stack([-n[:, 1], n[:, 0]], axis=1), phi1), -phi2)
         return _rot(q, -phi2), tang
     return EnvelopePiece(evaluate, smooth)
+
+
+def _tool_angle(p, n, r1, internal, branch):
+    """phi1 (rad): the tool's turn at which the tool point p (normal n) is in contact."""
+    k = 1.0 if internal else -1.0
+    p, n = np.atleast_2d(p), np.atleast_2d(n)
+    w = p + _wheel_roots(p, n, r1, branch)[:, None] * n
+    return float(np.arctan2(-k * w[0, 1], k * w[0, 0]))
+
+
+def wheel_roll_path(p, phi_a: float, phi_b: float, r1: float, r2: float, internal: bool):
+    """The path, in the generated wheel's frame, of the tool point ``p`` (mm, tool frame)
+    while the tool turns from ``phi_a`` to ``phi_b`` (rad) and rolls on r2: a trochoid arc.
+    It lies on the boundary of the swept tool at every instant, so the trim removes it
+    except where it is the envelope itself (as for a corner's fan). No tool tangent."""
+    k = 1.0 if internal else -1.0
+    o1 = r2 - k * r1
+    p = np.asarray(p, float)
+
+    def evaluate(t, tangent=True):
+        phi1 = phi_a + (phi_b - phi_a) * np.asarray(t, float)
+        phi2 = k * r1 * phi1 / r2
+        q = _rot(np.broadcast_to(p, phi1.shape + (2,)), phi1) + np.array([o1, 0.0])
+        return _rot(q, -phi2), None
+    return EnvelopePiece(evaluate, False)
+
+
+#: samples per tool element on which the sign of p.n (the nearer root's switch) is searched
+BRANCH_SAMPLES = 1025
+
+
+def wheel_envelope_pieces(point_normal, r1: float, r2: float, internal: bool, smooth: bool = True) -> list:
+    """:func:`wheel_envelope_piece` of one tool element, split where the nearer root
+    switches (p.n changes sign, found on :data:`BRANCH_SAMPLES` samples and bisected to
+    1e-13 in t), each sub-piece on its own fixed root, joined by the roll path of the
+    switching point from one root's tool angle to the other's (the short way round).
+
+    Without the split the evaluator jumps between the two roots inside one piece; the
+    tessellation then bridges the jump with a chord whose position depends on the
+    tolerance, and a coarse and a fine build disagree by up to a module (issue #13's
+    stability benchmark). Returns the list of pieces in boundary order."""
+    def sgn(t):
+        p, n = point_normal(np.atleast_1d(np.asarray(t, float)))
+        return np.sign(np.einsum("ij,ij->i", p, n))
+    ts = np.linspace(0.0, 1.0, BRANCH_SAMPLES)
+    s = sgn(ts)
+    cuts = []
+    for i in np.nonzero(s[:-1] * s[1:] < 0)[0]:
+        a, b = ts[i], ts[i + 1]
+        sa = s[i]
+        while b - a > 1e-13:
+            m = 0.5 * (a + b)
+            if sgn(m)[0] == sa:
+                a = m
+            else:
+                b = m
+        cuts.append(0.5 * (a + b))
+    if not cuts:
+        return [wheel_envelope_piece(point_normal, r1, r2, internal, smooth)]
+    bounds = [0.0] + cuts + [1.0]
+    out = []
+    for j in range(len(bounds) - 1):
+        ta, tb = bounds[j], bounds[j + 1]
+        mid = sgn(0.5 * (ta + tb))[0]
+        branch = 1 if mid > 0 else -1           # the nearer root on this sub-piece (p.n > 0: l2)
+
+        def sub(t, ta=ta, tb=tb):
+            return point_normal(ta + (tb - ta) * np.asarray(t, float))
+        if j > 0:
+            p, n = point_normal(np.array([ta]))
+            phi_a = _tool_angle(p, n, r1, internal, prev_branch)
+            phi_b = _tool_angle(p, n, r1, internal, branch)
+            if np.isfinite(phi_a) and np.isfinite(phi_b):
+                d = (phi_b - phi_a + math.pi) % (2 * math.pi) - math.pi
+                out.append(wheel_roll_path(p[0], phi_a, phi_a + d, r1, r2, internal))
+        out.append(wheel_envelope_piece(sub, r1, r2, internal, smooth, branch))
+        prev_branch = branch
+    return out
 
 
 # ----------------------------------------------------------------------------- trimming

@@ -73,6 +73,10 @@ class Profile:
     #: the exact boundary (:class:`gear3d.exact.ExactBoundary`) the measurements use, or
     #: a function that makes it on first use (see :attr:`boundary`)
     _boundary: object = field(repr=False, default=None)
+    #: the turned tip circle when the clip radius binds: (exact evaluator over tooth 0's
+    #: sector, t in [0, 1]; its sample parameters), else None. It is exact but not one of
+    #: the raw ``pieces`` (the mate builder rolls it as part of the tool).
+    tip_arc: tuple | None = field(repr=False, default=None)
 
     @property
     def boundary(self):
@@ -307,6 +311,8 @@ def build_profile(family: str, params: dict, pieces, teeth: int, pitch_radius: f
     rc = np.hypot(chain[:, 0], chain[:, 1])
     prof = Profile(family, dict(params), teeth, pitch_radius, internal, tol, loops, {}, list(pieces), chain,
                    [np.array(t) for t in ts])
+    if arc_piece is not None:
+        prof.tip_arc = (arc_piece, np.array(arc_t))
     tl = prof.tooth_loop
     rr = np.hypot(tl[:, 0], tl[:, 1])
     tip, root = (rr.min(), rr.max()) if internal else (rr.max(), rr.min())

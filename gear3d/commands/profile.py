@@ -238,6 +238,7 @@ def run(args) -> int:
     if out is not None:
         from ..export import check_output
         check_output(out, kinds="profile")
+    from .figureflag import check_figure_arg, write_figure_arg
     check_figure_arg(args)
     opts = _write_options(args, out)
     kw = family_params(args, out)
@@ -261,22 +262,6 @@ def run(args) -> int:
                      f"(tolerance {r['tolerance']:g} mm)" + (f" {info}" if info else "") + "\n")
     print_notes(args)
     return 0
-
-
-def check_figure_arg(args):
-    """``--figure FILE`` checked before any work (extension, folder)."""
-    if getattr(args, "figure", None) is not None:
-        from ..export import check_path
-        from ..figures import FIGURE_EXTS
-        check_path(args.figure, "figure", exts=tuple("." + e for e in FIGURE_EXTS))
-
-
-def write_figure_arg(args, obj):
-    """Write ``--figure FILE`` (when given) and say so on stdout."""
-    if getattr(args, "figure", None) is not None:
-        from ..figures import figure
-        figure(obj, args.figure)
-        sys.stdout.write(f"wrote {args.figure}: figure\n")
 
 
 def _write_options(args, out) -> dict:

@@ -51,7 +51,7 @@ def run_profile_cli(args, family_params) -> int:
                                    ".obj", ".ply", ".vtu"))
     _check_given(args, ("kerf", "lead_in", "start_angle_deg", "dxf_version", "spline", "construction",
                         "no_pitch_circle"), "a rack outline")
-    from .profile import check_figure_arg, write_figure_arg
+    from .figureflag import check_figure_arg, write_figure_arg
     check_figure_arg(args)
     part = rack(args.family, **_rack_kw(args, family_params, out))
     if out is None:

@@ -101,7 +101,7 @@ def _bbox(fits) -> np.ndarray:
 
 
 def _write(path, fits, stroke_width, margin) -> dict:
-    from .dxf import _signed_area
+    from ..geometry import signed_area
     box = _bbox(fits)
     x0, y0 = box[0, 0] - margin, -box[1, 1] - margin          # top-left in SVG coordinates
     w = box[1, 0] - box[0, 0] + 2 * margin
@@ -110,7 +110,7 @@ def _write(path, fits, stroke_width, margin) -> dict:
              f'<svg xmlns="http://www.w3.org/2000/svg" version="1.1" width="{_num(w)}mm" height="{_num(h)}mm" '
              f'viewBox="{_num(x0)} {_num(y0)} {_num(w)} {_num(h)}">']
     for k, f in enumerate(fits):
-        cls = "outer" if _signed_area(f.vertices) > 0 else "inner"
+        cls = "outer" if signed_area(f.vertices) > 0 else "inner"
         lines.append(f'<path id="contour-{k}" class="{cls}" fill="none" stroke="#000000" '
                      f'stroke-width="{_num(stroke_width)}" d="{_path_data(f)}"/>')
     lines.append("</svg>")

@@ -13,7 +13,7 @@ import math
 
 import numpy as np
 
-from ..envelope import wheel_envelope_piece
+from ..envelope import wheel_envelope_pieces
 from ..errors import GearError, check_number
 
 
@@ -55,9 +55,15 @@ def tool_elements(prof):
     """
     from scipy.spatial import cKDTree
     z = prof.teeth
+    pieces, tparams = list(prof.pieces), [np.asarray(t, float) for t in prof.piece_params]
+    if prof.tip_arc is not None:
+        # a tip circle the builder turned (clip radius binding) is exact too, but not one
+        # of the raw pieces: roll it as one more, so its land is a run and not a corner
+        pieces.append(prof.tip_arc[0])
+        tparams.append(np.asarray(prof.tip_arc[1], float))
     copies = (0,) if z == 1 else ((0, 1) if z == 2 else (-1, 0, 1))
     pts, rec = [], []
-    for i, (G, t) in enumerate(zip(prof.pieces, prof.piece_params)):
+    for i, (G, t) in enumerate(zip(pieces, tparams)):
         P = G(t)
         for k in copies:
             pts.append(_rot(P, 2 * math.pi * k / z))
@@ -93,7 +99,7 @@ def tool_elements(prof):
     for it in items:
         if it[0] == "raw":
             _, i, k, jj, q = it
-            t = prof.piece_params[i][jj]
+            t = tparams[i][jj]
             if runs and runs[-1][0] == i and runs[-1][1] == k and not corner_after.get(len(runs) - 1) is not None:
                 runs[-1][3] = t
             else:
@@ -101,16 +107,17 @@ def tool_elements(prof):
         else:
             if runs:
                 corner_after[len(runs) - 1] = it[1]
+    runs, corner_after = _bridge_piece_junctions(runs, corner_after, prof, pieces, tparams)
     # snap run ends to the corners / bridge piece junctions
     els = []
     for r_i, (i, k, ta, tb) in enumerate(runs):
-        G = prof.pieces[i]
-        tp = prof.piece_params[i]
+        G = pieces[i]
+        tp = tparams[i]
         rot = 2 * math.pi * k / z
         if r_i + 1 < len(runs):
             q = corner_after.get(r_i)
             if q is None:
-                q = _rot(prof.pieces[runs[r_i + 1][0]](np.array([runs[r_i + 1][2]])), 2 * math.pi * runs[r_i + 1][1] / z)[0]
+                q = _rot(pieces[runs[r_i + 1][0]](np.array([runs[r_i + 1][2]])), 2 * math.pi * runs[r_i + 1][1] / z)[0]
             # extend to the next sample of this piece in the direction of travel, projected
             jn = np.searchsorted(tp, tb)
             nxt = tp[min(jn + 1, len(tp) - 1)] if tb >= ta else tp[max(jn - 1, 0)]
@@ -134,14 +141,67 @@ def tool_elements(prof):
         els.append((("smooth", i, k, ta, tb), end_pt))
     out = []
     for r_i, ((_, i, k, ta, tb), end_pt) in enumerate(els):
-        out.append((_smooth_pn(prof.pieces[i], ta, tb, 2 * math.pi * k / z), True))
+        out.append((_smooth_pn(pieces[i], ta, tb, 2 * math.pi * k / z), True))
         if r_i + 1 < len(els):
-            na = _normal(prof.pieces[i], tb, 2 * math.pi * k / z, inward=-1e-5 * np.sign(tb - ta or 1))
+            na = _normal(pieces[i], tb, 2 * math.pi * k / z, inward=-1e-5 * np.sign(tb - ta or 1))
             i2, k2, ta2, tb2 = runs[r_i + 1]
-            nb = _normal(prof.pieces[i2], ta2, 2 * math.pi * k2 / z, inward=1e-5 * np.sign(tb2 - ta2 or 1))
+            nb = _normal(pieces[i2], ta2, 2 * math.pi * k2 / z, inward=1e-5 * np.sign(tb2 - ta2 or 1))
             if abs(na[0] * nb[1] - na[1] * nb[0]) > 1e-9 or np.dot(na, nb) < 0:
                 out.append((_fan_pn(end_pt, na, nb), False))
     return out
+
+
+def _bridge_piece_junctions(runs, corner_after, prof, pieces, tparams):
+    """Add the missing run where a corner follows (or precedes) a run that stops on its
+    piece's last (first) sample, and the corner lies on the neighbouring piece of the raw
+    chain instead: e.g. a tip circle generated as two half pieces whose only surviving
+    vertex (the tip's middle) was matched to one of them. Without it the fan of the corner
+    would sit at that vertex and the mate's flank would be cut by a chord."""
+    z, npc = prof.teeth, len(prof.pieces)
+    near = 2 * max(prof.tolerance, 1e-6)
+
+    def neighbour(i, k, at_end):
+        if at_end:
+            return (i + 1, k) if i + 1 < npc else (0, k + 1)
+        return (i - 1, k) if i > 0 else (npc - 1, k - 1)
+
+    def point(i, k, t):
+        return _rot(pieces[i](np.array([t])), 2 * math.pi * k / z)[0]
+
+    def extension(i, k, t, q):
+        """A run (j, kj, t_junction, t_q) on the neighbour of piece i past sample t, or None."""
+        if i >= npc or np.hypot(*(point(i, k, t) - q)) <= near:
+            return None
+        tp = tparams[i]
+        for at_end, hit in ((True, t == tp[-1]), (False, t == tp[0])):
+            if not hit:
+                continue
+            j, kj = neighbour(i, k, at_end)
+            tj = tparams[j]
+            t0 = tj[0] if at_end else tj[-1]
+            if np.hypot(*(point(j, kj, t0) - point(i, k, t))) > 1e-7:
+                continue
+            tq = _project(pieces[j], q, tj[0], tj[-1], 2 * math.pi * kj / z)
+            if np.hypot(*(point(j, kj, tq) - q)) <= near:
+                return [j, kj, t0, tq]
+        return None
+
+    out, corners = [], {}
+    for r_i, (i, k, ta, tb) in enumerate(runs):
+        before = corner_after.get(r_i - 1) if r_i > 0 else None
+        if before is not None:
+            ext = extension(i, k, ta, before)
+            if ext is not None:
+                j, kj, t0, tq = ext
+                out.append([j, kj, tq, t0])
+        out.append([i, k, ta, tb])
+        q = corner_after.get(r_i)
+        if q is not None:
+            ext = extension(i, k, tb, q)
+            if ext is not None:
+                out.append(ext)
+            corners[len(out) - 1] = q
+    return out, corners
 
 
 def _deriv(G, t, rot):
@@ -221,7 +281,7 @@ def mate(tool, teeth: int, internal: bool | None = None, tolerance: float | None
             p, nn = pn(t)
             return _rot(p, beta0), _rot(nn, beta0)
         return f
-    pieces = [wheel_envelope_piece(rotated(pn), r1, r2, pair_internal, smooth) for pn, smooth in els]
+    pieces = [piece for pn, smooth in els for piece in wheel_envelope_pieces(rotated(pn), r1, r2, pair_internal, smooth)]
     rt = tool.report
     if gen_internal:
         nominal = a + rt["root_radius"]         # ring tip: reached by the pinion's root
