@@ -214,34 +214,54 @@ def test_cycloidal_rack_generates_epi_and_hypocycloids(z):
 
 # ------------------------------------------------------------------- hypothesis
 
-@settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow])
-@given(N=st.integers(3, 40), R=st.floats(5, 200), kf=st.floats(0.05, 1.2), rf=st.floats(0.02, 1.3))
-def test_disc_valid_or_refused(N, R, kf, rf):
-    e = kf * R / N
-    rp = rf * R * math.sin(math.pi / N)
-    tol = max(1e-3, e / 200)
-    try:
-        p = gear3d.profile("cycloid-disc", pins=N, pin_circle_radius=R, pin_radius=rp, eccentricity=e, tolerance=tol)
-    except GearError as err:
-        assert err.param in ("eccentricity", "pin_radius", "tolerance")
-        return
-    assert kf < 1
-    poly = shapely.Polygon(p.loops[0])
-    assert poly.is_valid and len(p.loops) == 1
-    assert p.report["max_error"] <= tol
+def test_disc_valid_or_refused():
+    seen = []
+
+    @settings(max_examples=25, deadline=None, derandomize=True, database=None,
+              suppress_health_check=[HealthCheck.too_slow])
+    @given(N=st.integers(3, 40), R=st.floats(5, 200), kf=st.floats(0.05, 1.2), rf=st.floats(0.02, 1.3))
+    def check(N, R, kf, rf):
+        e = kf * R / N
+        rp = rf * R * math.sin(math.pi / N)
+        tol = max(1e-3, e / 200)
+        try:
+            p = gear3d.profile("cycloid-disc", pins=N, pin_circle_radius=R, pin_radius=rp, eccentricity=e,
+                               tolerance=tol)
+        except GearError as err:
+            assert err.param in ("eccentricity", "pin_radius", "tolerance")
+            seen.append(False)
+            return
+        assert kf < 1
+        poly = shapely.Polygon(p.loops[0])
+        assert poly.is_valid and len(p.loops) == 1
+        assert p.report["max_error"] <= tol
+        seen.append(True)
+
+    check()
+    print(f"built and checked {sum(seen)} of {len(seen)}")
+    assert len(seen) >= 20 and sum(seen) >= 0.3 * len(seen), f"only {sum(seen)} of {len(seen)} discs checked"
 
 
-@settings(max_examples=20, deadline=None)
-@given(kind=st.sampled_from(["epicycloid", "hypocycloid"]), z=st.integers(2, 24),
-       lam=st.floats(0.05, 1.0), off=st.floats(0.0, 2.0))
-def test_trochoid_valid_or_refused(kind, z, lam, off):
-    try:
-        p = gear3d.profile(kind, teeth=z, module=2.0, eccentricity=lam, tooth_radius=off, tolerance=1e-3)
-    except GearError as err:
-        assert err.param in ("eccentricity", "tooth_radius", "teeth")
-        return
-    assert shapely.Polygon(p.loops[0]).is_valid
-    assert p.report["max_error"] <= 1e-3
+def test_trochoid_valid_or_refused():
+    seen = []
+
+    @settings(max_examples=20, deadline=None, derandomize=True, database=None)
+    @given(kind=st.sampled_from(["epicycloid", "hypocycloid"]), z=st.integers(2, 24),
+           lam=st.floats(0.05, 1.0), off=st.floats(0.0, 2.0))
+    def check(kind, z, lam, off):
+        try:
+            p = gear3d.profile(kind, teeth=z, module=2.0, eccentricity=lam, tooth_radius=off, tolerance=1e-3)
+        except GearError as err:
+            assert err.param in ("eccentricity", "tooth_radius", "teeth")
+            seen.append(False)
+            return
+        assert shapely.Polygon(p.loops[0]).is_valid
+        assert p.report["max_error"] <= 1e-3
+        seen.append(True)
+
+    check()
+    print(f"built and checked {sum(seen)} of {len(seen)}")
+    assert len(seen) >= 16 and sum(seen) >= 0.3 * len(seen), f"only {sum(seen)} of {len(seen)} trochoids checked"
 
 
 def test_cli_bad_pin_radius_exit_code(capsys):

@@ -114,20 +114,29 @@ def test_ec_bad_designs():
     assert ei.value.param == "teeth"
 
 
-@settings(max_examples=20, deadline=None)
-@given(z1=st.integers(1, 4), z2=st.integers(2, 40), ef=st.floats(0.05, 0.99), af=st.floats(0.9, 1.3))
-def test_ec_valid_or_refused(z1, z2, ef, af):
-    rho = 5.0
-    eps = ef * rho
-    Aw = af * rho * (z2 / z1 + 1)
-    try:
-        w = gear3d.profile("ec-wheel", teeth=z2, mate_teeth=z1, eccentricity=eps, tooth_radius=rho,
-                           center_distance=Aw, tolerance=1e-3)
-    except GearError as err:
-        assert err.param in ("teeth", "eccentricity", "tooth_radius", "center_distance", "tolerance",
-                             "addendum_coeff")
-        return
-    assert shapely.Polygon(w.loops[0]).is_valid and w.report["max_error"] <= 1e-3
+def test_ec_valid_or_refused():
+    seen = []
+
+    @settings(max_examples=20, deadline=None, derandomize=True, database=None)
+    @given(z1=st.integers(1, 4), z2=st.integers(2, 40), ef=st.floats(0.05, 0.99), af=st.floats(0.9, 1.3))
+    def check(z1, z2, ef, af):
+        rho = 5.0
+        eps = ef * rho
+        Aw = af * rho * (z2 / z1 + 1)
+        try:
+            w = gear3d.profile("ec-wheel", teeth=z2, mate_teeth=z1, eccentricity=eps, tooth_radius=rho,
+                               center_distance=Aw, tolerance=1e-3)
+        except GearError as err:
+            assert err.param in ("teeth", "eccentricity", "tooth_radius", "center_distance", "tolerance",
+                                 "addendum_coeff")
+            seen.append(False)
+            return
+        assert shapely.Polygon(w.loops[0]).is_valid and w.report["max_error"] <= 1e-3
+        seen.append(True)
+
+    check()
+    print(f"built and checked {sum(seen)} of {len(seen)}")
+    assert len(seen) >= 16 and sum(seen) >= 0.3 * len(seen), f"only {sum(seen)} of {len(seen)} EC wheels checked"
 
 
 # ------------------------------------------------------------------- gerotors
