@@ -162,6 +162,20 @@ class RackPart:
             d = np.minimum(d, segment_foot(q, a[None], b[None])[0])
         return d
 
+    def at_tolerance(self, tolerance: float) -> "RackPart":
+        """The same rack rebuilt at another tolerance (mm) (the DXF arc fit's reference)."""
+        return rack(self.family, **dict(self.params, tolerance=tolerance))
+
+    def straight_edges(self, loop) -> np.ndarray:
+        """Per edge of the closed polygon ``loop`` (edge k from vertex k to k+1): True when
+        it lies on a straight piece of the exact outline (three interior points within
+        1e-12 m of it; a chord of a curved piece sags by more)."""
+        L = check_points(loop)
+        B = np.roll(L, -1, axis=0)
+        q = np.concatenate([L + f * (B - L) for f in (0.25, 0.5, 0.75)])
+        d = self.exact_distance(q).reshape(3, -1).max(axis=0)
+        return d <= 1e-12 * max(self.module, 1.0)
+
     def inside(self, points, periodic: bool = True) -> np.ndarray:
         """True where points (N, 2) lie under the toothed top (above the back for a finite
         rack). The top is a function y(x) for every rack here; read off the polygon."""
@@ -626,8 +640,10 @@ def rack_body(part: RackPart, width: float = 10.0, helix_angle_deg: float = 0.0,
 
 def write_rack(part: RackPart, path, width=None) -> str:
     """Write a rack outline atomically: .json (loops + report), .svg (1:1 outline in mm, the
-    measured polygon), .png (figure), .dxf
-    (one closed LWPOLYLINE, mm), or a mesh format (a spur rack ``width`` mm wide)."""
+    measured polygon), .png (figure), .dxf (one closed LWPOLYLINE of lines and arcs, mm: the
+    G1 biarc fit of :mod:`gear3d.export.dxf`, read back and measured both ways against the
+    exact rack within its tolerance; straight flanks are LINE segments), or a mesh format
+    (a spur rack ``width`` mm wide). Returns a one-line summary ("" when there is none)."""
     from .export import atomic_path, write
     from .export.json_format import dumps
     ext = str(path).lower().rsplit(".", 1)[-1]
@@ -640,11 +656,8 @@ def write_rack(part: RackPart, path, width=None) -> str:
                     fh.write(dumps({"family": part.family, "rack": True, "params": part.params,
                                     "loops": [l.tolist() for l in part.loops], "report": part.report}) + "\n")
             elif ext == "dxf":
-                import ezdxf
-                doc = ezdxf.new("R2000", units=ezdxf.units.MM)
-                doc.header["$INSUNITS"] = 4
-                doc.modelspace().add_lwpolyline(part.loops[0].tolist(), close=True)
-                doc.saveas(tmp)
+                from .export.dxf import write as write_dxf
+                return write_dxf(part, tmp)
             elif ext == "svg":
                 from .export.svg_outline import write_polygons
                 write_polygons(part.loops, tmp)

@@ -276,3 +276,82 @@ def test_cli(tmp_path):
         assert r.returncode == 2, (bad, r.stderr)
         assert len(r.stderr.strip().splitlines()) == 1
         assert not list(tmp_path.glob("bad.*"))
+
+
+def _dxf_polylines(path):
+    import ezdxf
+    doc = ezdxf.readfile(path)
+    assert doc.header["$INSUNITS"] == 4                      # mm
+    ents = [e for e in doc.modelspace() if e.dxftype() == "LWPOLYLINE"]
+    assert len(ents) == 1 and ents[0].closed
+    return doc, np.array([(x, y, b) for x, y, b in ents[0].get_points("xyb")], float)
+
+
+def _dxf_samples(path, sag=1e-5):
+    """Points along the DXF read back with ezdxf (its own arc flattening, not ours)."""
+    import ezdxf
+    from ezdxf import path as ezpath
+    doc = ezdxf.readfile(path)
+    e = next(iter(doc.modelspace().query("LWPOLYLINE")))
+    return np.array([(v.x, v.y) for v in ezpath.make_path(e).flattening(sag, segments=4)])
+
+
+def test_rack_dxf_is_a_measured_arc_fit(tmp_path):
+    from gear3d.rack_part import write_rack
+    from scipy.spatial import cKDTree
+    m, tol = 1.5, 1e-3
+    # involute: every segment a LINE; the flanks straight at alpha, on the ISO 53 lines
+    inv = rack("involute", teeth=5, module=m, tolerance=tol)
+    info = write_rack(inv, tmp_path / "inv.dxf")
+    assert "0 arcs" in info and "measured max error" in info
+    _doc, P = _dxf_polylines(tmp_path / "inv.dxf")
+    assert np.all(P[:, 2] == 0.0)
+    A, B = P[:, :2], np.roll(P[:, :2], -1, axis=0)
+    d = B - A
+    flank = (np.abs(d[:, 0]) > 1e-9) & (np.abs(d[:, 1]) > 1e-9)
+    assert flank.sum() >= 10                                  # 2 per tooth (one split by the start point)
+    ang = np.degrees(np.arctan2(np.abs(d[flank, 0]), np.abs(d[flank, 1])))
+    assert np.allclose(ang, 20.0, atol=1e-9)
+    p, ta = math.pi * m, math.tan(math.radians(20.0))
+    for Q in (A[flank], B[flank]):
+        u = np.abs(Q[:, 0] - np.round(Q[:, 0] / p) * p)
+        assert np.allclose(u, p / 4 - Q[:, 1] * ta, atol=1e-12)
+    # the file against the exact rack: for the involute the polygon is the exact outline
+    S = _dxf_samples(tmp_path / "inv.dxf")
+    assert inv.exact_distance(S).max() <= 1e-9
+    # sine: arcs, far fewer segments than the polygon, within the tolerance of y = h cos(2x/m)
+    s = rack("sine", teeth=4, module=m, addendum_coeff=0.8, tolerance=tol)
+    info = write_rack(s, tmp_path / "sine.dxf")
+    _doc, P = _dxf_polylines(tmp_path / "sine.dxf")
+    assert 0 < len(P) < 0.7 * len(s.loops[0])
+    assert np.count_nonzero(P[:, 2]) > 0.9 * len(P) - 4
+    S = _dxf_samples(tmp_path / "sine.dxf")
+    assert s.exact_distance(S).max() <= tol
+    top = S[S[:, 1] > -0.8 * m + 0.05]
+    top = top[(top[:, 0] > -p / 2 + 0.05) & (top[:, 0] < 3.5 * p - 0.05)]
+    x = np.linspace(-p / 2, 3.5 * p, 800_001)
+    dense = np.stack([x, 0.8 * m * np.cos(2 * x / m)], 1)
+    assert cKDTree(dense).query(top)[0].max() <= tol + 1e-5          # independent oracle
+    # both ways: the exact curve (dense) is within the tolerance of the file
+    on = dense[(dense[:, 1] > -0.8 * m + 0.05) & (dense[:, 0] > -p / 2 + 0.05) & (dense[:, 0] < 3.5 * p - 0.05)]
+    import shapely
+    ring = shapely.LinearRing(S)
+    assert shapely.distance(shapely.points(on[::20]), ring).max() <= tol + 1e-5
+    # a rounded involute tip: arcs on the tip, the flanks still exact lines, tangent at the joints
+    r = rack("involute", teeth=3, module=m, tip_radius_coeff=0.2, tolerance=tol)
+    info = write_rack(r, tmp_path / "tip.dxf")
+    _doc, P = _dxf_polylines(tmp_path / "tip.dxf")
+    A, B = P[:, :2], np.roll(P[:, :2], -1, axis=0)
+    d = B - A
+    flank = (np.abs(d[:, 0]) > 1e-9) & (np.abs(d[:, 1]) > 1e-9) & (P[:, 2] == 0)
+    ang = np.degrees(np.arctan2(np.abs(d[flank, 0]), np.abs(d[flank, 1])))
+    assert flank.sum() >= 6 and np.allclose(ang, 20.0, atol=1e-9)
+    assert r.exact_distance(_dxf_samples(tmp_path / "tip.dxf")).max() <= tol
+    assert "max tangent jump" in info
+    # cycloidal and triangular through the CLI
+    for fam in ("cycloidal", "triangular"):
+        res = _cli("profile", fam, "--rack", "--teeth", "3", "-o", f"{fam}.dxf", cwd=tmp_path)
+        assert res.returncode == 0, res.stderr
+        assert "measured max error" in res.stdout
+        part = rack(fam, teeth=3)
+        assert part.exact_distance(_dxf_samples(tmp_path / f"{fam}.dxf")).max() <= part.tolerance

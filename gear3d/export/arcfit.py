@@ -334,14 +334,36 @@ def fit_open(P, Tout, Tin, budget: float, stops, max_angle_deg: float = 90.0):
     return verts, buls
 
 
+def _straight_tangents(loop, straight, corners, tin, tout):
+    """Tangents from exactly straight edges (``straight[k]``: the edge from vertex k to k+1
+    lies on a line of the curve): the edge's own direction on that side of its vertices,
+    and on both sides of a smooth vertex (the curve is tangent to the line there)."""
+    n = len(loop)
+    d = np.roll(loop, -1, axis=0) - loop
+    u = d / np.maximum(np.hypot(d[:, 0], d[:, 1]), 1e-300)[:, None]
+    cset = set(corners.tolist())
+    for k in np.nonzero(straight)[0]:
+        a, b = int(k), int((k + 1) % n)
+        tout[a] = u[k]
+        tin[b] = u[k]
+        if a not in cset and not straight[(a - 1) % n]:
+            tin[a] = u[k]
+        if b not in cset and not straight[b]:
+            tout[b] = u[k]
+
+
 def fit_arcs(loop: np.ndarray, budget: float, *, start: int | None = None,
-             corner_deg: float = CORNER_DEG, max_angle_deg: float = 90.0) -> ArcSpline:
+             corner_deg: float = CORNER_DEG, max_angle_deg: float = 90.0, straight=None) -> ArcSpline:
     """Fit a closed polyline ``loop`` (n,2 mm, last vertex not repeated) with a G1 biarc
     chain (arcs, and lines where the curve is straight) whose distance to every loop
     vertex is <= ``budget`` (mm); true corners of the loop stay corners.
 
     ``start``: vertex index where the chain must begin (e.g. the wire's start point);
     default: the first corner, or vertex 0. Arcs span at most ``max_angle_deg``.
+    ``straight`` (optional, n bools): edges known to lie on straight lines of the curve
+    (edge k runs from vertex k to k+1); each run of them becomes LINE segments (one per
+    line), and its direction is the tangent at its ends (a line tangent to an arc stays a
+    G1 joint).
     """
     loop = np.asarray(loop, float)
     if len(loop) > 1 and np.array_equal(loop[0], loop[-1]):
@@ -351,10 +373,17 @@ def fit_arcs(loop: np.ndarray, budget: float, *, start: int | None = None,
     if start is None:
         start = int(corners[0]) if len(corners) else 0
     tin, tout = _tangents(loop, set(corners.tolist()))
+    ends = np.zeros(0, int)
+    if straight is not None:
+        straight = np.asarray(straight, bool)
+        if straight.shape != (n,):
+            raise ValueError(f"straight: {n} edge flags expected, got shape {straight.shape}")
+        _straight_tangents(loop, straight, corners, tin, tout)
+        ends = np.nonzero(straight != np.roll(straight, 1))[0]     # where straight runs begin and end
     order = np.r_[np.arange(start, n), np.arange(0, start), start]
     P = loop[order]
     Tin, Tout = tin[order], tout[order]
-    stops = sorted(set(int(k) for k in (corners - start) % n if 0 < k < n) | {n})
+    stops = sorted(set(int(k) for k in (np.r_[corners, ends] - start) % n if 0 < k < n) | {n})
     verts, buls = fit_open(P, Tout, Tin, budget, stops, max_angle_deg)
     V = np.array(verts)
     cset = set(((corners - start) % n).tolist())

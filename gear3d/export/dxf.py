@@ -88,6 +88,8 @@ def write_dxf(profile, path, tolerance=None, kerf: float = 0.0, lead_in=None,
     for name, v in (("spline", spline), ("construction", construction), ("pitch_circle", pitch_circle)):
         if not isinstance(v, (bool, np.bool_)):
             raise GearError(name, v, "true or false")
+    if construction and not hasattr(profile, "pitch_radius"):
+        raise GearError("construction", construction, "False for a rack (it has no centre or pitch circle)")
     if lead_in is not None:
         lead_in = check_number("lead_in", lead_in, 0, 100 * _module(profile), lo_open=True, unit="mm")
 
@@ -102,9 +104,13 @@ def write_dxf(profile, path, tolerance=None, kerf: float = 0.0, lead_in=None,
 
 
 def _module(profile):
+    """The module (mm) of a Profile or a rack part (:class:`gear3d.rack_part.RackPart`: it
+    has the same interface here: ``tolerance``, ``at_tolerance``, ``loops``, ``report``,
+    ``exact_distance``)."""
     from ..model import Profile
-    if not isinstance(profile, Profile):
-        raise GearError("profile", type(profile).__name__, "a gear3d Profile")
+    from ..rack_part import RackPart
+    if not isinstance(profile, (Profile, RackPart)):
+        raise GearError("profile", type(profile).__name__, "a gear3d Profile or rack part")
     return profile.module
 
 
@@ -143,9 +149,14 @@ def fit_profile(profile, write_measure, tolerance=None, kerf: float = 0.0, start
     loops = [np.insert(l, i + 1, p, axis=0) if ins else l for l, (i, p, ins) in zip(loops, starts)]
     start_idx = [(i + 1) if ins else i for i, _, ins in starts]
 
+    # a rack's straight edges (flanks, ends, back) are known exactly: each one LINE
+    straight = [None] * len(loops)
+    if kerf == 0.0 and hasattr(ref, "straight_edges"):
+        straight = [ref.straight_edges(l) for l in loops]
     budget = 0.75 * tol
     for attempt in range(3):
-        fits = [fit_arcs(l, budget, start=s, max_angle_deg=max_arc_deg) for l, s in zip(loops, start_idx)]
+        fits = [fit_arcs(l, budget, start=s, max_angle_deg=max_arc_deg, straight=st)
+                for l, s, st in zip(loops, start_idx, straight)]
         # measured on the fine build's exact boundary: the same exact evaluators, but its
         # trimmed corners are bounded 20x tighter (a coarse build's boundary lets a foot
         # point run past a trimmed corner by up to its own tolerance)
