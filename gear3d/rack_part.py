@@ -70,6 +70,16 @@ def signed_area(loop):
 
 #: families that have a rack part
 RACK_FAMILIES = ("involute", "sine", "cycloidal", "triangular")
+#: the keys of a rack part per family (rack(family, **...); templates' ``rack = true`` parts),
+#: besides ``back_height`` (mm)
+RACK_KEYS = {
+    "involute": ("teeth", "module", "pressure_angle_deg", "addendum_coeff", "dedendum_coeff",
+                 "tip_radius_coeff", "backlash", "shift_coeff"),
+    "sine": ("teeth", "module", "unit_radius", "amplitude", "displacement", "addendum_coeff", "shift_coeff",
+             "form", "clearance_coeff"),
+    "cycloidal": ("teeth", "module", "addendum_coeff", "dedendum_coeff", "rolling_radius_coeff"),
+    "triangular": ("teeth", "module", "half_angle_deg", "addendum_coeff", "dedendum_coeff", "thickness_coeff"),
+}
 #: default back height below the root line, in modules
 BACK_HEIGHT_COEFF = 2.0
 #: zooms of nine exact points around a foot before Newton's method, and Newton steps

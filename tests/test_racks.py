@@ -355,3 +355,70 @@ def test_rack_dxf_is_a_measured_arc_fit(tmp_path):
         assert "measured max error" in res.stdout
         part = rack(fam, teeth=3)
         assert part.exact_distance(_dxf_samples(tmp_path / f"{fam}.dxf")).max() <= part.tolerance
+
+
+_RACK_SCENE = """
+[scene]
+name = "racks"
+outputs = ["dxf", "svg", "json", "stl"]
+
+[[part]]
+name = "r"
+family = "involute"
+rack = true
+teeth = 10
+module = 2
+back_height = 4
+body = { width = 6, helix_angle_deg = 15 }
+
+[[part]]
+name = "s"
+family = "sine"
+rack = true
+teeth = 4
+clearance_coeff = 0.1
+outputs = ["dxf", "json"]
+"""
+
+
+def test_template_rack_parts_build(tmp_path):
+    (tmp_path / "racks.toml").write_text(_RACK_SCENE)
+    r = _cli("build", "racks.toml", "--out", "out", cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    out = tmp_path / "out"
+    assert sorted(p.name for p in out.iterdir()) == ["r.dxf", "r.json", "r.stl", "r.svg", "racks.report.json",
+                                                      "s.dxf", "s.json"]
+    # the same rack as gear3d.rack(...): json report, DXF within the tolerance, STL volume
+    d = json.loads((out / "r.json").read_text())
+    assert d["rack"] is True and d["report"]["back_height"] == 4.0
+    part = rack("involute", teeth=10, module=2, back_height=4)
+    assert np.allclose(np.array(d["loops"][0]), part.loops[0])
+    assert part.exact_distance(_dxf_samples(out / "r.dxf")).max() <= 1e-3
+    import trimesh
+    m = trimesh.load(out / "r.stl")
+    assert m.is_watertight and m.volume == pytest.approx(part.report["area"] * 6, rel=1e-6)
+    top, bot = m.vertices[m.vertices[:, 2] > 6 - 1e-6], m.vertices[m.vertices[:, 2] < 1e-6]
+    assert top[:, 0].min() - bot[:, 0].min() == pytest.approx(6 * math.tan(math.radians(15)), abs=1e-5)
+    s = json.loads((out / "s.json").read_text())
+    assert s["report"]["clearance"] == pytest.approx(0.1)
+    rep = json.loads((out / "racks.report.json").read_text())
+    assert rep["parts"]["r"]["outputs"]["dxf"]["arcs"] == 0
+    assert rep["parts"]["s"]["outputs"]["dxf"]["max_error"] <= 1e-3
+
+
+@pytest.mark.parametrize("extra, key", [
+    ("pins = 3", "part[r].pins"),
+    ("back_height = -1", "part[r].back_height"),
+    ("addendum_coeff = 2.9", "part[r].addendum_coeff"),
+    ("body = { width = 4, bore = 2 }", "part[r].body.bore"),
+    ('rack = "yes"', "part[r].rack"),
+])
+def test_template_bad_rack_key(tmp_path, extra, key):
+    text = '[scene]\nname = "b"\noutputs = ["dxf"]\n[[part]]\nname = "r"\nfamily = "involute"\nteeth = 4\n' + extra + "\n"
+    if not extra.startswith("rack"):
+        text += "rack = true\n"
+    (tmp_path / "b.toml").write_text(text)
+    r = _cli("build", "b.toml", "--out", "out", cwd=tmp_path)
+    assert r.returncode == 2, r.stderr
+    assert len(r.stderr.strip().splitlines()) == 1 and key in r.stderr
+    assert not (tmp_path / "out").exists()

@@ -76,6 +76,9 @@ def run_profile(stage):
     from .. import profile
     i = stage.inputs
     try:
+        if i.get("rack"):
+            from ..rack_part import rack
+            return rack(i["family"], tolerance=i["tolerance"], **i["params"])
         return profile(i["family"], tolerance=i["tolerance"], **i["params"])
     except GearError as e:
         raise _wrap(stage, e) from None
@@ -86,6 +89,10 @@ def run_body(stage, prof, like=None):
     kw = dict(stage.inputs["body"])
     kw.pop("mate", None)
     try:
+        if stage.inputs.get("rack"):
+            from ..rack_part import rack_body
+            return rack_body(prof, kw["width"], kw.get("helix_angle_deg", 0.0), kw.get("hand", "right"),
+                             stage.inputs["name"])
         if like is not None:
             for k in ("kind", "width", "helix_angle_deg", "hand", "gap", "arch_radius"):
                 kw.pop(k, None)
@@ -108,12 +115,16 @@ def run_write(stage, obj):
         extra = {"max_error": r["max_error"], "arcs": r.get("arcs"), "lines": r.get("lines")}
     elif kind == "json" and isinstance(obj, Mapping):      # a pair's report (dict or PairReport)
         write_json(path, obj)
+    elif kind not in MESH_KINDS and i.get("rack"):            # a rack part's json, svg, png
+        from ..rack_part import write_rack
+        write_rack(obj, path)
     else:
         if kind in MESH_KINDS:
             name = i.get("name")
             if isinstance(obj, list) and "names" in i:
                 obj = [b.placed(b.transform, name=n) for b, n in zip(obj, i["names"])]
-            elif name and not isinstance(obj, list) and kind != "stl":   # an STL stores no name
+            elif name and not isinstance(obj, list) and kind != "stl" and hasattr(obj, "placed"):
+                # an STL stores no name; a rack body is built with the part's name
                 obj = obj.placed(obj.transform, name=name)
         write(obj, path, **i.get("options", {}))
     if kind in MESH_KINDS:
@@ -176,13 +187,23 @@ def run_assembly(stage, built):
 
 def profile_stage(g: Graph, job, part, tol, prefix) -> str:
     p = part["params"]
-    label = f"{part['family']} " + " ".join(f"{k}={v}" for k, v in sorted(p.items())) + f" @ {tol:g} mm"
-    return g.add("profile", {"family": part["family"], "params": p, "tolerance": tol}, fn=run_profile,
-                 label=label, file=job["file"], prefix=prefix, keys=tuple(p))
+    label = f"{part['family']} {'rack ' if part.get('rack') else ''}" + \
+        " ".join(f"{k}={v}" for k, v in sorted(p.items())) + f" @ {tol:g} mm"
+    inputs = {"family": part["family"], "params": p, "tolerance": tol}
+    if part.get("rack"):
+        inputs["rack"] = True
+    return g.add("profile", inputs, fn=run_profile, label=label, file=job["file"], prefix=prefix, keys=tuple(p))
 
 
 def body_stage(g: Graph, job, part, tol, prefix, parts_by_name=None) -> str:
     b = part["body"]
+    if part.get("rack"):
+        # a rack body is measured against its outline's own tolerance
+        prof = profile_stage(g, job, part, tol, prefix)
+        label = f"rack {part['family']} z={part['params'].get('teeth', '')} " + \
+            " ".join(f"{k}={v}" for k, v in sorted(b.items())) + f" @ {tol:g} mm"
+        return g.add("body", {"body": b, "tolerance": tol, "rack": True, "name": part["name"]}, [prof],
+                     fn=run_body, label=label, file=job["file"], prefix=prefix + ".body", keys=tuple(b))
     # the profile is built once, at the share of the body tolerance the body plan gives it
     from ..solids.body import profile_tolerance
     prof = profile_stage(g, job, part, profile_tolerance(tol, b.get("kind", "spur"), bool(b.get("xy_offset"))),
@@ -210,6 +231,8 @@ def part_targets(g: Graph, job, part, out_dir, parts_by_name=None) -> dict:
         else:
             src = profile_stage(g, job, part, tol, prefix)
         inputs = {"kind": kind, "file": fname, "tolerance": tol, "name": part["name"]}
+        if part.get("rack"):
+            inputs["rack"] = True
         # exporter options: the scene's (or library's), then the part's own
         opts = {**job["options"].get(kind, {}), **part.get("options", {}).get(kind, {})}
         if opts:
@@ -377,7 +400,7 @@ def _first(g, key, kind):
 
 def _profile_summary(p) -> dict:
     r = p.report
-    keep = ("teeth", "module", "pitch_radius", "tip_radius", "root_radius", "undercut", "pointed",
+    keep = ("rack", "teeth", "module", "pitch_radius", "tip_radius", "root_radius", "undercut", "pointed",
             "area", "max_error", "tolerance", "vertices")
     return {k: r.get(k) for k in keep if k in r}
 

@@ -35,6 +35,16 @@ Scene (``[scene]``, ``[[part]]``, ``[[pair]]``, ``[[assembly]]``)::
     width = 10
     mate = "wheel"                 # optional: built by mate_body(.., like=<that part>)
 
+    [[part]]                       # a linear rack (involute, sine, cycloidal, triangular)
+    name = "rack"
+    family = "involute"
+    rack = true                    # the family's rack keys (gear3d.rack), back_height mm
+    teeth = 10
+    module = 2
+    back_height = 4
+    outputs = ["dxf", "svg", "json", "stl"]
+    body = { width = 10 }          # a rack body: width, helix_angle_deg, hand, kind
+
     [[pair]]                       # placed (place_pair) and checked (check_pair)
     name = "mesh"
     parts = ["pinion", "wheel"]
@@ -410,9 +420,14 @@ def check_part(file, key, raw, *, default_outputs, names=None, require_name=True
             fail(file, f"{key}.name", None, "required: a file name (letters, digits, ._+=@,-)")
         name = safe_name(file, f"{key}.name", name)
     fam = check_family(file, f"{key}.family", raw.pop("family", None))
+    is_rack = _bool(file, f"{key}.rack", raw.pop("rack", False))
     body = raw.pop("body", None)
     outs = raw.pop("outputs", None)
     options = check_options(file, f"{key}.options", raw.pop("options", {}))
+    if is_rack:
+        params, b = _rack_part(file, key, fam, raw, body)
+        return {"name": name, "family": fam, "rack": True, "params": params, "body": b,
+                "outputs": _outputs(file, key, outs, b, default_outputs), "options": options}
     sig = family_signature(fam)
     # helical / inch conventions: normal_module, normal_pressure_angle_deg, diametral_pitch
     # (keys of the family's table, which excludes them against module / pressure_angle_deg)
@@ -435,16 +450,74 @@ def check_part(file, key, raw, *, default_outputs, names=None, require_name=True
         for k in ("module", "pressure_angle_deg"):
             if k in params:
                 params[k] = check_param(file, f"{key}.{k}", fam, k, params[k], sig)
+    return {"name": name, "family": fam, "params": params, "body": b,
+            "outputs": _outputs(file, key, outs, b, default_outputs), "options": options}
+
+
+def _outputs(file, key, outs, b, default_outputs):
+    """A part's output kinds (mesh kinds only with a body)."""
     if outs is None:
-        outs = [k for k in default_outputs if b is not None or k in PROFILE_KINDS]
-    else:
-        outs = _kinds(file, f"{key}.outputs", outs)
-        if b is None:
-            for k in outs:
-                if k in MESH_KINDS:
-                    fail(file, f"{key}.outputs", outs, "profile kinds (" + ", ".join(PROFILE_KINDS) +
-                         ") for a part without a [part.body] table")
-    return {"name": name, "family": fam, "params": params, "body": b, "outputs": outs, "options": options}
+        return [k for k in default_outputs if b is not None or k in PROFILE_KINDS]
+    outs = _kinds(file, f"{key}.outputs", outs)
+    if b is None:
+        for k in outs:
+            if k in MESH_KINDS:
+                fail(file, f"{key}.outputs", outs, "profile kinds (" + ", ".join(PROFILE_KINDS) +
+                     ") for a part without a [part.body] table")
+    return outs
+
+
+#: the keys of a rack part's body table (gear3d.rack_body)
+RACK_BODY_KEYS = ("kind", "width", "helix_angle_deg", "hand")
+
+
+def _rack_part(file, key, fam, raw, body):
+    """A ``rack = true`` part: (params, body) checked by the rack builder's own rules
+    (:func:`gear3d.rack_part.rack`; its keys :data:`gear3d.rack_part.RACK_KEYS` and
+    ``back_height``), the body a straight or helical rack (width, helix_angle_deg, hand)."""
+    from ..params import BODY, FAMILY_PARAMS, by_name
+    from ..rack_part import RACK_FAMILIES, RACK_KEYS, _params
+    if fam not in RACK_FAMILIES:
+        fail(file, f"{key}.family", fam, "a family with a rack: " + ", ".join(RACK_FAMILIES))
+    allowed = RACK_KEYS[fam] + ("back_height",)
+    tab = by_name(fam) if fam in FAMILY_PARAMS else {}
+    params = {}
+    for k, v in raw.items():
+        kk = f"{key}.{k}"
+        if k == "tolerance":
+            fail(file, kk, v, "not a part key: set [scene] tolerance / [scene.tolerances]")
+        if k not in allowed:
+            fail(file, kk, v, f"a key of the {fam} rack: " + ", ".join(allowed) + ", or name, family, rack, "
+                 "outputs, body, options")
+        if k in tab:
+            params[k] = typed(file, kk, tab[k], v)
+        elif k == "back_height":
+            params[k] = _number(file, kk, v, 0, None, lo_open=True, unit="mm")
+        else:
+            params[k] = _number(file, kk, v, 0, None, unit="modules")
+    try:
+        _params(fam, params)          # the builder's own ranges and shapes (at its default tolerance)
+    except GearError as e:
+        if e.param != "tolerance":
+            fail(file, f"{key}.{e.param}", e.value, e.allowed, e.why)
+    b = None
+    if body is not None:
+        _table(file, f"{key}.body", body)
+        _unknown(file, f"{key}.body", body, RACK_BODY_KEYS)
+        b = {}
+        for k, v in body.items():
+            kk = f"{key}.body.{k}"
+            if k == "kind":
+                b[k] = _str(file, kk, v, ("spur", "helical"))
+            elif k == "helix_angle_deg":
+                b[k] = _number(file, kk, v, 0, 60, unit="deg")
+            else:
+                b[k] = typed(file, kk, BODY[k], v)
+        if "width" not in b:
+            fail(file, f"{key}.body.width", None, "required: a number > 0 mm")
+        if b.get("kind") == "helical" and not b.get("helix_angle_deg"):
+            fail(file, f"{key}.body.helix_angle_deg", b.get("helix_angle_deg"), "a number in (0, 60] deg for kind helical")
+    return params, b
 
 
 # -------------------------------------------------------------------------- scene
@@ -542,6 +615,9 @@ def _pair(file, i, rp, by, seen):
         _str(file, f"{label}.parts[{j}]", n, sorted(by))
     if ps[0] == ps[1]:
         fail(file, f"{label}.parts", ps, "two different part names", "a part cannot mesh with itself")
+    for j, n in enumerate(ps):
+        if by[n].get("rack"):
+            fail(file, f"{label}.parts[{j}]", n, "a gear part (a pinion on a rack: gear3d pair FAMILY --rack)")
     outs = _kinds(file, f"{label}.outputs", rp.get("outputs", ["json"]), ("json",) + MESH_KINDS)
     if any(k in MESH_KINDS for k in outs):
         for n in ps:
@@ -663,6 +739,8 @@ def load_library(path, sets=()) -> dict:
     if "name" in tpl:
         fail(file, "library.part.name", tpl["name"], "no name: [library] pattern names the parts")
     base = check_part(file, "library.part", tpl, default_outputs=outputs, require_name=False)
+    if base.get("rack"):
+        fail(file, "library.part.rack", True, "false: racks are scene parts ([[part]] rack = true)")
     sweep = dict(_table(file, "library.sweep", top.get("sweep", {})))
     zipped = _bool(file, "library.sweep.zip", sweep.pop("zip", False))
     fam = base["family"]
@@ -747,6 +825,7 @@ def markdown() -> str:
     """``docs/templates.md``: the TOML schema, generated from the same tables the checks
     above use (``python -m gear3d.params --templates > docs/templates.md``)."""
     from ..params import BODY_PARAMS, CONVENTIONS, FAMILY_PARAMS, md_rows
+    from ..rack_part import RACK_KEYS
     doc = (__doc__ or "").split("Scene (", 1)[1]
     scene_doc, library_doc = doc.split("Library (", 1)
 
@@ -767,6 +846,8 @@ def markdown() -> str:
              "| table | keys |", "|---|---|",
              f"| `[scene]` | {', '.join(f'`{k}`' for k in SCENE_KEYS)} |",
              "| `[[part]]` | `name`, `family`, `outputs`, `body`, `options`, and the family's parameters |",
+             "| `[[part]]` with `rack = true` | `name`, `family`, `rack`, `outputs`, `options`, `back_height` (mm), "
+             "`body` (" + ", ".join(f"`{k}`" for k in RACK_BODY_KEYS) + "), and the family's rack keys |",
              f"| `[[pair]]` | {', '.join(f'`{k}`' for k in PAIR_KEYS)} |",
              f"| `[[assembly]]` | {', '.join(f'`{k}`' for k in ASSEMBLY_KEYS)} |",
              f"| `[library]` | {', '.join(f'`{k}`' for k in LIBRARY_KEYS)} |",
@@ -785,6 +866,9 @@ def markdown() -> str:
              "name with `-` for `_`); see [parameters.md](parameters.md) for every family's table:",
              "", *[f"* `{fam}`: " + ", ".join(f"`{p.name}`" for p in ps if p.name != "tolerance")
                   for fam, ps in FAMILY_PARAMS.items()], "",
+             "A rack part (`rack = true`, issue #14) takes its family's rack keys (`gear3d.rack`):", "",
+             *[f"* `{fam}` rack: " + ", ".join(f"`{k}`" for k in keys + ("back_height",))
+               for fam, keys in RACK_KEYS.items()], "",
              "Families with a module also take the helical / inch alternatives (taken at the body's",
              "`helix_angle_deg`):", "", *md_rows(CONVENTIONS), "",
              "## `[part.body]`", "",
