@@ -422,3 +422,38 @@ def test_template_bad_rack_key(tmp_path, extra, key):
     assert r.returncode == 2, r.stderr
     assert len(r.stderr.strip().splitlines()) == 1 and key in r.stderr
     assert not (tmp_path / "out").exists()
+
+
+def test_rack_pair_3d_bodies_in_mesh(tmp_path):
+    import trimesh
+    r = _cli("pair", "involute", "--rack", "--teeth", "18", "--rack-teeth", "10", "--width", "6", "-o", "rp.3mf",
+             cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    assert "interference=False" in r.stdout
+    sc = trimesh.load(tmp_path / "rp.3mf")
+    bodies = {m.metadata.get("name"): m for m in sc.dump()}
+    assert sorted(bodies) == ["pinion", "rack"]
+    pin, rk = bodies["pinion"], bodies["rack"]
+    assert pin.is_watertight and rk.is_watertight
+    # the rack as gear3d.rack builds it, in its own frame: pitch line y = 0, z from 0 to the width
+    part = rack("involute", teeth=10, module=1.0, tolerance=0.01)
+    assert rk.volume == pytest.approx(part.report["area"] * 6, rel=1e-6)
+    assert rk.bounds[1, 1] == pytest.approx(1.0, abs=1e-9) and rk.bounds[0, 1] == pytest.approx(-3.25, abs=1e-9)
+    # the pinion: centre (its centroid, by symmetry) the pitch radius r = z m / 2 above the pitch
+    # line, on the rack's middle space; its tip circle reaches one module below the pitch line
+    x0 = part.phase_x + math.floor((9 * math.pi / 2 - part.phase_x) / math.pi + 0.5) * math.pi
+    assert pin.center_mass[:2] == pytest.approx([x0, 9.0], abs=1e-6)
+    assert pin.bounds[0, 1] == pytest.approx(9.0 - 10.0, abs=2e-3)
+    assert pin.bounds[0, 2] == pytest.approx(0.0, abs=1e-9) and pin.bounds[1, 2] == pytest.approx(6.0, abs=1e-9)
+    # in mesh, not overlapping: the bodies' common volume is nil
+    from manifold3d import Manifold, Mesh
+    a, b = (Manifold(Mesh(vert_properties=np.asarray(m.vertices, np.float32), tri_verts=np.asarray(m.faces, np.uint32)))
+            for m in (pin, rk))
+    assert (a ^ b).volume() < 1e-3
+    for bad in (["pair", "involute", "--rack", "--teeth", "18", "-o", "bad.3mf"],
+                ["pair", "involute", "--rack", "--teeth", "18", "--width", "3", "-o", "bad.json"],
+                ["check", "pair", "involute", "--teeth", "18", "--mate-teeth", "20", "--width", "3"]):
+        r = _cli(*bad, cwd=tmp_path)
+        assert r.returncode == 2, (bad, r.stderr)
+        assert len([ln for ln in r.stderr.strip().splitlines() if not ln.startswith("note:")]) == 1
+        assert not list(tmp_path.glob("bad.*"))

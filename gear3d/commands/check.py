@@ -216,6 +216,8 @@ def run(args, alias: bool = False) -> int:
         raise GearError("check", getattr(args, "check_what", None), "`pair` (see gear3d check pair --help)")
     if getattr(args, "rack", False):
         return _rack_pair(args, alias)
+    if getattr(args, "width", None) is not None:
+        raise GearError("width", args.width, "only with --rack and a 3D output (-o x.3mf)")
     js, fig = _outputs(args)
     notes = ["note: `gear3d pair` is deprecated: use `gear3d check pair` (same flags)"] if alias else []
     if args.max_safe_addendum:

@@ -23,6 +23,9 @@ def add_rack_flags(p, pair: bool = False):
     if pair:
         p.add_argument("--rack-teeth", type=number("int", 1, 10_000), default=None,
                        help="rack teeth for --rack (default: the pinion's tip diameter + 4 pitches)")
+        p.add_argument("--width", type=number("float", 0, 10_000, lo_open=True, unit="mm"), default=None,
+                       help="rack pair with a 3D output (-o .3mf .stl .step .obj .ply .vtu): face width "
+                            "of the spur pinion and rack bodies (mm)")
 
 
 def _rack_kw(args, family_params, output=None, mesh=False) -> dict:
@@ -104,20 +107,41 @@ def run_body_cli(args, family_params) -> int:
     return 0
 
 
+#: 3D outputs of a rack pair (the pinion and the rack bodies placed in mesh)
+PAIR_MESH_EXTS = (".3mf", ".stl", ".step", ".stp", ".obj", ".ply", ".vtu")
+
+
 def run_pair_cli(args, family_params) -> int:
-    """``gear3d pair FAMILY --rack --teeth Z [--rack-teeth N] [-o x.json|x.png|x.svg]``"""
+    """``gear3d pair FAMILY --rack --teeth Z [--rack-teeth N] [-o x.json|x.png|x.svg]``, or
+    ``-o x.3mf|x.stl|... --width W``: the spur pinion and rack bodies placed in mesh."""
     from ..analysis.rack_mesh import rack_pair
     from ..rack_part import rack_figure
     out = args.output
+    mesh = out is not None and out.lower().endswith(PAIR_MESH_EXTS)
+    width = getattr(args, "width", None)
     if out is not None:
         from ..export import check_path
-        check_path(out, "output", (".json", ".png", ".svg"))
+        check_path(out, "output", (".json", ".png", ".svg") + PAIR_MESH_EXTS)
+    if mesh and width is None:
+        raise GearError("width", None, "a number > 0 mm (--width) for a 3D output")
+    if width is not None and not mesh:
+        raise GearError("width", width, "only with a 3D output (-o " + " ".join(PAIR_MESH_EXTS) + ")")
     _check_given(args, ("largest_addendum", "tip_correction", "mate_teeth", "internal"), "a rack pair")
     if getattr(args, "mate", "same") != "same":
         raise GearError("mate", args.mate, "same for a rack pair (the pinion is the family's gear)")
     kw = _rack_kw(args, family_params, out)
     z = kw.pop("teeth", 20)
     pin, part, rep = rack_pair(args.family, z, getattr(args, "rack_teeth", None), **kw)
+    if mesh:
+        from ..export import write
+        bodies = rack_pair_bodies(pin, part, rep, width)
+        info = write(bodies, out)
+        pl = rep["placement"]["pinion_centre"]
+        sys.stdout.write(f"wrote {out}: {part.family} pinion z={z} (centre x={pl[0]:.6g} y={pl[1]:.6g} mm) on a "
+                         f"{part.teeth}-tooth rack, width {width:g} mm, {sum(b.report['triangles'] for b in bodies)} "
+                         f"triangles; interference={rep['interference']} max_penetration={rep['max_penetration']:.4g} mm"
+                         + (f" {info}" if info else "") + "\n")
+        return 0
     if out is not None and out.lower().endswith((".png", ".svg")):
         from ..export import atomic_path
         with atomic_path(out) as tmp:
@@ -137,3 +161,22 @@ def run_pair_cli(args, family_params) -> int:
             fh.write(dumps(rep) + "\n")
         sys.stdout.write(f"wrote {out}\n")
     return 0
+
+
+def rack_pair_bodies(pin, part, rep, width: float) -> list:
+    """[pinion body, rack body] (spur, ``width`` mm, z from 0 to width) placed in mesh as
+    :func:`gear3d.analysis.rack_mesh.rack_pair` places them: the rack in its own frame, the
+    pinion turned by -90 deg (tooth 0 down) with its centre at ``placement.pinion_centre``."""
+    import math
+
+    import numpy as np
+
+    from ..rack_part import rack_body
+    from ..solids.body import body
+    c = rep["placement"]["pinion_centre"]
+    a = math.radians(rep["placement"]["pinion_angle_deg"])
+    T = np.eye(4)
+    T[:2, :2] = [[math.cos(a), -math.sin(a)], [math.sin(a), math.cos(a)]]
+    T[0, 3], T[1, 3] = c
+    pb = body(pin, kind="spur", width=width, name="pinion")
+    return [pb.placed(T, name="pinion"), rack_body(part, width, name="rack")]
