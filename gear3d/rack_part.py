@@ -300,7 +300,7 @@ def _involute_half(m, a_deg, ha, hf, rho, b, name_a="addendum_coeff", name_f="de
     return [_smooth_piece(e, 0.0, 1.0, p / 2) for e in els if not isinstance(e, Corner)], tool
 
 
-def _params(family, kw):
+def rack_params(family, kw):
     """Validated parameters of a rack part of ``family`` (mm, deg)."""
     from .profiles import reject_unknown
     fam = check_choice("family", family, RACK_FAMILIES)
@@ -387,7 +387,7 @@ def rack(family: str, teeth: int = 10, module: float = 1.0, tolerance: float = 1
     cannot be met.
     """
     from . import budget as _budget
-    fam, P = _params(family, dict(params, teeth=teeth, module=module, tolerance=tolerance,
+    fam, P = rack_params(family, dict(params, teeth=teeth, module=module, tolerance=tolerance,
                                   back_height=back_height))
     z, m, tol = P["teeth"], P["module"], P["tolerance"]
     p = math.pi * m

@@ -108,8 +108,11 @@ def _module(profile):
     has the same interface here: ``tolerance``, ``at_tolerance``, ``loops``, ``report``,
     ``exact_distance``)."""
     from ..model import Profile
-    from ..rack_part import RackPart
-    if not isinstance(profile, (Profile, RackPart)):
+    # a rack part is recognised by that interface (importing rack_part here would make
+    # an import circle: rack_part writes its DXF through this module)
+    rack_like = all(hasattr(profile, a) for a in ("tolerance", "at_tolerance", "loops", "report",
+                                                   "exact_distance", "module", "straight_edges"))
+    if not isinstance(profile, Profile) and not rack_like:
         raise GearError("profile", type(profile).__name__, "a gear3d Profile or rack part")
     return profile.module
 

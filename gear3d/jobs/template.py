@@ -476,7 +476,7 @@ def _rack_part(file, key, fam, raw, body):
     (:func:`gear3d.rack_part.rack`; its keys :data:`gear3d.rack_part.RACK_KEYS` and
     ``back_height``), the body a straight or helical rack (width, helix_angle_deg, hand)."""
     from ..params import BODY, FAMILY_PARAMS, by_name
-    from ..rack_part import RACK_FAMILIES, RACK_KEYS, _params
+    from ..rack_part import RACK_FAMILIES, RACK_KEYS, rack_params
     if fam not in RACK_FAMILIES:
         fail(file, f"{key}.family", fam, "a family with a rack: " + ", ".join(RACK_FAMILIES))
     allowed = RACK_KEYS[fam] + ("back_height",)
@@ -496,7 +496,7 @@ def _rack_part(file, key, fam, raw, body):
         else:
             params[k] = _number(file, kk, v, 0, None, unit="modules")
     try:
-        _params(fam, params)          # the builder's own ranges and shapes (at its default tolerance)
+        rack_params(fam, params)          # the builder's own ranges and shapes (at its default tolerance)
     except GearError as e:
         if e.param != "tolerance":
             fail(file, f"{key}.{e.param}", e.value, e.allowed, e.why)
