@@ -228,10 +228,10 @@ def main(argv=None):
         lib_path.write_text(LIBRARY.format(tolerance=a.tolerance, modules=MODULES, t0=TEETH_FROM,
                                            t1=TEETH_FROM + n_teeth - 1))
         lib = load_library(str(lib_path))
-        n = len(lib["parts"])
+        n = len(lib.parts)
         base = None
         if a.baseline:
-            job, parts = job_header(lib), lib["parts"][:a.baseline]
+            job, parts = job_header(lib), lib.parts[:a.baseline]
             out0 = tmp / "inproc"
             out0.mkdir()
             build_part(job, parts[0], str(out0))           # imports and first-call costs

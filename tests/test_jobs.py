@@ -81,16 +81,16 @@ def _files(folder):
 
 def test_issue_examples_are_accepted(tmp_path):
     s = load_scene(_write(tmp_path, "s.toml", SCENE_EXAMPLE))
-    assert s["tolerance"] == 0.001 and s["tolerances"] == {"stl": 0.01}
-    (p,) = s["parts"]
-    assert p["params"] == {"teeth": 20, "module": 1.0, "addendum_coeff": 0.8}
-    assert p["body"] == {"kind": "helical", "width": 10, "helix_angle_deg": 20, "bore": 5}
-    assert p["outputs"] == ["dxf", "stl"]
+    assert s.tolerance == 0.001 and s.tolerances == {"stl": 0.01}
+    (p,) = s.parts
+    assert p.params == {"teeth": 20, "module": 1.0, "addendum_coeff": 0.8}
+    assert p.body == {"kind": "helical", "width": 10, "helix_angle_deg": 20, "bore": 5}
+    assert p.outputs == ("dxf", "stl")
     lib = load_library(_write(tmp_path, "l.toml", LIBRARY_EXAMPLE))
     # cartesian product in the order of the sweep keys, names by the pattern
-    assert [q["name"] for q in lib["parts"]] == [
+    assert [q.name for q in lib.parts] == [
         "sine_m0.5_z8", "sine_m1.0_z8", "sine_m0.5_z10", "sine_m1.0_z10", "sine_m0.5_z12", "sine_m1.0_z12"]
-    assert all(q["body"] == {"kind": "spur", "width": 5} for q in lib["parts"])
+    assert all(q.body == {"kind": "spur", "width": 5} for q in lib.parts)
 
 
 def test_ranges_zip_and_body_sweeps(tmp_path):
@@ -107,10 +107,10 @@ def test_ranges_zip_and_body_sweeps(tmp_path):
         module = { start = 0.1, stop = 0.3, step = 0.1 }
         body = { width = [3, 4, 5] }
     '''))
-    assert [q["params"]["teeth"] for q in lib["parts"]] == [8, 10, 12]
-    assert [q["params"]["module"] for q in lib["parts"]] == [0.1, 0.2, 0.3]   # rounded, stop inclusive
-    assert [q["body"]["width"] for q in lib["parts"]] == [3, 4, 5]
-    assert lib["parts"][1]["name"] == "g_0.2_10_4"
+    assert [q.params["teeth"] for q in lib.parts] == [8, 10, 12]
+    assert [q.params["module"] for q in lib.parts] == [0.1, 0.2, 0.3]   # rounded, stop inclusive
+    assert [q.body["width"] for q in lib.parts] == [3, 4, 5]
+    assert lib.parts[1].name == "g_0.2_10_4"
 
 
 BAD = [

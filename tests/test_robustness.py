@@ -313,7 +313,7 @@ def test_library_pattern_name_field(tmp_path):
         teeth = [10, 12]
         """)
     lib = template.load_library(f)
-    assert [p["name"] for p in lib["parts"]] == ["p_lib_10", "p_lib_12"]
+    assert [p.name for p in lib.parts] == ["p_lib_10", "p_lib_12"]
 
 
 @pytest.mark.parametrize("value", ['"12"', "12.0", "true", "nan", "[12]", "{ a = 1 }"])

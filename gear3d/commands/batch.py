@@ -62,14 +62,14 @@ def run(args) -> int:
     from ..errors import GearError
     from ..jobs.template import load_library
     lib = load_library(args.library, args.sets)
-    out = args.out or os.path.join("out", lib["name"])
+    out = args.out or os.path.join("out", lib.name)
     if args.scheduler and args.engine != "dask":
         raise GearError("scheduler", args.scheduler, "only with --engine dask")
     if args.dry_run:
-        for p in lib["parts"]:
-            sys.stdout.write(f"{p['name']}: {' '.join(f'{k}={v}' for k, v in p['values'].items())} "
-                             f"-> {', '.join(p['outputs'])}\n")
-        sys.stdout.write(f"# {len(lib['parts'])} parts -> {out}\n")
+        for p in lib.parts:
+            sys.stdout.write(f"{p.name}: {' '.join(f'{k}={v}' for k, v in p.values.items())} "
+                             f"-> {', '.join(p.outputs)}\n")
+        sys.stdout.write(f"# {len(lib.parts)} parts -> {out}\n")
         return 0
     from ..jobs.batch import run_library
     workers = args.workers if args.workers is not None else (os.cpu_count() or 1)
@@ -84,12 +84,12 @@ def run(args) -> int:
         return 1
     rate = f"{r['parts_per_s']:.2f} parts/s" if r["parts_per_s"] else "-"
     manifest = os.path.join(out, "manifest.json")
-    sys.stdout.write(f"{lib['name']}: {r['built']} built, {r['skipped']} already complete, {r['failed']} failed "
+    sys.stdout.write(f"{lib.name}: {r['built']} built, {r['skipped']} already complete, {r['failed']} failed "
                      f"({rate}, {r['seconds']:.1f} s) -> {manifest}\n")
     if r["failed"]:
         first = r["first_failure"]
         why = _one_line(first["error"], 200)       # the error is shortened, never the manifest path
-        sys.stderr.write(_one_line(f"gear3d: batch: {r['failed']} of {len(lib['parts'])} parts failed "
+        sys.stderr.write(_one_line(f"gear3d: batch: {r['failed']} of {len(lib.parts)} parts failed "
                                    f"(first: {first['name']}: {why}); see {manifest}", limit=None) + "\n")
         return 1
     return 0

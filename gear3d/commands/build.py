@@ -58,13 +58,16 @@ def arrange_options(args) -> dict:
     return opts
 
 
-def apply_arrange(scene: dict, opts: dict) -> dict:
-    """``--arrange``: the run's 3MF options win over the template's (scene and parts)."""
-    if opts:
-        for holder in [scene] + list(scene["parts"]):
-            holder.setdefault("options", {})
-            holder["options"]["3mf"] = {**holder["options"].get("3mf", {}), **opts}
-    return scene
+def apply_arrange(scene, opts: dict):
+    """``--arrange``: the run's 3MF options win over the template's (scene and parts).
+    Returns a changed copy of the scene (:class:`gear3d.jobs.specs.Scene`)."""
+    if not opts:
+        return scene
+    from dataclasses import replace
+
+    def arranged(holder):
+        return replace(holder, options={**holder.options, "3mf": {**holder.options.get("3mf", {}), **opts}})
+    return replace(arranged(scene), parts=tuple(arranged(p) for p in scene.parts))
 
 
 def run(args) -> int:
@@ -73,11 +76,11 @@ def run(args) -> int:
     from ..export import check_out_dir
     opts = arrange_options(args)
     scene = apply_arrange(load_scene(args.scene, args.sets), opts)
-    out = args.out or os.path.join("out", scene["name"])
+    out = args.out or os.path.join("out", scene.name)
     check_out_dir(out, "out")
     if args.dry_run:
         plan = build_scene(scene, out, only=args.only, dry_run=True)
-        sys.stdout.write(f"# {scene['name']}: {len(plan['stages'])} stages -> {out}\n")
+        sys.stdout.write(f"# {scene.name}: {len(plan['stages'])} stages -> {out}\n")
         sys.stdout.write("\n".join(plan["stages"]) + "\n")
         return 0
     t0 = time.perf_counter()
@@ -86,7 +89,7 @@ def run(args) -> int:
     rep = build_scene(scene, out, only=args.only, log=log)
     n_files = sum(len(d["outputs"]) for grp in ("parts", "pairs", "assemblies") for d in rep[grp].values())
     checks = {n: d["check"]["interference"] for n, d in rep["pairs"].items() if "check" in d}
-    sys.stdout.write(f"built {scene['name']}: {n_files} files in {out} in {time.perf_counter() - t0:.1f} s; "
+    sys.stdout.write(f"built {scene.name}: {n_files} files in {out} in {time.perf_counter() - t0:.1f} s; "
                      f"stages {json.dumps(rep['stages'])}; max measured error "
                      + (f"{rep['max_error']:.3g} mm" if rep["max_error"] is not None else "- (none measured)")
                      + f"; tolerances {_tolerances(scene)}"
@@ -96,11 +99,9 @@ def run(args) -> int:
 
 def _tolerances(scene) -> str:
     """The tolerance of each output kind the scene writes, e.g. ``stl 0.01 mm, dxf 0.001 mm``."""
-    from ..jobs.template import tolerance_for
     kinds = []
-    for grp in ("parts", "pairs", "assemblies"):
-        for d in scene[grp]:
-            kinds += [k for k in d["outputs"] if k not in kinds]
-    if scene["pairs"]:
+    for d in scene.parts + scene.pairs + scene.assemblies:
+        kinds += [k for k in d.outputs if k not in kinds]
+    if scene.pairs:
         kinds.append("check")
-    return ", ".join(f"{k} {tolerance_for(scene, k):g} mm" for k in kinds)
+    return ", ".join(f"{k} {scene.tolerance_for(k):g} mm" for k in kinds)

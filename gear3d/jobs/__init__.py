@@ -1,6 +1,8 @@
 """Scenes and part libraries (issue #8): TOML templates -> stage graph -> files.
 
 * :mod:`.template` -- load and validate scene / library TOML files (data only, no eval);
+* :mod:`.specs` -- what they return: frozen ``Scene`` / ``Library`` of ``PartSpec``,
+  ``PairSpec`` and ``AssemblySpec`` values;
 * :mod:`.graph` -- the stage graph: profile@T -> body@T -> outputs, only what is needed,
   identical stages computed once;
 * :mod:`.scene` -- :func:`build_scene` (parts, pairs, assemblies, outputs, scene report);

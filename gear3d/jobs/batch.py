@@ -41,34 +41,35 @@ import time
 from ..errors import GearError
 from .graph import Graph, canonical
 from .scene import part_targets, profile_stage, body_stage, sha256, write_json
-from .template import MESH_KINDS, tolerance_for
+from .specs import Job, Library, LibraryPart
+from .template import MESH_KINDS
 
 RECORDS = ".records"
 
 
-def job_header(lib: dict) -> dict:
-    """The picklable part of a library every worker needs."""
-    return {k: lib[k] for k in ("file", "name", "tolerance", "tolerances", "options")}
+def job_header(lib: Library) -> Job:
+    """The picklable part of a library every worker needs (:meth:`Job.header`)."""
+    return lib.header()
 
 
-def spec_of(job: dict, part: dict) -> str:
+def spec_of(job: Job, part: LibraryPart) -> str:
     """A hash of everything that decides a part's files (resume compares it)."""
     import hashlib
-    d = {"family": part["family"], "params": part["params"], "body": part["body"],
-         "outputs": {k: tolerance_for(job, k) for k in part["outputs"]}, "options": job["options"]}
+    d = {"family": part.family, "params": part.params, "body": part.body,
+         "outputs": {k: job.tolerance_for(k) for k in part.outputs}, "options": job.options}
     return hashlib.sha256(canonical(d).encode()).hexdigest()[:20]
 
 
-def build_part(job: dict, part: dict, out_dir: str) -> dict:
+def build_part(job: Job, part: LibraryPart, out_dir: str) -> dict:
     """Build one library part (in a worker): its files, then its record. Returns
     ``{"record": ..., "seconds": wall s, "cpu_seconds": this process's CPU s, "stages": {...},
     "worker": "host:pid", ...}``; errors are recorded, not raised."""
     t0, c0 = time.perf_counter(), time.process_time()
     g = Graph()
-    rec = {"name": part["name"], "values": part["values"], "family": part["family"],
-           "params": part["params"], "body": part["body"], "spec": spec_of(job, part)}
+    rec = {"name": part.name, "values": part.values, "family": part.family,
+           "params": part.params, "body": part.body, "spec": spec_of(job, part)}
     try:
-        targets = part_targets(g, job, dict(part, prefix=f"part {part['name']}"), out_dir)
+        targets = part_targets(g, job, part, out_dir, prefix=f"part {part.name}")
         res = g.run(list(targets.values()))
         files, errs = [], {}
         for kind, key in targets.items():
@@ -88,7 +89,7 @@ def build_part(job: dict, part: dict, out_dir: str) -> dict:
         rec.update(status="failed", error=f"{type(e).__name__}: {e}", files=[], volume=None,
                    triangles=None, max_error=None)
     os.makedirs(os.path.join(out_dir, RECORDS), exist_ok=True)
-    write_json(os.path.join(out_dir, RECORDS, part["name"] + ".json"), rec)
+    write_json(os.path.join(out_dir, RECORDS, part.name + ".json"), rec)
     return {"record": _jsonable(rec), "seconds": time.perf_counter() - t0,
             "cpu_seconds": time.process_time() - c0, "stages": dict(g.counts),
             "cache_hits": dict(g.cache_hits), "worker": worker_id(),
@@ -112,7 +113,7 @@ def _jsonable(rec):
 
 def _done_record(out_dir, part, spec):
     """The stored record of a complete part (files present with their hashes), else None."""
-    p = os.path.join(out_dir, RECORDS, part["name"] + ".json")
+    p = os.path.join(out_dir, RECORDS, part.name + ".json")
     try:
         with open(p, encoding="utf-8") as f:
             rec = json.load(f)
@@ -129,9 +130,9 @@ def _done_record(out_dir, part, spec):
 
 def _clean_stale(out_dir, lib):
     """Remove temporary files a killed run left behind (only this library's names)."""
-    names = {p["name"] + "." + k for p in lib["parts"] for k in p["outputs"]}
+    names = {p.name + "." + k for p in lib.parts for k in p.outputs}
     names |= {"manifest.json", "manifest.csv", "timings.json"}
-    recs = {p["name"] + ".json" for p in lib["parts"]}
+    recs = {p.name + ".json" for p in lib.parts}
     for folder, known in ((out_dir, names), (os.path.join(out_dir, RECORDS), recs)):
         if not os.path.isdir(folder):
             continue
@@ -140,18 +141,18 @@ def _clean_stale(out_dir, lib):
                 os.remove(os.path.join(folder, f))
 
 
-def preflight(lib: dict):
+def preflight(lib: Library):
     """Build the first part's profile (and body, when a mesh output needs it) in memory so
     that a bad value that is not swept stops the batch with exit 2 before any file."""
-    if not lib["parts"]:
+    if not lib.parts:
         return
-    part = lib["parts"][0]
-    swept = {k.split(".")[-1] for k in part["values"]}
+    part = lib.parts[0]
+    swept = {k.split(".")[-1] for k in part.values}
     g = Graph()
     targets = []
-    for kind in part["outputs"]:
-        tol = tolerance_for(lib, kind)
-        if kind in MESH_KINDS and part["body"] is not None:
+    for kind in part.outputs:
+        tol = lib.tolerance_for(kind)
+        if kind in MESH_KINDS and part.body is not None:
             targets.append(body_stage(g, lib, part, tol, "library.part"))
         else:
             targets.append(profile_stage(g, lib, part, tol, "library.part"))
@@ -193,7 +194,7 @@ def chunked(todo: list, workers: int) -> list:
 _STOP = None
 
 
-def build_chunk(job: dict, parts: list, out_dir: str) -> list:
+def build_chunk(job: Job, parts: list, out_dir: str) -> list:
     """Build several parts in one task (see :func:`build_part`); returns their results.
     In a pool worker the chunk ends early, between two parts, once the batch process
     asks it to stop (an interrupt): the parts not built are built by the next run."""
@@ -205,17 +206,17 @@ def build_chunk(job: dict, parts: list, out_dir: str) -> list:
     return out
 
 
-def worker_modules(lib: dict) -> list:
+def worker_modules(lib: Library) -> list:
     """The modules a worker needs for this library's outputs (the forkserver preloads
     them once): the batch and stage code, the family registry, manifold3d and the solids
     for mesh outputs, and each output's exporter module."""
     from ..export import FORMATS
     from ..profiles import FAMILY_MODULES
     from .scene import EXT
-    kinds = {k for p in lib["parts"] for k in p["outputs"]}
+    kinds = {k for p in lib.parts for k in p.outputs}
     mods = ["numpy", "gear3d.jobs.batch", "gear3d.jobs.scene", "gear3d.export", "gear3d.export.json_format"]
     mods += [f"gear3d.profiles.{m}" for m in FAMILY_MODULES]
-    if kinds & set(MESH_KINDS) and any(p["body"] is not None for p in lib["parts"]):
+    if kinds & set(MESH_KINDS) and any(p.body is not None for p in lib.parts):
         mods += ["manifold3d", "gear3d.solids"]
     for k in sorted(kinds):
         fmt = FORMATS.get(EXT[k])
@@ -245,7 +246,7 @@ def _watch_parent(conn, stop=None):
     threading.Thread(target=watch, name="gear3d-parent-watch", daemon=True).start()
 
 
-def run_library(lib: dict, out_dir, workers: int = 2, engine: str = "local", scheduler=None,
+def run_library(lib: Library, out_dir, workers: int = 2, engine: str = "local", scheduler=None,
                 processes: bool = True, progress: bool = True) -> dict:
     """Build a validated library (:func:`gear3d.jobs.template.load_library`) into ``out_dir``.
 
@@ -269,10 +270,10 @@ def run_library(lib: dict, out_dir, workers: int = 2, engine: str = "local", sch
     check_out_dir(out_dir, "out")
     job = job_header(lib)
     records, todo = {}, []
-    for part in lib["parts"]:
+    for part in lib.parts:
         rec = _done_record(out_dir, part, spec_of(job, part))
         if rec is not None:
-            records[part["name"]] = rec
+            records[part.name] = rec
         else:
             todo.append(part)
     skipped = len(records)
@@ -290,7 +291,7 @@ def run_library(lib: dict, out_dir, workers: int = 2, engine: str = "local", sch
     _clean_stale(out_dir, lib)
     timings = _read_timings(out_dir)
     t0 = time.perf_counter()
-    bar = _bar(len(lib["parts"]), skipped, progress)
+    bar = _bar(len(lib.parts), skipped, progress)
     failed = 0
     last_manifest = time.perf_counter()
 
@@ -325,10 +326,10 @@ def run_library(lib: dict, out_dir, workers: int = 2, engine: str = "local", sch
             # parts finished in a worker whose result never came back (an interrupt): their
             # records are on disk, so the manifest lists every complete part
             for part in todo:
-                if part["name"] not in records:
+                if part.name not in records:
                     rec = _done_record(out_dir, part, spec_of(job, part))
                     if rec is not None:
-                        records[part["name"]] = rec
+                        records[part.name] = rec
         if bar is not None:
             bar.close()
         manifest = _write_manifest(out_dir, lib, records)
@@ -340,8 +341,8 @@ def run_library(lib: dict, out_dir, workers: int = 2, engine: str = "local", sch
                        last_run_cpu_seconds=round(cpu[0], 3))
         write_json(os.path.join(out_dir, "timings.json"), timings)
     built = len(records) - skipped
-    bad = [records[p["name"]] for p in lib["parts"]
-           if p["name"] in records and records[p["name"]]["status"] != "ok"]
+    bad = [records[p.name] for p in lib.parts
+           if p.name in records and records[p.name]["status"] != "ok"]
     return {"manifest": manifest, "built": built, "skipped": skipped, "failed": len(bad),
             "first_failure": bad[0] if bad else None,
             "seconds": dt, "parts_per_s": built / dt if dt > 0 else None}
@@ -455,13 +456,13 @@ def _read_timings(out_dir):
     return {"parts": {}}
 
 
-def _write_manifest(out_dir, lib, records) -> dict:
-    parts = [records[p["name"]] for p in lib["parts"] if p["name"] in records]
+def _write_manifest(out_dir, lib: Library, records) -> dict:
+    parts = [records[p.name] for p in lib.parts if p.name in records]
     ok = sum(1 for r in parts if r["status"] == "ok")
     manifest = {
-        "library": lib["name"], "file": os.path.basename(lib["file"]), "pattern": lib["pattern"],
-        "tolerance": lib["tolerance"], "tolerances": lib["tolerances"], "zip": lib["zip"],
-        "summary": {"parts": len(lib["parts"]), "recorded": len(parts), "ok": ok,
+        "library": lib.name, "file": os.path.basename(lib.file), "pattern": lib.pattern,
+        "tolerance": lib.tolerance, "tolerances": lib.tolerances, "zip": lib.zip,
+        "summary": {"parts": len(lib.parts), "recorded": len(parts), "ok": ok,
                     "failed": len(parts) - ok, "files": sum(len(r["files"]) for r in parts)},
         "timings": "timings.json",
         "parts": parts,

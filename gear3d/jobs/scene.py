@@ -20,7 +20,8 @@ from collections.abc import Mapping
 
 from ..errors import GearError
 from .graph import Graph
-from .template import MESH_KINDS, TemplateError, tolerance_for
+from .specs import AssemblySpec, Job, PartSpec, Scene
+from .template import MESH_KINDS, TemplateError
 
 EXT = {k: "." + k for k in ("dxf", "svg", "png", "json", "stl", "3mf", "step", "obj", "ply", "vtu")}
 
@@ -185,25 +186,25 @@ def run_assembly(stage, built):
 
 # ------------------------------------------------------------------- stage builders
 
-def profile_stage(g: Graph, job, part, tol, prefix) -> str:
-    p = part["params"]
-    label = f"{part['family']} {'rack ' if part.get('rack') else ''}" + \
+def profile_stage(g: Graph, job: Job, part: PartSpec, tol, prefix) -> str:
+    p = part.params
+    label = f"{part.family} {'rack ' if part.rack else ''}" + \
         " ".join(f"{k}={v}" for k, v in sorted(p.items())) + f" @ {tol:g} mm"
-    inputs = {"family": part["family"], "params": p, "tolerance": tol}
-    if part.get("rack"):
+    inputs = {"family": part.family, "params": p, "tolerance": tol}
+    if part.rack:
         inputs["rack"] = True
-    return g.add("profile", inputs, fn=run_profile, label=label, file=job["file"], prefix=prefix, keys=tuple(p))
+    return g.add("profile", inputs, fn=run_profile, label=label, file=job.file, prefix=prefix, keys=tuple(p))
 
 
-def body_stage(g: Graph, job, part, tol, prefix, parts_by_name=None) -> str:
-    b = part["body"]
-    if part.get("rack"):
+def body_stage(g: Graph, job: Job, part: PartSpec, tol, prefix, parts_by_name=None) -> str:
+    b = part.body
+    if part.rack:
         # a rack body is measured against its outline's own tolerance
         prof = profile_stage(g, job, part, tol, prefix)
-        label = f"rack {part['family']} z={part['params'].get('teeth', '')} " + \
+        label = f"rack {part.family} z={part.params.get('teeth', '')} " + \
             " ".join(f"{k}={v}" for k, v in sorted(b.items())) + f" @ {tol:g} mm"
-        return g.add("body", {"body": b, "tolerance": tol, "rack": True, "name": part["name"]}, [prof],
-                     fn=run_body, label=label, file=job["file"], prefix=prefix + ".body", keys=tuple(b))
+        return g.add("body", {"body": b, "tolerance": tol, "rack": True, "name": part.name}, [prof],
+                     fn=run_body, label=label, file=job.file, prefix=prefix + ".body", keys=tuple(b))
     # the profile is built once, at the share of the body tolerance the body plan gives it
     from ..solids.body import profile_tolerance
     prof = profile_stage(g, job, part, profile_tolerance(tol, b.get("kind", "spur"), bool(b.get("xy_offset"))),
@@ -211,30 +212,31 @@ def body_stage(g: Graph, job, part, tol, prefix, parts_by_name=None) -> str:
     deps = [prof]
     if b.get("mate"):
         other = parts_by_name[b["mate"]]
-        deps.append(body_stage(g, job, other, tol, f"part[{other['name']}]", parts_by_name))
-    label = f"{b.get('kind', 'spur')} {part['family']} z={part['params'].get('teeth', '')} " + \
+        deps.append(body_stage(g, job, other, tol, f"part[{other.name}]", parts_by_name))
+    label = f"{b.get('kind', 'spur')} {part.family} z={part.params.get('teeth', '')} " + \
         " ".join(f"{k}={v}" for k, v in sorted(b.items()) if k != "kind") + f" @ {tol:g} mm"
     return g.add("body", {"body": b, "tolerance": tol}, deps, fn=run_body, label=label,
-                 file=job["file"], prefix=prefix + ".body", keys=tuple(b))
+                 file=job.file, prefix=prefix + ".body", keys=tuple(b))
 
 
-def part_targets(g: Graph, job, part, out_dir, parts_by_name=None) -> dict:
-    """Add one part's stages; return {kind: write-stage key}."""
-    prefix = part.get("prefix") or f"part[{part['name']}]"
+def part_targets(g: Graph, job: Job, part: PartSpec, out_dir, parts_by_name=None, prefix=None) -> dict:
+    """Add one part's stages; return {kind: write-stage key}. ``prefix``: how error messages
+    name the part (default ``part[NAME]``)."""
+    prefix = prefix or f"part[{part.name}]"
     targets = {}
-    for kind in part["outputs"]:
-        tol = tolerance_for(job, kind)
-        fname = part["name"] + EXT[kind]
-        path = out_path(out_dir, fname, job["file"], f"{prefix}.name")
+    for kind in part.outputs:
+        tol = job.tolerance_for(kind)
+        fname = part.name + EXT[kind]
+        path = out_path(out_dir, fname, job.file, f"{prefix}.name")
         if kind in MESH_KINDS:
             src = body_stage(g, job, part, tol, prefix, parts_by_name)
         else:
             src = profile_stage(g, job, part, tol, prefix)
-        inputs = {"kind": kind, "file": fname, "tolerance": tol, "name": part["name"]}
-        if part.get("rack"):
+        inputs = {"kind": kind, "file": fname, "tolerance": tol, "name": part.name}
+        if part.rack:
             inputs["rack"] = True
         # exporter options: the scene's (or library's), then the part's own
-        opts = {**job["options"].get(kind, {}), **part.get("options", {}).get(kind, {})}
+        opts = {**job.options.get(kind, {}), **part.options.get(kind, {})}
         if opts:
             inputs["options"] = opts
         targets[kind] = g.add("write", inputs, [src], fn=run_write, label=fname, phase=1,
@@ -242,15 +244,15 @@ def part_targets(g: Graph, job, part, out_dir, parts_by_name=None) -> dict:
     return targets
 
 
-def _scene_graph(scene, out_dir, only=None):
+def _scene_graph(scene: Scene, out_dir, only=None):
     g = Graph()
-    by = {p["name"]: p for p in scene["parts"]}
+    by = {p.name: p for p in scene.parts}
     sel = set(only) if only else None
     if sel:
-        known = set(by) | {p["name"] for p in scene["pairs"]} | {a["name"] for a in scene["assemblies"]}
+        known = set(by) | {p.name for p in scene.pairs} | {a.name for a in scene.assemblies}
         for n in sel:
             if n not in known:
-                raise TemplateError(scene["file"], "--only", n, "one of " + ", ".join(sorted(known)))
+                raise TemplateError(scene.file, "--only", n, "one of " + ", ".join(sorted(known)))
     files = {}
     owners = {"parts": {}, "pairs": {}, "assemblies": {}}
 
@@ -258,106 +260,107 @@ def _scene_graph(scene, out_dir, only=None):
         # names that differ only in case collide on case-insensitive file systems
         k = fname.casefold()
         if k in files and files[k][0] != who:
-            raise TemplateError(scene["file"], f"{who}.name", fname,
+            raise TemplateError(scene.file, f"{who}.name", fname,
                                 f"a name whose files do not collide with {files[k][0]}'s",
                                 f"both would write {files[k][1]}")
         files[k] = (who, fname)
 
-    claim(scene["name"] + ".report.json", "scene")
-    for part in scene["parts"]:
-        if sel and part["name"] not in sel:
+    claim(scene.name + ".report.json", "scene")
+    for part in scene.parts:
+        if sel and part.name not in sel:
             continue
         t = part_targets(g, scene, part, out_dir, by)
         for k in t:
-            claim(part["name"] + EXT[k], f"part[{part['name']}]")
-        owners["parts"][part["name"]] = t
-    for pair in scene["pairs"]:
-        if sel and pair["name"] not in sel:
+            claim(part.name + EXT[k], f"part[{part.name}]")
+        owners["parts"][part.name] = t
+    for pair in scene.pairs:
+        if sel and pair.name not in sel:
             continue
-        label = f"pair[{pair['name']}]"
+        label = f"pair[{pair.name}]"
         t = {}
-        a, b = by[pair["parts"][0]], by[pair["parts"][1]]
-        if pair["check"] or "json" in pair["outputs"]:
-            tc = tolerance_for(scene, "check")
-            p1 = profile_stage(g, scene, a, tc, f"part[{a['name']}]")
-            p2 = profile_stage(g, scene, b, tc, f"part[{b['name']}]")
-            t["check"] = g.add("check", {"internal": pair["internal"], "tolerance": tc,
-                                         "center_distance": pair.get("center_distance")}, [p1, p2],
-                               fn=run_check, label=f"{pair['name']}: {a['name']} x {b['name']} @ {tc:g} mm",
-                               file=scene["file"], prefix=label, keys=())
-        for kind in pair["outputs"]:
-            fname = pair["name"] + EXT[kind]
-            path = out_path(out_dir, fname, scene["file"], f"{label}.name")
+        a, b = by[pair.parts[0]], by[pair.parts[1]]
+        if pair.check or "json" in pair.outputs:
+            tc = scene.tolerance_for("check")
+            p1 = profile_stage(g, scene, a, tc, f"part[{a.name}]")
+            p2 = profile_stage(g, scene, b, tc, f"part[{b.name}]")
+            t["check"] = g.add("check", {"internal": pair.internal, "tolerance": tc,
+                                         "center_distance": pair.center_distance}, [p1, p2],
+                               fn=run_check, label=f"{pair.name}: {a.name} x {b.name} @ {tc:g} mm",
+                               file=scene.file, prefix=label, keys=())
+        for kind in pair.outputs:
+            fname = pair.name + EXT[kind]
+            path = out_path(out_dir, fname, scene.file, f"{label}.name")
             claim(fname, label)
             if kind == "json":
                 src = t["check"]
                 inputs = {"kind": "json", "file": fname}
             else:
-                tol = tolerance_for(scene, kind)
-                b1 = body_stage(g, scene, a, tol, f"part[{a['name']}]", by)
-                b2 = body_stage(g, scene, b, tol, f"part[{b['name']}]", by)
-                src = g.add("place", {"internal": pair["internal"],
-                                      "center_distance": pair.get("center_distance")}, [b1, b2], fn=run_place,
-                            label=f"{pair['name']} @ {tol:g} mm", file=scene["file"], prefix=label, keys=())
-                inputs = {"kind": kind, "file": fname, "tolerance": tol, "names": pair["parts"]}
-                if kind == "3mf" and scene["options"].get("3mf"):
-                    inputs["options"] = dict(scene["options"]["3mf"])     # arrange, gap
+                tol = scene.tolerance_for(kind)
+                b1 = body_stage(g, scene, a, tol, f"part[{a.name}]", by)
+                b2 = body_stage(g, scene, b, tol, f"part[{b.name}]", by)
+                src = g.add("place", {"internal": pair.internal,
+                                      "center_distance": pair.center_distance}, [b1, b2], fn=run_place,
+                            label=f"{pair.name} @ {tol:g} mm", file=scene.file, prefix=label, keys=())
+                inputs = {"kind": kind, "file": fname, "tolerance": tol, "names": list(pair.parts)}
+                if kind == "3mf" and scene.options.get("3mf"):
+                    inputs["options"] = dict(scene.options["3mf"])     # arrange, gap
             t[kind] = g.add("write", inputs, [src], fn=run_write, label=fname, phase=1,
                             path=path, out_dir=out_dir)
-        owners["pairs"][pair["name"]] = t
-    for asm in scene["assemblies"]:
-        if sel and asm["name"] not in sel:
+        owners["pairs"][pair.name] = t
+    for asm in scene.assemblies:
+        if sel and asm.name not in sel:
             continue
-        label = f"assembly[{asm['name']}]"
+        label = f"assembly[{asm.name}]"
         t = {}
-        for kind in asm["outputs"]:
-            tol = min(tolerance_for(scene, kind), 0.05)
-            h = g.add("harmonic", {k: asm[k] for k in ("design", "seed002", "tooth", "bearing_thickness")}
-                      | {"tolerance": tol}, fn=run_harmonic, label=f"{asm['name']} parts @ {tol:g} mm",
-                      file=scene["file"], prefix=label, keys=())
+        for kind in asm.outputs:
+            tol = min(scene.tolerance_for(kind), 0.05)
+            h = g.add("harmonic", {"design": asm.design, "seed002": asm.seed002, "tooth": asm.tooth,
+                                   "bearing_thickness": asm.bearing_thickness, "tolerance": tol},
+                      fn=run_harmonic, label=f"{asm.name} parts @ {tol:g} mm",
+                      file=scene.file, prefix=label, keys=())
             if kind == "json":
-                fname = asm["name"] + ".json"
+                fname = asm.name + ".json"
                 src = g.add("design", {}, [h], fn=lambda s, built: {
                     "design": built[0].report, "parts": {p.name: p.report for p in built[1]}},
-                    label=f"{asm['name']} report")
+                    label=f"{asm.name} report")
                 inputs = {"kind": "json", "file": fname}
                 claim(fname, label)
                 t[kind] = g.add("write", inputs, [src], fn=run_write, label=fname, phase=1,
-                                path=out_path(out_dir, fname, scene["file"], label), out_dir=out_dir)
+                                path=out_path(out_dir, fname, scene.file, label), out_dir=out_dir)
             elif kind == "3mf":
-                fname = asm["name"] + ".3mf"
+                fname = asm.name + ".3mf"
                 claim(fname, label)
-                src = g.add("assembly", {"deformed": asm["deformed"]}, [h], fn=run_assembly,
-                            label=f"{asm['name']} placed")
+                src = g.add("assembly", {"deformed": asm.deformed}, [h], fn=run_assembly,
+                            label=f"{asm.name} placed")
                 inputs = {"kind": kind, "file": fname, "tolerance": tol}
-                if scene["options"].get("3mf"):
-                    inputs["options"] = dict(scene["options"]["3mf"])     # arrange, gap
+                if scene.options.get("3mf"):
+                    inputs["options"] = dict(scene.options["3mf"])     # arrange, gap
                 t[kind] = g.add("write", inputs, [src],
                                 fn=run_write, label=fname, phase=1,
-                                path=out_path(out_dir, fname, scene["file"], label), out_dir=out_dir)
+                                path=out_path(out_dir, fname, scene.file, label), out_dir=out_dir)
             else:
                 for pn in _harmonic_part_names(asm):
-                    fname = f"{asm['name']}_{pn}{EXT[kind]}"
+                    fname = f"{asm.name}_{pn}{EXT[kind]}"
                     claim(fname, label)
                     src = g.add("pick", {"part": pn}, [h], fn=lambda s, built: next(
-                        p for p in built[1] if p.name == s.inputs["part"]), label=f"{asm['name']}.{pn}")
+                        p for p in built[1] if p.name == s.inputs["part"]), label=f"{asm.name}.{pn}")
                     t[f"{kind}:{pn}"] = g.add("write", {"kind": kind, "file": fname, "tolerance": tol}, [src],
                                               fn=run_write, label=fname, phase=1,
-                                              path=out_path(out_dir, fname, scene["file"], label), out_dir=out_dir)
-        owners["assemblies"][asm["name"]] = t
+                                              path=out_path(out_dir, fname, scene.file, label), out_dir=out_dir)
+        owners["assemblies"][asm.name] = t
     return g, owners
 
 
-def _harmonic_part_names(asm):
+def _harmonic_part_names(asm: AssemblySpec):
     names = ["flexspline", "fixed", "mobile", "wave_generator"]
-    if asm["bearing_thickness"]:
+    if asm.bearing_thickness:
         names.append("bearing_ring")
     return names
 
 
 # ------------------------------------------------------------------------ runner
 
-def build_scene(scene: dict, out_dir, only=None, dry_run=False, log=None) -> dict:
+def build_scene(scene: Scene, out_dir, only=None, dry_run=False, log=None) -> dict:
     """Run a validated scene (:func:`gear3d.jobs.template.load_scene`) into ``out_dir``.
 
     ``only``: part / pair / assembly names to build (default all). ``dry_run``: return the
@@ -375,10 +378,10 @@ def build_scene(scene: dict, out_dir, only=None, dry_run=False, log=None) -> dic
     made = make_out_dir(out_dir, "out")
     try:
         from ..budget import limits
-        with limits(scene.get("max_triangles")):
+        with limits(scene.max_triangles):
             res = g.run(targets, on_stage=(lambda s: log(f"{s.kind:<9} {s.label}")) if log else None)
         report = _report(scene, g, owners, res)
-        rpath = out_path(out_dir, scene["name"] + ".report.json", scene["file"], "scene.name")
+        rpath = out_path(out_dir, scene.name + ".report.json", scene.file, "scene.name")
         write_json(rpath, report)
     except BaseException:
         remove_dirs(made)      # a failed build leaves no empty folder behind
@@ -412,7 +415,7 @@ def _body_summary(b) -> dict:
     return {k: r.get(k) for k in keep}
 
 
-def _report(scene, g, owners, res) -> dict:
+def _report(scene: Scene, g, owners, res) -> dict:
     parts = {}
     errs = []
     for name, t in owners["parts"].items():
@@ -455,8 +458,8 @@ def _report(scene, g, owners, res) -> dict:
                 errs.extend(p.report["profile_max_error"] for p in built[1] if p.report.get("profile_max_error") is not None)
                 break
         asms[name] = d
-    return {"scene": scene["name"], "file": os.path.basename(scene["file"]),
-            "tolerance": scene["tolerance"], "tolerances": scene["tolerances"],
+    return {"scene": scene.name, "file": os.path.basename(scene.file),
+            "tolerance": scene.tolerance, "tolerances": scene.tolerances,
             "max_error": max(errs) if errs else None,
             "stages": dict(sorted(g.counts.items())),
             "parts": parts, "pairs": pairs, "assemblies": asms}

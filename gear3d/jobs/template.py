@@ -81,6 +81,7 @@ import re
 import string
 
 from ..errors import GearError
+from .specs import AssemblySpec, Job, Library, LibraryPart, PairSpec, PartSpec, Scene
 
 MESH_KINDS = ("stl", "3mf", "step", "obj", "ply", "vtu")
 PROFILE_KINDS = ("dxf", "svg", "png", "json")
@@ -410,8 +411,8 @@ def _dxf_option(file, key, name, v):
     return _number(file, key, v, unit="mm")
 
 
-def check_part(file, key, raw, *, default_outputs, names=None, require_name=True):
-    """A part table -> {name, family, params, body, outputs}."""
+def check_part(file, key, raw, *, default_outputs, names=None, require_name=True) -> PartSpec:
+    """A part table -> :class:`~gear3d.jobs.specs.PartSpec`."""
     _table(file, key, raw)
     raw = dict(raw)
     name = raw.pop("name", None)
@@ -426,8 +427,8 @@ def check_part(file, key, raw, *, default_outputs, names=None, require_name=True
     options = check_options(file, f"{key}.options", raw.pop("options", {}))
     if is_rack:
         params, b = _rack_part(file, key, fam, raw, body)
-        return {"name": name, "family": fam, "rack": True, "params": params, "body": b,
-                "outputs": _outputs(file, key, outs, b, default_outputs), "options": options}
+        return PartSpec(name=name, family=fam, rack=True, params=params, body=b,
+                        outputs=_outputs(file, key, outs, b, default_outputs), options=options)
     sig = family_signature(fam)
     # helical / inch conventions: normal_module, normal_pressure_angle_deg, diametral_pitch
     # (keys of the family's table, which excludes them against module / pressure_angle_deg)
@@ -450,21 +451,21 @@ def check_part(file, key, raw, *, default_outputs, names=None, require_name=True
         for k in ("module", "pressure_angle_deg"):
             if k in params:
                 params[k] = check_param(file, f"{key}.{k}", fam, k, params[k], sig)
-    return {"name": name, "family": fam, "params": params, "body": b,
-            "outputs": _outputs(file, key, outs, b, default_outputs), "options": options}
+    return PartSpec(name=name, family=fam, params=params, body=b,
+                    outputs=_outputs(file, key, outs, b, default_outputs), options=options)
 
 
 def _outputs(file, key, outs, b, default_outputs):
     """A part's output kinds (mesh kinds only with a body)."""
     if outs is None:
-        return [k for k in default_outputs if b is not None or k in PROFILE_KINDS]
+        return tuple(k for k in default_outputs if b is not None or k in PROFILE_KINDS)
     outs = _kinds(file, f"{key}.outputs", outs)
     if b is None:
         for k in outs:
             if k in MESH_KINDS:
                 fail(file, f"{key}.outputs", outs, "profile kinds (" + ", ".join(PROFILE_KINDS) +
                      ") for a part without a [part.body] table")
-    return outs
+    return tuple(outs)
 
 
 #: the keys of a rack part's body table (gear3d.rack_body)
@@ -527,7 +528,7 @@ PAIR_KEYS = ("name", "parts", "internal", "center_distance", "check", "outputs")
 ASSEMBLY_KEYS = ("name", "kind", "design", "tooth", "bearing_thickness", "deformed", "outputs")
 
 
-def load_scene(path, sets=()) -> dict:
+def load_scene(path, sets=()) -> Scene:
     """Read and validate a scene file; ``sets``: ``key=value`` overrides (see :func:`apply_sets`)."""
     file = str(path)
     data = apply_sets(read_toml(file), sets, file)
@@ -536,7 +537,7 @@ def load_scene(path, sets=()) -> dict:
                  fail(file, "scene", None, "required: a [scene] table"))
     _unknown(file, "scene", top, SCENE_KEYS)
     name = safe_name(file, "scene.name", top.get("name", None) or fail(file, "scene.name", None, "required"))
-    outputs = _kinds(file, "scene.outputs", top.get("outputs", ["json"]))
+    outputs = tuple(_kinds(file, "scene.outputs", top.get("outputs", ["json"])))
     tol, tols = check_tolerances(file, "scene", top)
     options = check_options(file, "scene.options", top.get("options", {}))
     raw_parts = data.get("part", [])
@@ -549,12 +550,12 @@ def load_scene(path, sets=()) -> dict:
         parts.append(check_part(file, label, rp, default_outputs=outputs, names=names))
     seen = set()
     for p in parts:
-        if p["name"] in seen:
-            fail(file, f"part[{p['name']}].name", p["name"], "a name used once")
-        seen.add(p["name"])
-        if p["body"] and p["body"].get("mate") == p["name"]:
-            fail(file, f"part[{p['name']}].body.mate", p["name"], "another part's name")
-    by = {p["name"]: p for p in parts}
+        if p.name in seen:
+            fail(file, f"part[{p.name}].name", p.name, "a name used once")
+        seen.add(p.name)
+        if p.body and p.body.get("mate") == p.name:
+            fail(file, f"part[{p.name}].body.mate", p.name, "another part's name")
+    by = {p.name: p for p in parts}
     _check_mates(file, by)
     pairs = [_pair(file, i, rp, by, seen) for i, rp in enumerate(_array(file, data, "pair"))]
     assemblies = [_assembly(file, i, ra, seen) for i, ra in enumerate(_array(file, data, "assembly"))]
@@ -567,22 +568,22 @@ def load_scene(path, sets=()) -> dict:
         if isinstance(v, bool) or not isinstance(v, int) or not 1000 <= v <= HARD_MAX_TRIANGLES:
             fail(file, "scene.max_triangles", v, f"an integer in [1000, {HARD_MAX_TRIANGLES}] (the resource budget)")
         max_tri = v
-    return {"file": file, "name": name, "description": top.get("description", ""), "outputs": outputs,
-            "tolerance": tol, "tolerances": tols, "options": options, "parts": parts,
-            "pairs": pairs, "assemblies": assemblies, "max_triangles": max_tri}
+    return Scene(file=file, name=name, description=top.get("description", ""), outputs=outputs,
+                 tolerance=tol, tolerances=tols, options=options, parts=tuple(parts),
+                 pairs=tuple(pairs), assemblies=tuple(assemblies), max_triangles=max_tri)
 
 
 def _check_mates(file, by):
     """``[part.body] mate`` must name a part with a body, and mates may not form a cycle."""
     for name, p in by.items():
         chain, cur = [name], p
-        while cur["body"] and cur["body"].get("mate"):
-            nxt = cur["body"]["mate"]
+        while cur.body and cur.body.get("mate"):
+            nxt = cur.body["mate"]
             other = by.get(nxt)
-            if other is None or other["body"] is None:
-                fail(file, f"part[{cur['name']}].body.mate", nxt, "a part that has a [part.body] table")
+            if other is None or other.body is None:
+                fail(file, f"part[{cur.name}].body.mate", nxt, "a part that has a [part.body] table")
             if nxt in chain:
-                fail(file, f"part[{cur['name']}].body.mate", nxt, "a part that is not mated back to this one",
+                fail(file, f"part[{cur.name}].body.mate", nxt, "a part that is not mated back to this one",
                      "mates form a cycle: " + " -> ".join(chain + [nxt]))
             chain.append(nxt)
             cur = other
@@ -616,12 +617,12 @@ def _pair(file, i, rp, by, seen):
     if ps[0] == ps[1]:
         fail(file, f"{label}.parts", ps, "two different part names", "a part cannot mesh with itself")
     for j, n in enumerate(ps):
-        if by[n].get("rack"):
+        if by[n].rack:
             fail(file, f"{label}.parts[{j}]", n, "a gear part (a pinion on a rack: gear3d pair FAMILY --rack)")
     outs = _kinds(file, f"{label}.outputs", rp.get("outputs", ["json"]), ("json",) + MESH_KINDS)
     if any(k in MESH_KINDS for k in outs):
         for n in ps:
-            if by[n]["body"] is None:
+            if by[n].body is None:
                 fail(file, f"{label}.outputs", outs, f"json only, unless both parts have a body ({n} has none)")
     internal = rp.get("internal", None)
     if internal is not None:
@@ -629,8 +630,8 @@ def _pair(file, i, rp, by, seen):
     cd = rp.get("center_distance", None)
     if cd is not None:
         cd = _number(file, f"{label}.center_distance", cd, 0, 1e6, lo_open=True, unit="mm")
-    return {"name": name, "parts": list(ps), "internal": internal, "center_distance": cd,
-            "check": _bool(file, f"{label}.check", rp.get("check", True)), "outputs": outs}
+    return PairSpec(name=name, parts=tuple(ps), internal=internal, center_distance=cd,
+                    check=_bool(file, f"{label}.check", rp.get("check", True)), outputs=tuple(outs))
 
 
 def _assembly(file, i, ra, seen):
@@ -655,14 +656,14 @@ def _assembly(file, i, ra, seen):
         for k, v in design.items():
             _number(file, f"{label}.design.{k}", v, integer=k.startswith("z"))
     from ..harmonic.parts import TOOTH_FAMILIES
-    return {"name": name, "kind": "harmonic", "design": dict(design),
-            "seed002": isinstance(ra.get("design", "seed002"), str),
-            "tooth": _str(file, f"{label}.tooth", ra.get("tooth", "triangular"), TOOTH_FAMILIES),
-            "bearing_thickness": _number(file, f"{label}.bearing_thickness", ra.get("bearing_thickness", 0.0),
-                                         0, None, unit="mm"),
-            "deformed": _bool(file, f"{label}.deformed", ra.get("deformed", True)),
-            "outputs": _kinds(file, f"{label}.outputs", ra.get("outputs", ["stl", "json"]),
-                              ("json", "stl", "3mf", "step", "obj", "ply", "vtu"))}
+    return AssemblySpec(
+        name=name, kind="harmonic", design=dict(design), seed002=isinstance(ra.get("design", "seed002"), str),
+        tooth=_str(file, f"{label}.tooth", ra.get("tooth", "triangular"), TOOTH_FAMILIES),
+        bearing_thickness=_number(file, f"{label}.bearing_thickness", ra.get("bearing_thickness", 0.0),
+                                  0, None, unit="mm"),
+        deformed=_bool(file, f"{label}.deformed", ra.get("deformed", True)),
+        outputs=tuple(_kinds(file, f"{label}.outputs", ra.get("outputs", ["stl", "json"]),
+                             ("json", "stl", "3mf", "step", "obj", "ply", "vtu"))))
 
 
 # ------------------------------------------------------------------------ library
@@ -722,7 +723,7 @@ def _sweep_values(file, key, v):
     return [v]
 
 
-def load_library(path, sets=()) -> dict:
+def load_library(path, sets=()) -> Library:
     """Read and validate a library file; expand the sweep into ``parts`` (in order)."""
     file = str(path)
     data = apply_sets(read_toml(file), sets, file)
@@ -731,7 +732,7 @@ def load_library(path, sets=()) -> dict:
                  else fail(file, "library", None, "required: a [library] table"))
     _unknown(file, "library", top, LIBRARY_KEYS)
     name = safe_name(file, "library.name", top.get("name") or fail(file, "library.name", None, "required"))
-    outputs = _kinds(file, "library.outputs", top.get("outputs", ["stl"]))
+    outputs = tuple(_kinds(file, "library.outputs", top.get("outputs", ["stl"])))
     tol, tols = check_tolerances(file, "library", top)
     options = check_options(file, "library.options", top.get("options", {}))
     tpl = dict(_table(file, "library.part", top.get("part") if "part" in top
@@ -739,11 +740,11 @@ def load_library(path, sets=()) -> dict:
     if "name" in tpl:
         fail(file, "library.part.name", tpl["name"], "no name: [library] pattern names the parts")
     base = check_part(file, "library.part", tpl, default_outputs=outputs, require_name=False)
-    if base.get("rack"):
+    if base.rack:
         fail(file, "library.part.rack", True, "false: racks are scene parts ([[part]] rack = true)")
     sweep = dict(_table(file, "library.sweep", top.get("sweep", {})))
     zipped = _bool(file, "library.sweep.zip", sweep.pop("zip", False))
-    fam = base["family"]
+    fam = base.family
     sig = family_signature(fam)
     axes = []   # (key path tuple, values)
     for k, v in sweep.items():
@@ -752,7 +753,7 @@ def load_library(path, sets=()) -> dict:
             for bk, bv in v.items():
                 vals = _sweep_values(file, f"library.sweep.body.{bk}", bv)
                 for j, x in enumerate(vals):
-                    check_body(file, f"library.sweep.body[{j}]", {**(base["body"] or {}), bk: x})
+                    check_body(file, f"library.sweep.body[{j}]", {**(base.body or {}), bk: x})
                 axes.append((("body", bk), vals))
         else:
             if k in ("family", "name", "outputs"):
@@ -763,7 +764,7 @@ def load_library(path, sets=()) -> dict:
             vals = [check_param(file, f"library.sweep.{k}[{j}]", fam, k, x, sig, ranged=k in SWEEP_RANGED)
                     for j, x in enumerate(vals)]
             axes.append(((k,), vals))
-    if base["body"] is None and any(a[0][0] == "body" for a in axes):
+    if base.body is None and any(a[0][0] == "body" for a in axes):
         fail(file, "library.sweep.body", sweep.get("body"), "a [library.part] body table to sweep")
     if zipped:
         lens = {len(vals) for _, vals in axes}
@@ -775,12 +776,12 @@ def load_library(path, sets=()) -> dict:
         if total > MAX_LIBRARY_PARTS:
             fail(file, "library.sweep", total, f"at most {MAX_LIBRARY_PARTS} parts")
         combos = list(itertools.product(*[vals for _, vals in axes]))
-    fields = set(sig) | set(body_signature()) | {"family", "index", "name"} | set(base["params"])
+    fields = set(sig) | set(body_signature()) | {"family", "index", "name"} | set(base.params)
     pattern = check_pattern(file, "library.pattern", top.get("pattern", name + "_{index}"), fields)
     parts, seen = [], {}
     for i, combo in enumerate(combos):
-        params = dict(base["params"])
-        body = dict(base["body"]) if base["body"] is not None else None
+        params = dict(base.params)
+        body = dict(base.body) if base.body is not None else None
         for (kp, _), x in zip(axes, combo):
             if kp[0] == "body":
                 body[kp[1]] = x
@@ -796,7 +797,7 @@ def load_library(path, sets=()) -> dict:
         except (ValueError, TypeError) as e:
             fail(file, "library.pattern", pattern, "a pattern whose specs fit the values", str(e))
         safe_name(file, f"library.pattern -> part {i}", pname)
-        for k in base["outputs"]:
+        for k in base.outputs:
             if f"{pname}.{k}".casefold() in LIBRARY_RESERVED:
                 fail(file, "library.pattern", pattern, "a pattern whose files do not take the names "
                      + ", ".join(LIBRARY_RESERVED), f"part {i} would write {pname}.{k}")
@@ -806,17 +807,19 @@ def load_library(path, sets=()) -> dict:
                  f"parts {seen[pname_key]} and {i} are both {pname!r} (names differing only in case "
                  "collide on case-insensitive file systems)")
         seen[pname_key] = i
-        parts.append({"name": pname, "family": fam, "params": params, "body": body,
-                      "outputs": base["outputs"],
-                      "values": {".".join(kp): x for (kp, _), x in zip(axes, combo)}})
-    return {"file": file, "name": name, "description": top.get("description", ""), "pattern": pattern,
-            "outputs": outputs, "tolerance": tol, "tolerances": tols, "options": options,
-            "zip": zipped, "parts": parts}
+        # a library part takes the library's exporter options only (its template's own
+        # ``options`` are not applied, as before the typed specs)
+        parts.append(LibraryPart(name=pname, family=fam, params=params, body=body, outputs=base.outputs,
+                                 options={}, values={".".join(kp): x for (kp, _), x in zip(axes, combo)}))
+    return Library(file=file, name=name, description=top.get("description", ""), pattern=pattern,
+                   outputs=outputs, tolerance=tol, tolerances=tols, options=options,
+                   zip=zipped, parts=tuple(parts))
 
 
-def tolerance_for(job: dict, kind: str) -> float:
-    """The tolerance (mm) of an output kind (or "check") in a scene/library."""
-    return job["tolerances"].get(kind, job["tolerance"])
+def tolerance_for(job: Job, kind: str) -> float:
+    """The tolerance (mm) of an output kind (or "check") in a scene/library
+    (:meth:`gear3d.jobs.specs.Job.tolerance_for`)."""
+    return job.tolerance_for(kind)
 
 
 # ------------------------------------------------------------------ schema page
