@@ -13,6 +13,7 @@ import time
 import pytest
 
 from gear3d.cli import main
+from procwait import FileEvents, wait_session_gone
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
@@ -65,14 +66,25 @@ def _descendants(root):
     return out
 
 
-def _alive(pid, start):
-    """The same process (pid and start time) still exists and is not a zombie."""
-    st = _stat(pid)
-    return st is not None and st[2] == start and st[0] != "Z"
-
-
 def _parts(out):
     return {f for f in os.listdir(out) if f.endswith(".stl") and not f.startswith(".")}
+
+
+def _recorded(events):
+    """{record file name: writer pid} of the parts whose record ``.records/NAME.json`` has
+    been written (file events)."""
+    return {os.path.basename(p): pid for k, pid, p in events
+            if k == "done" and os.path.basename(os.path.dirname(p)) == ".records"}
+
+
+def _batch(f, out, events, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL):
+    """``gear3d batch`` in a new session (its pid is the session id of all it forks), with
+    its atomic writes announced on ``events``."""
+    cmd = [sys.executable, "-m", "gear3d.cli", "batch", f, "--out", str(out), "--workers", "2", "--no-progress"]
+    env = events.env()
+    env["PYTHONPATH"] = ROOT + os.pathsep + os.environ.get("PYTHONPATH", "")
+    return subprocess.Popen(cmd, start_new_session=True, stdout=stdout, stderr=stderr, env=env,
+                            text=True)
 
 
 @pytest.mark.skipif(not sys.platform.startswith("linux"), reason="reads /proc")
@@ -82,20 +94,11 @@ def test_workers_exit_within_5_s_of_parent_sigkill(tmp_path):
     n = 40
     f = _lib(tmp_path, range(10, 10 + n))
     out = tmp_path / "o"
-    cmd = [sys.executable, "-m", "gear3d.cli", "batch", f, "--out", str(out), "--workers", "2", "--no-progress"]
-    env = dict(os.environ, PYTHONPATH=ROOT + os.pathsep + os.environ.get("PYTHONPATH", ""))
-    proc = subprocess.Popen(cmd, start_new_session=True, stdout=subprocess.DEVNULL,
-                            stderr=subprocess.DEVNULL, env=env)
-    recs = out / ".records"
+    events = FileEvents(tmp_path)
+    proc = _batch(f, out, events)
     try:
-        t0 = time.monotonic()
-        while time.monotonic() - t0 < 120:
-            if recs.is_dir() and any(x.endswith(".json") and not x.startswith(".") for x in os.listdir(recs)):
-                break
-            assert proc.poll() is None, "the batch ended before its first part was recorded"
-            time.sleep(0.02)
-        else:
-            pytest.fail("no part recorded within 120 s")
+        assert events.wait(_recorded, proc, timeout=120), \
+            "no part recorded within 120 s" if proc.poll() is None else "the batch ended before its first part was recorded"
         family = _descendants(proc.pid)
         # forkserver, two workers and the resource tracker (at least the workers)
         assert len(family) >= 3, f"expected the pool's processes below the batch, found {family}"
@@ -103,21 +106,20 @@ def test_workers_exit_within_5_s_of_parent_sigkill(tmp_path):
         t_kill = time.monotonic()
         proc.wait()
         before = _parts(out)
-        while time.monotonic() - t_kill < 5.0 and any(_alive(p, s) for p, s in family.items()):
-            time.sleep(0.02)
-        left = [p for p, s in family.items() if _alive(p, s)]
+        # blocks on pidfds: the family, then anything else left in the batch's session
+        left = wait_session_gone(family, proc.pid, deadline=t_kill + 5.0)
         assert not left, f"processes outlived the killed batch by 5 s: {left}"
+        # every process of the batch has exited: no writer is left, the files are final
         after = _parts(out)
         # a part already in flight may land (atomically); nothing beyond one per worker
         assert len(after - before) <= 2 and len(after) < n
-        time.sleep(1.0)
-        assert _parts(out) == after, "part files kept appearing after the workers were gone"
     finally:
         try:
             os.killpg(proc.pid, signal.SIGKILL)     # safety net for a failing run
         except ProcessLookupError:
             pass
         proc.wait()
+        events.close()
 
 
 @pytest.mark.skipif(not sys.platform.startswith("linux"), reason="reads /proc")
@@ -127,29 +129,22 @@ def test_sigint_stops_between_parts_cleanly(tmp_path):
     n = 40
     f = _lib(tmp_path, range(10, 10 + n))
     out = tmp_path / "o"
-    cmd = [sys.executable, "-m", "gear3d.cli", "batch", f, "--out", str(out), "--workers", "2", "--no-progress"]
-    env = dict(os.environ, PYTHONPATH=ROOT + os.pathsep + os.environ.get("PYTHONPATH", ""))
-    proc = subprocess.Popen(cmd, start_new_session=True, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
-                            env=env, text=True)
     recs = out / ".records"
+    events = FileEvents(tmp_path)
+    proc = _batch(f, out, events, stderr=subprocess.PIPE)
     try:
-        t0 = time.monotonic()
-        while not (recs.is_dir() and any(x.endswith(".json") for x in os.listdir(recs))):
-            assert proc.poll() is None and time.monotonic() - t0 < 120
-            time.sleep(0.02)
+        assert events.wait(_recorded, proc, timeout=120), "no part recorded"
         family = _descendants(proc.pid)
         proc.send_signal(signal.SIGINT)
         _, stderr = proc.communicate(timeout=60)
-        t1 = time.monotonic()
-        while time.monotonic() - t1 < 5.0 and any(_alive(p, s) for p, s in family.items()):
-            time.sleep(0.02)
-        assert not [p for p, s in family.items() if _alive(p, s)]
+        assert not wait_session_gone(family, proc.pid, deadline=time.monotonic() + 5.0)
     finally:
         try:
             os.killpg(proc.pid, signal.SIGKILL)
         except ProcessLookupError:
             pass
         proc.wait()
+        events.close()
     assert proc.returncode == 130 and len(stderr.splitlines()) == 1
     assert not [x for x in os.listdir(out) if x.startswith(".") and x != ".records"]
     assert not [x for x in os.listdir(recs) if x.startswith(".")]
@@ -175,19 +170,16 @@ def test_a_worker_killed_mid_batch_gives_exit_1_and_one_line(tmp_path):
     stderr line pointing at the manifest, which holds the parts finished so far."""
     f = _lib(tmp_path, range(10, 40))
     out = tmp_path / "o"
-    cmd = [sys.executable, "-m", "gear3d.cli", "batch", f, "--out", str(out), "--workers", "2", "--no-progress"]
-    env = dict(os.environ, PYTHONPATH=ROOT + os.pathsep + os.environ.get("PYTHONPATH", ""))
-    proc = subprocess.Popen(cmd, start_new_session=True, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                            env=env, text=True)
+    events = FileEvents(tmp_path)
+    proc = _batch(f, out, events, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
     try:
-        t0 = time.monotonic()
-        victim = None
-        while victim is None and time.monotonic() - t0 < 120 and proc.poll() is None:
-            fam = _descendants(proc.pid)
-            # pool workers: forked by the forkserver, so grandchildren of the batch process
-            victim = next((p for p in fam if _stat(p) and _stat(p)[1] in fam and "forkserver" in _cmdline(p)), None)
-            time.sleep(0.02)
-        assert victim is not None, "no pool worker found"
+        # the process that wrote the first record is a pool worker
+        assert events.wait(_recorded, proc, timeout=120), "no part recorded"
+        (victim, *_) = _recorded(events.events).values()
+        fam = _descendants(proc.pid)
+        # pool workers: forked by the forkserver, so grandchildren of the batch process
+        assert victim in fam and _stat(victim)[1] in fam and "forkserver" in _cmdline(victim), \
+            f"the record's writer {victim} is not a pool worker: {fam}"
         os.kill(victim, signal.SIGKILL)
         stdout, stderr = proc.communicate(timeout=120)
     finally:
@@ -196,6 +188,7 @@ def test_a_worker_killed_mid_batch_gives_exit_1_and_one_line(tmp_path):
         except ProcessLookupError:
             pass
         proc.wait()
+        events.close()
     assert proc.returncode == 1
     lines = stderr.splitlines()
     assert len(lines) == 1 and lines[0].startswith("gear3d: batch: a worker process died")

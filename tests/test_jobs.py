@@ -8,7 +8,6 @@ import signal
 import subprocess
 import sys
 import textwrap
-import time
 
 import pytest
 
@@ -17,6 +16,7 @@ from gear3d.errors import GearError
 from gear3d.jobs.batch import run_library
 from gear3d.jobs.scene import build_scene, out_path
 from gear3d.jobs.template import TemplateError, load_library, load_scene
+from procwait import FileEvents
 
 SCENE_EXAMPLE = '''
 # scene
@@ -304,19 +304,18 @@ def test_resume_after_sigkill_gives_identical_manifest(tmp_path):
     ref, out = tmp_path / "ref", tmp_path / "killed"
     run_library(load_library(f), str(ref), workers=0, progress=False)
     cmd = [sys.executable, "-m", "gear3d.cli", "batch", f, "--out", str(out), "--workers", "1", "--no-progress"]
-    proc = subprocess.Popen(cmd, start_new_session=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    events = FileEvents(tmp_path)       # each record written is announced there: no polling
+    proc = subprocess.Popen(cmd, start_new_session=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                            env=events.env())
     recs = out / ".records"
-    t0 = time.time()
     try:
-        while time.time() - t0 < 120:
-            n = len([x for x in os.listdir(recs) if x.endswith(".json") and not x.startswith(".")]) \
-                if recs.is_dir() else 0
-            if n >= 3 or proc.poll() is not None:
-                break
-            time.sleep(0.02)
+        # three records written (or the batch ended, or 120 s): then kill it part-way
+        events.wait(lambda evs: sum(k == "done" and os.path.dirname(p) == str(recs) for k, _, p in evs) >= 3,
+                    proc, timeout=120)
     finally:
         os.killpg(proc.pid, signal.SIGKILL)
         proc.wait()
+        events.close()
     done_before = len([x for x in os.listdir(recs) if x.endswith(".json") and not x.startswith(".")])
     assert 3 <= done_before < 16, "the batch must be killed part-way"
     r = run_library(load_library(f), str(out), workers=1, progress=False)

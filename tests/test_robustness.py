@@ -15,7 +15,6 @@ import signal
 import subprocess
 import sys
 import textwrap
-import time
 
 import numpy as np
 import pytest
@@ -23,6 +22,7 @@ import pytest
 import gear3d
 from gear3d.cli import main
 from gear3d.errors import GearError, ToleranceError
+from procwait import FileEvents
 
 
 # ------------------------------------------------------------------------- helpers
@@ -188,6 +188,31 @@ def test_atomic_path_contract(tmp_path):
     assert sorted(os.listdir(tmp_path)) == ["d", "z.json"] and not LIVE_TEMPS
 
 
+def test_file_events_hook(tmp_path, monkeypatch):
+    """GEAR3D_FILE_EVENTS (a test hook): one line when the temporary file exists, one when the
+    destination is replaced; nothing when unset, and a missing target is never created."""
+    from gear3d.export import atomic_path
+    log = tmp_path / "events"
+    log.write_text("")
+    monkeypatch.setenv("GEAR3D_FILE_EVENTS", str(log))
+    with atomic_path(tmp_path / "a.json") as tmp:
+        assert log.read_text() == f"tmp {os.getpid()} {tmp}\n"
+        open(tmp, "w").write("{}")
+    assert log.read_text().splitlines() == [f"tmp {os.getpid()} {tmp}", f"done {os.getpid()} {tmp_path / 'a.json'}"]
+    with pytest.raises(ZeroDivisionError):
+        with atomic_path(tmp_path / "b.json"):
+            1 / 0
+    assert len(log.read_text().splitlines()) == 3           # a failed write is never "done"
+    monkeypatch.setenv("GEAR3D_FILE_EVENTS", str(tmp_path / "missing"))
+    with atomic_path(tmp_path / "c.json") as tmp:
+        open(tmp, "w").write("{}")
+    monkeypatch.delenv("GEAR3D_FILE_EVENTS")
+    with atomic_path(tmp_path / "d.json") as tmp:
+        open(tmp, "w").write("{}")
+    assert len(log.read_text().splitlines()) == 3
+    assert sorted(os.listdir(tmp_path)) == ["a.json", "c.json", "d.json", "events"]
+
+
 # ------------------------------------------------------------------------ signals
 
 SLOW_WRITER = r"""
@@ -203,31 +228,27 @@ raise SystemExit(main(sys.argv[1:]))
 """
 
 
-def _poll_temp(folder, proc, suffix, limit=120.0):
-    """Wait (polling, generous overall limit) until a temporary file appears in ``folder``."""
-    t_end = time.monotonic() + limit
-    while time.monotonic() < t_end:
-        if any(f.startswith(".") and f.endswith(suffix) for f in os.listdir(folder)):
-            return True
-        if proc.poll() is not None:
-            return False
-        time.sleep(0.01)
-    return False
+def _temp_created(suffix):
+    """``until`` for :meth:`FileEvents.wait`: a temporary file ``*suffix`` has been created."""
+    return lambda events: any(k == "tmp" and p.endswith(suffix) for k, _, p in events)
 
 
 @pytest.mark.parametrize("sig, code", [(signal.SIGTERM, 143), (signal.SIGINT, 130)])
 def test_signal_mid_write_removes_temp(sig, code, tmp_path):
     """A real gear3d CLI process, stopped by a signal while its exporter is writing."""
+    events = FileEvents()       # the exporter announces its temporary file there
     proc = subprocess.Popen([sys.executable, "-c", SLOW_WRITER, "profile", "involute", "--teeth", "12",
-                             "--tolerance", "0.01", "-o", "g.json"], cwd=tmp_path,
+                             "--tolerance", "0.01", "-o", "g.json"], cwd=tmp_path, env=events.env(),
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     try:
-        assert _poll_temp(tmp_path, proc, ".tmp.json"), proc.communicate(timeout=60)
+        assert events.wait(_temp_created(".tmp.json"), proc, timeout=120), proc.communicate(timeout=60)
         proc.send_signal(sig)
         out, err = proc.communicate(timeout=60)
     finally:
         if proc.poll() is None:
             proc.kill()
+        proc.wait()
+        events.close()
     assert proc.returncode == code
     assert len(err.splitlines()) == 1 and err.startswith("gear3d: "), err
     assert os.listdir(tmp_path) == []
@@ -237,19 +258,19 @@ def test_sigterm_real_dxf_export(tmp_path):
     """The issue's case: the console script writing a large DXF, terminated mid-write."""
     import shutil
     exe = shutil.which("gear3d") or os.path.join(os.path.dirname(sys.executable), "gear3d")
+    events = FileEvents()
     proc = subprocess.Popen([exe, "profile", "involute", "--teeth", "40", "--module", "2",
-                             "--tolerance", "2e-4", "-o", "g.dxf"], cwd=tmp_path,
+                             "--tolerance", "2e-4", "-o", "g.dxf"], cwd=tmp_path, env=events.env(),
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     try:
-        seen = _poll_temp(tmp_path, proc, ".tmp.dxf")
-        if not seen:
-            proc.communicate(timeout=120)
-            pytest.skip("the DXF was written before its temporary file could be seen")
+        assert events.wait(_temp_created(".tmp.dxf"), proc, timeout=120), proc.communicate(timeout=120)
         proc.send_signal(signal.SIGTERM)
         out, err = proc.communicate(timeout=60)
     finally:
         if proc.poll() is None:
             proc.kill()
+        proc.wait()
+        events.close()
     assert proc.returncode == 143, err
     assert len(err.splitlines()) == 1
     assert os.listdir(tmp_path) == []

@@ -16,8 +16,7 @@ import re
 import socket
 import subprocess
 import sys
-import time
-import urllib.error
+import threading
 import urllib.request
 from pathlib import Path
 
@@ -208,39 +207,69 @@ def test_serve_refuses_a_busy_port_in_one_line(capsys):
 
 # ------------------------------------------------------------------ the page in Chromium
 
-def _free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
+class _Lines:
+    """The lines of one output stream of a child, read as they come by a thread (which also
+    keeps the pipe drained) and copied to ``copy`` (a file kept for a failing run's log).
+    :meth:`wait` blocks on a condition until a line matches; no polling."""
+
+    def __init__(self, stream, copy: Path):
+        self.lines, self.closed = [], False
+        self._cond = threading.Condition()
+        self._thread = threading.Thread(target=self._read, args=(stream, copy), daemon=True)
+        self._thread.start()
+
+    def _read(self, stream, copy):
+        with open(copy, "w") as f:
+            for line in stream:
+                f.write(line)
+                f.flush()
+                with self._cond:
+                    self.lines.append(line.rstrip("\n"))
+                    self._cond.notify_all()
+        with self._cond:
+            self.closed = True          # EOF: the child closed it (it exited)
+            self._cond.notify_all()
+
+    def text(self) -> str:
+        with self._cond:
+            return "\n".join(self.lines)
+
+    def wait(self, pattern: re.Pattern, timeout: float):
+        """The first match of ``pattern`` in a line; None once the stream closed or after
+        ``timeout`` seconds without one."""
+        def found():
+            return next((m for m in map(pattern.search, self.lines) if m), None)
+        with self._cond:
+            self._cond.wait_for(lambda: found() or self.closed, timeout)
+            return found()
+
+    def join(self, timeout: float):
+        self._thread.join(timeout)
 
 
 class _Server:
-    """``gear3d serve`` started as a subprocess on a free port; :meth:`ready` polls its port."""
+    """``gear3d serve --port 0`` as a subprocess: the kernel picks a free port and the server
+    prints its URL once its socket listens; :meth:`ready` waits for that line."""
 
     def __init__(self, d: Path):
-        self.port = _free_port()
-        self.url = f"http://127.0.0.1:{self.port}"
-        self.log, self.out = d / "serve.log", d / "serve.out"
-        with open(self.log, "w") as err, open(self.out, "w") as out:
-            self.proc = subprocess.Popen([sys.executable, "-m", "gear3d.cli", "serve", "--port", str(self.port),
-                                          "--max-builds", "3"], cwd=d, stdout=out, stderr=err)
-        self._ready = False
+        self.proc = subprocess.Popen([sys.executable, "-m", "gear3d.cli", "serve", "--port", "0",
+                                      "--max-builds", "3"], cwd=d, stdout=subprocess.PIPE,
+                                     stderr=subprocess.PIPE, text=True)
+        self.out = _Lines(self.proc.stdout, d / "serve.out")
+        self.log = _Lines(self.proc.stderr, d / "serve.log")      # one line a request
+        self.url = None
 
     def ready(self, timeout: float = 90.0) -> "_Server":
-        deadline = time.monotonic() + timeout
-        while not self._ready:
-            if self.proc.poll() is not None:
-                pytest.fail(f"gear3d serve exited with {self.proc.returncode}: {self.log.read_text()[-2000:]}")
-            try:
-                with urllib.request.urlopen(self.url + "/api/families", timeout=5) as r:
-                    self._ready = r.status == 200
-            except (urllib.error.URLError, ConnectionError, OSError):
-                pass
-            if not self._ready:
-                if time.monotonic() > deadline:
-                    pytest.fail(f"gear3d serve did not answer within {timeout:g} s")
-                time.sleep(0.1)    # polling interval, bounded by the deadline above
-        assert f"{self.url}/" in self.out.read_text()        # the URL it printed
+        if self.url is None:
+            m = self.out.wait(re.compile(r"^gear3d serve: (http://127\.0\.0\.1:\d+)/ "), timeout)
+            if m is None:
+                code = self.proc.poll()
+                pytest.fail((f"gear3d serve exited with {code}" if code is not None else
+                             f"gear3d serve printed no URL within {timeout:g} s") + f": {self.log.text()[-2000:]}")
+            self.url = m.group(1)
+            # the socket listens: this request waits in its backlog until the server answers
+            with urllib.request.urlopen(self.url + "/api/families", timeout=timeout) as r:
+                assert r.status == 200
         return self
 
     def stop(self):
@@ -250,6 +279,8 @@ class _Server:
         except subprocess.TimeoutExpired:
             self.proc.kill()
             self.proc.wait(5)
+        self.out.join(5)
+        self.log.join(5)
 
 
 def _launch(pw):
@@ -383,9 +414,7 @@ def _check_one_log_line_a_request(server):
     url, log = server.url, server.log
     with urllib.request.urlopen(url + "/api/profile?family=involute&teeth=17", timeout=30) as r:
         assert r.status == 200
-    deadline = time.monotonic() + 10
-    pat = re.compile(r"^\d\d:\d\d:\d\d 127\.0\.0\.1 GET /api/profile\?family=involute&teeth=17 200 \d+ ms$", re.M)
-    while not pat.search(log.read_text()):
-        assert time.monotonic() < deadline, log.read_text()[-1000:]
-        time.sleep(0.05)    # polling interval, bounded by the deadline
-    assert "Traceback" not in log.read_text()
+    # the line is written once the answer is sent: wait for it on the server's stderr
+    pat = re.compile(r"^\d\d:\d\d:\d\d 127\.0\.0\.1 GET /api/profile\?family=involute&teeth=17 200 \d+ ms$")
+    assert log.wait(pat, timeout=10), log.text()[-1000:]
+    assert "Traceback" not in log.text()

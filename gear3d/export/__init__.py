@@ -11,6 +11,12 @@ gives the same bytes (no timestamps, no random ids).
 trimesh, plus optional ``.name``, ``.report``, ``.transform``), or a list of bodies (an
 assembly or a build plate). A profile written to a 3D format is extruded first
 (``width=`` mm, a spur body).
+
+Test hook, off by default: when the environment variable ``GEAR3D_FILE_EVENTS`` names an
+existing file or FIFO, every atomic write appends one line to it, ``tmp PID PATH`` once its
+temporary file exists and ``done PID PATH`` once ``PATH`` has been replaced (``PID``: the
+writing process, e.g. a batch worker). Tests wait on these lines instead of polling the
+folder (:func:`file_event`); a FIFO without a reader, or any error, drops the line.
 """
 from __future__ import annotations
 
@@ -94,6 +100,29 @@ def remove_live_temps() -> int:
             pass
         LIVE_TEMPS.discard(t)
     return n
+
+
+#: environment variable of the file-event test hook (see the module docstring)
+FILE_EVENTS_ENV = "GEAR3D_FILE_EVENTS"
+
+
+def file_event(kind: str, path) -> None:
+    """Append ``"KIND PID PATH"`` to the existing file or FIFO named by ``$GEAR3D_FILE_EVENTS``,
+    if set; never creates it, never blocks (a FIFO without a reader or a full one drops the
+    line), never raises."""
+    target = os.environ.get(FILE_EVENTS_ENV)
+    if not target:
+        return
+    try:
+        fd = os.open(target, os.O_WRONLY | os.O_APPEND | os.O_NONBLOCK)
+    except OSError:
+        return
+    try:
+        os.write(fd, f"{kind} {os.getpid()} {os.fspath(path)}\n".encode("utf-8", "surrogateescape"))
+    except OSError:
+        pass
+    finally:
+        os.close(fd)
 
 
 def _probe(folder: str):
@@ -214,6 +243,8 @@ class atomic_path:
     The destination is checked first (:func:`check_path`); the temporary file is created
     only then, and is listed in :data:`LIVE_TEMPS` while it lives so that a signal handler
     can remove it. ``OSError`` on the destination becomes ``GearError(param, path, ...)``.
+    With ``GEAR3D_FILE_EVENTS`` set, the creation and the replacement are each announced
+    by one line there (:func:`file_event`).
     """
 
     def __init__(self, path, param: str = "output"):
@@ -231,6 +262,7 @@ class atomic_path:
         LIVE_TEMPS.add(tmp)
         self.tmp = tmp
         os.close(fd)
+        file_event("tmp", tmp)
         return tmp
 
     def _drop(self):
@@ -251,6 +283,7 @@ class atomic_path:
                 raise GearError(self.param, str(self.given), "a destination that can be replaced",
                                 e.strerror or type(e).__name__) from None
             LIVE_TEMPS.discard(self.tmp)
+            file_event("done", self.path)
             return False
         self._drop()
         if isinstance(ev, OSError) and not isinstance(ev, GearError) and \
