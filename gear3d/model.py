@@ -16,7 +16,7 @@ import numpy as np
 from .envelope import PRUNE_SHARE, RIM_SHARE, circle_loop, pattern, signed_area, trim
 from .errors import GearError, check_number
 from .corners import chords_near, corner_angle, exact_crossing, new_vertices, refine
-from .geometry import check_points, circle_crossings, point_segment_distance, segment_foot, unique_sorted
+from .geometry import check_points, circle_crossings, point_segment_distance, rotate, segment_foot, unique_sorted
 from .reports import ProfileReport
 from .tessellate import chord_deviation, tessellate
 
@@ -199,6 +199,43 @@ def arc_thickness(loop: np.ndarray, radius: float) -> float:
 
 # ------------------------------------------------------------------- the builder
 
+#: chord budget shares tried in turn when a swallowtail is mis-trimmed (see
+#: :func:`_backward_survivors`): a swallowtail thinner than the chords can come out of the
+#: fill as a positive sliver instead of a negative lobe; finer chords resolve it
+SLIVER_SHARES = (1.0, 0.25, 0.0625)
+
+
+def _backward_survivors(tl: np.ndarray, chain: np.ndarray, label: np.ndarray, phys: np.ndarray,
+                        teeth: int, tol: float) -> bool:
+    """True when a vertex of the trimmed tooth loop ``tl`` is a raw sample on a branch past
+    a singular point (``phys`` False) *and* more than ``tol`` from every regular sample of
+    its own piece (pieces with no regular sample are left alone). Such a branch lies inside the tool, so the exact trimmed outline runs
+    along it only at its singular point (a cusp on the outline, e.g. at the undercut
+    limit, is real); a vertex of it far from the cusp means the fill kept a sliver of a
+    swallowtail: the outline then reaches up to the sliver's length off the true
+    boundary, while every chord is still within tolerance of *some* exact curve. Checked
+    for tooth 0 and its neighbours' copies of the chain."""
+    bi = np.nonzero(~phys)[0]
+    if not len(bi):
+        return False
+    lo, hi = tl.min(axis=0) - 1e-6, tl.max(axis=0) + 1e-6
+    hit = np.zeros(len(bi), bool)
+    for k in ((0,) if teeth == 1 else (-1, 0, 1)):
+        b = rotate(chain[bi], 2 * math.pi * k / teeth)
+        near = np.nonzero(np.all((b >= lo) & (b <= hi), axis=1))[0]
+        for s in range(0, len(near), 64):
+            idx = near[s:s + 64]
+            d2 = ((b[idx, None, :] - tl[None, :, :]) ** 2).sum(axis=2)
+            hit[idx] |= (d2 <= 1e-14).any(axis=1)
+    for j in bi[hit]:
+        # a piece without a regular sample has no singular point on it (its whole run is
+        # the other orientation, e.g. a gerotor's inner envelope, or a degenerate joint)
+        own = chain[(label == label[j]) & phys]
+        if len(own) and np.hypot(*(own - chain[j]).T).min() > tol:
+            return True
+    return False
+
+
 def _cusps(chain: np.ndarray, tol: float) -> np.ndarray:
     """Indices of chain vertices where the curve reverses direction (singular points)."""
     seg = np.diff(chain, axis=0)
@@ -279,21 +316,33 @@ def build_profile(family: str, params: dict, pieces, teeth: int, pitch_radius: f
     # the share of the tolerance the chords may use: Clipper rounds every vertex to 1e-8 mm
     # and notch pruning may move a vertex by up to tol * PRUNE_SHARE (envelope.prune_spikes)
     budget = tol * (1 - PRUNE_SHARE) - CLIPPER_ROUNDING
-    samples, minv = _sample(pieces, fs, teeth, tol, budget)
     nraw = len(fs)
-    # the blank is decided from the first tessellation
-    chain, label = _chain(fs, samples.ts, samples.pts)
-    rc = np.hypot(chain[:, 0], chain[:, 1])
-    if nominal_tip_radius is None:
-        nominal_tip_radius = float(rc.min() if internal else rc.max())
-    blank, rb, clip_binding = _blank(nominal_tip_radius, clip_radius, internal, tol)
-    if clip_binding:
-        # the turned tip circle joins the corner machinery as one more exact piece
-        arc = _arc_piece(rb, teeth)
-        samples.add(arc, tessellate(arc, budget))
     prune = any(getattr(G, "tool_tangent", None) is not None for G in pieces)
-    tr = _trim_and_refine(samples, nraw, teeth, internal, rim_radius, tol, blank, clip_binding, prune)
-    chain, label = _chain(fs, samples.ts[:nraw], samples.pts[:nraw])
+    for share in SLIVER_SHARES:
+        samples, minv = _sample(pieces, fs, teeth, tol, budget * share)
+        if share == SLIVER_SHARES[0]:
+            # the blank is decided from the first tessellation
+            chain, label = _chain(fs, samples.ts, samples.pts)
+            rc = np.hypot(chain[:, 0], chain[:, 1])
+            if nominal_tip_radius is None:
+                nominal_tip_radius = float(rc.min() if internal else rc.max())
+            blank0, rb, clip_binding = _blank(nominal_tip_radius, clip_radius, internal, tol)
+        blank = blank0
+        if clip_binding:
+            # the turned tip circle joins the corner machinery as one more exact piece
+            arc = _arc_piece(rb, teeth)
+            samples.add(arc, tessellate(arc, budget * share))
+        tr = _trim_and_refine(samples, nraw, teeth, internal, rim_radius, tol, blank, clip_binding, prune)
+        chain, label = _chain(fs, samples.ts[:nraw], samples.pts[:nraw])
+        phys = np.concatenate([_physical(pieces[i], samples.ts[i])[(0 if i == 0 else 1):] for i in range(nraw)])
+        if not prune or not tr.loops or not _backward_survivors(_tooth_loop(tr.loops, internal), chain, label, phys,
+                                                                teeth, tol):
+            break
+    else:
+        from .errors import ToleranceError
+        raise ToleranceError("tolerance", tol, "a finer tolerance",
+                             "a swallowtail narrower than the chords survived trimming: the trimmed "
+                             "outline still runs along a branch past a singular point")
     loops, corners, corner_cuts = tr.loops, tr.corners, tr.corner_cuts
     max_err = _measured_error(samples, tr, internal, rim_radius, tol)
     arc_piece = samples.fs[nraw] if clip_binding else None
@@ -330,7 +379,6 @@ def build_profile(family: str, params: dict, pieces, teeth: int, pitch_radius: f
     cusp_idx = _cusps(chain, tol)
     # undercut: points on regular (physical) branches of the working flank that another
     # part of the tool cut away; branches past singular points never were material
-    phys = np.concatenate([_physical(pieces[i], ts[i])[(0 if i == 0 else 1):] for i in range(len(pieces))])
     on_flank = np.isin(label, list(range(len(pieces)) if flank_pieces is None else list(flank_pieces)))
     under = removed & ~tip_side & on_flank & phys
     root_cusp = bool(np.any(~tip_side[cusp_idx])) if len(cusp_idx) else False

@@ -40,3 +40,15 @@ def test_tool_elements_cover_the_tooth_loop(zt, m, z, tol):
     sel = np.abs(ang) < np.pi / zt * 0.999
     d, _ = cKDTree(chain).query(loop[sel])
     assert d.max() <= tol
+
+
+def test_thin_swallowtail_is_not_kept_as_a_spike():
+    """Stability benchmark, seed 2026: a 7-tooth involute whose swallowtail (flank past its
+    singular point against the tip-corner trochoid) is thinner than the 29 µm chords. The
+    fill kept it as a 0.1 mm spike that every chord measure passed; the builder now sees
+    an outline vertex on the branch past the singular point and re-tessellates finer."""
+    kw = dict(teeth=7, module=0.8967, pressure_angle_deg=20.46, shift_coeff=0.2338, tip_radius_coeff=0.2325)
+    tol = 0.02915
+    p = gear3d.profile("involute", tolerance=tol, **kw)
+    assert p.report["max_error"] <= tol and p.report["undercut"]
+    assert p.reference_distance(np.concatenate(p.loops)).max() <= tol
