@@ -208,8 +208,9 @@ SLIVER_SHARES = (1.0, 0.25, 0.0625)
 def _backward_survivors(tl: np.ndarray, chain: np.ndarray, label: np.ndarray, phys: np.ndarray,
                         teeth: int, tol: float) -> bool:
     """True when a vertex of the trimmed tooth loop ``tl`` is a raw sample on a branch past
-    a singular point (``phys`` False) *and* more than ``tol`` from every regular sample of
-    its own piece (pieces with no regular sample are left alone). Such a branch lies inside the tool, so the exact trimmed outline runs
+    a singular point (``phys`` False) *and* more than ``tol`` from its own piece's regular
+    chords (pieces with none are left alone). Such a branch lies inside the tool, so the
+    exact trimmed outline runs
     along it only at its singular point (a cusp on the outline, e.g. at the undercut
     limit, is real); a vertex of it far from the cusp means the fill kept a sliver of a
     swallowtail: the outline then reaches up to the sliver's length off the true
@@ -228,10 +229,11 @@ def _backward_survivors(tl: np.ndarray, chain: np.ndarray, label: np.ndarray, ph
             d2 = ((b[idx, None, :] - tl[None, :, :]) ** 2).sum(axis=2)
             hit[idx] |= (d2 <= 1e-14).any(axis=1)
     for j in bi[hit]:
-        # a piece without a regular sample has no singular point on it (its whole run is
-        # the other orientation, e.g. a gerotor's inner envelope, or a degenerate joint)
-        own = chain[(label == label[j]) & phys]
-        if len(own) and np.hypot(*(own - chain[j]).T).min() > tol:
+        # the regular chords of the same piece (both ends regular); a piece without one
+        # has no singular point on it (its whole run is the other orientation, e.g. a
+        # gerotor's inner envelope, or a degenerate joint)
+        i = np.nonzero((label[:-1] == label[j]) & (label[1:] == label[j]) & phys[:-1] & phys[1:])[0]
+        if len(i) and point_segment_distance(chain[j][None, :], chain[i], chain[i + 1]).min() > tol:
             return True
     return False
 
@@ -724,6 +726,7 @@ def _measure_corners(fs, ts, corners, teeth, cuts=None):
     errs = []
     for q, _theta, near in corners:
         best, best_cut = None, None
+        near = _chords_through(q, near, fs, ts, teeth)
         for a in range(len(near)):
             for b in range(a + 1, len(near)):
                 pa, ja, ka = near[a]
@@ -750,6 +753,27 @@ def _measure_corners(fs, ts, corners, teeth, cuts=None):
                 for pc, t in best_cut:
                     cuts.setdefault(pc, []).append(t)
     return errs
+
+
+#: mm: a trimmed corner is a crossing of two chords; Clipper rounds it to 1e-8 mm, so the
+#: chords it lies on pass within this distance of it
+THROUGH_CORNER = 1e-6
+
+
+def _chords_through(q, near, fs, ts, teeth):
+    """The chords of ``near`` ((piece, chord index, tooth copy)) that pass through the
+    corner ``q`` (within :data:`THROUGH_CORNER`): the two whose crossing the polygon made
+    it. Falls back to all of ``near`` when fewer than two do (a corner on a piece joint).
+    Measuring only these keeps the corner's measured error honest (another pair of nearby
+    curves may cross nearer to q) and the number of exact crossings small."""
+    if len(near) <= 2:
+        return near
+    ends = np.empty((len(near), 2, 2))
+    for i, (pc, j, k) in enumerate(near):
+        ends[i] = rotate(fs[pc](np.array([ts[pc][j], ts[pc][j + 1]])), 2 * math.pi * k / teeth)
+    d = point_segment_distance(np.asarray(q, float)[None, :], ends[:, 0], ends[:, 1]).ravel()
+    keep = [n for n, di in zip(near, d) if di <= THROUGH_CORNER]
+    return keep if len(keep) >= 2 else near
 
 
 def _rotate_pt(p, a):
