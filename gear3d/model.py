@@ -327,7 +327,12 @@ def build_profile(family: str, params: dict, pieces, teeth: int, pitch_radius: f
             chain, label = _chain(fs, samples.ts, samples.pts)
             rc = np.hypot(chain[:, 0], chain[:, 1])
             if nominal_tip_radius is None:
-                nominal_tip_radius = float(rc.min() if internal else rc.max())
+                # the envelope's own tip: the extreme sample, refined on its exact piece (a
+                # sample-only value can lie well inside the true tip where the chords are
+                # long and flat, and the blank turned at it would cut the tip off)
+                j = int(np.argmin(rc) if internal else np.argmax(rc))
+                nominal_tip_radius = _exact_extreme(fs, samples.ts, label, chain, np.ones(len(chain), bool),
+                                                    float(rc[j]), largest=not internal)
             blank0, rb, clip_binding = _blank(nominal_tip_radius, clip_radius, internal, tol)
         blank = blank0
         if clip_binding:

@@ -52,3 +52,17 @@ def test_thin_swallowtail_is_not_kept_as_a_spike():
     p = gear3d.profile("involute", tolerance=tol, **kw)
     assert p.report["max_error"] <= tol and p.report["undercut"]
     assert p.reference_distance(np.concatenate(p.loops)).max() <= tol
+
+
+def test_gerotor_tip_not_cut_by_a_blank_from_sparse_samples():
+    """Stability benchmark: a 4-lobe hypo gerotor's outer rotor has a long flat tip; its
+    first tessellation had no sample near the tip's middle, the blank was turned at the
+    extreme *sample* radius and cut the tip 0.065 mm too deep (the measured error could not
+    see it: a blank cut counts as exact). The blank now starts from the exact extreme."""
+    kw = dict(lobes=4, pin_circle_radius=63.12935539380795, pin_radius=8.41724738584106,
+              eccentricity=3.6591028900495406, variant="hypo")
+    tol = 0.004359540536442003
+    p = gear3d.profile("gerotor-outer", tolerance=tol, **kw)
+    fine = gear3d.profile("gerotor-outer", tolerance=tol / 20, **kw)
+    assert abs(p.report["tip_radius"] - fine.report["tip_radius"]) <= tol
+    assert fine.exact_distance(np.concatenate(p.loops)).max() <= tol
