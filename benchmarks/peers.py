@@ -129,7 +129,7 @@ def main(argv=None) -> int:
     for t in TOLS:
         out = work / f"gear3d_{t}.stl"
         jobs[f"gear3d tol {t:g}"] = ([gear3d, "body", "involute", "--teeth", str(Z), "--module", str(M),
-                                      "--kind", "helical", "--helix-angle", str(BETA), "--width", str(WIDTH),
+                                      "--kind", "helical", "--helix-angle-deg", str(BETA), "--width", str(WIDTH),
                                       "--bore", "5", "--tolerance", str(t), "-o", str(out)], None, out, f"tol {t:g} mm")
     # an installed package carries compiled bytecode (pip compiles on install); an editable
     # checkout under PYTHONDONTWRITEBYTECODE would recompile gear3d in every process
@@ -198,7 +198,7 @@ def _publish(table: str, rows) -> None:
     fig.savefig(ROOT / "benchmarks" / "peers.png", dpi=120)
     md = ROOT / "BENCHMARKS.md"
     text = md.read_text()
-    start, end = "<!-- peers:start -->", "<!-- peers:end -->"
+    start, end = "<!-- peers:begin -->", "<!-- peers:end -->"   # :begin, as speed_vs_error.py keeps
     block = f"{start}\n{table}\n\n![CPU ratio against flank error](benchmarks/peers.png)\n{end}"
     if start in text:
         text = text[:text.index(start)] + block + text[text.index(end) + len(end):]
