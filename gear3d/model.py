@@ -210,12 +210,11 @@ def _backward_survivors(tl: np.ndarray, chain: np.ndarray, label: np.ndarray, ph
     """True when a vertex of the trimmed tooth loop ``tl`` is a raw sample on a branch past
     a singular point (``phys`` False) *and* more than ``tol`` from its own piece's regular
     chords (pieces with none are left alone). Such a branch lies inside the tool, so the
-    exact trimmed outline runs
-    along it only at its singular point (a cusp on the outline, e.g. at the undercut
-    limit, is real); a vertex of it far from the cusp means the fill kept a sliver of a
-    swallowtail: the outline then reaches up to the sliver's length off the true
-    boundary, while every chord is still within tolerance of *some* exact curve. Checked
-    for tooth 0 and its neighbours' copies of the chain."""
+    exact trimmed outline runs along it only at its singular point (a cusp on the
+    outline, e.g. at the undercut limit, is real); a vertex of it far from the cusp means
+    the fill kept a sliver of a swallowtail: the outline then reaches up to the sliver's
+    length off the true boundary, while every chord is still within tolerance of *some*
+    exact curve. Checked for tooth 0 and its neighbours' copies of the chain."""
     bi = np.nonzero(~phys)[0]
     if not len(bi):
         return False
