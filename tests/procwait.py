@@ -20,7 +20,7 @@ import tempfile
 import time
 
 
-def _stat(pid):
+def proc_stat(pid):
     """(state, ppid, session, starttime) of ``pid`` from /proc, or None when it is gone."""
     try:
         with open(f"/proc/{pid}/stat") as f:
@@ -39,7 +39,7 @@ def pidfd(pid, start=None):
     except ProcessLookupError:
         return None
     if start is not None:
-        st = _stat(pid)                       # read after opening: the fd pins the process
+        st = proc_stat(pid)                       # read after opening: the fd pins the process
         if st is None or st[3] != start:
             os.close(fd)
             return None
@@ -139,7 +139,7 @@ def session_members(sid) -> dict:
     out = {}
     for d in os.listdir("/proc"):
         if d.isdigit():
-            st = _stat(int(d))
+            st = proc_stat(int(d))
             if st is not None and st[2] == sid and st[0] != "Z":
                 out[int(d)] = st[3]
     return out

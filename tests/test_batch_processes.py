@@ -13,7 +13,7 @@ import time
 import pytest
 
 from gear3d.cli import main
-from procwait import FileEvents, wait_session_gone
+from procwait import FileEvents, proc_stat, wait_session_gone
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
@@ -39,25 +39,14 @@ def _lib(tmp_path, teeth, extra_sweep="", tolerance=0.01):
 
 # ------------------------------------------------------------------ /proc helpers (Linux)
 
-def _stat(pid):
-    """(state, ppid, starttime) of ``pid`` from /proc, or None when it is gone."""
-    try:
-        with open(f"/proc/{pid}/stat") as f:
-            s = f.read()
-    except OSError:
-        return None
-    rest = s[s.rindex(")") + 2:].split()      # after "pid (comm) "
-    return rest[0], int(rest[1]), int(rest[19])
-
-
 def _descendants(root):
     """{pid: starttime} of every live process below ``root``."""
     kids = {}
     for d in os.listdir("/proc"):
         if d.isdigit():
-            st = _stat(int(d))
+            st = proc_stat(int(d))          # (state, ppid, session, starttime)
             if st is not None:
-                kids.setdefault(st[1], []).append((int(d), st[2]))
+                kids.setdefault(st[1], []).append((int(d), st[3]))
     out, stack = {}, [root]
     while stack:
         for pid, start in kids.get(stack.pop(), []):
@@ -178,7 +167,7 @@ def test_a_worker_killed_mid_batch_gives_exit_1_and_one_line(tmp_path):
         (victim, *_) = _recorded(events.events).values()
         fam = _descendants(proc.pid)
         # pool workers: forked by the forkserver, so grandchildren of the batch process
-        assert victim in fam and _stat(victim)[1] in fam and "forkserver" in _cmdline(victim), \
+        assert victim in fam and proc_stat(victim)[1] in fam and "forkserver" in _cmdline(victim), \
             f"the record's writer {victim} is not a pool worker: {fam}"
         os.kill(victim, signal.SIGKILL)
         stdout, stderr = proc.communicate(timeout=120)
