@@ -416,6 +416,12 @@ def _bodies(p_sun, p_pl, p_ring, placements, width, tol, dims):
     b_pl = body(p_pl, kind="spur", width=width, tolerance=tol, name="planet",
                 bore=2 * dims["bore_radius"] if dims else None)
     b_ring = body(p_ring, kind="spur", width=width, tolerance=tol, name="ring")
+    # each body was checked against the budget before it was extruded; the set holds the
+    # planet N times: the whole assembly is checked before it is placed and written
+    n = sum(1 for q in placements if q["name"].startswith("planet-"))
+    from .budget import check_body
+    check_body(b_sun.report["triangles"] + n * b_pl.report["triangles"] + b_ring.report["triangles"],
+               "planets", n)
     out = [b_sun.placed(_transform(0.0, (0, 0)), name="sun")]
     for q in placements:
         if q["name"].startswith("planet-"):

@@ -324,3 +324,26 @@ def test_sizes_by_unit_radius_or_diametral_pitch(kw, m):
     assert s.report["center_distance"] == pytest.approx(m * 24 / 2, rel=1e-12)
     for a_sun, a_ring in _placed_overlaps(s):
         assert a_sun < 0.01 and a_ring < 0.01
+
+
+def test_whole_set_checked_against_the_budget(tmp_path, capsys):
+    """Each wheel fits the budget, the set (sun + 3 planets + ring) does not: refused with
+    one line naming ``planets`` before anything is placed or written."""
+    import gear3d.budget
+    kw = dict(sun=6, planet=18, ring=42, planets=3, module=2, width=10, tolerance=0.01)
+    s = planetary_set("cycloidal", check=False, **kw)
+    t = s.report["bodies"]
+    one = max(t[k]["triangles"] for k in ("sun", "planet", "ring"))
+    total = t["sun"]["triangles"] + 3 * t["planet"]["triangles"] + t["ring"]["triangles"]
+    assert one < total - 1
+    with gear3d.budget.limits(max_triangles=total - 1):
+        with pytest.raises(GearError) as e:
+            planetary_set("cycloidal", check=False, **kw)
+    assert e.value.param == "planets" and "budget" in str(e.value)
+    out = tmp_path / "set.3mf"
+    rc = main(["--max-triangles", str(total - 1), "planetary", "cycloidal", "--sun", "6", "--planet", "18",
+               "--ring", "42", "--planets", "3", "--module", "2", "--width", "10", "--tolerance", "0.01",
+               "-o", str(out)])
+    err = capsys.readouterr().err.strip().splitlines()
+    assert rc == 2 and len(err) == 1 and "planets" in err[0]
+    assert not out.exists() and list(tmp_path.iterdir()) == []
