@@ -1,62 +1,80 @@
-"""Every command in the README runs exactly as written.
+"""Every command and Python block in the README runs exactly as written.
 
-The bash blocks of README.md are split into commands (a trailing backslash continues a
-line). Each runs in its own empty folder that sees the project's ``templates/``, with the
-exit code its comment states (``# -> exit 2``: refused, one line on stderr) or 0, and
-never a traceback. Left out, and said here: the set-up lines (venv, pip), the test suite
-itself, long-running servers and clusters (``gear3d serve``, ``dask``, ``helm``, ``kill``,
-``curl`` against a server) and the benchmarks (minutes each; they are run by hand and
-write BENCHMARKS.md). Slow as a whole (minutes): ``python -m pytest -m slow`` (CI) runs it.
+The rules are tests/mdrun.py's (the docs pages keep them too): a ``bash`` block holds one
+command a line, exit 0 unless its comment says ``# -> exit 2``; a ``python`` block is a
+script; a block after ``<!-- not run: REASON -->`` is shown, not run; no run may print a
+traceback or a deprecation note. Each runs in its own empty folder that sees the project's
+``templates/``.
+
+The two set-up commands are special. The first (venv, ``pip install -e .``, then the
+showcase build) runs from its first command that is not set-up: the test run already has
+the project installed. The second is ``bash .ci/run``, CI's own script, so what a new user
+runs to test is what CI runs; it is checked here, not run (it would run this test). Slow as
+a whole (the showcase build): ``python -m pytest -m slow`` (CI) runs it.
 """
 from __future__ import annotations
 
-import os
-import re
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
 
-ROOT = Path(__file__).resolve().parents[1]
-NOT_RUN = ("python3 -m venv", "pip install", "python -m pytest", "helm ", "dask ", "kill ", "curl ",
-           "gear3d serve", "python benchmarks/", "gear3d bench", "--scheduler tcp://", "--set worker.")
+from mdrun import ROOT, blocks, check, commands, run_bash, run_python
+
+README = (ROOT / "README.md").read_text(encoding="utf-8")
+#: the parts of a set-up line that the test run has already done
+SETUP = ("python3 -m venv", ". .venv/bin/activate", "pip install")
+TEST_COMMAND = "bash .ci/run"
 
 
-def readme_commands(text: str | None = None) -> list:
-    """(command, expected exit code) for every runnable line of the README's bash blocks."""
-    text = (ROOT / "README.md").read_text(encoding="utf-8") if text is None else text
+def readme_commands(text: str = README) -> list:
+    """(command, expected exit code) for every runnable line of the README's bash blocks;
+    a set-up line keeps its part after the set-up, the test command is left out."""
     out = []
-    for block in re.findall(r"```bash\n(.*?)```", text, flags=re.S):
-        lines, cur = [], ""
-        for raw in block.splitlines():
-            if raw.rstrip().endswith("\\"):
-                cur += raw.rstrip()[:-1] + " "
+    for b in blocks(text):
+        if b.lang != "bash" or b.not_run:
+            continue
+        for cmd, code in commands(b.body):
+            if cmd == TEST_COMMAND:
                 continue
-            lines.append(cur + raw)
-            cur = ""
-        for line in lines:
-            cmd = line.strip()
-            if not cmd or cmd.startswith("#") or any(s in cmd for s in NOT_RUN):
-                continue
-            code = 2 if re.search(r"#\s*->\s*exit 2", cmd) else 0
-            out.append((cmd, code))
+            parts = [p.strip() for p in cmd.split("&&")]
+            while parts and parts[0].startswith(SETUP):
+                parts.pop(0)
+            if parts:
+                out.append((" && ".join(parts), code))
     return out
+
+
+def readme_python(text: str = README) -> list:
+    return [b for b in blocks(text) if b.lang == "python" and not b.not_run]
 
 
 def test_the_readme_has_commands_to_run():
     cmds = readme_commands()
-    assert len(cmds) >= 60, len(cmds)
-    assert sum(c == 2 for _, c in cmds) >= 3
+    assert len(cmds) >= 6, cmds
+    assert readme_python(), "the README shows no Python"
+
+
+def test_the_readme_test_command_is_ci():
+    """The README's test command is CI's script, and that script makes a fresh virtual
+    environment, installs Chromium when missing (as root, or through sudo) and runs both
+    parts of the suite."""
+    lines = [c for b in blocks(README) if b.lang == "bash" for c, _ in commands(b.body)]
+    assert TEST_COMMAND in lines
+    ci = (ROOT / ".ci" / "run").read_text(encoding="utf-8")
+    for needed in ("python3 -m venv .venv", "pip install -q -e '.[test,docs]'", "\npython -m pytest\n",
+                   "python -m pytest -m slow", "apt-get install -y -qq chromium", 'SUDO="sudo"'):
+        assert needed in ci, needed
 
 
 @pytest.mark.slow
 @pytest.mark.parametrize("cmd,code", readme_commands(), ids=lambda v: str(v)[:60])
 def test_readme_command_runs_as_written(cmd, code, tmp_path):
     (tmp_path / "templates").symlink_to(ROOT / "templates")
-    env = dict(os.environ, PATH=str(Path(sys.executable).parent) + os.pathsep + os.environ.get("PATH", ""))
-    r = subprocess.run(["bash", "-c", cmd], cwd=tmp_path, capture_output=True, text=True, timeout=300, env=env)
-    assert "Traceback" not in r.stderr, r.stderr[-2000:]
-    assert r.returncode == code, (r.returncode, r.stderr[-2000:])
-    if code == 2:
-        assert len(r.stderr.strip().splitlines()) == 1, r.stderr
+    check(run_bash(cmd, tmp_path), cmd, code)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("block", readme_python(), ids=lambda b: f"line{b.line}")
+def test_readme_python_runs_as_written(block, tmp_path: Path):
+    (tmp_path / "templates").symlink_to(ROOT / "templates")
+    check(run_python(block.body, tmp_path), f"README.md line {block.line}")
