@@ -56,15 +56,15 @@ def run(args) -> int:
         from .rackflags import run_body_cli
         return run_body_cli(args, family_params)
     from .. import profile
-    from ..errors import GearError
     from ..solids.body import body
     out = args.output
     if out is not None:
         from ..export import check_output
         check_output(out, kinds="body")
     kw = body_params(args)
-    if "width" not in kw:
-        raise GearError("width", None, "a number > 0 mm (--width)")
+    if "width" not in kw:                     # the default the help states (gear3d.params)
+        from ..params import BODY
+        kw["width"] = BODY["width"].default
     fp = family_params(args, out, mesh=True)
     from ..conventions import uses_conventions
     if uses_conventions(fp):                  # normal sizes are taken at the body's helix angle

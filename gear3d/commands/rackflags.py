@@ -80,8 +80,9 @@ def run_body_cli(args, family_params) -> int:
     if out is not None:
         from ..export import check_output
         check_output(out, kinds="body")
-    if args.b_width is None:
-        raise GearError("width", None, "a number > 0 mm (--width)")
+    if args.b_width is None:                  # the default the help states (gear3d.params)
+        from ..params import BODY
+        args.b_width = BODY["width"].default
     if args.kind not in ("spur", "helical"):
         raise GearError("kind", args.kind, "spur or helical for a rack")
     _check_given(args, ("b_gap", "b_arch_radius", "b_bore", "b_hub_diameter", "b_hub_length", "b_set_screw",
