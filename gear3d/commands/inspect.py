@@ -7,12 +7,13 @@ the pins, and the neck marked when there is one.
 """
 from __future__ import annotations
 
+import argparse
 import contextlib
 import os
 import sys
 import tempfile
 
-from .profile import add_profile_flags, family_params
+from .profile import DeprecatedFlag, add_profile_flags, family_params, print_notes
 
 
 def add_parser(sub):
@@ -22,8 +23,10 @@ def add_parser(sub):
                    help="teeth spanned by the jaws (default: the usual rule, contact near r + x m)")
     p.add_argument("--pin-diameter", type=float, default=None, metavar="D",
                    help="pin (ball) diameter in mm (default: the ideal pin rounded to 0.01 mm)")
-    p.add_argument("--helix-angle", type=float, default=0.0, metavar="B",
+    p.add_argument("--helix-angle-deg", type=float, default=0.0, metavar="DEG", dest="helix_angle",
                    help="helix angle in deg of a helical gear with this transverse profile (balls, normal plane)")
+    p.add_argument("--helix-angle", type=float, dest="helix_angle", action=DeprecatedFlag,
+                   canonical="--helix-angle-deg", help=argparse.SUPPRESS)
     p.add_argument("--json", default=None, metavar="FILE", help="write the measurements as JSON")
     p.add_argument("--png", default=None, metavar="FILE", help="profile figure with pins and neck (.png or .svg)")
     return p
@@ -49,6 +52,7 @@ def run(args) -> int:
         from ..figures import profile_figure
         with _atomic(args.png, "png") as tmp:
             profile_figure(prof, tmp, inspection=ins)
+    print_notes(args)
     return 0
 
 
