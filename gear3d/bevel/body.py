@@ -1,0 +1,174 @@
+"""Straight bevel bodies: the cone over one certified section, capped by the back and
+front cones, and the pair placed in mesh.
+
+Body of one member (its own frame: axis z, apex at the origin, heel the far end):
+
+* **teeth**: the cone over the section polygon in the plane z = zs (the central projection
+  of the spherical profile, :mod:`gear3d.bevel.section`), from z_lo to zs: manifold3d's
+  extrusion with ``scale_top`` is exactly that cone (each side face is a planar quad
+  through the apex);
+* **caps**: a solid of revolution (manifold3d ``revolve``) bounded by the back cone (through
+  the heel pitch circle, normal to the pitch element at R_e) and the front cone (at the toe,
+  R_e - b), each carried a little below the root cone and closed there by a flat face
+  normal to the axis (the mounting faces); the body is teeth ∩ caps.
+
+Error (mm, every point of the written mesh): the teeth's faces lie within e_s z/zs <= e_s
+of the exact tooth surfaces (e_s the section's measured error, z <= zs everywhere); the
+revolved caps' facets sag by at most e_c = r_max (1 - cos(π/N)) (N segments, r_max the
+largest radius reached). Where a tooth face meets a cap at the dihedral angle γ the edge
+moves by at most (e_s + e_c)/sin γ, and γ >= 90° - max(θ_a, θ_f) there (the back and front
+cones are normal to the pitch element, the tooth faces contain the rays within θ_a, θ_f of
+it). ``max_error`` is that bound plus Clipper's rounding; the tolerance is split so that it
+fits.
+
+Example::
+
+    >>> from gear3d.bevel.geometry import pair_geometry
+    >>> g = pair_geometry(16, 32, 1.5)
+    >>> b = member_body(g, "gear", tolerance=0.01)
+    >>> b.report["max_error"] <= 0.01
+    True
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .geometry import PairGeometry
+from .section import member, section
+
+#: shares of the tolerance: the section's chords, and the revolved caps' facets
+SECTION_SHARE = 0.9
+CAP_SHARE = 0.05
+#: Clipper2 rounds every vertex to 1e-8 mm (half a unit in each axis)
+CLIPPER_ROUNDING = 0.5e-8 * math.sqrt(2)
+
+
+@dataclass(frozen=True)
+class Caps:
+    """The (r, z) outline (mm) of the revolved cap solid, the z range of the teeth cone, the
+    largest radius the body reaches, and the heel tip point's radius."""
+    outline: np.ndarray
+    z_lo: float
+    z_hi: float
+    r_max: float
+
+
+def _ray_point(re: float, beta: float, delta: float):
+    """(r, z) mm where the ray at polar angle ``beta`` meets the cone normal to the pitch
+    element at cone distance ``re`` (the back cone for R_e, the front cone for R_e - b)."""
+    rho = re / math.cos(beta - delta)
+    return rho * math.sin(beta), rho * math.cos(beta)
+
+
+def caps(geo: PairGeometry, which: str) -> Caps:
+    """The cap outline of member ``which`` (see the module doc)."""
+    c = member(geo, which)
+    d, re, ri = c.pitch_angle, geo.cone_distance, geo.inner_cone_distance
+    beta_j = c.root_angle - min(c.dedendum_angle, 0.5 * c.root_angle)    # below the root cone
+    r_bt, z_b = _ray_point(re, beta_j, d)
+    r_ft, z_f = _ray_point(ri, beta_j, d)
+    r_tip, _ = _ray_point(re, c.face_angle, d)
+    _, z_toe_tip = _ray_point(ri, c.face_angle, d)
+    r_out = r_tip + 0.05 * re
+    td = math.tan(d)
+    back0, front0 = re / math.cos(d), ri / math.cos(d)
+    outline = np.array([[0.0, z_f], [r_ft, z_f], [r_out, front0 - r_out * td],
+                        [r_out, back0 - r_out * td], [r_bt, z_b], [0.0, z_b]])
+    return Caps(outline, 0.98 * z_toe_tip, z_b * (1 + 1e-3), r_tip)
+
+
+def cap_segments(r_max: float, sag: float) -> int:
+    """Segments of a revolution whose chords at radius ``r_max`` (mm) sag at most ``sag`` (mm)."""
+    return max(int(math.ceil(math.pi / math.acos(max(1.0 - sag / r_max, -1.0)))), 16)
+
+
+class BevelBody:
+    """One bevel body: ``manifold`` (manifold3d, own frame), ``name``, ``report`` (dict,
+    mm) and ``transform`` (4x4, its place in a pair)."""
+
+    def __init__(self, manifold, name: str, report: dict, transform=None, profile=None):
+        self.manifold = manifold
+        self.name = name
+        self.report = report
+        self.transform = np.eye(4) if transform is None else np.asarray(transform, float)
+        self.profile = profile
+        self._arrays = None
+        self._mesh = None
+
+    def __repr__(self) -> str:
+        return f"BevelBody(name={self.name!r}, triangles={self.report.get('triangles')})"
+
+    def arrays(self):
+        """(vertices (n, 3) float64 mm, faces (m, 3) int64) in the body's own frame."""
+        if self._arrays is None:
+            m = self.manifold.to_mesh64()
+            self._arrays = (np.asarray(m.vert_properties, float)[:, :3], np.asarray(m.tri_verts, np.int64))
+        return self._arrays
+
+    @property
+    def mesh(self):
+        """trimesh.Trimesh of the body (own frame)."""
+        if self._mesh is None:
+            import trimesh
+            V, F = self.arrays()
+            self._mesh = trimesh.Trimesh(V, F, process=False)
+        return self._mesh
+
+    def world_manifold(self):
+        """The manifold moved by ``transform``."""
+        return self.manifold.transform(np.asarray(self.transform, float)[:3, :4])
+
+
+def _estimate_triangles(vertices: int, segments: int) -> float:
+    """Triangles of the teeth cone (two caps and the side) and the revolved caps, doubled
+    for what the intersection cuts."""
+    return 2.0 * (4 * vertices + 12 * segments)
+
+
+def member_body(geo: PairGeometry, which: str, tolerance: float, name: str | None = None) -> BevelBody:
+    """The body of member ``which`` ("gear" or "mate") in its own frame, within
+    ``tolerance`` (mm, measured as the module doc says)."""
+    from manifold3d import CrossSection, FillRule, Manifold
+    from .. import budget
+    from ..progress import stage
+    c = member(geo, which)
+    cp = caps(geo, which)
+    worst = math.cos(max(c.addendum_angle, c.dedendum_angle))
+    n_seg = cap_segments(cp.r_max, CAP_SHARE * tolerance * worst)
+    budget.check_body(24 * n_seg, "tolerance", tolerance)
+    zs = cp.z_hi
+    sec = section(geo, which, zs, SECTION_SHARE * tolerance * worst - 2 * CLIPPER_ROUNDING)
+    nv = sum(len(l) for l in sec.loops)
+    budget.check_body(_estimate_triangles(nv, n_seg), "tolerance", tolerance)
+    stage("body")
+    k = cp.z_lo / zs
+    cs = CrossSection([np.asarray(l, float) * k for l in sec.loops], FillRule.Positive)
+    teeth = Manifold.extrude(cs, zs - cp.z_lo, 0, 0.0, (1 / k, 1 / k)).translate((0.0, 0.0, cp.z_lo))
+    capsolid = Manifold.revolve(CrossSection([cp.outline], FillRule.Positive), n_seg)
+    man = teeth ^ capsolid
+    e_s = sec.report["max_error"] + CLIPPER_ROUNDING
+    e_c = cp.r_max * (1 - math.cos(math.pi / n_seg))
+    max_err = (e_s + e_c) / worst + CLIPPER_ROUNDING
+    V, F = np.asarray(man.to_mesh64().vert_properties), man.num_tri()
+    rep = {"name": name or which, "section_error": float(e_s), "cap_error": float(e_c),
+           "max_error": float(max_err), "tolerance": float(tolerance), "volume": float(man.volume()),
+           "triangles": int(F), "genus": int(man.genus()), "cap_segments": n_seg, "section_z": zs,
+           "section_vertices": int(nv), "z_range": [float(V[:, 2].min()), float(V[:, 2].max())]}
+    return BevelBody(man, name or which, rep, profile=sec)
+
+
+def mate_transform(geo: PairGeometry) -> np.ndarray:
+    """4x4 placing the mate (built in its own frame) on its axis at the shaft angle, in
+    mesh with the gear: turn it by π + π/z2 about its axis (a space on the common pitch
+    element), then tilt its axis by Σ about y."""
+    a = math.pi + math.pi / geo.mate.teeth
+    ca, sa = math.cos(a), math.sin(a)
+    s, c = math.sin(geo.shaft_angle), math.cos(geo.shaft_angle)
+    Rz = np.array([[ca, -sa, 0.0], [sa, ca, 0.0], [0.0, 0.0, 1.0]])
+    Ry = np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]])
+    T = np.eye(4)
+    T[:3, :3] = Ry @ Rz
+    return T

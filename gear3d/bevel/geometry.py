@@ -1,0 +1,132 @@
+"""Straight bevel pair geometry: pitch cones, cone distance, addendum and dedendum angles.
+
+Frame of each gear: its axis is z, the apex (where the axes meet) is the origin and the
+pitch cone opens towards +z; the heel is the far end. Angles are radians inside, degrees
+at the interface; lengths are mm.
+
+* pitch cone angles for any shaft angle Σ: ``tan δ1 = sin Σ / (z2/z1 + cos Σ)``,
+  ``δ2 = Σ - δ1``;
+* outer cone distance ``R_e = m z1 / (2 sin δ1)`` (m: the outer, heel, module);
+* addendum and dedendum on the back cone, at the heel: ``h_a = (h_a* + x) m`` and
+  ``h_f = (h_f* - x) m`` for the gear, ``x -> -x`` for its mate (the pitch cones stay);
+  the depth tapers to the apex (standard, tapered clearance): ``θ_a = atan(h_a / R_e)``,
+  ``θ_f = atan(h_f / R_e)``;
+* the generating crown gear (pitch cone angle 90°) has ``z_c = z1 / sin δ1`` teeth
+  (not an integer in general) and is the same plane for both gears.
+
+Example::
+
+    >>> g = pair_geometry(20, 40, 2.0, face_width=10.0)
+    >>> round(math.degrees(g.gear.pitch_angle), 4), round(g.cone_distance, 4)
+    (26.5651, 44.7214)
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from ..errors import GearError, check_choice, check_number
+
+FORMS = ("spherical-involute", "octoid")
+#: degrees: the largest face (tip) cone angle built (the section is a central projection
+#: onto a plane normal to the axis, which needs every tooth point short of 90°)
+MAX_FACE_ANGLE_DEG = 87.0
+#: the shaft angles accepted (degrees)
+SHAFT_RANGE = (10.0, 170.0)
+
+
+@dataclass(frozen=True)
+class GearCone:
+    """One member of the pair (radians, mm): pitch cone angle ``pitch_angle`` (δ), addendum
+    and dedendum angles, heel addendum/dedendum (on the back cone), shift coefficient, teeth."""
+    teeth: int
+    pitch_angle: float
+    addendum_angle: float
+    dedendum_angle: float
+    addendum: float
+    dedendum: float
+    shift_coeff: float
+
+    @property
+    def face_angle(self) -> float:
+        """Tip (face) cone angle δ + θ_a (rad)."""
+        return self.pitch_angle + self.addendum_angle
+
+    @property
+    def root_angle(self) -> float:
+        """Root cone angle δ - θ_f (rad)."""
+        return self.pitch_angle - self.dedendum_angle
+
+
+@dataclass(frozen=True)
+class PairGeometry:
+    """A straight bevel pair: module (heel, mm), pressure angle and shaft angle (rad), face
+    width (mm), outer cone distance ``cone_distance`` (R_e, mm), the crown gear's tooth count
+    and the two members ``gear`` (z1) and ``mate`` (z2)."""
+    module: float
+    pressure_angle: float
+    shaft_angle: float
+    face_width: float
+    cone_distance: float
+    crown_teeth: float
+    form: str
+    gear: GearCone
+    mate: GearCone
+
+    @property
+    def inner_cone_distance(self) -> float:
+        """R_e - b (mm): the toe."""
+        return self.cone_distance - self.face_width
+
+
+def pitch_angles(z1: int, z2: int, shaft_angle: float) -> tuple:
+    """(δ1, δ2) in rad for teeth z1, z2 and shaft angle Σ (rad): tan δ1 = sin Σ/(z2/z1 + cos Σ)."""
+    d1 = math.atan2(math.sin(shaft_angle), z2 / z1 + math.cos(shaft_angle))
+    return d1, shaft_angle - d1
+
+
+def pair_geometry(teeth, mate_teeth, module, face_width=None, pressure_angle_deg=20.0,
+                  shaft_angle_deg=90.0, shift_coeff=0.0, form="spherical-involute",
+                  addendum_coeff=1.0, dedendum_coeff=1.25) -> PairGeometry:
+    """Validated pair geometry (see the module doc). ``face_width`` (mm) defaults to R_e/3
+    and is refused beyond it. Raises :class:`GearError` naming the bad parameter."""
+    z1 = int(check_number("teeth", teeth, 3, 1000, integer=True))
+    z2 = int(check_number("mate_teeth", mate_teeth, 3, 1000, integer=True))
+    m = check_number("module", module, 0, 1000, lo_open=True, unit="mm")
+    a = math.radians(check_number("pressure_angle_deg", pressure_angle_deg, 10, 35, unit="deg"))
+    sig = math.radians(check_number("shaft_angle_deg", shaft_angle_deg, *SHAFT_RANGE, unit="deg"))
+    form = check_choice("form", form, FORMS)
+    ha = check_number("addendum_coeff", addendum_coeff, 0.3, 2.0)
+    hf = check_number("dedendum_coeff", dedendum_coeff, ha, 2.5)
+    lim = min(ha, hf) - 0.05
+    x = check_number("shift_coeff", shift_coeff, -lim, lim)
+    d1, d2 = pitch_angles(z1, z2, sig)
+    re = m * z1 / (2 * math.sin(d1))
+    b = re / 3 if face_width is None else check_number("face_width", face_width, 0, re / 3, lo_open=True,
+                                                          unit="mm")
+    cones = []
+    for name, z, d, xs in (("teeth", z1, d1, x), ("mate_teeth", z2, d2, -x)):
+        h_a, h_f = (ha + xs) * m, (hf - xs) * m
+        cone = GearCone(z, d, math.atan(h_a / re), math.atan(h_f / re), h_a, h_f, xs)
+        _check_cone(name, z, cone, sig, a, form)
+        cones.append(cone)
+    return PairGeometry(m, a, sig, b, re, z1 / math.sin(d1), form, cones[0], cones[1])
+
+
+def _check_cone(name, z, cone: GearCone, sig, a, form):
+    """Refuse what is not built: internal bevels and near-crown gears (face cone >= 87°),
+    root cones through the axis, and a spherical-involute crown whose root reaches its
+    base circle (θ_a >= α)."""
+    deg = math.degrees
+    if deg(cone.face_angle) >= MAX_FACE_ANGLE_DEG:
+        raise GearError("shaft_angle_deg", round(deg(sig), 6),
+                        f"a shaft angle that keeps each face cone below {MAX_FACE_ANGLE_DEG:g} deg",
+                        f"the member with {z} teeth would have a face cone of {deg(cone.face_angle):.4g} deg: "
+                        "crown gears and internal bevels are not built")
+    if cone.root_angle <= math.radians(1.0):
+        raise GearError(name, z, "more teeth (the root cone must stay at least 1 deg off the axis)",
+                        f"root cone angle {deg(cone.root_angle):.4g} deg")
+    if form == "spherical-involute" and max(cone.addendum_angle, cone.dedendum_angle) >= a:
+        raise GearError(name, z, "more teeth, or the octoid form",
+                        f"the spherical-involute crown's depth ({deg(max(cone.addendum_angle, cone.dedendum_angle)):.4g}"
+                        f" deg) would reach past its base circle ({deg(a):.4g} deg)")
