@@ -25,6 +25,7 @@ _LAZY = {
     "rack_body": "gear3d.rack_part",
     "rack_pair": "gear3d.analysis.rack_mesh",
     "check_rack_pair": "gear3d.analysis.rack_mesh",
+    "bevel": "gear3d.bevel",
 }
 
 __all__ = ["GearError", "ToleranceError", "profile", "families", *_LAZY]

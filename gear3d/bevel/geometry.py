@@ -105,7 +105,7 @@ def pair_geometry(teeth, mate_teeth, module, face_width=None, pressure_angle_deg
     b = re / 3 if face_width is None else check_number("face_width", face_width, 0, re / 3, lo_open=True,
                                                           unit="mm")
     cones = []
-    for name, z, d, xs in (("teeth", z1, d1, x), ("mate_teeth", z2, d2, -x)):
+    for name, z, d, xs in (("teeth", z1, d1, x), ("mate_teeth", z2, d2, 0.0 - x)):
         h_a, h_f = (ha + xs) * m, (hf - xs) * m
         cone = GearCone(z, d, math.atan(h_a / re), math.atan(h_f / re), h_a, h_f, xs)
         _check_cone(name, z, cone, sig, a, form)
