@@ -25,6 +25,7 @@ _LAZY = {
     "rack_body": "gear3d.rack_part",
     "rack_pair": "gear3d.analysis.rack_mesh",
     "check_rack_pair": "gear3d.analysis.rack_mesh",
+    "worm": "gear3d.wormgear",
     "bevel": "gear3d.bevel",
 }
 

@@ -1,0 +1,197 @@
+"""Worm gearing: cylindrical worms (ZA, ZN, ZI) and the throated wheel as the exact
+envelope of the worm, section by section (issue #23).
+
+* :mod:`.design` - the validated parameters and every derived size;
+* :mod:`.thread` - the thread in closed form (axial profile, section in a wheel plane,
+  transverse section);
+* :mod:`.wheel`, :mod:`.wheel_body` - the wheel's certified sections and its body;
+* :mod:`.worm_body` - the worm's body (the exact section screwed along its axis);
+* :mod:`.contact` - the mid-plane contact ratio.
+
+Example::
+
+    >>> import gear3d
+    >>> s = gear3d.worm(module=2, starts=1, wheel_teeth=30, tolerance=0.02, part="worm")
+    >>> s.report.ratio, round(s.report.center_distance, 3)
+    (30.0, 40.0)
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import asdict, dataclass, fields
+
+import numpy as np
+
+from ..errors import check_choice
+from .design import WormDesign, design
+
+PARTS = ("worm", "wheel", "pair")
+
+
+@dataclass(frozen=True)
+class WormReport:
+    """What :func:`worm` built and measured (mm, degrees where a key says ``_deg``).
+    ``to_dict()`` gives strict-JSON-ready keys (None for parts not built)."""
+    part: str
+    worm_type: str
+    hand: str
+    module: float
+    starts: int
+    wheel_teeth: int
+    ratio: float
+    worm_pitch_diameter: float
+    diameter_quotient: float
+    lead: float
+    lead_angle_deg: float
+    axial_pressure_angle_deg: float
+    normal_pressure_angle_deg: float
+    addendum_coeff: float
+    dedendum_coeff: float
+    shift_coeff: float
+    center_distance: float
+    worm_tip_diameter: float
+    worm_root_diameter: float
+    wheel_pitch_diameter: float
+    wheel_throat_diameter: float
+    wheel_root_diameter: float
+    wheel_outside_diameter: float | None
+    throat: bool
+    #: R_t = a - d_a2/2: radius of the throat torus about the worm axis
+    throat_radius: float
+    face_width: float
+    worm_length: float
+    friction: float
+    self_locking: bool
+    contact_ratio_midplane: float
+    tolerance: float
+    max_error: float
+    worm_max_error: float | None
+    wheel_max_error: float | None
+    wheel_section_max_error: float | None
+    wheel_band_max_error: float | None
+    wheel_sections: int | None
+    worm_triangles: int | None
+    wheel_triangles: int | None
+
+    def to_dict(self) -> dict:
+        return {f.name: _clean(getattr(self, f.name)) for f in fields(self)}
+
+    def __getitem__(self, key):
+        return asdict(self)[key]
+
+
+def _clean(v):
+    if isinstance(v, (float, np.floating)):
+        return float(v) if math.isfinite(v) else None
+    if isinstance(v, np.integer):
+        return int(v)
+    return v
+
+
+@dataclass(frozen=True)
+class WormSet:
+    """The result of :func:`worm`: ``worm`` and ``wheel`` bodies in their own frames (None
+    when not built), ``placed`` (the pair in mesh: wheel axis z, worm axis parallel to x
+    through (0, a, 0)), the design and the report."""
+    design: WormDesign
+    worm: object
+    wheel: object
+    report: WormReport
+
+    def parts(self) -> list:
+        """The bodies to write for the report's ``part``: one body, or the pair placed."""
+        if self.report.part == "worm":
+            return [self.worm]
+        if self.report.part == "wheel":
+            return [self.wheel]
+        return place(self)
+
+
+def worm_transform(d) -> np.ndarray:
+    """4x4: the worm's own frame (axis z', centred) -> the set (axis along x at y = a).
+    (x', y', z') -> (z', a + x', y'): the worm's ψ = π side faces the wheel."""
+    return np.array([[0, 0, 1, 0], [1, 0, 0, d.center_distance], [0, 1, 0, 0], [0, 0, 0, 1.0]])
+
+
+#: the wheel's own frame has tooth 0 on +x; in the set it is turned to face the worm (+y)
+WHEEL_TURN = np.array([[0, -1, 0, 0], [1, 0, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1.0]])
+
+
+def place(s: WormSet) -> list:
+    """[wheel, worm] placed in mesh (see :class:`WormSet`). Turning the worm by +φ about +x
+    turns the wheel by +s·φ·z1/z2 about +z (s = +1 right hand, -1 left)."""
+    d = s.design
+    return [s.wheel.placed(WHEEL_TURN, "worm-wheel"), s.worm.placed(worm_transform(d) @ s.worm.transform, "worm")]
+
+
+def worm(part="pair", tolerance=None, worm_bore=None, wheel_bore=None, hub_diameter=None, hub_length=None,
+         **params) -> WormSet:
+    """Worm and worm wheel (mm, degrees): ``part`` = worm | wheel | pair; the design keywords
+    of :func:`gear3d.wormgear.design.design` (module, starts, wheel_teeth, diameter_quotient or
+    worm_pitch_diameter, axial_ or normal_pressure_angle_deg, worm_type, addendum_coeff,
+    dedendum_coeff, hand, shift_coeff, worm_length, face_width, throat, friction);
+    ``tolerance`` (mm, default 0.01); ``worm_bore`` (mm), ``wheel_bore``, ``hub_diameter``
+    and ``hub_length`` (the wheel's hub, centred on its mid-plane).
+
+    The wheel is the exact envelope of the worm, section by section; both bodies are
+    measured (``report.max_error``) against the closed forms. Bad input raises one
+    :class:`GearError` line."""
+    part = check_choice("part", part, PARTS)
+    if tolerance is not None:
+        params["tolerance"] = tolerance
+    d = design(**params)
+    _check_budget(d, part)
+    w = wh = None
+    if part in ("worm", "pair"):
+        from .worm_body import worm_body
+        w = worm_body(d, bore=worm_bore)
+    if part in ("wheel", "pair"):
+        from .wheel_body import wheel_body
+        wh = wheel_body(d, bore=wheel_bore, hub_diameter=hub_diameter, hub_length=hub_length)
+    elif any(v is not None for v in (wheel_bore, hub_diameter, hub_length)):
+        from ..errors import GearError
+        raise GearError("wheel_bore" if wheel_bore is not None else "hub_diameter",
+                        wheel_bore if wheel_bore is not None else hub_diameter, "None unless the wheel is built")
+    return WormSet(d, w, wh, _report(d, part, w, wh))
+
+
+def _check_budget(d, part):
+    """Refuse, before any work, a set whose meshes would exceed the triangle budget
+    (estimates: the wheel's layers x vertices per layer, the worm's turns x layers)."""
+    from .. import budget
+    tol = d.tolerance
+    est = 0.0
+    if part in ("wheel", "pair"):
+        per_tooth = 3 * math.pi * d.module / math.sqrt(8 * tol / d.module) + 20
+        layers = d.face_width / max(math.sqrt(8 * tol * d.module), 1e-3) + 3
+        est += 2 * d.wheel_teeth * per_tooth * layers
+    if part in ("worm", "pair"):
+        turns = d.worm_length / d.p
+        dth = math.sqrt(8 * 0.2 * tol / d.worm_tip_radius)
+        per_layer = 2 * math.pi * d.worm_tip_radius / math.sqrt(8 * tol * d.module) + 8 * d.starts
+        est += 2 * per_layer * turns / dth
+    budget.check_body(est, "tolerance", tol)
+
+
+def _report(d, part, w, wh) -> WormReport:
+    from .contact import midplane_contact_ratio
+    we = float(w.report["max_error"]) if w is not None else None
+    he = float(wh.report["max_error"]) if wh is not None else None
+    r = wh.report if wh is not None else {}
+    return WormReport(
+        part=part, worm_type=d.worm_type, hand=d.hand, module=d.module, starts=d.starts,
+        wheel_teeth=d.wheel_teeth, ratio=d.ratio, worm_pitch_diameter=d.worm_pitch_diameter,
+        diameter_quotient=d.diameter_quotient, lead=d.lead, lead_angle_deg=d.lead_angle_deg,
+        axial_pressure_angle_deg=math.degrees(d.alpha_x), normal_pressure_angle_deg=math.degrees(d.alpha_n),
+        addendum_coeff=d.addendum_coeff, dedendum_coeff=d.dedendum_coeff, shift_coeff=d.shift_coeff,
+        center_distance=d.center_distance, worm_tip_diameter=2 * d.worm_tip_radius,
+        worm_root_diameter=2 * d.worm_root_radius, wheel_pitch_diameter=2 * d.r2,
+        wheel_throat_diameter=2 * d.wheel_throat_radius, wheel_root_diameter=2 * d.wheel_root_radius,
+        wheel_outside_diameter=2 * d.wheel_outside_radius if d.throat else None, throat=d.throat,
+        throat_radius=d.throat_torus_radius, face_width=d.face_width, worm_length=d.worm_length,
+        friction=d.friction, self_locking=d.self_locking, contact_ratio_midplane=midplane_contact_ratio(d),
+        tolerance=d.tolerance, max_error=max(e for e in (we, he) if e is not None),
+        worm_max_error=we, wheel_max_error=he,
+        wheel_section_max_error=r.get("section_max_error"), wheel_band_max_error=r.get("band_max_error"),
+        wheel_sections=r.get("sections"), worm_triangles=int(w.report["triangles"]) if w is not None else None,
+        wheel_triangles=r.get("triangles"))

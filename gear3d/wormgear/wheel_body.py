@@ -1,0 +1,195 @@
+"""The worm wheel's body: certified sections stacked and joined (see :mod:`gear3d.wormgear.wheel`).
+
+Plan (mm): layers at the faces ±B/2, the mid-plane and the throat's kinks (where the
+throat arc meets the outside cylinder), spaced at first so that the turn between layers
+sags by at most a quarter of the tolerance at the tip; then every band between two layers
+is measured at its middle plane against the exact section there, and a band that misses
+the tolerance is split there (the measured section becomes a layer). The mesh is closed
+by construction; bore and hub are manifold3d booleans.
+
+Example::
+
+    >>> from gear3d.wormgear.design import design
+    >>> w = wheel_body(design(module=2, starts=1, wheel_teeth=30), tolerance=0.02)
+    >>> w.report["max_error"] <= 0.02
+    True
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .. import budget
+from ..errors import GearError, ToleranceError, check_number
+from .wheel import MAX_SPLITS, SECTION_SHARE, band_error, band_faces, layer_points, section, section_turn, \
+    tooth_chain, zipper
+
+
+class WormPart:
+    """A worm or wheel body for the exporters: ``arrays()`` (float64 vertices mm, faces),
+    ``name``, ``report`` (dict) and ``transform`` (4x4, the placement)."""
+
+    def __init__(self, V, F, name: str, report: dict, transform=None, manifold=None):
+        self._V, self._F = np.asarray(V, float), np.asarray(F, np.int64)
+        self.name, self.report = name, report
+        self.transform = np.eye(4) if transform is None else np.asarray(transform, float)
+        self._manifold = manifold
+
+    def arrays(self):
+        return self._V, self._F
+
+    @property
+    def manifold(self):
+        if self._manifold is None:
+            from manifold3d import Manifold, Mesh64
+            self._manifold = Manifold(Mesh64(vert_properties=np.ascontiguousarray(self._V),
+                                             tri_verts=np.ascontiguousarray(self._F, np.uint64)))
+        return self._manifold
+
+    @property
+    def mesh(self):
+        import trimesh
+        return trimesh.Trimesh(self._V, self._F, process=False)
+
+    def placed(self, transform, name=None) -> "WormPart":
+        return WormPart(self._V, self._F, name or self.name, self.report, transform, self._manifold)
+
+
+def _initial_heights(d, tol) -> list:
+    B = d.face_width
+    rho = float(d.blank_tip_radius(B / 2))
+    dth = math.sqrt(2 * tol / rho)                  # rho dθ²/8 = tol/4
+    rate = d.p / (d.r1 * d.r2)                      # the largest dθ/dh (at h = 0)
+    n = max(2, math.ceil(B * rate / dth), math.ceil(B / (2 * d.module)))
+    hs = set(np.linspace(-B / 2, B / 2, n + 1).tolist()) | {0.0}
+    kink = d.throat_break()
+    if kink is not None and kink < B / 2:
+        hs |= {-kink, kink}
+    return sorted(hs)
+
+
+def _layer(d, h, tol_s, cache):
+    if h not in cache:
+        prof = section(d, h, tol_s)
+        chain, s = tooth_chain(prof.tooth_loop, d.wheel_teeth)
+        cache[h] = (prof, chain, s)
+    return cache[h]
+
+
+def plan_layers(d, tol: float):
+    """Layers (h, profile, chain, s) and measurements: (layers, section max error, band
+    max error, bands measured). Raises ToleranceError when a band cannot be certified."""
+    tol_s = tol * SECTION_SHARE
+    cache = {}
+    hs = _initial_heights(d, tol)
+    todo = list(zip(hs[:-1], hs[1:]))
+    done, band_err, measured = [], 0.0, 0
+    for _round in range(MAX_SPLITS + 1):
+        nxt = []
+        for a, b in todo:
+            mid = 0.5 * (a + b)
+            la, lb, lm = (_layer(d, x, tol_s, cache) for x in (a, b, mid))
+            budget.check_body(2 * d.wheel_teeth * sum(len(v[1]) for v in cache.values()), "tolerance", tol)
+            e = band_error(d, (a, la[1], la[2]), (b, lb[1], lb[2]), lm[0], mid)
+            measured += 1
+            if e <= tol:
+                done.append((a, b))
+                band_err = max(band_err, e)
+            else:
+                nxt += [(a, mid), (mid, b)]
+        todo = nxt
+        if not todo:
+            break
+    else:
+        raise ToleranceError("tolerance", tol, "a coarser value",
+                             f"the wheel's bands still miss it after {MAX_SPLITS} splits")
+    heights = sorted({x for ab in done for x in ab})
+    layers = [(h, *cache[h]) for h in heights]
+    sec_err = max(float(L[1].report["max_error"]) for L in layers)
+    return layers, sec_err, band_err, measured
+
+
+def assemble(d, layers):
+    """(V, F): the closed mesh of the stacked layers (bands by zipper, end caps from
+    manifold3d's triangulation of the face sections)."""
+    from manifold3d import triangulate
+    z = d.wheel_teeth
+    Vs, Fs, offs, off = [], [], [], 0
+    for h, _prof, chain, _s in layers:
+        Vs.append(layer_points(chain, z, section_turn(d, h), h))
+        offs.append(off)
+        off += len(chain) * z
+    for k in range(len(layers) - 1):
+        (_, _, cl, sl), (_, _, cu, su) = layers[k], layers[k + 1]
+        tri = zipper(sl, su)
+        Fs.append(band_faces(len(cl), len(cu), offs[k], offs[k + 1], tri, z))
+    for k, flip in ((0, True), (len(layers) - 1, False)):
+        P = Vs[k][:, :2]
+        T = np.asarray(triangulate([P]), np.int64).reshape(-1, 3) + offs[k]
+        Fs.append(T[:, ::-1] if flip else T)
+    return np.concatenate(Vs), np.concatenate(Fs)
+
+
+def wheel_body(d, tolerance=None, bore=None, hub_diameter=None, hub_length=None, name="worm-wheel"):
+    """The worm wheel body (mm) of design ``d``: axis z, mid-plane z = 0, tooth 0 about +x
+    in the mid-plane. ``bore`` (diameter), ``hub_diameter``/``hub_length`` (a boss centred
+    on the mid-plane, longer than the face width). Returns a :class:`WormPart` whose report
+    carries the measured errors."""
+    tol = d.tolerance if tolerance is None else check_number("tolerance", tolerance, 1e-4, d.module / 10,
+                                                             unit="mm")
+    layers, sec_err, band_err, measured = plan_layers(d, tol)
+    root = min(float(L[1].report["root_radius"]) for L in layers)
+    feats = _check_features(d, root, bore, hub_diameter, hub_length, tol)
+    V, F = assemble(d, layers)
+    budget.check_body(len(F), "tolerance", tol)
+    man = None
+    if feats:
+        man = _apply_features(V, F, d, feats, tol)
+        m = man.to_mesh64()
+        V, F = np.asarray(m.vert_properties, float)[:, :3], np.asarray(m.tri_verts, np.int64)
+    from ..solids.body import mesh_properties
+    props = mesh_properties(V, F)
+    rep = {"part": "wheel", "teeth": d.wheel_teeth, "module": d.module, "face_width": d.face_width,
+           "throat": d.throat, "sections": len(layers), "bands_measured": measured,
+           "section_max_error": sec_err, "band_max_error": band_err, "max_error": max(sec_err, band_err),
+           "tolerance": tol, "triangles": int(len(F)), "vertices": int(len(V)), "volume": props["volume"],
+           "genus": props["genus"], "root_radius_min": root, "features": feats,
+           "section_heights": [float(L[0]) for L in layers]}
+    return WormPart(V, F, name, rep, manifold=man)
+
+
+def _check_features(d, root, bore, hub_diameter, hub_length, tol) -> dict:
+    feats = {}
+    if hub_diameter is not None or hub_length is not None:
+        if hub_diameter is None or hub_length is None:
+            raise GearError("hub_diameter" if hub_diameter is None else "hub_length",
+                            None, "a number (hub_diameter and hub_length go together)")
+        feats["hub_diameter"] = check_number("hub_diameter", hub_diameter, 0, 2 * root - 2 * tol, lo_open=True,
+                                             unit=f"mm (inside the root diameter {2 * root:.6g})")
+        feats["hub_length"] = check_number("hub_length", hub_length, d.face_width, 20 * d.face_width,
+                                           lo_open=True, unit="mm (longer than the face width)")
+    if bore is not None:
+        hi = min(2 * root, feats.get("hub_diameter", math.inf)) - 2 * d.module * 0.25
+        feats["bore"] = check_number("bore", bore, 0, hi, lo_open=True, hi_open=True,
+                                     unit=f"mm (below {hi:.6g}: a wall of a quarter module)")
+    return feats
+
+
+def _apply_features(V, F, d, feats, tol):
+    from manifold3d import CrossSection, FillRule, Manifold, Mesh64, OpType
+    from ..envelope import circle_loop
+    man = Manifold(Mesh64(vert_properties=np.ascontiguousarray(V), tri_verts=np.ascontiguousarray(F, np.uint64)))
+    if man.status().name != "NoError":
+        raise GearError("face_width", d.face_width, "values that leave a solid wheel", man.status().name)
+    if "hub_diameter" in feats:
+        Lh = feats["hub_length"]
+        hub = Manifold.extrude(CrossSection([circle_loop(feats["hub_diameter"] / 2, tol)], FillRule.Positive), Lh)
+        man = Manifold.batch_boolean([man, hub.translate((0, 0, -Lh / 2))], OpType.Add)
+    if "bore" in feats:
+        Lb = 2 * max(d.face_width, feats.get("hub_length", 0.0)) + 2
+        hole = Manifold.extrude(CrossSection([circle_loop(feats["bore"] / 2, tol, ccw=True)], FillRule.Positive), Lb)
+        man = Manifold.batch_boolean([man, hole.translate((0, 0, -Lb / 2))], OpType.Subtract)
+    if man.is_empty() or man.status().name != "NoError":
+        raise GearError("bore", feats.get("bore"), "values that leave a solid wheel")
+    return man

@@ -1,0 +1,83 @@
+"""The worm's body: its exact transverse section screwed along the axis.
+
+A helicoid turns as it advances: the worm's section at height z' is its section at 0
+turned by ``θ0 + s z'/p`` (rad; ``p`` = lead / 2π, ``s`` = +1 right hand). So the worm is
+a helical body of helix angle 90° - γ on its pitch cylinder, built by the body builder
+(:func:`gear3d.solids.body.body`) from the exact transverse section
+(:func:`gear3d.wormgear.thread.transverse_pieces`, certified by the profile builder) with the
+law below. The body builder measures the finished surface against the exactly turned
+section on its exact evaluators (in-plane distance, an upper bound of the distance to the
+helicoid): that is ``max_error``, against the closed-form helicoid, not a finer mesh.
+
+Frame: axis z, centred at z = 0 (``transform`` moves the builder's z in [0, L] down by
+L/2); in the set the worm's ψ = π side faces the wheel with a groove centred there.
+
+Example::
+
+    >>> from gear3d.wormgear.design import design
+    >>> b = worm_body(design(module=2, starts=1, wheel_teeth=30, worm_length=10), tolerance=0.02)
+    >>> b.report["max_error"] <= 0.02
+    True
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import ClassVar
+
+import numpy as np
+
+from ..errors import GearError, check_number
+from ..model import build_profile
+from ..solids.twist import HelicalLaw
+from .thread import transverse_pieces
+
+
+@dataclass(frozen=True)
+class WormLaw(HelicalLaw):
+    """θ(z) = sign·(z - z0)·tan β / r + θ0: a helical law whose reference section sits at
+    height ``z0`` (mm) turned by ``theta0`` (rad)."""
+    z0: float = 0.0
+    theta0: float = 0.0
+    kind: ClassVar[str] = "helical"
+
+    def s(self, z):
+        return (np.asarray(z, float) - self.z0) * self.tan_beta
+
+    def __call__(self, z):
+        return self.sign * self.s(z) / self.pitch_radius + self.theta0
+
+
+def worm_section(d, tolerance: float):
+    """The worm's transverse section (thread 0 centred at angle 0) as a certified Profile."""
+    pieces, names = transverse_pieces(d)
+    params = {"module": d.module, "teeth": d.starts, "worm_type": d.worm_type}
+    return build_profile("worm", params, pieces, d.starts, d.r1, internal=False, tolerance=tolerance,
+                         names=names, nominal_tip_radius=d.worm_tip_radius, flank_pieces=[1, 3])
+
+
+def worm_body(d, tolerance=None, bore=None, name="worm"):
+    """The worm body of design ``d`` (mm): axis z, centred at z = 0 (through ``transform``),
+    length ``d.worm_length``, optional ``bore`` (diameter, mm). Returns a
+    :class:`gear3d.solids.body.Body` with the measured ``max_error`` in its report."""
+    from ..solids.body import body, profile_tolerance
+    tol = d.tolerance if tolerance is None else check_number("tolerance", tolerance, 1e-4, d.module / 10,
+                                                             unit="mm")
+    if bore is not None:
+        hi = 2 * d.worm_root_radius - 0.5 * d.module
+        check_number("worm_bore", bore, 0, hi, lo_open=True, hi_open=True,
+                     unit=f"mm (below {hi:.6g}: a wall of a quarter module under the root)")
+    prof = worm_section(d, profile_tolerance(tol, "helical"))
+    L = d.worm_length
+    beta = 90.0 - d.lead_angle_deg
+    law = WormLaw(L, d.r1, d.sign, beta, z0=L / 2, theta0=math.pi + math.pi / d.starts)
+    try:
+        b = body(prof, kind="helical", width=L, helix_angle_deg=beta, hand=d.hand, tolerance=tol, bore=bore,
+                 name=name, _law=law)
+    except GearError as e:
+        if e.param == "bore":
+            raise GearError("worm_bore", bore, e.allowed, e.why) from None
+        raise
+    t = np.eye(4)
+    t[2, 3] = -L / 2
+    return b.placed(t, name)
