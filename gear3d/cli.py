@@ -25,7 +25,7 @@ for _v in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ.setdefault(_v, "1")
 
 #: sub-command modules, in help order; each defines ``add_parser(subparsers)`` and ``run(args)``
-COMMANDS = ["profile", "inspect", "body", "pair", "check", "planetary", "harmonic", "bevel", "drive", "build", "batch", "bench", "families", "serve"]
+COMMANDS = ["profile", "inspect", "body", "pair", "check", "planetary", "harmonic", "bevel", "worm", "drive", "build", "batch", "bench", "families", "serve"]
 
 #: exit codes of the signals the CLI handles
 SIGNAL_EXIT = {signal.SIGINT: 130, signal.SIGTERM: 143}

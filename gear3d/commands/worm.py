@@ -1,0 +1,116 @@
+"""``gear3d worm --module M --starts N --wheel-teeth Z ... --part worm|wheel|pair -o FILE``:
+a cylindrical worm (ZA, ZN, ZI) and its throated wheel, the exact envelope of the worm.
+
+Frames: the wheel on its own has axis z and mid-plane z = 0 (tooth 0 on +x); the worm on
+its own has axis z and is centred at z = 0; ``--part pair`` places the wheel (turned so
+that a tooth faces the worm) and the worm with its axis parallel to x through (0, a, 0),
+in mesh. ``-o`` STL or 3MF (the pair as two named objects), ``--json`` the report,
+``--png`` the figure of the wheel's mid-plane section, ``--dxf`` that section as a DXF.
+Example::
+
+    gear3d worm --module 2 --starts 1 --wheel-teeth 30 --diameter-quotient 10 \\
+        --part pair -o out/pair.3mf --json out/pair.json
+"""
+from __future__ import annotations
+
+import sys
+
+
+def add_parser(sub):
+    p = sub.add_parser("worm", help="a worm and its throated wheel (exact envelope) -> .stl .3mf .json .png")
+    p.add_argument("--module", type=float, required=True, help="axial module m_x (= the wheel's transverse module), mm")
+    p.add_argument("--starts", type=int, required=True, help="worm starts z1, 1..8")
+    p.add_argument("--wheel-teeth", type=int, required=True, help="wheel teeth z2, 8..1000")
+    g = p.add_mutually_exclusive_group()
+    g.add_argument("--diameter-quotient", type=float, default=None, help="q = d1/m, 5..40 (default 10)")
+    g.add_argument("--worm-pitch-diameter", type=float, default=None, help="d1, mm (5 to 40 modules)")
+    a = p.add_mutually_exclusive_group()
+    a.add_argument("--axial-pressure-angle-deg", type=float, default=None, help="αx, 5..35 deg")
+    a.add_argument("--normal-pressure-angle-deg", type=float, default=None,
+                   help="αn, 5..35 deg (default 20); tan αn = tan αx cos γ")
+    p.add_argument("--worm-type", default="ZA", help="ZA (straight axial section), ZN (straight normal "
+                   "section), ZI (involute helicoid); ZK is not built yet (default ZA)")
+    p.add_argument("--hand", default="right", choices=["right", "left"], help="hand of worm and wheel (default right)")
+    p.add_argument("--addendum-coeff", type=float, default=1.0, help="worm addendum and wheel throat addendum, in modules (default 1)")
+    p.add_argument("--dedendum-coeff", type=float, default=1.2,
+                   help="worm and wheel dedendum in modules, >= addendum (default 1.2: clearance 0.2 m)")
+    p.add_argument("--worm-length", type=float, default=None, help="worm thread length, mm (default (11 + 0.06 z2) m)")
+    p.add_argument("--face-width", type=float, default=None, help="wheel face width, mm (default 0.75 d_a1, at most what the worm cuts)")
+    t = p.add_mutually_exclusive_group()
+    t.add_argument("--throat", dest="throat", action="store_true", default=True,
+                   help="throated (enveloping) wheel blank: torus about the worm axis (default)")
+    t.add_argument("--no-throat", dest="throat", action="store_false", help="cylindrical wheel blank")
+    p.add_argument("--shift-coeff", type=float, default=0.0, help="wheel profile shift x, -1..1: a = (d1 + d2)/2 + x m")
+    p.add_argument("--tolerance", type=float, default=None, help="max deviation from the exact surfaces, mm (default 0.01)")
+    p.add_argument("--friction", type=float, default=None, help="μ for the self-locking flag tan γ < μ (default 0.05)")
+    p.add_argument("--worm-bore", type=float, default=None, help="worm bore diameter, mm")
+    p.add_argument("--wheel-bore", type=float, default=None, help="wheel bore diameter, mm")
+    p.add_argument("--hub-diameter", type=float, default=None, help="wheel hub diameter, mm (with --hub-length)")
+    p.add_argument("--hub-length", type=float, default=None, help="wheel hub length, mm, centred on the mid-plane")
+    p.add_argument("--part", required=True, choices=["worm", "wheel", "pair"], help="what to build")
+    p.add_argument("-o", "--output", default=None, help="mesh file: .stl or .3mf (pair: two named objects)")
+    p.add_argument("--json", default=None, help="write the report (strict JSON)")
+    p.add_argument("--png", default=None, help="figure of the wheel's mid-plane section")
+    p.add_argument("--dxf", default=None, help="the wheel's mid-plane section as DXF (lines and arcs)")
+    return p
+
+
+def _params(args) -> dict:
+    kw = {"module": args.module, "starts": args.starts, "wheel_teeth": args.wheel_teeth,
+          "worm_type": args.worm_type, "hand": args.hand, "addendum_coeff": args.addendum_coeff,
+          "dedendum_coeff": args.dedendum_coeff, "throat": args.throat, "shift_coeff": args.shift_coeff}
+    for k in ("diameter_quotient", "worm_pitch_diameter", "axial_pressure_angle_deg", "normal_pressure_angle_deg",
+              "worm_length", "face_width", "tolerance", "friction", "worm_bore", "wheel_bore", "hub_diameter",
+              "hub_length"):
+        v = getattr(args, k)
+        if v is not None:
+            kw[k] = v
+    return kw
+
+
+def _check_outputs(args):
+    from ..errors import GearError
+    from ..export import check_path
+    if args.output is None and args.json is None and args.png is None and args.dxf is None:
+        raise GearError("output", None, "at least one of -o FILE.stl|.3mf, --json, --png, --dxf")
+    if args.output is not None:
+        check_path(args.output, "output", exts=(".stl", ".3mf"))
+    for name, ext in (("json", ".json"), ("png", ".png"), ("dxf", ".dxf")):
+        if getattr(args, name) is not None:
+            check_path(getattr(args, name), name, exts=(ext,))
+
+
+def run(args) -> int:
+    _check_outputs(args)
+    from ..wormgear import worm
+    from ..wormgear.design import design
+    kw = _params(args)
+    d = design(**{k: v for k, v in kw.items() if k not in ("worm_bore", "wheel_bore", "hub_diameter",
+                                                            "hub_length")})
+    s = worm(part=args.part, **kw)
+    lines = []
+    if args.output is not None:
+        from ..export import write
+        info = write(s.parts(), args.output)
+        lines.append(f"wrote {args.output}: {args.part}, max_error={s.report.max_error:.3g} mm "
+                     f"(tolerance {s.report.tolerance:g} mm)" + (f" {info}" if info else ""))
+    if args.png is not None or args.dxf is not None:
+        from ..wormgear.wheel import section
+        mid = section(d, 0.0, d.tolerance)
+        if args.png is not None:
+            from ..figures import figure
+            figure(mid, args.png, title=f"worm wheel z2={d.wheel_teeth}, mid-plane section ({d.worm_type})")
+            lines.append(f"wrote {args.png}: mid-plane section figure")
+        if args.dxf is not None:
+            from ..export import write
+            info = write(mid, args.dxf)
+            lines.append(f"wrote {args.dxf}: mid-plane section" + (f" {info}" if info else ""))
+    if args.json is not None:
+        from ..export import atomic_path
+        from ..export.json_format import dumps
+        with atomic_path(args.json, "json") as tmp:
+            with open(tmp, "w") as fh:
+                fh.write(dumps(s.report.to_dict()) + "\n")
+        lines.append(f"wrote {args.json}: report")
+    sys.stdout.write("\n".join(lines) + "\n")
+    return 0
