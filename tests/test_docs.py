@@ -11,7 +11,7 @@ THE CONVENTION FOR EXAMPLES IN docs/*.md (write pages to it; tests/mdrun.py hold
   ``out/docs/commands/profile/``), so no two examples anywhere write the same file. The test
   empties and creates that folder before the page runs; make any sub-folder yourself
   (``--out`` of ``gear3d build``/``batch`` creates its own). The paths given to ``-o``,
-  ``--out``, ``--json``, ``--figure`` and ``>`` are checked in the quick suite.
+  ``--out``, ``--out-dir``, ``--json``, ``--figure``, ``--png`` and ``>`` are checked in the quick suite.
 * A fenced ```` ```python ```` block is run too: the page's Python blocks run in order in one
   interpreter (later blocks see earlier names), from the repository root, after the page's
   bash commands. Write files under ``out/docs/<page>/`` there as well.
@@ -41,7 +41,7 @@ from mdrun import ROOT, blocks, check, commands, env, run_bash, run_python
 DOCS = ROOT / "docs"
 PAGES = sorted(p for p in DOCS.rglob("*.md"))
 #: flags (and the shell's redirect) whose value is a path the command writes
-_OUT = re.compile(r"(?:^|\s)(?:-o|--out|--json|--figure)[ =](\S+)|(?<![0-9&])>\s*(\S+)")
+_OUT = re.compile(r"(?:^|\s)(?:-o|--out|--output|--out-dir|--json|--figure|--png)[ =](\S+)|(?<![0-9&])>\s*(\S+)")
 
 
 def page_name(page) -> str:
@@ -62,7 +62,7 @@ def page_python(page) -> list:
 
 
 def written_paths(cmd: str) -> list:
-    """The paths a command line writes (its -o/--out/--json/--figure values, its > targets)."""
+    """The paths a command line writes (its -o/--out/--out-dir/--json/--figure/--png values, its > targets)."""
     cmd = re.sub(r"#.*$", "", cmd)
     return [a or b for a, b in _OUT.findall(cmd) if (a or b) not in ("-", "/dev/null", "&2")]
 
@@ -96,6 +96,15 @@ def test_page_examples_write_under_their_own_folder(page):
             assert path.startswith(folder), f"{page.name}: {cmd!r} writes {path!r}, not under {folder}"
         used = [w for w in re.findall(r"--[a-z][a-z0-9-]*", cmd) if w in old]
         assert not used, f"{page.name}: {cmd!r} uses the deprecated {used}"
+
+
+def test_every_page_is_in_the_nav():
+    """A page missing from mkdocs.yml's nav fails ``mkdocs build --strict``: say which, fast."""
+    nav = set(re.findall(r"([\w./-]+\.md)\s*$", (ROOT / "mkdocs.yml").read_text(encoding="utf-8"), flags=re.M))
+    missing = [page_name(p) + ".md" for p in PAGES if page_name(p) + ".md" not in nav]
+    assert not missing, f"add to mkdocs.yml's nav: {missing}"
+    gone = sorted(n for n in nav if not (DOCS / n).exists())
+    assert not gone, f"mkdocs.yml's nav names missing pages: {gone}"
 
 
 @pytest.mark.slow
