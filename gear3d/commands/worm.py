@@ -5,7 +5,7 @@ Frames: the wheel on its own has axis z and mid-plane z = 0 (tooth 0 on +x); the
 its own has axis z and is centred at z = 0; ``--part pair`` places the wheel (turned so
 that a tooth faces the worm) and the worm with its axis parallel to x through (0, a, 0),
 in mesh. ``-o`` STL or 3MF (the pair as two named objects), ``--json`` the report,
-``--png`` the figure of the wheel's mid-plane section, ``--dxf`` that section as a DXF.
+``--png`` the figure of the wheel's mid-plane section.
 Example::
 
     gear3d worm --module 2 --starts 1 --wheel-teeth 30 --diameter-quotient 10 \\
@@ -51,7 +51,6 @@ def add_parser(sub):
     p.add_argument("-o", "--output", default=None, help="mesh file: .stl or .3mf (pair: two named objects)")
     p.add_argument("--json", default=None, help="write the report (strict JSON)")
     p.add_argument("--png", default=None, help="figure of the wheel's mid-plane section")
-    p.add_argument("--dxf", default=None, help="the wheel's mid-plane section as DXF (lines and arcs)")
     return p
 
 
@@ -71,11 +70,11 @@ def _params(args) -> dict:
 def _check_outputs(args):
     from ..errors import GearError
     from ..export import check_path
-    if args.output is None and args.json is None and args.png is None and args.dxf is None:
-        raise GearError("output", None, "at least one of -o FILE.stl|.3mf, --json, --png, --dxf")
+    if args.output is None and args.json is None and args.png is None:
+        raise GearError("output", None, "at least one of -o FILE.stl|.3mf, --json, --png")
     if args.output is not None:
         check_path(args.output, "output", exts=(".stl", ".3mf"))
-    for name, ext in (("json", ".json"), ("png", ".png"), ("dxf", ".dxf")):
+    for name, ext in (("json", ".json"), ("png", ".png")):
         if getattr(args, name) is not None:
             check_path(getattr(args, name), name, exts=(ext,))
 
@@ -94,17 +93,12 @@ def run(args) -> int:
         info = write(s.parts(), args.output)
         lines.append(f"wrote {args.output}: {args.part}, max_error={s.report.max_error:.3g} mm "
                      f"(tolerance {s.report.tolerance:g} mm)" + (f" {info}" if info else ""))
-    if args.png is not None or args.dxf is not None:
+    if args.png is not None:
+        from ..figures import figure
         from ..wormgear.wheel import section
         mid = section(d, 0.0, d.tolerance)
-        if args.png is not None:
-            from ..figures import figure
-            figure(mid, args.png, title=f"worm wheel z2={d.wheel_teeth}, mid-plane section ({d.worm_type})")
-            lines.append(f"wrote {args.png}: mid-plane section figure")
-        if args.dxf is not None:
-            from ..export import write
-            info = write(mid, args.dxf)
-            lines.append(f"wrote {args.dxf}: mid-plane section" + (f" {info}" if info else ""))
+        figure(mid, args.png, title=f"worm wheel z2={d.wheel_teeth}, mid-plane section ({d.worm_type})")
+        lines.append(f"wrote {args.png}: mid-plane section figure")
     if args.json is not None:
         from ..export import atomic_path
         from ..export.json_format import dumps

@@ -82,11 +82,14 @@ def _ray_crossing(loop, phi, outermost):
     return int(idx[k]), pts[k]
 
 
-def tooth_chain(loop: np.ndarray, teeth: int):
+def tooth_chain(loop: np.ndarray, teeth: int, tip_radius: float, near: float):
     """Tooth 0 of a section's CCW outer loop as an open chain from the space centre at
     -π/z (included) to the one at +π/z (excluded), with the tip centre (angle 0) as a
-    vertex; and its parameters s in [0, 1): normalised arc length on each half tooth,
-    the tip centre at s = 0.5."""
+    vertex; and its parameters s in [0, 1): anchors at the space centre (0), the corners
+    where the flanks meet the turned tip ``tip_radius`` (0.25, 0.75; mm; the corner is
+    sought within ``near`` mm of it, :func:`_anchored`) and the tip
+    centre (0.5), normalised arc length in between. Consecutive layers joined by s keep
+    their sharp tip corners together."""
     half = math.pi / teeth
     ia, pa = _ray_crossing(loop, -half, outermost=False)
     ib, pb = _ray_crossing(loop, 0.0, outermost=True)
@@ -96,14 +99,30 @@ def tooth_chain(loop: np.ndarray, teeth: int):
     def run(i0, i1):      # loop vertices after segment i0 up to and including segment i1's start
         k = (i1 - i0) % n
         return loop[(i0 + 1 + np.arange(k)) % n]
-    first = np.concatenate([[pa], run(ia, ib), [pb]])
-    second = np.concatenate([run(ib, ic), [pc]])
-    first, second = _dedupe(first), _dedupe(np.concatenate([[pb], second]))[1:]
-    s1 = _arc_params(first)
-    s2 = _arc_params(np.concatenate([[pb], second]))[1:]
-    chain = np.concatenate([first, second[:-1]])
-    s = np.concatenate([0.5 * s1, 0.5 + 0.5 * s2[:-1]])
+    first = _dedupe(np.concatenate([[pa], run(ia, ib), [pb]]))
+    second = _dedupe(np.concatenate([[pb], run(ib, ic), [pc]]))
+    s1 = _anchored(first, tip_radius, near)
+    s2 = _anchored(second, tip_radius, near)
+    chain = np.concatenate([first, second[1:-1]])
+    s = np.concatenate([0.5 * s1, 0.5 + 0.5 * s2[1:-1]])
     return chain, s
+
+
+def _anchored(p, tip_radius, near):
+    """Parameters in [0, 1] of a half tooth ``p``: 0.5 at the corner where it meets the tip
+    circle (of the vertices within ``near`` mm of ``tip_radius``, the one where the outline
+    turns most: the tip is a polygon inscribed in its circle, so the corner lies up to a
+    chord's sag inside it), normalised arc length on either side."""
+    r = np.hypot(p[:, 0], p[:, 1])
+    cand = np.nonzero(r >= tip_radius - near)[0]
+    cand = cand[(cand > 0) & (cand < len(p) - 1)]
+    if not len(cand):
+        return _arc_params(p)
+    a, b = p[cand] - p[cand - 1], p[cand + 1] - p[cand]
+    turn = np.abs(np.arctan2(a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0], np.einsum("ij,ij->i", a, b)))
+    k = int(cand[int(np.argmax(turn))])
+    a, b = _arc_params(p[:k + 1]), _arc_params(p[k:])
+    return np.concatenate([0.5 * a, 0.5 + 0.5 * b[1:]])
 
 
 def _dedupe(p):

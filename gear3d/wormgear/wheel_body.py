@@ -26,6 +26,12 @@ from .wheel import MAX_SPLITS, SECTION_SHARE, band_error, band_faces, layer_poin
     tooth_chain, zipper
 
 
+#: a split aims at this share of the room the sections' polygons leave for interpolation
+SPLIT_MARGIN = 0.7
+#: the most parts one measured band is split into at once
+MAX_PARTS = 8
+
+
 class WormPart:
     """A worm or wheel body for the exporters: ``arrays()`` (float64 vertices mm, faces),
     ``name``, ``report`` (dict) and ``transform`` (4x4, the placement)."""
@@ -72,7 +78,7 @@ def _initial_heights(d, tol) -> list:
 def _layer(d, h, tol_s, cache):
     if h not in cache:
         prof = section(d, h, tol_s)
-        chain, s = tooth_chain(prof.tooth_loop, d.wheel_teeth)
+        chain, s = tooth_chain(prof.tooth_loop, d.wheel_teeth, float(d.blank_tip_radius(h)), 4 * tol_s)
         cache[h] = (prof, chain, s)
     return cache[h]
 
@@ -97,7 +103,7 @@ def plan_layers(d, tol: float):
                 done.append((a, b))
                 band_err = max(band_err, e)
             else:
-                nxt += [(a, mid), (mid, b)]
+                nxt += _split(a, b, e, max(float(x[0].report["max_error"]) for x in (la, lb, lm)), tol)
         todo = nxt
         if not todo:
             break
@@ -108,6 +114,19 @@ def plan_layers(d, tol: float):
     layers = [(h, *cache[h]) for h in heights]
     sec_err = max(float(L[1].report["max_error"]) for L in layers)
     return layers, sec_err, band_err, measured
+
+
+def _split(a: float, b: float, err: float, floor: float, tol: float) -> list:
+    """Sub-intervals of a band [a, b] (mm) that measured ``err`` (mm): the sections' own
+    polygon error ``floor`` stays, the interpolation error (the rest) shrinks with the
+    square of the band's height, so k bands with k^2 >= rest / (SPLIT_MARGIN x room); at
+    least 2 (the middle section is already built), at most MAX_PARTS."""
+    rest, room = max(err - floor, 0.0), max(tol - floor, 1e-12)
+    k = int(min(MAX_PARTS, max(2, math.ceil(math.sqrt(rest / (SPLIT_MARGIN * room))))))
+    if k % 2:
+        k += 1                    # keep the measured middle section as a layer
+    x = np.linspace(a, b, k + 1).tolist()
+    return list(zip(x[:-1], x[1:]))
 
 
 def assemble(d, layers):
