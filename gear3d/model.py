@@ -313,6 +313,8 @@ def build_profile(family: str, params: dict, pieces, teeth: int, pitch_radius: f
     from .progress import stage
     stage("profile")
     tol = tolerance
+    from . import budget as _budget
+    _budget.check_rim(rim_radius, pitch_radius, RIM_SHARE * tol)     # range and the circle's vertices
     fs = [_finite(G) for G in pieces]
     # the share of the tolerance the chords may use: Clipper rounds every vertex to 1e-8 mm
     # and notch pruning may move a vertex by up to tol * PRUNE_SHARE (envelope.prune_spikes)
@@ -446,7 +448,7 @@ def _sample(pieces, fs, teeth: int, tol: float, budget: float):
     samples = _Samples(list(fs), [x.t for x in tess], [x.points for x in tess], [x.deviation for x in tess])
     from . import budget as _budget
     _budget.check_profile(teeth * sum(len(t) - 1 for t in samples.ts), "teeth" if teeth > 1000 else "tolerance",
-                          teeth if teeth > 1000 else tol)
+                          teeth if teeth > 1000 else tol, info={"teeth": teeth, "points": samples.pts})
     for i, G in enumerate(pieces):
         t2 = _with_transitions(G, samples.ts[i])
         if len(t2) != len(samples.ts[i]):
