@@ -386,8 +386,8 @@ def test_template_rack_parts_build(tmp_path):
     r = _cli("build", "racks.toml", "--out", "out", cwd=tmp_path)
     assert r.returncode == 0, r.stderr
     out = tmp_path / "out"
-    assert sorted(p.name for p in out.iterdir()) == ["r.dxf", "r.json", "r.stl", "r.svg", "racks.report.json",
-                                                      "s.dxf", "s.json"]
+    assert sorted(p.name for p in out.iterdir()) == ["previews", "r.dxf", "r.json", "r.stl", "r.svg",
+                                                      "racks.report.json", "report.html", "s.dxf", "s.json"]
     # the same rack as gear3d.rack(...): json report, DXF within the tolerance, STL volume
     d = json.loads((out / "r.json").read_text())
     assert d["rack"] is True and d["report"]["back_height"] == 4.0

@@ -87,21 +87,50 @@ def run(args) -> int:
     # the stage log goes to stdout: stderr carries only the one-line error of a failed build
     log = None if args.quiet else (lambda s: (sys.stdout.write(s + "\n"), sys.stdout.flush()))
     rep = build_scene(scene, out, only=args.only, log=log)
-    n_files = sum(len(d["outputs"]) for grp in ("parts", "pairs", "assemblies") for d in rep[grp].values())
+    from ..jobs.htmlreport import write_report_html
+    page = write_report_html(rep, out)
+    lines = file_lines(rep, out)
+    if not args.quiet:
+        sys.stdout.write("".join(line + "\n" for line in lines))
     checks = {n: d["check"]["interference"] for n, d in rep["pairs"].items() if "check" in d}
-    sys.stdout.write(f"built {scene.name}: {n_files} files in {out} in {time.perf_counter() - t0:.1f} s; "
-                     f"stages {json.dumps(rep['stages'])}; max measured error "
-                     + (f"{rep['max_error']:.3g} mm" if rep["max_error"] is not None else "- (none measured)")
-                     + f"; tolerances {_tolerances(scene)}"
-                     + (f"; interference {checks}" if checks else "") + "\n")
+    err = rep["max_error"]
+    sys.stdout.write(f"built {scene.name}: {len(lines)} files in {out} in {time.perf_counter() - t0:.1f} s; "
+                     f"stages {json.dumps(rep['stages'])}; "
+                     + (f"max measured error {err:.3g} mm" if err is not None else
+                        "no measured geometry (only reports and checks)")
+                     + f"; tolerances {_tolerances(scene, args.only)}"
+                     + (f"; interference {checks}" if checks else "")
+                     + f"; open {page}\n")
     return 0
 
 
-def _tolerances(scene) -> str:
-    """The tolerance of each output kind the scene writes, e.g. ``stl 0.01 mm, dxf 0.001 mm``."""
+def file_lines(rep: dict, out: str) -> list:
+    """One line per file written: path, kind, size, measured error and tolerance."""
+    from ..jobs.htmlreport import measured
+    lines = []
+    for grp in ("parts", "pairs", "assemblies"):
+        for d in rep[grp].values():
+            for info in d["outputs"].values():
+                size = info.get("bytes") or 0
+                what = [info.get("kind", "?"), f"{size / 1024:.0f} KiB" if size >= 1024 else f"{size} bytes"]
+                if info.get("triangles"):
+                    what.append(f"{info['triangles']} triangles")
+                err = measured(d, info)
+                if err is not None:
+                    what.append(f"measured error {err:.3g} mm")
+                if info.get("tolerance") is not None:
+                    what.append(f"tolerance {info['tolerance']:g} mm")
+                lines.append(f"wrote {os.path.join(out, info['file'])}: " + ", ".join(what))
+    return lines
+
+
+def _tolerances(scene, only=None) -> str:
+    """The tolerance of each output kind the run writes (``only``: the names built), e.g.
+    ``stl 0.01 mm, dxf 0.001 mm``."""
     kinds = []
-    for d in scene.parts + scene.pairs + scene.assemblies:
-        kinds += [k for k in d.outputs if k not in kinds]
-    if scene.pairs:
+    built = [d for d in scene.parts + scene.pairs + scene.assemblies if not only or d.name in only]
+    for d in built:
+        kinds += [k for k in d.outputs if k not in kinds and k != "json"]
+    if any(d in scene.pairs for d in built):
         kinds.append("check")
     return ", ".join(f"{k} {scene.tolerance_for(k):g} mm" for k in kinds)

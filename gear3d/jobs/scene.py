@@ -387,6 +387,7 @@ def build_scene(scene: Scene, out_dir, only=None, dry_run=False, log=None) -> di
         remove_dirs(made)      # a failed build leaves no empty folder behind
         raise
     report["graph"] = g
+    report["owners"] = owners      # output kind -> stage key of each part/pair/assembly (report.html)
     return report
 
 
@@ -437,6 +438,10 @@ def _report(scene: Scene, g, owners, res) -> dict:
     pairs = {}
     for name, t in owners["pairs"].items():
         d = {"outputs": {k: res[v] for k, v in t.items() if k != "check"}}
+        placed = [b for k, v in t.items() if k != "check" for b in (_first(g, v, "place") or ())]
+        if placed:             # the placed bodies' measured errors count like a part's
+            d["max_error"] = max(b.report["max_error"] for b in placed)
+            errs.append(d["max_error"])
         if "check" in t:
             c = g.results[t["check"]]
             d["check"] = {k: c[k] for k in ("internal", "center_distance", "working_pressure_angle_deg",
