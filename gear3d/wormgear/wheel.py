@@ -84,45 +84,43 @@ def _ray_crossing(loop, phi, outermost):
 
 def tooth_chain(loop: np.ndarray, teeth: int, tip_radius: float, near: float):
     """Tooth 0 of a section's CCW outer loop as an open chain from the space centre at
-    -π/z (included) to the one at +π/z (excluded), with the tip centre (angle 0) as a
-    vertex; and its parameters s in [0, 1): anchors at the space centre (0), the corners
-    where the flanks meet the turned tip ``tip_radius`` (0.25, 0.75; mm; the corner is
-    sought within ``near`` mm of it, :func:`_anchored`) and the tip
-    centre (0.5), normalised arc length in between. Consecutive layers joined by s keep
-    their sharp tip corners together."""
+    -π/z (included) to the one at +π/z (excluded), and its parameters s in [0, 1):
+    anchors at the space centres (0 and 1) and at the two corners where the flanks meet
+    the turned tip ``tip_radius`` (0.4 and 0.6; the same vertex for a pointed tooth),
+    normalised arc length in between. The corners are sought within ``near`` mm of the
+    tip circle (:func:`_tip_corners`). Consecutive layers joined by s keep their sharp tip
+    corners together."""
     half = math.pi / teeth
     ia, pa = _ray_crossing(loop, -half, outermost=False)
-    ib, pb = _ray_crossing(loop, 0.0, outermost=True)
     ic, pc = _ray_crossing(loop, half, outermost=False)
     n = len(loop)
-
-    def run(i0, i1):      # loop vertices after segment i0 up to and including segment i1's start
-        k = (i1 - i0) % n
-        return loop[(i0 + 1 + np.arange(k)) % n]
-    first = _dedupe(np.concatenate([[pa], run(ia, ib), [pb]]))
-    second = _dedupe(np.concatenate([[pb], run(ib, ic), [pc]]))
-    s1 = _anchored(first, tip_radius, near)
-    s2 = _anchored(second, tip_radius, near)
-    chain = np.concatenate([first, second[1:-1]])
-    s = np.concatenate([0.5 * s1, 0.5 + 0.5 * s2[1:-1]])
-    return chain, s
+    k = (ic - ia) % n
+    p = _dedupe(np.concatenate([[pa], loop[(ia + 1 + np.arange(k)) % n], [pc]]))
+    c1, c2 = _tip_corners(p, tip_radius, near)
+    s = np.concatenate([0.4 * _arc_params(p[:c1 + 1]),
+                        (0.4 + 0.2 * _arc_params(p[c1:c2 + 1]))[1:] if c2 > c1 else [],
+                        (0.6 + 0.4 * _arc_params(p[c2:]))[1:]])
+    return p[:-1], s[:-1]
 
 
-def _anchored(p, tip_radius, near):
-    """Parameters in [0, 1] of a half tooth ``p``: 0.5 at the corner where it meets the tip
-    circle (of the vertices within ``near`` mm of ``tip_radius``, the one where the outline
-    turns most: the tip is a polygon inscribed in its circle, so the corner lies up to a
-    chord's sag inside it), normalised arc length on either side."""
+def _tip_corners(p, tip_radius, near):
+    """Indices of the corners where the chain ``p`` meets the tip circle: of its vertices
+    within ``near`` mm of ``tip_radius`` (the tip is a polygon inscribed in its circle, so
+    a corner lies up to a chord's sag inside it), the two where the outline turns most
+    (one for a pointed tooth; the outermost vertex when none is near)."""
     r = np.hypot(p[:, 0], p[:, 1])
     cand = np.nonzero(r >= tip_radius - near)[0]
     cand = cand[(cand > 0) & (cand < len(p) - 1)]
     if not len(cand):
-        return _arc_params(p)
+        k = int(np.argmax(r))
+        return k, k
     a, b = p[cand] - p[cand - 1], p[cand + 1] - p[cand]
     turn = np.abs(np.arctan2(a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0], np.einsum("ij,ij->i", a, b)))
-    k = int(cand[int(np.argmax(turn))])
-    a, b = _arc_params(p[:k + 1]), _arc_params(p[k:])
-    return np.concatenate([0.5 * a, 0.5 + 0.5 * b[1:]])
+    order = np.argsort(-turn, kind="stable")
+    if len(cand) == 1 or turn[order[1]] < 0.1 * turn[order[0]]:
+        k = int(cand[order[0]])
+        return k, k
+    return int(min(cand[order[0]], cand[order[1]])), int(max(cand[order[0]], cand[order[1]]))
 
 
 def _dedupe(p):
@@ -204,7 +202,21 @@ def band_error(d, lower, upper, mid_prof, h_mid: float) -> float:
     m2 = np.where(two_l[:, None], 0.5 * (b + c), 0.5 * (a + c))
     pts = (m1[:, None, :2] + _CUT_FRACTIONS[None, :, None] * (m2 - m1)[:, None, :2]).reshape(-1, 2)
     pts = _rot(pts, -section_turn(d, h_mid))
-    return float(mid_prof.exact_distance(pts).max())
+    err = mid_prof.exact_distance(pts)
+    return float(np.minimum(err, _land_distance(mid_prof, pts, float(d.blank_tip_radius(h_mid)))).max())
+
+
+def _land_distance(prof, pts, tip_radius):
+    """Distance (mm) of points to the turned tip land of tooth 0 (the arc of the tip
+    circle between the polygon's two tip corners; inf elsewhere). The profile's exact
+    boundary keeps an arc piece only where one of its samples survived trimming, which a
+    land narrower than the arc's chords may not have; the land is the exact circle."""
+    chain, s = tooth_chain(prof.tooth_loop, prof.teeth, tip_radius, 4 * prof.tolerance)
+    c1, c2 = _tip_corners(np.concatenate([chain, chain[:1]]), tip_radius, 4 * prof.tolerance)
+    a1, a2 = (math.atan2(chain[c][1], chain[c][0]) for c in (c1, c2))
+    ang = np.arctan2(pts[:, 1], pts[:, 0])
+    on = (ang >= a1) & (ang <= a2) & (c2 > c1)
+    return np.where(on, np.abs(np.hypot(pts[:, 0], pts[:, 1]) - tip_radius), np.inf)
 
 
 def _rot(p, a):

@@ -28,6 +28,8 @@ from .wheel import MAX_SPLITS, SECTION_SHARE, band_error, band_faces, layer_poin
 
 #: a split aims at this share of the room the sections' polygons leave for interpolation
 SPLIT_MARGIN = 0.7
+#: the most sections a wheel may need before the builder refuses the tolerance
+MAX_SECTIONS = 2000
 #: the most parts one measured band is split into at once
 MAX_PARTS = 8
 
@@ -86,6 +88,19 @@ def _layer(d, h, tol_s, cache):
 def plan_layers(d, tol: float):
     """Layers (h, profile, chain, s) and measurements: (layers, section max error, band
     max error, bands measured). Raises ToleranceError when a band cannot be certified."""
+    with _one_stage():
+        return _plan_layers(d, tol)
+
+
+def _one_stage():
+    """The section builds charge the budget as tries of one stage (the largest counts) when
+    the budget keeps a ledger of stages; the whole wheel was estimated before the work."""
+    import contextlib
+    st = getattr(budget, "stage", None)
+    return st() if st is not None else contextlib.nullcontext()
+
+
+def _plan_layers(d, tol: float):
     tol_s = tol * SECTION_SHARE
     cache = {}
     hs = _initial_heights(d, tol)
@@ -96,7 +111,9 @@ def plan_layers(d, tol: float):
         for a, b in todo:
             mid = 0.5 * (a + b)
             la, lb, lm = (_layer(d, x, tol_s, cache) for x in (a, b, mid))
-            budget.check_body(2 * d.wheel_teeth * sum(len(v[1]) for v in cache.values()), "tolerance", tol)
+            if len(cache) > MAX_SECTIONS:
+                raise ToleranceError("tolerance", tol, "a coarser value",
+                                     f"the wheel would need more than {MAX_SECTIONS} sections")
             e = band_error(d, (a, la[1], la[2]), (b, lb[1], lb[2]), lm[0], mid)
             measured += 1
             if e <= tol:
