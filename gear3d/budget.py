@@ -1,40 +1,127 @@
-"""The resource budget: every accepted input stays within it, checked before the work.
+"""The resource budget: three resources, estimated and checked before the work.
 
-One knob, ``max_triangles``, bounds what a build may produce: a body's triangles, and a
-profile's vertices, each counted as :data:`PROFILE_VERTEX_COST` triangles (trimming and
-measuring a whole profile costs far more per vertex than meshing it).
-Estimates come from the tolerance before anything large is made: a profile is sampled one
-tooth period at a time (cheap), so ``teeth x samples per period`` is known before the
-period is repeated and trimmed; a body knows its vertices per layer and its layer count
-before it is extruded. About 250 bytes per triangle are needed at the peak (the mesh,
-manifold3d's half-edges, the STL records), so the default of 4 million keeps a build
-under about 1 GiB.
+Every build estimates, before it makes anything large,
 
-Raise it with ``gear3d --max-triangles N ...`` (any command), ``max_triangles`` in a
-scene's ``[scene]`` table, or :func:`limits` from Python::
+* **triangles** (the size of the biggest object: a body's triangles, or a profile's
+  vertices counted as :data:`PROFILE_VERTEX_COST` triangles each),
+* **memory**: the peak bytes the stage needs (its counts times the bytes per item of
+  the data structures that path uses, :data:`COSTS`),
+* **time**: CPU seconds (its counts times the seconds per item measured once on the
+  reference machine, :data:`COSTS`, each with its source),
 
-    with gear3d.budget.limits(max_triangles=20_000_000):
+and refuses beyond the budget at once, with one line naming the parameter, the resource,
+the estimate, the limit and how to raise it (:class:`BudgetError`, a ``GearError``: exit
+code 2 in the CLI). Defaults: 4,000,000 triangles, 2 GiB, 60 s of CPU time. Raise them with
+``gear3d --max-triangles N --max-memory 4GiB --max-seconds 300 ...`` (any command),
+``max_triangles`` / ``max_memory`` / ``max_seconds`` in a scene's ``[scene]`` table, or
+:func:`limits` from Python::
+
+    with gear3d.budget.limits(max_triangles=20_000_000, max_seconds=600):
         b = gear3d.body(p, ...)
+
+How the parts of a job add up: each stage (a profile, a body, an export, a rolling check)
+*charges* its estimate to the job's ledger (:func:`charge`) before its work; seconds add
+over stages, memory and triangles are peaks (the larger stage counts). The command line
+and the web server also *plan* a whole command before any stage (:mod:`gear3d.plan`), so a
+body too big for the budget is refused before its profile is built.
+
+An estimate can be wrong, so the command line also runs the work under a watchdog
+(:mod:`gear3d.watchdog`: an address-space limit and a CPU-time limit, and for a real
+process a supervisor that ends work stuck in C code); running past either ends the work
+with exit code 2, one line, and no file.
+
+Test hook, off by default: when ``GEAR3D_BUDGET_LOG`` names an existing file, every charge
+appends ``charge PID SECONDS BYTES TRIANGLES LEDGER_SECONDS LEDGER_BYTES WHAT`` to it and
+every plan ``plan PID SECONDS BYTES TRIANGLES WHAT`` (tests compare a run with its own
+estimate).
 """
 from __future__ import annotations
 
 import contextlib
-from dataclasses import dataclass
+import os
+import threading
+from dataclasses import dataclass, field
 
 from .errors import GearError, check_number
 
-#: default budget: triangles (a profile vertex counts as two)
+#: default budget: triangles (a profile vertex counts as :data:`PROFILE_VERTEX_COST`)
 DEFAULT_MAX_TRIANGLES = 4_000_000
-#: the largest budget that can be asked for (about 25 GiB at the peak)
+#: default budget: peak memory (bytes)
+DEFAULT_MAX_MEMORY = 2 * 1024 ** 3
+#: default budget: CPU seconds of work
+DEFAULT_MAX_SECONDS = 60.0
+#: the largest budgets that can be asked for
 HARD_MAX_TRIANGLES = 100_000_000
+HARD_MAX_MEMORY = 1024 ** 4
+HARD_MAX_SECONDS = 7 * 24 * 3600.0
+#: the smallest (below these nothing useful runs: the interpreter alone takes 40 MB, 0.3 s)
+MIN_TRIANGLES, MIN_MEMORY, MIN_SECONDS = 1000, 256 * 1024 ** 2, 1.0
 #: triangles one profile vertex counts as (so the default allows 500,000 profile vertices)
 PROFILE_VERTEX_COST = 8
 
+#: how to raise each limit, for the refusal
+RAISE = {"triangles": "--max-triangles, scene.max_triangles or budget.limits(max_triangles=...)",
+         "memory": "--max-memory, scene.max_memory or budget.limits(max_memory=...)",
+         "time": "--max-seconds, scene.max_seconds or budget.limits(max_seconds=...)"}
+
+
+@dataclass(frozen=True)
+class Cost:
+    """Per-item costs of one stage: CPU seconds and peak bytes per item, plus once-only
+    costs (imports, the interpreter's share), with where the numbers come from."""
+    seconds: float
+    bytes: float
+    fixed_seconds: float = 0.0
+    fixed_bytes: float = 0.0
+    source: str = ""
+
+
+#: per-item costs, measured once on the reference machine (2 cores, Python 3.11, numpy 2.4,
+#: manifold3d 3.5.4, shapely 2.1; ``python benchmarks/budget_costs.py`` re-measures them):
+#: the largest of several sizes and families, rounded up, so an estimate is an upper bound
+#: within about 2x
+COSTS = {
+    # gear3d.model.build_profile after sampling: pattern, trim (Clipper), corners, measure
+    "profile": Cost(12e-6, 900.0, 0.05, 40e6, "involute z=3000 (66,000 vertices) 0.31 s, +22 MB; "
+                    "triangular z=20,000 (100,000 vertices) 0.21 s, +24 MB; cycloidal 0.38 s"),
+    # solids.body: the layer mesh (float64 V, int64 F, intermediates) and its measurement
+    "body": Cost(1.2e-6, 260.0, 0.1, 60e6, "helical z=20..400 at 2-10 um: 0.6-0.9 us and 180-240 B "
+                 "a triangle"),
+    # manifold3d booleans (hubs, keyways, chamfers): extrude + warp + boolean + to_mesh64
+    "body.manifold": Cost(4e-6, 600.0, 0.1, 60e6, "chamfered helical z=40..200: 2.5-3.5 us, "
+                          "450-550 B a triangle"),
+    # exporters, per profile vertex (2D) or per triangle (3D)
+    "write.json": Cost(4e-6, 400.0, 0.05, 0.0, "triangular z=4000, 20,000 vertices: 0.25 s"),
+    "write.dxf": Cost(2.5e-4, 4000.0, 1.0, 30e6, "triangular z=4000, 20,000 vertices: 3.4 s, +68 MB "
+                      "(biarc fit + a reference profile 20x finer + read-back)"),
+    "write.svg": Cost(2.2e-4, 3000.0, 0.5, 20e6, "triangular z=4000, 20,000 vertices: 2.9 s, +48 MB"),
+    "write.png": Cost(5e-5, 3000.0, 1.2, 60e6, "triangular z=4000: 0.8 s with matplotlib's import"),
+    "write.stl": Cost(0.6e-6, 120.0, 0.05, 0.0, "binary STL of a 1.6 M triangle body: 0.9 s"),
+    "write.mesh": Cost(4e-6, 500.0, 0.6, 20e6, "meshio OBJ/PLY/VTU, 80,000 triangles: 0.33 s"),
+    "write.3mf": Cost(2.5e-5, 2500.0, 2.5, 120e6, "trimesh + lxml 3MF, 80,000 triangles: 2.1 s "
+                      "with trimesh's import, +200 MB"),
+    "write.step": Cost(2.5e-5, 2500.0, 0.5, 60e6, "faceted STEP, 80,000 triangles: 3.7 s with "
+                       "the profile, +190 MB"),
+    # a B-rep STEP: per surface sample (faces x samples per face), OpenCascade
+    "write.brep": Cost(4e-5, 2000.0, 1.5, 150e6, "B-spline STEP of helical z=20..500: 25-40 us "
+                       "a sample"),
+    # rolling check: per (position x vertex of both polygons), shapely
+    "pair": Cost(1.2e-7, 300.0, 0.3, 30e6, "involute 20/21..200/210 at 1-10 um: 0.05-0.1 us"),
+    # gerotor chamber areas: per (crank position x polygon vertex), shapely buffer/difference
+    "chambers": Cost(2.5e-7, 120.0, 0.0, 0.0, "gerotor 30 lobes R=300: 3.9 s for 62 x 540,000"),
+    # figures (matplotlib), per profile vertex drawn
+    "figure": Cost(5e-5, 3000.0, 1.2, 60e6, "annotated involute figure, 20,000 vertices: 1.1 s"),
+}
+
+
+# ------------------------------------------------------------------------ limits
 
 @dataclass
 class Budget:
-    """The active limits (see the module doc)."""
+    """The limits in force (see the module doc)."""
     max_triangles: int = DEFAULT_MAX_TRIANGLES
+    max_memory: int = DEFAULT_MAX_MEMORY
+    max_seconds: float = DEFAULT_MAX_SECONDS
 
 
 _ACTIVE = Budget()
@@ -45,39 +132,336 @@ def current() -> Budget:
     return _ACTIVE
 
 
+def check_limit(name: str, value):
+    """A limit validated (``max_triangles`` integer triangles, ``max_memory`` bytes, or a
+    text like ``"4GiB"`` / ``"512MB"``, ``max_seconds`` seconds); GearError naming it."""
+    if name == "max_triangles":
+        return int(check_number(name, value, MIN_TRIANGLES, HARD_MAX_TRIANGLES, integer=True, unit="triangles"))
+    if name == "max_memory":
+        v = parse_bytes(value) if isinstance(value, str) else value
+        allowed = (f"a size in [{fmt_bytes(MIN_MEMORY)}, {fmt_bytes(HARD_MAX_MEMORY)}] "
+                   "(bytes, or a number with KiB, MiB, GiB, MB or GB)")
+        try:
+            return int(check_number(name, v, MIN_MEMORY, HARD_MAX_MEMORY))
+        except GearError:
+            raise GearError(name, value, allowed) from None
+    if name == "max_seconds":
+        return float(check_number(name, value, MIN_SECONDS, HARD_MAX_SECONDS, unit="s"))
+    raise GearError("limit", name, "one of max_triangles, max_memory, max_seconds")
+
+
+_UNITS = {"": 1, "b": 1, "k": 1000, "kb": 1000, "kib": 1024, "m": 1000 ** 2, "mb": 1000 ** 2,
+          "mib": 1024 ** 2, "g": 1000 ** 3, "gb": 1000 ** 3, "gib": 1024 ** 3, "t": 1000 ** 4,
+          "tb": 1000 ** 4, "tib": 1024 ** 4}
+
+
+def parse_bytes(text: str):
+    """``"2GiB"`` -> 2147483648, ``"512MB"`` -> 512000000, ``"1e9"`` -> 1e9; None when the
+    text is not a plain ASCII number with an optional unit."""
+    from .cliargs import plain_number
+    s = text.strip().lower().replace(" ", "")
+    i = len(s)
+    while i and s[i - 1].isalpha():
+        i -= 1
+    num, unit = s[:i], s[i:]
+    if unit not in _UNITS:
+        return None
+    v = plain_number(num)
+    return None if v is None else v * _UNITS[unit]
+
+
+def fmt_bytes(n: float) -> str:
+    """``2147483648`` -> ``"2 GiB"``, ``1.5e6`` -> ``"1.4 MiB"``."""
+    n = float(n)
+    for unit, k in (("TiB", 1024 ** 4), ("GiB", 1024 ** 3), ("MiB", 1024 ** 2), ("KiB", 1024)):
+        if n >= k:
+            return f"{n / k:.3g} {unit}"
+    return f"{n:.0f} B"
+
+
+def fmt_seconds(s: float) -> str:
+    return f"{s:.3g} s" if s < 1e5 else f"{s:.2e} s"
+
+
+def _set(max_triangles=None, max_memory=None, max_seconds=None):
+    if max_triangles is not None:
+        _ACTIVE.max_triangles = check_limit("max_triangles", max_triangles)
+    if max_memory is not None:
+        _ACTIVE.max_memory = check_limit("max_memory", max_memory)
+    if max_seconds is not None:
+        _ACTIVE.max_seconds = check_limit("max_seconds", max_seconds)
+
+
 def set_max_triangles(n) -> int:
     """Set the triangle budget for this process; returns the validated value."""
-    v = int(check_number("max_triangles", n, 1000, HARD_MAX_TRIANGLES, integer=True, unit="triangles"))
-    _ACTIVE.max_triangles = v
-    return v
+    _set(max_triangles=n)
+    return _ACTIVE.max_triangles
 
 
 @contextlib.contextmanager
-def limits(max_triangles=None):
-    """Use another triangle budget inside a ``with`` block."""
-    old = _ACTIVE.max_triangles
+def limits(max_triangles=None, max_memory=None, max_seconds=None):
+    """Use other limits inside a ``with`` block (None keeps one as it is); the block is
+    one job: its own ledger of charges (:func:`charge`)."""
+    old = (_ACTIVE.max_triangles, _ACTIVE.max_memory, _ACTIVE.max_seconds)
     try:
-        if max_triangles is not None:
-            set_max_triangles(max_triangles)
-        yield _ACTIVE
+        _set(max_triangles, max_memory, max_seconds)
+        with job():
+            yield _ACTIVE
     finally:
-        _ACTIVE.max_triangles = old
+        _ACTIVE.max_triangles, _ACTIVE.max_memory, _ACTIVE.max_seconds = old
 
 
-def check_profile(vertices: float, param: str, value) -> None:
-    """Refuse a profile estimated at ``vertices`` before it is patterned and trimmed."""
-    need = PROFILE_VERTEX_COST * float(vertices)
-    if not need <= _ACTIVE.max_triangles:
-        raise GearError(param, value, f"a value that keeps the profile within the budget of "
-                        f"{_ACTIVE.max_triangles:,} triangles ({PROFILE_VERTEX_COST} per profile vertex)",
-                        f"it would need about {vertices:,.0f} vertices; raise the budget with "
-                        f"--max-triangles or scene.max_triangles, or use a coarser tolerance")
+# ------------------------------------------------------------------------ estimates
+
+@dataclass(frozen=True)
+class Estimate:
+    """What a stage needs: CPU ``seconds``, peak ``bytes``, ``triangles`` (of its biggest
+    object) and the words that say what was counted (``"500,000 profile vertices"``)."""
+    seconds: float = 0.0
+    bytes: float = 0.0
+    triangles: float = 0.0
+    what: str = ""
+
+    def then(self, other: "Estimate") -> "Estimate":
+        """This stage followed by ``other``: seconds add, peaks take the larger."""
+        what = "; ".join(w for w in (self.what, other.what) if w)
+        return Estimate(self.seconds + other.seconds, max(self.bytes, other.bytes),
+                        max(self.triangles, other.triangles), what)
+
+    def peak(self, other: "Estimate") -> "Estimate":
+        """The larger of two tries of the same stage, resource by resource."""
+        pick = other if (other.seconds, other.bytes) > (self.seconds, self.bytes) else self
+        return Estimate(max(self.seconds, other.seconds), max(self.bytes, other.bytes),
+                        max(self.triangles, other.triangles), pick.what)
 
 
-def check_body(triangles: float, param: str, value) -> None:
-    """Refuse a body estimated at ``triangles`` before it is extruded."""
-    if not float(triangles) <= _ACTIVE.max_triangles:
-        raise GearError(param, value, f"a value that keeps the body within the budget of "
-                        f"{_ACTIVE.max_triangles:,} triangles",
-                        f"it would need about {triangles:,.0f} triangles; raise the budget with "
-                        f"--max-triangles or scene.max_triangles, or use a coarser tolerance")
+def estimate(stage: str, count: float, triangles: float = 0.0, what: str = "") -> Estimate:
+    """The estimate of ``count`` items of stage ``stage`` (a key of :data:`COSTS`)."""
+    c = COSTS[stage]
+    count = float(count)
+    return Estimate(c.fixed_seconds + c.seconds * count, c.fixed_bytes + c.bytes * count,
+                    float(triangles), what or f"{count:,.0f} items of {stage}")
+
+
+def profile_estimate(vertices: float) -> Estimate:
+    """A profile of ``vertices`` vertices (all teeth): trimming and measuring it."""
+    return estimate("profile", vertices, PROFILE_VERTEX_COST * float(vertices),
+                    f"{float(vertices):,.0f} profile vertices")
+
+
+def body_estimate(triangles: float, manifold: bool = False, what: str = "") -> Estimate:
+    """A body of ``triangles`` (direct mesh, or manifold3d booleans when ``manifold``)."""
+    return estimate("body.manifold" if manifold else "body", triangles, triangles,
+                    what or f"a body of {float(triangles):,.0f} triangles")
+
+
+# ------------------------------------------------------------------------ the ledger
+
+@dataclass
+class _Frame:
+    """A stage being charged: its finished sub-stages (a sum) and its own charges by key
+    (repeated charges of one key are tries of the same thing: the largest counts)."""
+    children: Estimate = field(default_factory=Estimate)
+    own: dict = field(default_factory=dict)
+
+    def total(self) -> Estimate:
+        tot = self.children
+        for e in self.own.values():
+            tot = tot.then(e)
+        return tot
+
+
+class _Local(threading.local):
+    def __init__(self):
+        self.frames = [_Frame()]
+        self.probe = None
+
+
+_LOCAL = _Local()
+
+
+@contextlib.contextmanager
+def job():
+    """A fresh ledger (one job: a command, one batch part)."""
+    saved = _LOCAL.frames
+    _LOCAL.frames = [_Frame()]
+    try:
+        yield
+    finally:
+        _LOCAL.frames = saved
+
+
+@contextlib.contextmanager
+def stage():
+    """One build (a profile, a body, an export): inside it, charges with the same key are
+    tries of the same thing (:func:`charge`); on exit its total joins the enclosing one."""
+    _LOCAL.frames.append(_Frame())
+    try:
+        yield
+    finally:
+        f = _LOCAL.frames.pop()
+        parent = _LOCAL.frames[-1]
+        parent.children = parent.children.then(f.total())
+
+
+def staged(fn):
+    """Decorator: every call of ``fn`` is one :func:`stage`."""
+    import functools
+
+    @functools.wraps(fn)
+    def wrapper(*args, **kwargs):
+        with stage():
+            return fn(*args, **kwargs)
+    return wrapper
+
+
+def ledger() -> Estimate:
+    """What the current job has charged so far (open stages included)."""
+    tot = Estimate()
+    for f in _LOCAL.frames:
+        tot = tot.then(f.total())
+    return tot
+
+
+class BudgetError(GearError):
+    """A request over the budget: ``resource`` ("triangles", "memory" or "time"),
+    ``estimate`` and ``limit`` in its units (triangles, bytes, seconds)."""
+
+    def __init__(self, param, value, resource: str, estimate: float, limit: float, what: str = "",
+                 after: bool = False):
+        self.resource, self.estimate, self.limit = resource, estimate, limit
+        if resource == "memory":
+            e, lim = fmt_bytes(estimate), fmt_bytes(limit)
+        elif resource == "time":
+            e, lim = fmt_seconds(estimate), fmt_seconds(limit)
+        else:
+            e, lim = f"{estimate:,.0f} triangles", f"{limit:,.0f} triangles"
+        verb = "it used" if after else "estimated"
+        allowed = f"a value that keeps the work within the {resource} budget of {lim}"
+        why = (f"{verb} {e}" + (f" for {what}" if what else "") + f"; raise the limit with {RAISE[resource]}"
+               + ("" if after else ", or use a coarser tolerance"))
+        super().__init__(param, value, allowed, why)
+
+
+def check(est: Estimate, param: str, value, part: Estimate | None = None) -> Estimate:
+    """Refuse ``est`` (:class:`BudgetError` naming ``param``/``value``) when any resource is
+    over the budget in force; return it. ``part``: the stage being charged when ``est`` is
+    the job's total (the refusal says what that stage counted)."""
+    b = _ACTIVE
+    part = part or est
+    if not est.triangles <= b.max_triangles:
+        raise BudgetError(param, value, "triangles", est.triangles, b.max_triangles, part.what)
+    if not est.bytes <= b.max_memory:
+        raise BudgetError(param, value, "memory", est.bytes, b.max_memory, part.what)
+    if not est.seconds <= b.max_seconds:
+        what = part.what
+        if part is not est and part.seconds < est.seconds:
+            what = f"the whole job, {fmt_seconds(part.seconds)} of it for {part.what}"
+        raise BudgetError(param, value, "time", est.seconds, b.max_seconds, what)
+    return est
+
+
+class Probe(BaseException):
+    """Raised by :func:`charge` while :func:`probing`: the build stopped at its first
+    profile sample (``info``: what it measured)."""
+
+    def __init__(self, info: dict):
+        super().__init__("probe")
+        self.info = info
+
+
+@contextlib.contextmanager
+def probing():
+    """Run a builder only up to its first profile charge (see :mod:`gear3d.plan`); the
+    charges before it are collected in a ledger of their own (yielded)."""
+    saved, old = _LOCAL.frames, _LOCAL.probe
+    _LOCAL.frames, _LOCAL.probe = [_Frame()], {}
+    try:
+        yield _LOCAL.frames[0]
+    finally:
+        _LOCAL.frames, _LOCAL.probe = saved, old
+
+
+def charge(est: Estimate, param: str, value, info: dict | None = None, key: str | None = None) -> Estimate:
+    """Charge a stage's estimate to the job before its work: refused (BudgetError) when the
+    job's total would go over the budget. Inside one :func:`stage`, charges with the same
+    ``key`` are tries of the same thing (the largest counts; a profile re-checked after
+    refining its corners); other charges add. ``info``: a profile's sample (see
+    :func:`probing`)."""
+    if _LOCAL.probe is not None and info is not None:
+        raise Probe(dict(info, estimate=est))
+    top = _LOCAL.frames[-1]
+    k = key if key is not None and len(_LOCAL.frames) > 1 else f"#{len(top.own)}"
+    old = top.own.get(k)
+    top.own[k] = est if old is None else old.peak(est)
+    try:
+        tot = check(ledger(), param, value, est)
+    except BudgetError:
+        if old is None:
+            del top.own[k]
+        else:
+            top.own[k] = old
+        raise
+    _log("charge", est, tot)
+    return est
+
+
+def _log(kind: str, est: Estimate, tot: Estimate | None = None) -> None:
+    path = os.environ.get("GEAR3D_BUDGET_LOG")
+    if not path or not os.path.isfile(path):
+        return
+    t = f" {tot.seconds:.6g} {tot.bytes:.6g}" if tot is not None else ""
+    what = est.what.replace("\n", " ")
+    try:
+        with open(path, "a", encoding="utf-8") as fh:
+            fh.write(f"{kind} {os.getpid()} {est.seconds:.6g} {est.bytes:.6g} {est.triangles:.6g}{t} {what}\n")
+    except OSError:
+        pass
+
+
+def log_plan(est: Estimate) -> None:
+    """Record a whole command's plan (the test hook of the module doc)."""
+    _log("plan", est)
+
+
+# ------------------------------------------------------------------------ the builders' checks
+
+def check_profile(vertices: float, param: str, value, info: dict | None = None) -> Estimate:
+    """Charge a profile of ``vertices`` vertices before it is patterned and trimmed
+    (``info``: the sampled period, for :func:`probing`)."""
+    return charge(profile_estimate(vertices), param, value, info, key="profile")
+
+
+#: a ring's rim radius is at most this many pitch radii: a larger one is a plate with a
+#: toothed hole (and its circle alone would need more vertices than its teeth)
+MAX_RIM_RATIO = 100.0
+
+
+def circle_vertices(radius: float, tol: float) -> float:
+    """Vertices of a circle of ``radius`` whose chords sag at most ``tol`` (mm):
+    pi / acos(1 - tol / radius), about pi sqrt(radius / (2 tol))."""
+    import math
+    return math.pi / math.acos(max(1.0 - tol / radius, -1.0)) if radius > tol else 8.0
+
+
+def check_rim(rim_radius, pitch_radius: float, tol: float, param: str = "rim_radius", shown=None,
+              scale: float = 1.0) -> None:
+    """A ring's rim: at most :data:`MAX_RIM_RATIO` pitch radii (GearError naming ``param``,
+    whose value is ``shown``, ``scale`` x the radius: 2 for a diameter); its circle charged."""
+    if rim_radius is None:
+        return
+    hi = MAX_RIM_RATIO * float(pitch_radius)
+    if not float(rim_radius) <= hi:
+        raise GearError(param, rim_radius * scale if shown is None else shown,
+                        f"at most {hi * scale:.6g} mm ({MAX_RIM_RATIO:g} x the pitch "
+                        f"{'diameter' if scale == 2 else 'radius'} {pitch_radius * scale:.6g} mm)",
+                        "a larger rim is a plate with a toothed hole: cut the hole in the plate instead")
+    n = circle_vertices(float(rim_radius), tol)
+    e = profile_estimate(n)
+    charge(Estimate(e.seconds, e.bytes, e.triangles, f"a rim circle of {n:,.0f} vertices"), param,
+           rim_radius * scale if shown is None else shown, key="rim")
+
+
+def check_body(triangles: float, param: str, value, manifold: bool = False, what: str = "") -> Estimate:
+    """Charge a body of ``triangles`` before it is extruded (``what``: how they were counted)."""
+    return charge(body_estimate(triangles, manifold, what), param, value, key="body")

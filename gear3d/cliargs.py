@@ -6,6 +6,35 @@ from __future__ import annotations
 
 import argparse
 import math
+import re
+
+#: a plain ASCII decimal number: optional sign, digits with an optional point, optional
+#: exponent; no underscores (``1_0``), no hex, no spaces, no other digits (``٣``)
+PLAIN_NUMBER = re.compile(r"[+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?\Z")
+#: words Python's float() takes that are numbers too (refused later as not finite)
+_SPECIAL = {"nan", "+nan", "-nan", "inf", "+inf", "-inf", "infinity", "+infinity", "-infinity"}
+
+
+def plain_number(text):
+    """``float(text)`` when ``text`` is a plain ASCII number (see :data:`PLAIN_NUMBER`; also
+    nan/inf, which the range checks refuse by name), else None. ``"1_0"`` -> None."""
+    if not isinstance(text, str):
+        return None
+    if text.lower() in _SPECIAL:
+        return float(text)
+    if not PLAIN_NUMBER.match(text):
+        return None
+    try:
+        return float(text)
+    except (ValueError, OverflowError):
+        return None
+
+
+def plain_int(text):
+    """``int(text)`` when ``text`` is plain ASCII digits with an optional sign, else None."""
+    if not isinstance(text, str) or not re.fullmatch(r"[+-]?[0-9]+", text):
+        return None
+    return int(text, 10)
 
 
 def number(kind: str = "float", lo=None, hi=None, *, lo_open=False, hi_open=False, unit: str = ""):
@@ -21,9 +50,9 @@ def number(kind: str = "float", lo=None, hi=None, *, lo_open=False, hi_open=Fals
 
     def parse(text: str):
         try:
-            if not text.isascii():      # no full-width or Arabic-Indic digits
+            v = plain_int(text) if integer else plain_number(text)     # no 1_0, no full-width digits
+            if v is None:
                 raise ValueError(text)
-            v = int(text, 10) if integer else float(text)
             ok = math.isfinite(v) and (lo is None or v > lo or (v == lo and not lo_open)) \
                 and (hi is None or v < hi or (v == hi and not hi_open))
         except (ValueError, OverflowError):

@@ -346,8 +346,9 @@ BODY_KINDS = ("spur", "helical", "herringbone", "chevron-arch")
 BODY_PARAMS: tuple = (
     _p("kind", str, default="spur", choices=BODY_KINDS, help="twist law"),
     _p("width", float, "mm", 0, 100_000, lo_open=True, default=10.0, help="face width"),
-    _p("helix_angle_deg", float, "deg", 0, 90, hi_open=True, default=0.0,
-       help="helix angle at the pitch circle (0 for spur, > 0 for twisted kinds)", aliases=("--helix-angle",)),
+    _p("helix_angle_deg", float, "deg", 0, 85, default=0.0,
+       help="helix angle at the pitch circle (0 for spur, > 0 for twisted kinds; at most 85: a "
+            "steeper helix is a worm, see gear3d worm)", aliases=("--helix-angle",)),
     _p("hand", str, default="right", choices=("right", "left"), help="helix hand"),
     _p("gap", float, "mm", 0, None, default=0.0, help="herringbone central groove width",
        limits="below the width; herringbone only"),

@@ -102,6 +102,10 @@ def remove_live_temps() -> int:
     return n
 
 
+#: pipes (file descriptors) that also get every file event: the supervisor of
+#: :mod:`gear3d.watchdog` learns the temporary files of the process it watches there
+WATCH_FDS: list = []
+
 #: environment variable of the file-event test hook (see the module docstring)
 FILE_EVENTS_ENV = "GEAR3D_FILE_EVENTS"
 
@@ -110,6 +114,11 @@ def file_event(kind: str, path) -> None:
     """Append ``"KIND PID PATH"`` to the existing file or FIFO named by ``$GEAR3D_FILE_EVENTS``,
     if set; never creates it, never blocks (a FIFO without a reader or a full one drops the
     line), never raises."""
+    for wfd in WATCH_FDS:          # the CLI's supervisor (gear3d.watchdog): its own pipe
+        try:
+            os.write(wfd, f"{kind} {os.getpid()} {os.fspath(path)}\n".encode("utf-8", "surrogateescape"))
+        except OSError:
+            pass
     target = os.environ.get(FILE_EVENTS_ENV)
     if not target:
         return

@@ -52,7 +52,9 @@ def profile(family: str, **params):
         params["internal"] = check_bool("internal", params["internal"])
     if family != "mate" and params.get("rim_radius") is not None and not params.get("internal"):
         raise GearError("rim_radius", params["rim_radius"], "only for a ring gear (internal=True)")
-    return FAMILIES[family](**params)
+    from .. import budget
+    with budget.stage():             # one profile: its re-checks are tries, not a sum
+        return FAMILIES[family](**params)
 
 
 def table(family: str) -> dict:

@@ -40,7 +40,12 @@ from .features import (apply_features, chamfer_vectors, offset_loops,
                        plan_features, subdivide)
 from ..reports import BodyReport
 from .twist import KINDS, TwistLaw, default_arch_radius, twist_law
+from ..budget import staged
 
+#: the steepest helix angle (deg) of a body: at 85 deg a tooth wraps tan 85 = 11.4 face
+#: widths around the pitch cylinder; steeper helices are worms (gear3d worm), and near 90
+#: deg the layer count tan(beta) W / r grows without bound
+MAX_HELIX_DEG = 85.0
 #: smallest body tolerance with a twist (part of it goes to the profile, whose floor is 1e-7 mm)
 MIN_TWIST_TOLERANCE = 2e-7
 #: share of a twisted body's tolerance given to its profile polygon (the rest: twist terms)
@@ -134,6 +139,7 @@ class Body:
 
 # --------------------------------------------------------------------------- body()
 
+@staged
 def body(profile, kind="spur", width=10.0, helix_angle_deg=0.0, hand="right", gap=0.0,
          arch_radius=None, tolerance=None, bore=None, hub_diameter=None, hub_length=0.0,
          keyway=False, set_screw=None, lightening_holes=0, web_thickness=None, xy_offset=0.0,
@@ -141,7 +147,7 @@ def body(profile, kind="spur", width=10.0, helix_angle_deg=0.0, hand="right", ga
     """A 3D gear body (mm, degrees) from a :class:`gear3d.model.Profile`.
 
     ``kind``: spur | helical | herringbone | chevron-arch (see :mod:`gear3d.solids.twist`).
-    ``width``: face width (mm). ``helix_angle_deg``: β at the pitch circle, in (0, 90) for
+    ``width``: face width (mm). ``helix_angle_deg``: β at the pitch circle, in (0, 85] for
     the twisted kinds, 0 for spur. ``hand``: right | left (of the lower half for the V
     kinds). ``gap``: herringbone central groove width (mm, the groove bottom is the root
     circle). ``arch_radius``: chevron-arch R (mm) in [module, W/(2 sin β)], default spans the
@@ -167,8 +173,8 @@ def body(profile, kind="spur", width=10.0, helix_angle_deg=0.0, hand="right", ga
         beta = check_number("helix_angle_deg", helix_angle_deg, 0, 0, unit="deg for a spur body "
                             "(use kind='helical')")
     else:
-        beta = check_number("helix_angle_deg", helix_angle_deg, 0, 90, lo_open=True, hi_open=True,
-                            unit="deg")
+        beta = check_number("helix_angle_deg", helix_angle_deg, 0, MAX_HELIX_DEG, lo_open=True,
+                            unit="deg (steeper helices are worms: gear3d worm)")
     hand = BODY["hand"].check(hand if hand is not None else "")
     gap = check_number("gap", gap, 0, 0 if kind != "herringbone" else W, hi_open=kind == "herringbone",
                        unit="mm" if kind == "herringbone" else "mm (a gap is for herringbone bodies)")
@@ -192,6 +198,8 @@ def body(profile, kind="spur", width=10.0, helix_angle_deg=0.0, hand="right", ga
         rr = float(prof.report["root_radius"])
         check_number("rim_diameter", rim_diameter, 2 * rr, None, lo_open=True,
                      unit=f"mm (beyond the root diameter {2 * rr:.6g})")
+        from .. import budget
+        budget.check_rim(rim_diameter / 2, prof.pitch_radius, tol, "rim_diameter", scale=2)
         prof = _rebuild(prof, rim_radius=rim_diameter / 2)
     delta = check_number("xy_offset", xy_offset, -m / 2, m / 2, unit="mm (|offset| <= module/2)")
     ef = check_number("elephant_foot", elephant_foot, 0, W / 2, hi_open=True, unit="mm")
@@ -344,14 +352,18 @@ def _build(prof, law, W, tol, delta, e_off, cb, ct, ef_bottom, skip, share=1.0, 
     loops = offset_loops(prof.loops, delta, e_off)
     rho = max(float(np.hypot(l[:, 0], l[:, 1]).max()) for l in loops)
     e_z = max(tol - e_p - e_off, 0.0) * share
-    knots, max_len, bound = _plan(law, W, rho, loops, e_z, (cb, ct))
+    from .. import budget
+
+    def charge(nv, layers):      # before the layers and the subdivided loops are made
+        budget.check_body(2 * nv * layers + 2 * nv, "tolerance", tol, manifold=direct is None,
+                          what=f"a body of {nv:,} vertices a layer x {layers:,} layers")
+    knots, max_len, bound = _plan(law, W, rho, loops, e_z, (cb, ct), charge)
     loops = subdivide(loops, max_len)
     cs = CrossSection(loops, FillRule.Positive)
     polys = [np.asarray(p, float) for p in cs.to_polygons()]
     nv = sum(len(p) for p in polys)
     est = 2 * nv * (len(knots) - 1) + 2 * nv
-    from .. import budget
-    budget.check_body(est, "tolerance", tol)
+    budget.check_body(est, "tolerance", tol, manifold=direct is None)
     if direct is not None:
         # plain body: the closed mesh straight from the layers (a bore is one more loop,
         # not turned: a circle turned about its centre is the same circle)
@@ -480,8 +492,10 @@ def _rigid(angle: float, x: float) -> np.ndarray:
     return t
 
 
-def _plan(law: TwistLaw, W: float, rho: float, loops, e_z: float, chamfers):
+def _plan(law: TwistLaw, W: float, rho: float, loops, e_z: float, chamfers, charge=None):
     """Layer heights (mm), edge-length cap (mm) and the predicted error bound (mm).
+    ``charge(vertices per layer, layers)`` is called before anything of that size is made
+    (the resource budget).
 
     Pieces between the law's breaks and the chamfer bands get uniform layers. The share f of
     the twist budget going to the arc sag ρΔθ²/8 (the rest to the zig-zag LΔθ/4) is chosen
@@ -514,6 +528,8 @@ def _plan(law: TwistLaw, W: float, rho: float, loops, e_z: float, chamfers):
         if best is None or cost < best[0]:
             best = (cost, counts, lmax)
     _, counts, lmax = best
+    if charge is not None:
+        charge(max(int(np.ceil(lens / lmax).sum()), len(lens)), sum(counts))
     zs = [np.linspace(a, b, n + 1)[:-1] for (a, b), n in zip(pieces, counts)]
     knots = np.concatenate(zs + [np.array([W])])
     dz = np.diff(knots)
