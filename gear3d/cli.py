@@ -44,6 +44,18 @@ class _Parser(argparse.ArgumentParser):
         kw.setdefault("allow_abbrev", False)
         super().__init__(*a, **kw)
 
+    def _get_value(self, action, arg_string):
+        """``type=int`` / ``type=float`` read plain ASCII numbers only (``1_0`` is not 10)."""
+        if action.type in (int, float) and isinstance(arg_string, str):
+            from .cliargs import plain_int, plain_number
+            v = plain_int(arg_string) if action.type is int else plain_number(arg_string)
+            if v is None:
+                from .errors import show
+                raise argparse.ArgumentError(action, f"{show(arg_string)} is not allowed: "
+                                             + ("an integer" if action.type is int else "a number")
+                                             + " (plain ASCII digits)")
+        return super()._get_value(action, arg_string)
+
     def error(self, message):  # one line, exit code 2
         sys.stderr.write(f"gear3d: error: {_one_line(_param_first(message))}\n")
         raise SystemExit(2)
@@ -63,17 +75,55 @@ def build_parser(only=None) -> argparse.ArgumentParser:
     """The argument parser; ``only`` (a list of command names) imports just those command
     modules (a run of one command needs only its own module and flags)."""
     ap = _Parser(prog="gear3d", description="Gear theory to manufacturable geometry.",
-                 epilog="Any command takes --max-triangles N: the resource budget (default "
-                        "4,000,000 triangles; a profile vertex counts as eight); bigger jobs are "
-                        "refused before any work. Exit codes: 0 ok, 1 a batch with failed parts, 2 bad input (one line on "
+                 epilog="Any command takes the resource budget: --max-triangles N (default "
+                        "4,000,000; a profile vertex counts as eight), --max-memory SIZE (default 2GiB) "
+                        "and --max-seconds S (CPU seconds, default 60); bigger jobs are refused "
+                        "before any work, and a watchdog stops work that runs past them (exit 2). Exit codes: 0 ok, 1 a batch with failed parts, 2 bad input (one line on "
                         "stderr), 130 interrupted, 143 terminated.")
-    ap.add_argument("--version", action="version", version=f"gear3d {__version__}")
+    ap.add_argument("--version", action=_Versions, help="gear3d's version and those of numpy, manifold3d "
+                    "and OpenCascade (when installed)")
     sub = ap.add_subparsers(dest="command", parser_class=_Parser, metavar="COMMAND")
     for name in (only or COMMANDS):
         mod = importlib.import_module(f"gear3d.commands.{name}")  # a broken command fails loudly
         p = mod.add_parser(sub)
         p.set_defaults(_run=mod.run)
+        from .commands.examples import apply
+        apply(p, name)                   # --help ends with two examples
     return ap
+
+
+def versions() -> str:
+    """gear3d's version, Python's, and those of numpy, manifold3d and OpenCascade (OCP), read
+    from the installed packages' metadata (nothing heavy is imported)."""
+    import platform
+    from importlib import metadata
+
+    def ver(*dists):
+        for d in dists:
+            try:
+                return metadata.version(d)
+            except metadata.PackageNotFoundError:
+                continue
+        return None
+    lines = [f"gear3d {__version__}", f"python {platform.python_version()}"]
+    for label, dists, missing in (("numpy", ("numpy",), "not installed"),
+                                  ("manifold3d", ("manifold3d",), "not installed"),
+                                  ("OpenCascade", ("cadquery-ocp-novtk", "cadquery-ocp", "OCP"),
+                                   "not installed (exact STEP: pip install 'gear3d[cad]')")):
+        v = ver(*dists)
+        lines.append(f"{label} {v if v else missing}")
+    return "\n".join(lines)
+
+
+class _Versions(argparse.Action):
+    """``--version``: :func:`versions`, then exit 0."""
+
+    def __init__(self, option_strings, dest=argparse.SUPPRESS, default=argparse.SUPPRESS, help=None):
+        super().__init__(option_strings, dest=dest, default=default, nargs=0, help=help)
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        sys.stdout.write(versions() + "\n")
+        parser.exit()
 
 
 class Terminated(BaseException):
@@ -107,43 +157,84 @@ def _install_handlers() -> dict:
     return old
 
 
+#: the budget flags any command takes (before or after the command): flag -> limit name
+BUDGET_FLAGS = {"--max-triangles": "max_triangles", "--max-memory": "max_memory", "--max-seconds": "max_seconds"}
+#: commands that run without the supervisor: a server and a batch run for as long as they
+#: are asked to (a batch charges each part as a job of its own); bench times things
+UNSUPERVISED = ("serve", "batch", "bench")
+
+
 def _take_budget(words):
-    """Remove ``--max-triangles N`` (accepted before or after the command) from the words;
-    return (words, N or None), N validated (GearError naming max_triangles)."""
-    out, n = [], None
-    it = iter(range(len(words)))
-    for i in it:
+    """Remove ``--max-triangles N``, ``--max-memory SIZE`` and ``--max-seconds S`` (accepted
+    before or after the command) from the words; return (words, {limit: value}), each
+    validated (GearError naming the limit)."""
+    from .budget import check_limit, parse_bytes
+    from .cliargs import plain_number
+    from .errors import GearError
+    out, got = [], {}
+    i = 0
+    while i < len(words):
         w = words[i]
-        if w == "--max-triangles" or w.startswith("--max-triangles="):
+        flag = w.split("=", 1)[0]
+        if flag in BUDGET_FLAGS and (w == flag or w.startswith(flag + "=")):
+            name = BUDGET_FLAGS[flag]
             if "=" in w:
                 v = w.split("=", 1)[1]
             elif i + 1 < len(words):
                 v = words[i + 1]
-                next(it, None)
+                i += 1
             else:
                 v = None
-            from .budget import HARD_MAX_TRIANGLES
-            from .errors import GearError, check_number
+            num = (parse_bytes(v) if name == "max_memory" else plain_number(v)) if isinstance(v, str) else None
             try:
-                n = int(check_number("max_triangles", float(v) if v is not None else None, 1000,
-                                     HARD_MAX_TRIANGLES, integer=True, unit="triangles"))
-            except (TypeError, ValueError, OverflowError):
-                raise GearError("max_triangles", v, f"an integer in [1000, {HARD_MAX_TRIANGLES}] triangles") from None
+                got[name] = check_limit(name, num if num is not None else v)
+            except GearError:
+                raise GearError(name, v, check_limit_range(name)) from None
+            i += 1
             continue
         out.append(w)
-    return out, n
+        i += 1
+    return out, got
+
+
+def check_limit_range(name: str) -> str:
+    """The words of a refused budget flag."""
+    from .budget import (HARD_MAX_MEMORY, HARD_MAX_SECONDS, HARD_MAX_TRIANGLES, MIN_MEMORY, MIN_SECONDS,
+                         MIN_TRIANGLES, fmt_bytes)
+    return {"max_triangles": f"an integer in [{MIN_TRIANGLES}, {HARD_MAX_TRIANGLES}] triangles",
+            "max_memory": f"a size in [{fmt_bytes(MIN_MEMORY)}, {fmt_bytes(HARD_MAX_MEMORY)}] (bytes, or a "
+                          "number with KiB, MiB, GiB, MB or GB: 4GiB)",
+            "max_seconds": f"a number in [{MIN_SECONDS:g}, {HARD_MAX_SECONDS:g}] s of CPU time"}[name]
 
 
 def main(argv=None) -> int:
+    """Run the command line on ``argv`` (default ``sys.argv[1:]``); returns the exit code.
+
+    Called with ``argv=None`` (a real ``gear3d`` process), the command runs under the
+    watchdog's supervisor (:func:`gear3d.watchdog.supervise`: a child process whose CPU
+    time and memory are watched from outside); called with a list (tests, embedding) it
+    runs in this process under :func:`gear3d.watchdog.guard` alone."""
+    from .errors import GearError
+    words = list(sys.argv[1:] if argv is None else argv)
+    try:
+        words, lim = _take_budget(words)
+    except GearError as e:
+        sys.stderr.write(f"gear3d: error: {_one_line(e)}\n")
+        return 2
+    first = next((w for w in words if not w.startswith("-")), None)
+    if argv is None and first in COMMANDS and first not in UNSUPERVISED and hasattr(os, "fork") \
+            and os.environ.get("GEAR3D_NO_SUPERVISOR") != "1":
+        from .budget import DEFAULT_MAX_MEMORY, DEFAULT_MAX_SECONDS
+        from .watchdog import supervise
+        return supervise(lambda: _main(words, lim), lim.get("max_seconds", DEFAULT_MAX_SECONDS),
+                         lim.get("max_memory", DEFAULT_MAX_MEMORY))
+    return _main(words, lim)
+
+
+def _main(words, lim) -> int:
     from .errors import GearError
     old = _install_handlers()
     try:
-        words = list(sys.argv[1:] if argv is None else argv)
-        try:
-            words, max_tri = _take_budget(words)
-        except GearError as e:
-            sys.stderr.write(f"gear3d: error: {_one_line(e)}\n")
-            return 2
         first = next((w for w in words if not w.startswith("-")), None)
         ap = build_parser([first] if first in COMMANDS and words and words[0] == first else None)
         try:
@@ -156,11 +247,17 @@ def main(argv=None) -> int:
                              + ", ".join(c for c in COMMANDS) + "\n")
             return 2
         try:
-            from .budget import limits
+            from .budget import current, limits
             from .progress import Reporter
-            with limits(max_tri), Reporter():
-                rc = args._run(args)
+            with limits(**lim), Reporter():
+                if args.command in UNSUPERVISED:
+                    rc = args._run(args)
+                else:
+                    from .watchdog import guard
+                    with guard(current().max_seconds, current().max_memory):
+                        rc = args._run(args)
         except GearError as e:
+            _remove_live_temps()
             sys.stderr.write(f"gear3d: error: {_one_line(e)}\n")
             return 2
         return int(rc or 0)

@@ -143,6 +143,8 @@ def show_family_help(parser, family) -> None:
         else:
             parser.epilog = (f"{family}: the flags above are its parameters (docs/parameters.md); "
                              "deprecated spellings (--helix-angle, --pressure-angle, ...) still work.")
+        from .examples import wrap
+        parser.epilog = wrap(parser.epilog) + "\n\n" + getattr(parser, "gear3d_examples", "")
         parser.print_help()
     finally:
         for a, h in saved:
