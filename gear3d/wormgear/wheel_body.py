@@ -174,9 +174,9 @@ def wheel_body(d, tolerance=None, bore=None, hub_diameter=None, hub_length=None,
     carries the measured errors."""
     tol = d.tolerance if tolerance is None else check_number("tolerance", tolerance, 1e-4, d.module / 10,
                                                              unit="mm")
+    feats = _check_features(d, d.wheel_root_radius, bore, hub_diameter, hub_length, tol)
     layers, sec_err, band_err, measured = plan_layers(d, tol)
     root = min(float(L[1].report["root_radius"]) for L in layers)
-    feats = _check_features(d, root, bore, hub_diameter, hub_length, tol)
     V, F = assemble(d, layers)
     budget.check_body(len(F), "tolerance", tol)
     man = None

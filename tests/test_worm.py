@@ -1,0 +1,287 @@
+"""Worm gearing (issue #23): oracles independent of the code under test.
+
+* mid-plane section of a ZA wheel = gear3d's involute gear cut by the straight rack of
+  (m_x, α_x), two-sided, and its flanks on the closed-form involute;
+* the rack of each wheel plane against the ZA section written here from first principles;
+* the worm body's slices against the closed-form helicoid;
+* report fields against exact formulas (tan γ = z1 m / d1, a, ratio, contact ratio);
+* refusals (one line, exit 2, no file); bodies read back with trimesh;
+* slow: the pair in mesh at several worm turns (no common volume), and a brute-force
+  hobbing simulation with manifold3d.
+"""
+from __future__ import annotations
+
+import json
+import math
+
+import numpy as np
+import pytest
+
+import gear3d
+from gear3d.errors import GearError
+from gear3d.wormgear.design import design
+from gear3d.wormgear.thread import section_rack, section_shift
+from gear3d.wormgear.wheel import section
+
+
+def _inv(a):
+    return math.tan(a) - a
+
+
+# ------------------------------------------------------------------ mid-plane oracle
+
+@pytest.mark.parametrize("x", [0.0, 0.3])
+def test_midplane_section_is_the_involute_gear(x):
+    d = design(module=2, starts=1, wheel_teeth=30, axial_pressure_angle_deg=20, worm_type="ZA",
+               shift_coeff=x, tolerance=0.01)
+    tol = 0.002
+    mine = section(d, 0.0, tol)
+    inv = gear3d.profile("involute", teeth=30, module=2, pressure_angle_deg=20, addendum_coeff=d.addendum_coeff,
+                         dedendum_coeff=d.dedendum_coeff, tip_radius_coeff=0, shift_coeff=x, tolerance=tol)
+    both = mine.report["max_error"] + inv.report["max_error"]
+    assert inv.exact_distance(mine.tooth_loop).max() <= both + 1e-9
+    assert mine.exact_distance(inv.tooth_loop).max() <= both + 1e-9
+    # and the flanks on the closed-form involute of (z2, m, αx, x)
+    a, r = d.alpha_x, d.r2
+    rb = r * math.cos(a)
+    tl = mine.tooth_loop
+    rr = np.hypot(tl[:, 0], tl[:, 1])
+    r_form = math.hypot(rb, r * math.sin(a) - (d.dedendum_coeff - x) * d.module / math.sin(a))
+    sel = (rr > r_form + 0.05) & (rr < d.wheel_throat_radius - 0.05) & (np.abs(np.arctan2(tl[:, 1], tl[:, 0])) < math.pi / 30)
+    assert sel.sum() > 10
+    half = math.pi / 60 + 2 * x * math.tan(a) / 30 + _inv(a) - np.array([_inv(math.acos(rb / q)) for q in rr[sel]])
+    dev = (np.abs(np.arctan2(tl[sel, 1], tl[sel, 0])) - half) * rr[sel]
+    assert np.abs(dev).max() <= tol / math.cos(a) + 1e-9
+
+
+# ------------------------------------------------------------------ ZA section, closed form
+
+@pytest.mark.parametrize("hand", ["right", "left"])
+def test_za_section_rack_is_the_closed_form(hand):
+    d = design(module=2, starts=2, wheel_teeth=30, axial_pressure_angle_deg=20, worm_type="ZA", hand=hand)
+    s = 1.0 if hand == "right" else -1.0
+    p = 2 * 2 / 2                                   # lead / 2π = z1 m / 2
+    a, r1, px = d.center_distance, 10.0, math.pi * 2
+    for h in (-7.0, -3.0, 0.0, 2.5, 6.0):
+        rack = section_rack(d, h)
+        for el in (rack.elements[2], rack.elements[6]):
+            u, v, _, _ = el.uv(np.linspace(0, 1, 41))
+            x = -(u + section_shift(d, h))           # the set's frame: u = -x, centred by the shift
+            y = a - r1 - v
+            rho = np.hypot(a - y, h)
+            # the worm's ZA flank, written here: axial straight line, helicoid, cut by z = h
+            # (world point (x, a + ρ cos ψ, ρ sin ψ) with ψ = π - asin(h/ρ))
+            e = px / 4 + (rho - r1) * math.tan(math.radians(20))
+            res = [np.abs(((x - (sg * e - s * p * np.arcsin(h / rho))) + px / 2) % px - px / 2) for sg in (1, -1)]
+            assert np.minimum(*res).max() < 1e-9
+
+
+def test_worm_body_on_the_closed_form_helicoid():
+    d = design(module=2, starts=2, wheel_teeth=30, worm_type="ZA", axial_pressure_angle_deg=20,
+               worm_length=14, tolerance=0.02)
+    s = gear3d.worm(part="worm", module=2, starts=2, wheel_teeth=30, worm_type="ZA", axial_pressure_angle_deg=20,
+                    worm_length=14, tolerance=0.02)
+    from gear3d.wormgear import worm_transform
+    w = s.worm
+    man = w.manifold.transform((worm_transform(d) @ w.transform)[:3, :4])
+    p, px, a = d.p, d.axial_pitch, d.center_distance
+    worst = 0.0
+    for h in (-9.0, -4.0, 0.0, 3.0, 8.0):
+        for poly in man.slice(h).to_polygons():
+            P = np.asarray(poly, float)
+            x, y = P[:, 0], P[:, 1]
+            rho = np.hypot(y - a, h)
+            psi = np.arctan2(h, y - a) % (2 * math.pi)
+            on = (rho > d.worm_root_radius + 0.05) & (rho < d.worm_tip_radius - 0.05) & (np.abs(x) < 5)
+            e = px / 4 + (rho[on] - d.r1) * math.tan(d.alpha_x)
+            X = x[on] - p * (psi[on] - math.pi)
+            res = [np.abs(((X - sg * e) + px / 2) % px - px / 2) for sg in (1, -1)]
+            worst = max(worst, float(np.minimum(*res).max(initial=0.0)))
+    # an axial miss of dX is a surface distance of about dX cos αx cos γ
+    assert worst * math.cos(d.alpha_x) * math.cos(math.atan(d.tan_gamma)) <= 0.02 * 1.05
+    assert s.report.worm_max_error <= 0.02
+
+
+# ------------------------------------------------------------------ report formulas
+
+def test_report_against_exact_formulas():
+    s = gear3d.worm(part="worm", module=2.5, starts=2, wheel_teeth=41, worm_pitch_diameter=25,
+                    normal_pressure_angle_deg=20, shift_coeff=0.25, friction=0.3, worm_length=20, tolerance=0.05)
+    r = s.report
+    assert r.lead_angle_deg == pytest.approx(math.degrees(math.atan(2 * 2.5 / 25)), abs=1e-12)
+    assert r.center_distance == pytest.approx((25 + 2.5 * 41) / 2 + 0.25 * 2.5, abs=1e-12)
+    assert r.ratio == 41 / 2
+    assert r.lead == pytest.approx(2 * math.pi * 2.5, abs=1e-12)
+    g = math.atan(2 * 2.5 / 25)
+    assert math.tan(math.radians(r.normal_pressure_angle_deg)) == pytest.approx(
+        math.tan(math.radians(r.axial_pressure_angle_deg)) * math.cos(g), rel=1e-12)
+    assert r.self_locking is (math.tan(g) < 0.3)
+    assert r.wheel_throat_diameter == pytest.approx(2.5 * 41 + 2 * (1 + 0.25) * 2.5)
+    assert r.throat_radius == pytest.approx(r.center_distance - r.wheel_throat_diameter / 2)
+    # mid-plane contact ratio: a ZA worm's mid-plane is the straight rack (closed form)
+    ax = math.radians(20)
+    d = design(module=2, starts=1, wheel_teeth=30, axial_pressure_angle_deg=20, shift_coeff=0.2)
+    from gear3d.wormgear.contact import midplane_contact_ratio
+    r2, ra = 30.0, d.wheel_throat_radius
+    eps = ((1 - 0.2) * 2 / math.sin(ax) + math.sqrt(ra ** 2 - (r2 * math.cos(ax)) ** 2) - r2 * math.sin(ax)) \
+        / (math.pi * 2 * math.cos(ax))
+    assert midplane_contact_ratio(d) == pytest.approx(eps, abs=1e-9)
+    text = json.dumps(r.to_dict(), allow_nan=False)
+    assert json.loads(text)["wheel_max_error"] is None
+
+
+# ------------------------------------------------------------------ refusals
+
+REFUSED = [
+    (["--worm-type", "ZK"], "worm_type"),
+    (["--worm-type", "ZX"], "worm_type"),
+    (["--starts", "9"], "starts"),
+    (["--face-width", "200"], "face_width"),
+    (["--normal-pressure-angle-deg", "50"], "normal_pressure_angle_deg"),
+    (["--dedendum-coeff", "0.8"], "dedendum_coeff"),
+    (["--shift-coeff", "2"], "shift_coeff"),
+    (["--tolerance", "1"], "tolerance"),
+    (["--hub-diameter", "10"], "hub_length"),
+    (["--diameter-quotient", "10", "--worm-pitch-diameter", "20"], "worm-pitch-diameter"),
+]
+
+
+@pytest.mark.parametrize("extra,word", REFUSED)
+def test_refusals_one_line_exit_2_no_file(tmp_path, capsys, extra, word):
+    from gear3d.cli import main
+    args = ["worm", "--module", "2", "--starts", "1", "--wheel-teeth", "30", "--part", "wheel",
+            "-o", str(tmp_path / "w.stl"), "--json", str(tmp_path / "w.json")]
+    # a later flag replaces an earlier one
+    for i in range(0, len(extra), 2):
+        if extra[i] in args:
+            j = args.index(extra[i])
+            del args[j:j + 2]
+    assert main(args + extra) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and word in err
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_zk_refused_in_python():
+    with pytest.raises(GearError, match="not built yet"):
+        design(worm_type="ZK")
+
+
+# ------------------------------------------------------------------ files read back
+
+def test_pair_3mf_two_named_watertight_objects(tmp_path, capsys):
+    import trimesh
+    from gear3d.cli import main
+    out, js = tmp_path / "pair.3mf", tmp_path / "pair.json"
+    assert main(["worm", "--module", "1", "--starts", "2", "--wheel-teeth", "20", "--worm-type", "ZI",
+                 "--tolerance", "0.1", "--worm-length", "10", "--part", "pair", "-o", str(out),
+                 "--json", str(js)]) == 0
+    rep = json.loads(js.read_text(), parse_constant=lambda c: pytest.fail(c))
+    assert rep["max_error"] <= rep["tolerance"] == 0.1
+    scene = trimesh.load(str(out), force="scene")
+    names = sorted(scene.geometry)
+    assert len(names) == 2 and any("wheel" in n for n in names) and any(n == "worm" for n in names)
+    for g in scene.geometry.values():
+        assert g.is_watertight and g.volume > 0
+    # placed: the wheel about the origin, the worm's axis parallel to x through (0, a, 0)
+    centres = sorted((m.bounds.mean(axis=0) for m in scene.dump(concatenate=False)), key=lambda c: c[1])
+    assert np.abs(centres[0]).max() < 0.1
+    assert abs(centres[1][1] - rep["center_distance"]) < 0.1 and abs(centres[1][2]) < 0.1
+
+
+def test_png_of_the_midplane_section(tmp_path):
+    from gear3d.cli import main
+    png = tmp_path / "mid.png"
+    assert main(["worm", "--module", "1", "--starts", "1", "--wheel-teeth", "20", "--tolerance", "0.1",
+                 "--worm-length", "10", "--part", "worm", "--png", str(png)]) == 0
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_wheel_stl_watertight_with_bore_and_hub(tmp_path):
+    import trimesh
+    s = gear3d.worm(part="wheel", module=1, starts=1, wheel_teeth=24, tolerance=0.05, throat=False,
+                    wheel_bore=6, hub_diameter=12, hub_length=14)
+    out = tmp_path / "w.stl"
+    gear3d.write(s.parts(), str(out))
+    m = trimesh.load(str(out))
+    assert m.is_watertight and m.is_winding_consistent
+    assert m.volume == pytest.approx(s.wheel.report["volume"], rel=1e-6)
+    assert s.report.wheel_max_error <= 0.05
+    assert s.wheel.report["genus"] == 1
+
+
+# ------------------------------------------------------------------ slow: conjugate action, hobbing
+
+def _rot(axis, ang, about=(0.0, 0.0, 0.0)):
+    c, s = math.cos(ang), math.sin(ang)
+    R = np.eye(4)
+    i, j = {"x": (1, 2), "z": (0, 1)}[axis]
+    R[i, i], R[i, j], R[j, i], R[j, j] = c, -s, s, c
+    T, Ti = np.eye(4), np.eye(4)
+    T[:3, 3], Ti[:3, 3] = about, -np.asarray(about)
+    return T @ R @ Ti
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("hand", ["right", "left"])
+def test_pair_turns_without_interference(hand):
+    from manifold3d import Manifold, OpType
+    s = gear3d.worm(part="pair", module=2, starts=2, wheel_teeth=30, hand=hand, tolerance=0.02, worm_length=40)
+    wheel, worm = s.parts()
+    a, sg = s.report.center_distance, (1 if hand == "right" else -1)
+    for phi in (0.0, 0.3, 1.1, 2.5):
+        W = worm.manifold.transform((_rot("x", phi, (0, a, 0)) @ worm.transform)[:3, :4])
+        G = wheel.manifold.transform((_rot("z", sg * phi * 2 / 30) @ wheel.transform)[:3, :4])
+        common = Manifold.batch_boolean([W, G], OpType.Intersect).volume()
+        assert common < 0.05, (phi, common)
+        # the wrong sense of turn interferes: the check can see it
+        G2 = wheel.manifold.transform((_rot("z", -sg * 0.3 * 2 / 30) @ wheel.transform)[:3, :4])
+        W2 = worm.manifold.transform((_rot("x", 0.3, (0, a, 0)) @ worm.transform)[:3, :4])
+    assert Manifold.batch_boolean([W2, G2], OpType.Intersect).volume() > 1.0
+
+
+@pytest.mark.slow
+def test_hobbing_simulation_matches_the_envelope():
+    """Brute force: the wheel blank minus the hob (the worm with its tip raised by the
+    clearance) at many (φ, φ z1/z2) positions around tooth 0's space; every section of the
+    simulated space lies within tolerance + the simulation's scallop of the exact section,
+    and the envelope never cuts more than the hob does."""
+    from manifold3d import CrossSection, FillRule, Manifold, OpType
+    from gear3d.envelope import circle_loop
+    from gear3d.wormgear import WHEEL_TURN, worm_transform
+    from gear3d.wormgear.worm_body import worm_body
+    from gear3d.wormgear.wheel import section_turn
+    tol = 0.02
+    d = design(module=2, starts=1, wheel_teeth=30, worm_length=30, tolerance=tol)
+    hob_d = design(module=2, starts=1, wheel_teeth=30, worm_length=30, tolerance=tol, addendum_coeff=1.2)
+    assert hob_d.worm_tip_radius == d.hob_tip_radius and hob_d.p == d.p
+    hob = worm_body(hob_d)
+    a = d.center_distance
+    # the blank: a solid of revolution about z, tip r_tip(h) (throat) in every plane
+    hs = np.linspace(-d.face_width / 2, d.face_width / 2, 61)
+    prof = [(0.0, hs[0])] + [(float(d.blank_tip_radius(h)), float(h)) for h in hs] + [(0.0, hs[-1])]
+    blank = Manifold.revolve(CrossSection([np.array(prof)], FillRule.Positive), 720)
+    # positions: the worm turns by φ about its axis (world x through (0, a, 0)) and the
+    # wheel by φ z1/z2 about z, so in the wheel's own frame the worm also turns back by
+    # -φ z1/z2 about z; 16 positions per wheel pitch (2π of worm turn) over +-2 pitches
+    n = 16
+    phis = np.linspace(-2.0, 2.0, 4 * n + 1) * 2 * math.pi
+    place = worm_transform(d) @ hob.transform
+    cuts = [hob.manifold.transform((np.linalg.inv(WHEEL_TURN) @ _rot("z", -f / 30) @ _rot("x", f, (0, a, 0))
+                                    @ place)[:3, :4]) for f in phis]
+    sim = Manifold.batch_boolean([blank] + cuts, OpType.Subtract)
+    step = 2 * math.pi * d.r2 / 30 / n                      # rack travel between positions
+    for h in (-6.0, 0.0, 5.0):
+        exact = section(d, h, tol / 2)
+        th = section_turn(d, h)
+        pts = np.concatenate([np.asarray(p, float) for p in sim.slice(h).to_polygons()])
+        pts = pts @ np.array([[math.cos(-th), math.sin(-th)], [-math.sin(-th), math.cos(-th)]])
+        ang = np.arctan2(pts[:, 1], pts[:, 0])
+        r = np.hypot(pts[:, 0], pts[:, 1])
+        # tooth 0's two flanks and the space beside them, inside the blank's tip
+        sel = (np.abs(ang) < 1.5 * math.pi / 30) & (r < float(d.blank_tip_radius(h)) - 0.05)
+        dist = exact.exact_distance(pts[sel])
+        # scallop of a rack step s on a flank of curvature radius >= r_b/4: s²/(8 ρ) + the
+        # hob's own mesh error
+        scallop = step ** 2 / (8 * (d.r2 * math.cos(d.alpha_x) / 4))
+        assert dist.max() <= 2 * tol + scallop, (h, dist.max(), scallop)
