@@ -83,8 +83,12 @@ def run(args) -> int:
     step_opts = {"step": args.step} if args.step and out.lower().endswith((".step", ".stp")) else {}
     info = write(b, out, **step_opts)
     r = b.report
-    sys.stdout.write(f"wrote {out}: {r['kind']} {r['family']} z={r['teeth']} {r['triangles']} triangles, "
-                     f"max_error={r['max_error']:.3g} mm (tolerance {r['tolerance']:g} mm)"
-                     + (f" {info}" if info else "") + "\n")
+    if step_opts.get("step") == "brep":       # the file holds surfaces, not the mesh's triangles
+        sys.stdout.write(f"wrote {out}: {r['kind']} {r['family']} z={r['teeth']}, "
+                         f"{str(info).removeprefix('step: ')} (tolerance {r['tolerance']:g} mm)\n")
+    else:
+        sys.stdout.write(f"wrote {out}: {r['kind']} {r['family']} z={r['teeth']} {r['triangles']} triangles, "
+                         f"max_error={r['max_error']:.3g} mm (tolerance {r['tolerance']:g} mm)"
+                         + (f" {info}" if info else "") + "\n")
     print_notes(args)
     return 0

@@ -159,15 +159,17 @@ def run(args) -> int:
         from ..export import atomic_path
         with atomic_path(args.png, "png") as tmp:
             mesh_figure(chk, tmp)
+    # one line either way; the whole report only in a file (--json FILE)
+    summary = (f"interference={chk['interference']} max_penetration={chk['max_penetration']:.4g} mm "
+               f"engagement depth {chk['max_engagement_depth']:.4f} mm at "
+               f"{chk['max_engagement_angle_deg']:.2f} deg (tolerance {args.tolerance:g} mm)")
     if args.json:
         _write_json(args.json, public_report(chk))
-        sys.stdout.write(f"wrote {args.json}: interference={chk['interference']} "
-                         f"max_penetration={chk['max_penetration']:.4g} mm "
-                         f"engagement depth {chk['max_engagement_depth']:.4f} mm at "
-                         f"{chk['max_engagement_angle_deg']:.2f} deg\n")
+        sys.stdout.write(f"wrote {args.json}: {summary}\n")
     else:
-        from ..export.json_format import dumps
-        sys.stdout.write(dumps(public_report(chk)) + "\n")
+        sys.stdout.write(f"stage {args.stage}: {summary}; --json FILE writes the whole report\n")
+    if args.png:
+        sys.stdout.write(f"wrote {args.png}\n")
     return 0
 
 
