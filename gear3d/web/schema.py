@@ -112,7 +112,56 @@ def _field(name: str, default, action, required: bool = False) -> dict:
     return {"name": name, "flag": flag, "type": typ, "default": default, "help": hlp,
             "unit": unit.group(1).replace("x ", "\u00d7 ") if unit else None,
             "choices": choices, "range": _range(action) if action is not None else None,
-            "required": required}
+            "required": required, "label": label_of(name), "group": group_of(name)}
+
+
+#: the words a person reads on the form (label: what the parameter is; its unit is shown beside)
+LABELS = {
+    "teeth": "Number of teeth", "module": "Module", "pressure_angle_deg": "Pressure angle",
+    "normal_module": "Normal module", "normal_pressure_angle_deg": "Normal pressure angle",
+    "diametral_pitch": "Diametral pitch", "addendum_coeff": "Addendum", "dedendum_coeff": "Dedendum",
+    "shift_coeff": "Profile shift", "tip_radius_coeff": "Tool tip radius", "backlash": "Backlash",
+    "tip_radius": "Tip (blank) radius", "rim_radius": "Rim radius", "internal": "Ring (internal) gear",
+    "tolerance": "Tolerance", "form": "Rack form", "unit_radius": "Unit radius", "amplitude": "Amplitude",
+    "displacement": "Rack displacement", "pins": "Number of pins", "pin_circle_radius": "Pin circle radius",
+    "pin_radius": "Pin radius", "eccentricity": "Eccentricity", "tooth_radius": "Tooth circle radius",
+    "mate_teeth": "Teeth of the mate", "center_distance": "Centre distance", "lobes": "Number of lobes",
+    "variant": "Variant", "rotor_lead": "Rotor lead", "rolling_radius_coeff": "Rolling circle radius",
+    "half_angle_deg": "Flank half-angle", "thickness_coeff": "Tooth thickness",
+    "offset_correction": "Offset correction", "radial_correction": "Radial correction",
+    "output_holes": "Output holes", "output_hole_radius": "Output hole radius",
+    "output_circle_radius": "Output hole circle radius", "bore_radius": "Bore radius",
+    "kind": "Body kind", "width": "Face width", "helix_angle_deg": "Helix angle", "hand": "Hand",
+    "gap": "Central gap", "arch_radius": "Arch radius", "bore": "Bore diameter", "keyway": "Keyway",
+    "hub_diameter": "Hub diameter", "hub_length": "Hub length", "set_screw": "Set screw",
+    "lightening_holes": "Lightening holes", "web_thickness": "Web thickness",
+    "rim_diameter": "Rim diameter", "xy_offset": "XY offset", "elephant_foot": "Elephant foot",
+    "chamfer": "Chamfer", "name": "Name", "mate": "Mate",
+}
+#: form groups, in order; a parameter not named here is "tooth form"
+GROUPS = ("size", "tooth form", "body", "print compensation", "pair", "accuracy")
+_GROUP_OF = {
+    **dict.fromkeys(("teeth", "module", "normal_module", "diametral_pitch", "pins", "pin_circle_radius",
+                     "pin_radius", "lobes", "eccentricity", "tooth_radius", "unit_radius", "internal",
+                     "tip_radius", "rim_radius"), "size"),
+    **dict.fromkeys(("kind", "width", "helix_angle_deg", "hand", "gap", "arch_radius", "bore", "keyway",
+                     "hub_diameter", "hub_length", "set_screw", "lightening_holes", "web_thickness",
+                     "rim_diameter", "name"), "body"),
+    **dict.fromkeys(("xy_offset", "elephant_foot", "chamfer"), "print compensation"),
+    **dict.fromkeys(("mate_teeth", "mate", "center_distance"), "pair"),
+    "tolerance": "accuracy",
+}
+
+
+def label_of(name: str) -> str:
+    """``teeth`` -> "Number of teeth"; an unlisted name reads as words."""
+    return LABELS.get(name) or name.removesuffix("_deg").replace("_", " ").capitalize()
+
+
+def group_of(name: str, scope: str = "profile") -> str:
+    """The form group of a parameter (body parameters other than print compensation: body)."""
+    g = _GROUP_OF.get(name, "tooth form")
+    return "body" if scope == "body" and g not in ("print compensation", "accuracy") else g
 
 
 def table_field(param, required: bool = False) -> dict:
@@ -125,7 +174,7 @@ def table_field(param, required: bool = False) -> dict:
     default = None if param.name in CLI_PICKS else param.default
     return {"name": param.name, "flag": param.flag, "type": param.kind.__name__, "default": default,
             "help": param.help, "unit": unit, "choices": list(param.choices) if param.choices else None,
-            "range": rng, "required": required}
+            "range": rng, "required": required, "label": label_of(param.name), "group": group_of(param.name)}
 
 
 def families() -> list:
@@ -139,7 +188,7 @@ def families() -> list:
 
 def _body_fields() -> list:
     from ..params import BODY_PARAMS
-    return [table_field(p, p.name in REQUIRED["body"]) for p in BODY_PARAMS]
+    return [dict(table_field(p, p.name in REQUIRED["body"]), group=group_of(p.name, "body")) for p in BODY_PARAMS]
 
 
 def _pair_fields() -> list:
@@ -151,7 +200,8 @@ def _pair_fields() -> list:
 def form_schema(family: str) -> dict:
     """The parameter form of ``family``: ``{"family", "profile": [...], "body": [...], "pair": [...]}``.
 
-    Each field is ``{name, flag, type, default, unit, help, choices, range, required}``
+    Each field is ``{name, flag, type, default, unit, help, choices, range, required, label,
+    group}`` (``label``: the words shown, :data:`LABELS`; ``group``: one of :data:`GROUPS`)
     (:func:`table_field`), read off the family's table in its builder's keyword order.
     Raises ``GearError("family", ...)`` for a family no form can build.
     """
@@ -160,7 +210,7 @@ def form_schema(family: str) -> dict:
         raise GearError("family", family, "one of " + ", ".join(names))
     from ..params import FAMILY_PARAMS
     return {"family": family, "profile": [table_field(p) for p in FAMILY_PARAMS[family]],
-            "body": _body_fields(), "pair": _pair_fields()}
+            "body": _body_fields(), "pair": _pair_fields(), "groups": list(GROUPS)}
 
 
 def parse_form(schema: dict, query) -> dict:

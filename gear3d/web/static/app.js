@@ -19,7 +19,19 @@ function fmtDefault(v) { return v === null || v === undefined ? "" : String(v); 
 function buildForm(scope, fields) {
   const form = $(`#form-${scope}`);
   form.innerHTML = "";
-  for (const f of fields) {
+  // grouped (size, tooth form, body, print compensation, ...), each group in table order
+  const order = (schema && schema.groups) || [];
+  const rank = (f) => { const i = order.indexOf(f.group); return i < 0 ? order.length : i; };
+  const sorted = fields.map((f, i) => [f, i]).sort((a, b) => rank(a[0]) - rank(b[0]) || a[1] - b[1]).map((x) => x[0]);
+  let group = null;
+  for (const f of sorted) {
+    if (f.group && f.group !== group) {
+      group = f.group;
+      const h = document.createElement("div");
+      h.className = "group";
+      h.textContent = group;
+      form.append(h);
+    }
     const id = fieldId(scope, f.name);
     const row = document.createElement("div");
     row.className = "field";
@@ -27,8 +39,9 @@ function buildForm(scope, fields) {
     row.dataset.name = f.name;
     const label = document.createElement("label");
     label.htmlFor = `in-${id}`;
-    label.textContent = f.name;
-    label.title = (f.flag ? f.flag + ": " : "") + (f.help || "");
+    label.textContent = f.label || f.name;
+    // tooltip: what it is, its range, and the flag / TOML key it stands for
+    label.title = (f.help || "") + (f.range ? ` (${f.range})` : "") + (f.flag ? `; ${f.flag}, key ${f.name}` : "");
     let input;
     if (f.type === "bool") {
       input = document.createElement("input");
