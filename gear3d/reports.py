@@ -164,4 +164,15 @@ class PairReport(Report):
     #: specific sliding at the two ends of the path of contact
     sliding_start: dict | None
     sliding_end: dict | None
+    #: the contact ratio counts conjugate action only (common normal through the pitch
+    #: point on smooth exact flanks, within ``contact_band`` mm); its uncertainty (pitches)
+    #: bounds how it moves with the tolerance; ``continuous``: a tooth is always in
+    #: conjugate contact (contact ratio minus uncertainty above 1)
+    contact_ratio_uncertainty: float | None = None
+    continuous: bool | None = None
+    #: corners touching the other wheel by their edge: wheel, radius (mm), phi1_deg range
+    edge_contact: list = field(default_factory=list)
+    contact_band: float | None = None
+    #: the play taken up before contact is judged (mm on wheel 2's pitch circle)
+    contact_take_up: float | None = None
     extra: dict = field(default_factory=dict)

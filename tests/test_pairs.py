@@ -162,13 +162,14 @@ def test_cli_pair(tmp_path):
     out = tmp_path / "pair.json"
     r = subprocess.run([sys.executable, "-m", "gear3d.cli", "pair", "sine", "--teeth", "20", "--mate-teeth", "21",
                         "--internal", "--addendum-coeff", "1", "-o", str(out)], capture_output=True, text=True)
-    assert r.returncode == 0, r.stderr
+    # interference is a finding: exit 1, the report still written
+    assert r.returncode == 1, r.stderr
     rep = json.loads(out.read_text())
     assert rep["interference"] and rep["interference_at"]["opposite_pitch_point"]
     png = tmp_path / "pair.png"
     r = subprocess.run([sys.executable, "-m", "gear3d.cli", "pair", "sine", "--teeth", "20", "--mate-teeth", "21",
                         "--internal", "-o", str(png)], capture_output=True, text=True)
-    assert r.returncode == 0 and png.stat().st_size > 1000
+    assert r.returncode == 1 and png.stat().st_size > 1000
     bad = subprocess.run([sys.executable, "-m", "gear3d.cli", "pair", "sine", "--teeth", "20", "--mate-teeth", "0",
                           "-o", str(tmp_path / "x.json")], capture_output=True, text=True)
     assert bad.returncode == 2 and "mate_teeth" in bad.stderr and not (tmp_path / "x.json").exists()
@@ -197,7 +198,7 @@ def test_cli_check_pair(tmp_path):
     r = subprocess.run([sys.executable, "-m", "gear3d.cli", "check", "pair", "sine", "--teeth", "20",
                         "--mate-teeth", "22", "--internal", "--json", str(js), "--png", str(png)],
                        capture_output=True, text=True)
-    assert r.returncode == 0, r.stderr
+    assert r.returncode == 1, r.stderr
     assert "INTERFERENCE" in r.stdout and "opposite the pitch point" in r.stdout
     rep = json.loads(js.read_text())
     for k in ("interference", "max_penetration", "min_clearance", "contact_ratio"):

@@ -154,9 +154,6 @@ def check_pair(p1, p2, internal=None, tolerance=None, center_distance=None, cycl
     contact_tol = 2.5 * tol
     pen_max, pen_at, gap_min = 0.0, None, math.inf
     contact_pts = []
-    tooth0_contact = []
-    track = []   # (phi1, contact point in frame 1, in frame 2, in the fixed frame)
-    t0_poly = _tooth0_region(p1)
     b_lo, b_hi = sorted((float(p2.report["tip_radius"]), float(p2.report["root_radius"])))
     for ph in phis:
         PA = A.polygon(ph)
@@ -165,7 +162,7 @@ def check_pair(p1, p2, internal=None, tolerance=None, center_distance=None, cycl
         if pen > pen_max:
             pen_max, pen_at = pen, (float(ph), where)
         gap_min = min(gap_min, gap)
-        # contact points: boundary vertices of A within contact_tol of B's boundary
+        # near points: boundary vertices of A within contact_tol of B's boundary
         bA = shapely.get_coordinates(PA.boundary)
         # only A's points in the annulus of B's teeth (about B's centre) can touch them
         rc = np.hypot(bA[:, 0] - c2[0], bA[:, 1] - c2[1])
@@ -174,17 +171,7 @@ def check_pair(p1, p2, internal=None, tolerance=None, center_distance=None, cycl
         # every point against the whole boundary)
         hit = np.zeros(len(bA), bool)
         hit[shapely.STRtree(shapely.points(bA)).query(PB.boundary, predicate="dwithin", distance=contact_tol)] = True
-        near = bA[hit]
-        contact_pts.append(near)
-        # tooth 0 of wheel 1 (in its own frame: angle within half a pitch of 0)
-        # tooth 0's drive flank (wheel 1 turns CCW: the leading flank, angle 0..pitch/2)
-        T0 = shapely.intersection(PA.boundary, shapely.affinity.rotate(t0_poly, ph, origin=(0, 0), use_radians=True))
-        touching = (not T0.is_empty) and bool(shapely.dwithin(T0, PB.boundary, contact_tol))
-        tooth0_contact.append(touching)
-        if touching:
-            line = shapely.shortest_line(T0, PB.boundary)
-            cp = np.asarray(line.coords).mean(axis=0)
-            track.append((ph, rotate(cp[None], -ph)[0], rotate((cp - np.asarray(c2))[None], -(phase2 + ratio * ph))[0], cp))
+        contact_pts.append(bA[hit])
     # inscribed polygons bulge by up to their tolerance at concave flanks: a penetration
     # counts as interference once it exceeds what the two tolerances can explain
     interference = pen_max > 2 * tol
@@ -197,30 +184,8 @@ def check_pair(p1, p2, internal=None, tolerance=None, center_distance=None, cycl
                  "radius1": float(np.hypot(*w1)), "angle1_deg": math.degrees(math.atan2(w1[1], w1[0])),
                  "radius2": float(np.hypot(*w2)), "angle2_deg": math.degrees(math.atan2(w2[1], w2[0])),
                  "opposite_pitch_point": bool(pt[0] < (c2[0] if internal else 0.0))}
-    # contact ratio: fraction of the rolling in which tooth 0 of wheel 1 touches, in pitches
-    tc = np.array(tooth0_contact)
-    contact_ratio, sliding = 0.0, [None, None]
-    if tc.any() and len(phis) > 1:
-        from ..placement import operating_pitch_radii
-        probe = _ContactProbe(A, B, t0_poly, c2, phase2, ratio, contact_tol,
-                              operating_pitch_radii(a, p1.teeth, p2.teeth, internal)[0])
-
-        i0, i1 = int(np.argmax(tc)), len(tc) - 1 - int(np.argmax(tc[::-1]))
-        lo = phis[i0 - 1] if i0 > 0 else phis[i0]
-        start = probe.edge(lo, phis[i0]) if i0 > 0 else phis[0]
-        hi = phis[i1 + 1] if i1 + 1 < len(phis) else phis[i1]
-        end = probe.edge(hi, phis[i1]) if i1 + 1 < len(phis) else phis[-1]
-        # conjugate action (the exact contact point of tooth 0's flank lies on wheel 2)
-        # bounds the path more sharply than the contact band: use it when it exists
-        mid = 0.5 * (start + end)
-        if probe.action(mid, p1):
-            start = probe.edge(start - 0.05 * pitch_ang, mid, test=lambda x: probe.action(x, p1))
-            end = probe.edge(end + 0.05 * pitch_ang, mid, test=lambda x: probe.action(x, p1))
-        contact_ratio = float((end - start) / pitch_ang)
-        # windows of 4 % of the path at each end, starting 1 % inside (flank on flank)
-        w = 0.04 * (end - start)
-        sliding = [probe.sliding(start + 0.01 * (end - start), w, p1),
-                   probe.sliding(end - 0.01 * (end - start) - w, w, p1)]
+    # contact: conjugate action of tooth 0's drive flank on the exact pieces (contact.py)
+    conj = _conjugate(p1, p2, a, c2, phase2, ratio, internal, span, tol)
     # clearance on each flank: how far wheel 2 may turn each way before touching (mm on r2)
     drive, coast, te = [], [], []
     for ph in np.linspace(-pitch_ang / 2, pitch_ang / 2, backlash_phases, endpoint=False):
@@ -253,15 +218,64 @@ def check_pair(p1, p2, internal=None, tolerance=None, center_distance=None, cycl
                           else min(_nanmin(drive), _nanmin(coast))),
         "backlash": (None if _nanmin(drive) is None or _nanmin(coast) is None else _nanmin(drive) + _nanmin(coast)),
         "tip_root_clearance": _tip_root(p1, p2, a, internal),
-        "contact_ratio": contact_ratio,
+        "contact_ratio": conj["contact_ratio"],
         "transmission_error_pp": (None if np.isnan(te).any() else float(te.max() - te.min())),
         "contact_points": int(sum(len(c) for c in contact_pts)),
-        "path_of_contact": [[float(x), float(y)] for *_, (x, y) in track],
-        "path_length": float(sum(np.hypot(*(track[i + 1][3] - track[i][3])) for i in range(len(track) - 1))),
-        "sliding_start": sliding[0],
-        "sliding_end": sliding[1],
+        "path_of_contact": conj["path_of_contact"],
+        "path_length": conj["path_length"],
+        "sliding_start": conj["sliding_start"],
+        "sliding_end": conj["sliding_end"],
+        "contact_ratio_uncertainty": conj["contact_ratio_uncertainty"],
+        "continuous": conj["continuous"],
+        "edge_contact": conj["edge_contact"],
+        "contact_band": conj["contact_band"],
+        "contact_take_up": conj["contact_take_up"],
     })
     return rep
+
+
+def _conjugate(p1, p2, a, c2, phase2, ratio, internal, span, tol) -> dict:
+    """The contact facts of the report from :mod:`gear3d.analysis.contact` (conjugate
+    action on the exact pieces, band ``tol`` mm): contact ratio and its uncertainty,
+    ``continuous``, the path of contact (fixed frame, mm) and its length, specific sliding
+    near both ends, edge contacts and the play taken up (mm on wheel 2's pitch circle)."""
+    from ..placement import operating_pitch_radii
+    from .contact import Mesh, contact_ratio, edge_contacts, sliding
+    mesh = Mesh(p1, p2, c2, phase2, ratio, operating_pitch_radii(a, p1.teeth, p2.teeth, internal)[0])
+    c = contact_ratio(mesh, span, tol)
+    iv, pitch = c["intervals"], 2 * math.pi / p1.teeth
+    path = [q for seg in c["path"] for q in seg]
+    out = {"contact_ratio": c["contact_ratio"], "contact_ratio_uncertainty": c["contact_ratio_uncertainty"],
+           "continuous": bool(c["contact_ratio"] - c["contact_ratio_uncertainty"] > 1 and _covers(iv, pitch)),
+           "path_of_contact": [[float(x), float(y)] for x, y in path],
+           "path_length": float(sum(np.hypot(*np.diff(seg, axis=0).T).sum() for seg in c["path"] if len(seg) > 1)),
+           "sliding_start": None, "sliding_end": None,
+           "edge_contact": edge_contacts(mesh, c["phis"], tol),
+           "contact_band": tol, "contact_take_up": float(c["take_up"] * p2.pitch_radius)}
+    if iv:
+        start, end = iv[0][0], iv[-1][1]
+        # windows of 4 % of the path at each end, starting 1 % inside (flank on flank)
+        w = 0.04 * (end - start)
+        out["sliding_start"] = sliding(mesh, start + 0.01 * (end - start), w)
+        out["sliding_end"] = sliding(mesh, end - 0.01 * (end - start) - w, w)
+    return out
+
+
+def _covers(intervals, pitch: float) -> bool:
+    """Whether the φ intervals (rad) of one tooth's contact, repeated every ``pitch``, leave
+    no angle without a tooth in contact."""
+    if not intervals:
+        return False
+    lo = min(a for a, _ in intervals)
+    marks = sorted(((a - lo) % pitch, (a - lo) % pitch + (b - a)) for a, b in intervals)
+    reach = 0.0
+    for a, b in marks + [(m[0] + pitch, m[1] + pitch) for m in marks]:
+        if a > reach + 1e-12:
+            return False
+        reach = max(reach, b)
+        if reach >= pitch:
+            return True
+    return reach >= pitch
 
 
 def _working_angle(p1, p2, a, internal):
@@ -347,133 +361,6 @@ def working_center_distance(p1, p2, internal=None, precision: float = 0.01, tole
 def _nanmin(a):
     """Smallest value, or None when the wheels are locked at some phase (NaN)."""
     return None if np.isnan(a).any() else float(a.min())
-
-
-def _tooth0_region(p1):
-    """The wedge (shapely) of tooth 0's drive side (0 to half a pitch), in wheel 1's frame."""
-    import shapely
-    R = 2 * max(np.hypot(*np.concatenate(p1.loops).T).max(), 1.0)
-    w = math.pi / p1.teeth if p1.teeth > 1 else math.pi * 0.999
-    a = np.linspace(0.0, w, 64)
-    return shapely.Polygon(np.vstack([[0, 0], np.stack([R * np.cos(a), R * np.sin(a)], 1)]))
-
-
-class _ContactProbe:
-    """Contact of tooth 0's drive flank at any wheel-1 angle: edges and sliding."""
-
-    def __init__(self, A, B, wedge, c2, phase2, ratio, contact_tol, r1w):
-        self.A, self.B, self.wedge, self.c2 = A, B, wedge, np.asarray(c2, float)
-        self.r1w = r1w      # operating pitch radius of wheel 1 (mm): the pitch point is (r1w, 0)
-        self.phase2, self.ratio, self.tol = phase2, ratio, contact_tol
-
-    def point(self, ph):
-        import shapely
-        import shapely.affinity
-        PA, PB = self.A.polygon(ph), self.B.polygon(self.phase2 + self.ratio * ph)
-        T0 = shapely.intersection(PA.boundary, shapely.affinity.rotate(self.wedge, ph, origin=(0, 0), use_radians=True))
-        if T0.is_empty or not shapely.dwithin(T0, PB.boundary, self.tol):
-            return None
-        cp = np.asarray(shapely.shortest_line(T0, PB.boundary).coords).mean(axis=0)
-        return cp
-
-    def action(self, ph, p1):
-        """True when tooth 0's drive flank has an exact contact point (normal through the
-        pitch point, on the exact pieces) that lies on wheel 2 (within the contact band)."""
-        import shapely
-        from ..profiles.mate import tool_elements
-        if not hasattr(self, "_els"):
-            self._els = tool_elements(p1)
-        w = math.pi / p1.teeth if p1.teeth > 1 else math.pi
-        I1 = rotate(np.array([[self.r1w, 0.0]]), -ph)[0]
-        PB = self.B.polygon(self.phase2 + self.ratio * ph)
-        for q in _exact_contacts(self._els, I1):
-            a = math.atan2(q[1], q[0])
-            if 0 <= a <= w:
-                f = rotate(q[None], ph)[0]
-                if shapely.distance(shapely.Point(*f), PB.boundary) <= self.tol:
-                    return True
-        return False
-
-    def edge(self, off, on, iters=30, test=None):
-        """Bisect the wheel-1 angle (rad) where contact begins/ends between ``off`` and ``on``."""
-        for _ in range(iters):
-            mid = 0.5 * (off + on)
-            if (not test(mid)) if test else (self.point(mid) is None):
-                off = mid
-            else:
-                on = mid
-        return on
-
-    def sliding(self, ph, w, p1):
-        """Specific sliding zeta_i = (v_i - v_j)/v_i near the wheel-1 angle ``ph`` (rad).
-
-        The contact point is found exactly on wheel 1's trimmed tooth (its exact pieces):
-        the point whose normal passes through the pitch point, nearest the polygon
-        contact. Its positions in both wheel frames over a small turn give v_1, v_2 (the
-        contact travels along each profile; wheel 2's frame points lie on wheel 2's flank).
-        Reported at the contact radii on both wheels.
-        """
-        from ..profiles.mate import tool_elements
-        if not hasattr(self, "_els"):
-            self._els = tool_elements(p1)
-        r1 = self.r1w
-        d = max(w / 40, 1e-7)
-        import shapely
-        pts = []
-        for x in (ph, ph + d):
-            I1 = rotate(np.array([[r1, 0.0]]), -x)[0]
-            PB = self.B.polygon(self.phase2 + self.ratio * x)
-            cands = _exact_contacts(self._els, I1)
-            if not cands:
-                return None
-            fixed = [rotate(q[None], x)[0] for q in cands]
-            # the root that lies on wheel 2 (within the contact band) on the drive side
-            dist = [float(shapely.distance(shapely.Point(*f), PB.boundary)) for f in fixed]
-            best = int(np.argmin(dist))
-            if dist[best] > self.tol:
-                return None
-            cp = fixed[best]
-            pts.append((rotate(cp[None], -x)[0], rotate((cp - self.c2)[None], -(self.phase2 + self.ratio * x))[0]))
-        ds1 = float(np.hypot(*(pts[1][0] - pts[0][0])))
-        ds2 = float(np.hypot(*(pts[1][1] - pts[0][1])))
-        if ds1 <= 0 or ds2 <= 0:
-            return None
-        return {"zeta1": (ds1 - ds2) / ds1, "zeta2": (ds2 - ds1) / ds2,
-                "radius1": float(np.hypot(*pts[0][0])), "radius2": float(np.hypot(*pts[0][1]))}
-
-
-def _exact_contacts(els, I1, n=400):
-    """All points of the exact elements whose normal passes through ``I1`` (tool frame).
-
-    The sign changes of (p - I1) x n on ``n`` samples bracket the contacts; all brackets of
-    an element are narrowed together, 31 interior points per round, to 1e-13 in the
-    parameter (a contact point then moves by far less than a nanometre)."""
-    out = []
-    frac = np.arange(1, 32) / 32
-    for pn, _smooth in els:
-        t = np.linspace(0.0, 1.0, n)
-        p, nn = pn(t)
-        f = (p[:, 0] - I1[0]) * nn[:, 1] - (p[:, 1] - I1[1]) * nn[:, 0]
-        j = np.nonzero(np.sign(f[:-1]) * np.sign(f[1:]) < 0)[0]
-        if not len(j):
-            continue
-        a, b, fa = t[j], t[j + 1], f[j]
-        rows = np.arange(len(j))
-        for _ in range(8):                         # (1/399) / 32^8 < 1e-13
-            x = a[:, None] + (b - a)[:, None] * frac[None, :]
-            px, nx = pn(x.ravel())
-            fx = ((px[:, 0] - I1[0]) * nx[:, 1] - (px[:, 1] - I1[1]) * nx[:, 0]).reshape(x.shape)
-            same = np.sign(fx) == np.sign(fa)[:, None]
-            k = np.where(same.all(axis=1), len(frac), np.argmin(same, axis=1)) - 1
-            has = k >= 0
-            a_new = np.where(has, x[rows, np.maximum(k, 0)], a)
-            fa = np.where(has, fx[rows, np.maximum(k, 0)], fa)
-            b = np.where(k + 1 < len(frac), x[rows, np.minimum(k + 1, len(frac) - 1)], b)
-            a = a_new
-            if np.all(b - a <= 1e-13):
-                break
-        out.extend(pn(0.5 * (a + b))[0])
-    return out
 
 
 def _play(A, B, ph1, ph2, sign, r2, tol, max_deg=None):

@@ -178,10 +178,21 @@ def add_check_pair_flags(c):
     add_rack_flags(c, pair=True)
 
 
+#: what ``gear3d check pair`` (and ``gear3d pair``) exit with, shown in their --help
+EXIT_CODES = ("Rolls two wheels through a tooth cycle: interference, clearance on both flanks, "
+              "and the contact ratio of conjugate action on the exact flanks. Exit codes: 0 the pair "
+              "works (no interference, a tooth always in conjugate contact); 1 a finding: interference, "
+              "or a contact ratio below 1 or within its uncertainty of 1 (the teeth lose contact); "
+              "the summary line says which, and --json/--png files are still written; 2 bad input "
+              "(one line on stderr, no file). --largest-addendum and --tip-correction exit 0 with "
+              "their answer.")
+
+
 def add_parser(sub):
     p = sub.add_parser("check", help="checks: `check pair` rolls a gear pair")
     what = p.add_subparsers(dest="check_what", metavar="WHAT", parser_class=type(p))
-    c = what.add_parser("pair", help="roll a pair: interference, clearance, contact ratio")
+    c = what.add_parser("pair", help="roll a pair: interference, clearance, contact ratio",
+                        description=EXIT_CODES)
     add_check_pair_flags(c)
     return p
 
@@ -276,7 +287,13 @@ def run(args, alias: bool = False) -> int:
     sys.stdout.write("\n".join(msg) + "\n")
     for n in notes:
         sys.stderr.write(n + "\n")
-    return 0
+    return finding_code(rep) if not (bisect or args.tip_correction) else 0
+
+
+def finding_code(rep) -> int:
+    """1 when the pair report holds a finding (interference, or the teeth lose contact:
+    ``continuous`` False), else 0."""
+    return 1 if rep["interference"] or rep.get("continuous") is False else 0
 
 
 def _rack_pair(args, alias: bool) -> int:
@@ -312,5 +329,17 @@ def summary(rep: dict) -> str:
         at_cd = "; shifts " + " / ".join("-" if x is None else f"{x:.4f}" for x in xs) + at_cd
     return (f"{'INTERFERENCE' if rep['interference'] else 'no interference'}{at_cd}: max penetration "
             f"{rep['max_penetration'] * 1000:.2f} um{where}; min clearance "
-            f"{'locked' if mc is None else f'{mc * 1000:.2f} um'}; contact ratio {rep['contact_ratio']:.3f}; "
+            f"{'locked' if mc is None else f'{mc * 1000:.2f} um'}; {contact_phrase(rep)}; "
             f"tolerance {rep['tolerance'] * 1000:g} um")
+
+
+def contact_phrase(rep) -> str:
+    """The contact ratio for a summary line, with its uncertainty when it shows in three
+    decimals, and what it means when the teeth lose contact (``continuous`` False)."""
+    eps, unc = rep["contact_ratio"], rep.get("contact_ratio_uncertainty")
+    text = f"contact ratio {eps:.3f}" + (f" +- {unc:.3f}" if unc is not None and unc >= 5e-4 else "")
+    if rep.get("continuous") is not False:
+        return text
+    if eps < 1:
+        return text + " < 1: the teeth lose contact"
+    return text + ", not above 1 by more than its uncertainty: the teeth may lose contact"

@@ -11,7 +11,9 @@ from .check import add_check_pair_flags
 
 
 def add_parser(sub):
-    p = sub.add_parser("pair", help="deprecated alias of `gear3d check pair` (JSON on stdout)")
+    from .check import EXIT_CODES
+    p = sub.add_parser("pair", help="deprecated alias of `gear3d check pair` (JSON on stdout)",
+                       description=EXIT_CODES)
     add_check_pair_flags(p)
     return p
 

@@ -1,0 +1,524 @@
+"""One wheel's exact flanks for the conjugate-contact check (issue #22).
+
+A profile's exact boundary (:class:`gear3d.exact.ExactBoundary`) holds one tooth period's
+exact pieces G(t), the samples that survived trimming and, where trimming cut a piece, the
+exact parameter of the trimmed corner. :class:`ExactWheel` turns that into *runs*: the
+parameter intervals of each piece that lie on the trimmed boundary, split at the trimmed
+corners, each a smooth curve. Between runs sit the *corners*: trimmed crossings and piece
+joints where the tangent turns (a convex one carries a fan of normals).
+
+Two questions are answered on the runs, for many query points at once:
+
+* :meth:`ExactWheel.roots`: the points whose normal passes through a given point (the
+  pitch point): the contact condition of Willis, ``(G(t) - I) x n(t) = 0``, bracketed on
+  the run's samples and narrowed to about 1e-14 in the parameter.
+* :attr:`ExactWheel.corners`: where the runs meet at an angle, with the outward normals on
+  both sides (the fan a corner can touch with).
+
+Normals come from central differences of the exact evaluator (step :data:`H` in the piece
+parameter): their direction is good to about 1e-9 rad.
+
+Example::
+
+    >>> import gear3d
+    >>> from gear3d.analysis.flanks import ExactWheel
+    >>> w = ExactWheel(gear3d.profile("involute", teeth=20, tolerance=1e-3))
+    >>> len(w.runs) > 2, len(w.corners) >= 2
+    (True, True)
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..errors import GearError
+from ..geometry import rotate, segment_foot
+
+#: subdivisions of each tessellation chord when bracketing contact roots (at most), and
+#: the samples a run gets at least (fine tolerances already sample densely)
+SUB = 4
+SAMPLES = 240
+#: finite-difference step (piece parameter) of the exact normals, and the larger steps
+#: tried where the curve barely moves (a cusp)
+H = 1e-7
+CUSP_STEPS = (1e-5, 1e-3)
+#: Illinois (safeguarded secant) steps that narrow a root's bracket after one 64-section
+ILLINOIS_STEPS = 8
+#: tangent turn (rad) above which two runs meet at a corner
+CORNER_TURN = 1e-4
+#: query rows handled at once (the bracket search holds rows x samples)
+CHUNK = 256
+
+
+def point_normal(f, t):
+    """Points (N, 2) of the exact piece ``f`` at parameters ``t`` and unit normals (the
+    tangent dG/dt turned clockwise), from a central difference kept inside [0, 1]. Where
+    the curve barely moves over the step (a cusp: envelopes and cycloids start at zero
+    speed) the step grows (1e-5, then 1e-3): the normal there is the limit direction."""
+    t = np.asarray(t, float)
+    p, d = _diff(f, t, H)
+    for h in CUSP_STEPS:
+        slow = ~(np.hypot(d[:, 0], d[:, 1]) * h > 1e-9 * np.maximum(1.0, np.hypot(p[:, 0], p[:, 1])))
+        slow &= np.isfinite(p).all(axis=1)
+        if not slow.any():
+            break
+        d[slow] = _diff(f, t[slow], h)[1]
+    ln = np.hypot(d[:, 0], d[:, 1])
+    with np.errstate(invalid="ignore", divide="ignore"):
+        nrm = np.stack([d[:, 1], -d[:, 0]], axis=1) / ln[:, None]
+    return p, nrm
+
+
+def _diff(f, t, h):
+    """G(t) and dG/dt from a central difference of step ``h`` kept inside [0, 1] (one-sided
+    where a neighbour falls off the piece's domain, NaN)."""
+    n = len(t)
+    tp, tm = np.minimum(t + h, 1.0), np.maximum(t - h, 0.0)
+    with np.errstate(invalid="ignore"):
+        g = np.asarray(f(np.concatenate([t, tp, tm])), float)
+    p, gp, gm = g[:n], g[n:2 * n], g[2 * n:]
+    okp, okm = np.isfinite(gp).all(axis=1), np.isfinite(gm).all(axis=1)
+    gp = np.where(okp[:, None], gp, p)
+    gm = np.where(okm[:, None], gm, p)
+    span = np.where(okp, tp, t) - np.where(okm, tm, t)
+    return p, (gp - gm) / np.maximum(span, 1e-300)[:, None]
+
+
+@dataclass
+class Run:
+    """A smooth stretch of the trimmed boundary: piece ``f`` on parameters [a, b], its
+    samples ``t`` (points ``p``, unit normals ``n``), ``sign`` turning ``n`` outward (away
+    from the material)."""
+    f: object
+    a: float
+    b: float
+    t: np.ndarray
+    p: np.ndarray
+    n: np.ndarray
+    sign: float = 1.0
+
+    def __post_init__(self):
+        a = np.arctan2(self.p[:, 1], self.p[:, 0])
+        #: the polar angles (rad) the run spans, and its samples' pitch angles by radius
+        self.ang = (float(a.min()), float(a.max()))
+        self._lo, self._hi = self.p.min(axis=0), self.p.max(axis=0)
+        self._th = {}
+
+    def box_distance(self, q: np.ndarray) -> np.ndarray:
+        """Distance (mm) from points ``q`` (N, 2) to the run's bounding box (a lower bound
+        of their distance to the run)."""
+        d = np.maximum(np.maximum(self._lo - q, q - self._hi), 0.0)
+        return np.hypot(d[:, 0], d[:, 1])
+
+    def pitch_angles(self, R: float):
+        """:func:`pitch_angles` of the samples (raw normals) on the circle ``R``, cached."""
+        key = round(R, 12)
+        if key not in self._th:
+            self._th[key] = pitch_angles(self.p, self.n * self.sign, R)
+        return self._th[key]
+
+
+@dataclass
+class Corner:
+    """Where two runs meet at an angle: the point (mm), the outward normals of the run that
+    arrives (``na``) and of the one that leaves (``nb``) in the boundary's direction with
+    the material on the left, the turn from ``na`` to ``nb`` (rad, > 0: convex, it has a
+    fan of normals) and the radius (mm)."""
+    point: np.ndarray
+    na: np.ndarray
+    nb: np.ndarray
+    turn: float
+    radius: float
+
+    def fan_has(self, u: np.ndarray) -> np.ndarray:
+        """Whether the directions ``u`` (N, 2) lie in the corner's fan of outward normals."""
+        a0 = math.atan2(self.na[1], self.na[0])
+        au = np.arctan2(u[:, 1], u[:, 0])
+        d = (au - a0) % (2 * math.pi)
+        return (self.turn > 0) & (d <= self.turn)
+
+
+def _on_polygon(bnd, pts: np.ndarray) -> np.ndarray:
+    """True where exact points lie on the trimmed polygon (within its measured error)."""
+    a, b = bnd.polygon
+    ok = np.isfinite(pts).all(axis=1)
+    out = np.zeros(len(pts), bool)
+    if ok.any():
+        d, _ = segment_foot(pts[ok, None, :], a[None], b[None])
+        out[ok] = d.min(axis=1) <= bnd.polygon_error + 1e-9
+    return out
+
+
+def _flip(f, bnd, t_on: float, t_off: float) -> float:
+    """The parameter between ``t_on`` (on the polygon) and ``t_off`` (off it) where the exact
+    curve leaves the trimmed polygon: a trimmed corner the builder did not record (bisection
+    on the polygon distance, good to the polygon's error along the curve)."""
+    for _ in range(50):
+        m = 0.5 * (t_on + t_off)
+        if _on_polygon(bnd, np.asarray(f(np.array([m])), float))[0]:
+            t_on = m
+        else:
+            t_off = m
+    return t_on
+
+
+def _fuzz(f, bnd, t_f: float, t_off: float) -> float:
+    """How far (parameter) before the fuzzy end ``t_f`` the true corner may lie: the cut-away
+    curve leaves the polygon at a slope sin θ, so it stays within the polygon's error for
+    error / sin θ along the curve; the slope is read off 8 points toward ``t_off``."""
+    ts = t_f + (t_off - t_f) * np.arange(1, 9) / 8
+    p0 = np.asarray(f(np.array([t_f])), float)[0]
+    p = np.asarray(f(ts), float)
+    a, b = bnd.polygon
+    slack = bnd.polygon_error + 1e-9
+    d, _ = segment_foot(p[:, None, :], a[None], b[None])
+    arc = np.hypot(*(p - p0).T)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        slope = np.nanmax(np.where(arc > 0, (d.min(axis=1) - slack) / arc, np.nan))
+    full = abs(t_off - t_f)
+    if not np.isfinite(slope) or slope <= 0 or arc[0] <= 0:
+        return full
+    speed = arc[0] / abs(ts[0] - t_f)
+    return float(min(slack / slope / speed, full))
+
+
+def alive_intervals(pc, bnd) -> list:
+    """Parameter intervals [(a, b, fuzz_a, fuzz_b)] of the exact piece ``pc`` (a
+    :class:`gear3d.exact._Piece`) that lie on the trimmed boundary: the piece split at its
+    recorded trimmed corners, each part kept where its samples survived. A change inside a
+    part (a corner the builder did not record) is bisected on the polygon distance: that
+    end is *fuzzy*, its ``fuzz`` (parameter) says how far inside the true corner may lie
+    (None: an exact end). :class:`ExactWheel` replaces it by the exact crossing."""
+    t = np.asarray(pc.t, float)
+    cuts = sorted(float(c) for c in pc.cuts.values())
+    edges = np.unique(np.concatenate([[t[0]], cuts, [t[-1]]]))
+    out = []
+    for a, b in zip(edges[:-1], edges[1:]):
+        if b - a <= 1e-15:
+            continue
+        inner = t[(t > a) & (t < b)]
+        if not len(inner):
+            inner = np.array([0.5 * (a + b)])
+        seq = np.concatenate([[a], inner, [b]])
+        on = _on_polygon(bnd, np.asarray(pc.f(seq), float))
+        # a trimmed corner is on the polygon from both sides: it takes its neighbour's state
+        if a in cuts:
+            on[0] = on[1]
+        if b in cuts:
+            on[-1] = on[-2]
+        if not on.any():
+            continue
+        # runs of consecutive surviving samples; a change of state between two samples is
+        # a corner the builder did not record: bisected, flagged fuzzy
+        k = 0
+        while k < len(on):
+            if not on[k]:
+                k += 1
+                continue
+            j = k
+            while j + 1 < len(on) and on[j + 1]:
+                j += 1
+            lo = seq[k] if k == 0 else _flip(pc.f, bnd, seq[k], seq[k - 1])
+            hi = seq[j] if j == len(on) - 1 else _flip(pc.f, bnd, seq[j], seq[j + 1])
+            if hi > lo:
+                out.append((float(lo), float(hi), None if k == 0 else _fuzz(pc.f, bnd, lo, seq[k - 1]),
+                            None if j == len(on) - 1 else _fuzz(pc.f, bnd, hi, seq[j + 1])))
+            k = j + 1
+    return out
+
+
+class ExactWheel:
+    """The runs and corners of one tooth period of ``prof``'s exact trimmed boundary (mm,
+    the wheel's own frame); see the module doc."""
+
+    def __init__(self, prof):
+        bnd = prof.boundary
+        if bnd is None:
+            raise GearError("profile", prof.family, "a profile with exact pieces (built by gear3d.profile)")
+        self.teeth = prof.teeth
+        self.pitch = 2 * math.pi / prof.teeth
+        self.internal = bool(prof.internal)
+        self._pieces = bnd.pieces
+        self._ivs = [[list(iv) for iv in alive_intervals(pc, bnd)] for pc in bnd.pieces]
+        #: interval ends left fuzzy (a corner found only to the polygon's error)
+        self.fuzzy = _resolve_fuzzy(bnd, self._ivs, self.pitch, self.teeth)
+        self.runs = self._make_runs(shrink=False)
+        if not self.runs:
+            raise GearError("profile", prof.family, "a profile whose exact boundary has smooth runs")
+        pts = np.concatenate([r.p for r in self.runs])
+        u = pts / np.maximum(np.hypot(pts[:, 0], pts[:, 1]), 1e-300)[:, None]
+        #: the polar angle (rad) the period's runs are centred on
+        self.center = float(math.atan2(u[:, 1].sum(), u[:, 0].sum()))
+        self._prof = prof
+        self._orient(prof)
+        self.corners = self._corners()
+
+    def _make_runs(self, shrink: bool) -> list:
+        """The runs of the surviving intervals (fuzzy ends moved inward by their fuzz when
+        ``shrink``), sampled at the piece's samples, each chord cut in :data:`SUB`."""
+        runs = []
+        for pc, piv in zip(self._pieces, self._ivs):
+            for a, b, fa, fb in piv:
+                if shrink:
+                    a, b = a + (fa or 0.0), b - (fb or 0.0)
+                if b <= a:
+                    continue
+                inner = pc.t[(pc.t > a) & (pc.t < b)]
+                knots = np.concatenate([[a], inner, [b]])
+                # each chord cut in up to SUB parts, about SAMPLES samples a run at least
+                sub = int(np.clip(math.ceil(SAMPLES / len(knots)), 1, SUB))
+                frac = np.arange(sub) / sub
+                ts = np.concatenate([(knots[:-1, None] + np.diff(knots)[:, None] * frac[None]).ravel(), [b]])
+                p, n = point_normal(pc.f, ts)
+                ok = np.isfinite(p).all(axis=1) & np.isfinite(n).all(axis=1)
+                if ok.sum() >= 2:
+                    runs.append(Run(pc.f, float(ts[ok][0]), float(ts[ok][-1]), ts[ok], p[ok], n[ok]))
+        return runs
+
+    def shrunk(self) -> "ExactWheel":
+        """A copy whose fuzzy run ends are moved inward by their fuzz (the other end of
+        where the true corners may lie); the same object when no end is fuzzy."""
+        if not self.fuzzy:
+            return self
+        import copy
+        w = copy.copy(self)
+        signs = [r.sign for r in self.runs]
+        w.runs = self._make_runs(shrink=True)
+        if len(w.runs) == len(signs):
+            for r, sg in zip(w.runs, signs):
+                r.sign, r.n = sg, r.n * sg
+        else:
+            w._orient(self._prof)
+        return w
+
+    def _orient(self, prof):
+        """Turn every run's normals outward: a step along the normal at the run's middle
+        sample must leave the material (the profile's polygon)."""
+        import shapely
+        loops = [np.asarray(l, float) for l in prof.loops]
+        outer = max(loops, key=lambda l: np.abs(np.sum(l[:, 0] * np.roll(l[:, 1], -1) - np.roll(l[:, 0], -1) * l[:, 1])))
+        poly = shapely.Polygon(outer, [l for l in loops if l is not outer])
+        step = max(20 * prof.tolerance, 1e-4 * prof.pitch_radius)
+        for r in self.runs:
+            i = len(r.t) // 2
+            q = r.p[i] + step * r.n[i]
+            r.sign = -1.0 if shapely.contains_xy(poly, q[0], q[1]) else 1.0
+            r.n = r.n * r.sign
+
+    def _corners(self) -> list:
+        """Run ends that meet (within 1e-7 mm, across the period's copies) with a turn of the
+        tangent: trimmed crossings, piece joints at an angle, cusps."""
+        heads, tails = [], []          # (point, outward normal) where a run ends / starts
+        for r in self.runs:
+            # the boundary runs with the material on its left: tangent = normal turned CCW
+            tang = np.array([-r.n[0, 1], r.n[0, 0]])
+            fwd = float(np.dot(tang, r.p[min(1, len(r.p) - 1)] - r.p[0])) >= 0
+            s, e = (0, -1) if fwd else (-1, 0)
+            tails.append((r.p[s], r.n[s]))
+            heads.append((r.p[e], r.n[e]))
+        out = []
+        copies = (0,) if self.teeth == 1 else (-1, 0, 1)
+        for hp, hn in heads:
+            best = None
+            for tp, tn in tails:
+                for k in copies:
+                    q = rotate(tp, k * self.pitch)
+                    d = float(np.hypot(*(q - hp)))
+                    if d <= 1e-7 and (best is None or d < best[0]):
+                        best = (d, rotate(tn, k * self.pitch))
+            if best is None:
+                continue
+            nb = best[1]
+            turn = math.atan2(hn[0] * nb[1] - hn[1] * nb[0], float(np.dot(hn, nb)))
+            if abs(turn) > CORNER_TURN:
+                out.append(Corner(np.asarray(hp, float), np.asarray(hn, float), np.asarray(nb, float),
+                                  float(turn), float(np.hypot(*hp))))
+        return out
+
+    def roots(self, Q: np.ndarray, near=None, reach: float = math.inf, sector=None):
+        """Points of the runs whose normal passes through the query points ``Q`` (M, 2), in
+        the period's own frame: (row of Q (K,), points (K, 2), outward normals (K, 2)).
+
+        All queries lie on one circle |Q| = R about the wheel's centre (the pitch circle the
+        pitch point runs on). A normal line meets that circle at two points (the two roots of
+        a quadratic, :func:`pitch_angles`); the root is where the polar angle of one of them
+        equals the query's. Each branch is a smooth function of the parameter, so two
+        contacts close together (a normal nearly tangent to the circle, as cycloids have at
+        the pitch point) are two simple roots, not one double root. Only brackets that can
+        hold a wanted root are narrowed: with ``near`` (M, 2), those whose chord passes within
+        ``reach`` (mm) of ``near[row]``; with ``sector`` (lo, hi) (rad), those whose chord
+        reaches polar angles in [lo, hi]."""
+        Q = np.asarray(Q, float)
+        rows, pts, nrm = [], [], []
+        if not len(Q):
+            return np.zeros(0, int), np.zeros((0, 2)), np.zeros((0, 2))
+        R = float(np.hypot(*Q[0]))
+        alpha = np.arctan2(Q[:, 1], Q[:, 0])
+        for r in self.runs:
+            if sector is not None and (r.ang[1] < sector[0] or r.ang[0] > sector[1]):
+                continue
+            if near is not None and not np.any(r.box_distance(near) <= reach):
+                continue
+            th = r.pitch_angles(R)
+            for branch in (0, 1):
+                if not np.isfinite(th[branch]).any():
+                    continue
+                for s0 in range(0, len(Q), CHUNK):
+                    al = alpha[s0:s0 + CHUNK]
+                    g = th[branch][None, :] - al[:, None]
+                    g -= 2 * math.pi * (g > math.pi)
+                    g += 2 * math.pi * (g <= -math.pi)
+                    ok = np.isfinite(g[:, :-1]) & np.isfinite(g[:, 1:]) & (np.abs(g[:, 1:] - g[:, :-1]) < math.pi)
+                    m, j = np.nonzero(ok & ((g[:, :-1] <= 0) != (g[:, 1:] <= 0)))
+                    m, j = self._select(r, m, j, s0, near, reach, sector)
+                    if not len(m):
+                        continue
+                    t = _zoom(r.f, r.t[j], r.t[j + 1], al[m], g[m, j], g[m, j + 1], R, branch)
+                    p, n = point_normal(r.f, t)
+                    ok = np.isfinite(p).all(axis=1) & np.isfinite(n).all(axis=1)
+                    rows.append(m[ok] + s0)
+                    pts.append(p[ok])
+                    nrm.append(n[ok] * r.sign)
+        if not rows:
+            return np.zeros(0, int), np.zeros((0, 2)), np.zeros((0, 2))
+        return np.concatenate(rows), np.concatenate(pts), np.concatenate(nrm)
+
+    @staticmethod
+    def _select(r, m, j, s0, near, reach, sector):
+        """The brackets (rows ``m``, chords ``j``) worth narrowing (see :meth:`roots`)."""
+        if near is not None and len(m):
+            ln = np.hypot(*(r.p[j + 1] - r.p[j]).T)
+            d, _ = segment_foot(near[s0:s0 + CHUNK][m], r.p[j], r.p[j + 1])
+            keep = d <= reach + ln
+            m, j = m[keep], j[keep]
+        if sector is not None and len(m):
+            a0 = np.arctan2(r.p[j, 1], r.p[j, 0])
+            a1 = np.arctan2(r.p[j + 1, 1], r.p[j + 1, 0])
+            keep = (np.maximum(a0, a1) >= sector[0]) & (np.minimum(a0, a1) <= sector[1])
+            m, j = m[keep], j[keep]
+        return m, j
+
+
+def pitch_angles(p, n, R: float):
+    """Polar angles (rad) of the two points where the normal lines p + λ n (unit n) meet the
+    circle |x| = R: (branch 0: λ = -p.n - sqrt(D), branch 1: λ = -p.n + sqrt(D)), NaN where
+    the line misses the circle (D = (p.n)^2 - |p|^2 + R^2 < 0)."""
+    pn = np.einsum("ij,ij->i", p, n)
+    disc = pn * pn - np.einsum("ij,ij->i", p, p) + R * R
+    with np.errstate(invalid="ignore"):
+        sq = np.sqrt(disc)
+    out = []
+    for lam in (-pn - sq, -pn + sq):
+        w = p + lam[:, None] * n
+        out.append(np.arctan2(w[:, 1], w[:, 0]))
+    return out
+
+
+def _wrap(a):
+    """Angles wrapped into (-π, π]."""
+    return (a + math.pi) % (2 * math.pi) - math.pi
+
+
+def _resolve_fuzzy(bnd, ivs, pitch: float, teeth: int) -> int:
+    """Replace every fuzzy interval end (a trimmed corner the builder did not record) by the
+    exact crossing of its piece with the piece whose surviving end lies nearest (Newton,
+    :func:`gear3d.corners.exact_crossing`), across the period's copies. ``ivs`` is changed
+    in place; returns how many ends stayed fuzzy (no crossing found)."""
+    from ..corners import exact_crossing
+    ends = []                                   # (piece, interval, side, param)
+    for i, piv in enumerate(ivs):
+        for j, iv in enumerate(piv):
+            ends += [(i, j, 0, iv[0]), (i, j, 1, iv[1])]
+    pts = [np.asarray(bnd.pieces[i].f(np.array([t])), float)[0] for i, _, _, t in ends]
+    reach = max(200 * (bnd.polygon_error + 1e-9), 1e-5)
+    copies = (0,) if teeth == 1 else (-1, 0, 1)
+    left = 0
+    for e, (i, j, side, t) in enumerate(ends):
+        if ivs[i][j][2 + side] is None:
+            continue
+        best = None
+        for f, (i2, j2, side2, t2) in enumerate(ends):
+            if i2 == i:
+                continue
+            for k in copies:
+                q = rotate(pts[f], k * pitch)
+                if np.hypot(*(q - pts[e])) > reach:
+                    continue
+                ha, hb = _local_step(bnd.pieces[i], t), _local_step(bnd.pieces[i2], t2)
+                res = exact_crossing(bnd.pieces[i].f, t - ha, t + ha, bnd.pieces[i2].f, t2 - hb, t2 + hb,
+                                     k * pitch, pts[e], params=True)
+                if res is None:
+                    continue
+                x, s_, u_ = res
+                d = float(np.hypot(*(x - pts[e])))
+                if d <= reach and (best is None or d < best[0]):
+                    best = (d, s_, (i2, j2, side2), u_)
+        if best is None:
+            left += 1
+            continue
+        ivs[i][j][side], ivs[i][j][2 + side] = float(best[1]), None
+        i2, j2, side2 = best[2]
+        if ivs[i2][j2][2 + side2] is not None:
+            ivs[i2][j2][side2], ivs[i2][j2][2 + side2] = float(best[3]), None
+    return left
+
+
+def _local_step(pc, t: float) -> float:
+    """The sample spacing of piece ``pc`` around parameter ``t``."""
+    k = int(np.clip(np.searchsorted(pc.t, t), 1, len(pc.t) - 1))
+    return float(pc.t[k] - pc.t[k - 1])
+
+
+def _branch_gap(f, t, alpha, R: float, branch: int):
+    """Polar angle of branch ``branch`` of piece ``f``'s normal on the circle R, minus
+    ``alpha`` (wrapped, rad)."""
+    p, n = point_normal(f, t)
+    return _wrap(pitch_angles(p, n, R)[branch] - alpha)
+
+
+def _zoom(f, ta, tb, alpha, fa, fb, R, branch):
+    """Narrow the brackets [ta, tb] of :func:`_branch_gap` = 0 (values ``fa``, ``fb`` at
+    the ends, of opposite signs): one round of 63 interior points keeps the sub-interval
+    where the sign changes, then Illinois steps (a safeguarded secant) to 1e-15.
+
+    (Only the sign of the normal's orientation could flip a branch: the raw normals are
+    used throughout, as in :meth:`ExactWheel.roots`, which passes them with their sign.)"""
+    ta, tb = ta.astype(float).copy(), tb.astype(float).copy()
+    fa, fb = fa.astype(float).copy(), fb.astype(float).copy()
+    frac = np.arange(1, 64) / 64
+    K = len(ta)
+    rows = np.arange(K)
+    x = ta[:, None] + (tb - ta)[:, None] * frac[None, :]
+    fx = _branch_gap(f, x.ravel(), np.repeat(alpha, len(frac)), R, branch).reshape(x.shape)
+    fx = np.where(np.isfinite(fx), fx, fa[:, None])
+    same = (fx <= 0) == (fa <= 0)[:, None]
+    k = np.where(same.all(axis=1), len(frac), np.argmin(same, axis=1)) - 1
+    has = k >= 0
+    kk = np.maximum(k, 0)
+    nxt = np.minimum(k + 1, len(frac) - 1)
+    inside = k + 1 < len(frac)
+    ta, fa, tb, fb = (np.where(has, x[rows, kk], ta), np.where(has, fx[rows, kk], fa),
+                      np.where(inside, x[rows, nxt], tb), np.where(inside, fx[rows, nxt], fb))
+    side = np.zeros(K)
+    for _ in range(ILLINOIS_STEPS):
+        with np.errstate(invalid="ignore", divide="ignore"):
+            t = (ta * fb - tb * fa) / (fb - fa)
+        bad = ~np.isfinite(t) | (t <= np.minimum(ta, tb)) | (t >= np.maximum(ta, tb))
+        t = np.where(bad, 0.5 * (ta + tb), t)
+        ft = _branch_gap(f, t, alpha, R, branch)
+        ft = np.where(np.isfinite(ft), ft, fa)
+        left = (ft <= 0) == (fa <= 0)            # the root lies in [t, tb]
+        # Illinois: halve the value kept twice in a row at the same end
+        fb = np.where(left & (side > 0), 0.5 * fb, fb)
+        fa = np.where(~left & (side < 0), 0.5 * fa, fa)
+        ta, fa = np.where(left, t, ta), np.where(left, ft, fa)
+        tb, fb = np.where(left, tb, t), np.where(left, fb, ft)
+        side = np.where(left, 1.0, -1.0)
+        if np.all((np.abs(tb - ta) <= 1e-15 * np.maximum(1.0, np.abs(ta))) | (np.abs(ft) <= 1e-15)):
+            break
+    with np.errstate(invalid="ignore", divide="ignore"):
+        t = (ta * fb - tb * fa) / (fb - fa)
+    good = np.isfinite(t) & (t >= np.minimum(ta, tb)) & (t <= np.maximum(ta, tb))
+    return np.where(good, t, 0.5 * (ta + tb))
