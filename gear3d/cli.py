@@ -80,13 +80,50 @@ def build_parser(only=None) -> argparse.ArgumentParser:
                         "and --max-seconds S (CPU seconds, default 60); bigger jobs are refused "
                         "before any work, and a watchdog stops work that runs past them (exit 2). Exit codes: 0 ok, 1 a batch with failed parts, 2 bad input (one line on "
                         "stderr), 130 interrupted, 143 terminated.")
-    ap.add_argument("--version", action="version", version=f"gear3d {__version__}")
+    ap.add_argument("--version", action=_Versions, help="gear3d's version and those of numpy, manifold3d "
+                    "and OpenCascade (when installed)")
     sub = ap.add_subparsers(dest="command", parser_class=_Parser, metavar="COMMAND")
     for name in (only or COMMANDS):
         mod = importlib.import_module(f"gear3d.commands.{name}")  # a broken command fails loudly
         p = mod.add_parser(sub)
         p.set_defaults(_run=mod.run)
+        from .commands.examples import apply
+        apply(p, name)                   # --help ends with two examples
     return ap
+
+
+def versions() -> str:
+    """gear3d's version, Python's, and those of numpy, manifold3d and OpenCascade (OCP), read
+    from the installed packages' metadata (nothing heavy is imported)."""
+    import platform
+    from importlib import metadata
+
+    def ver(*dists):
+        for d in dists:
+            try:
+                return metadata.version(d)
+            except metadata.PackageNotFoundError:
+                continue
+        return None
+    lines = [f"gear3d {__version__}", f"python {platform.python_version()}"]
+    for label, dists, missing in (("numpy", ("numpy",), "not installed"),
+                                  ("manifold3d", ("manifold3d",), "not installed"),
+                                  ("OpenCascade", ("cadquery-ocp-novtk", "cadquery-ocp", "OCP"),
+                                   "not installed (exact STEP: pip install 'gear3d[cad]')")):
+        v = ver(*dists)
+        lines.append(f"{label} {v if v else missing}")
+    return "\n".join(lines)
+
+
+class _Versions(argparse.Action):
+    """``--version``: :func:`versions`, then exit 0."""
+
+    def __init__(self, option_strings, dest=argparse.SUPPRESS, default=argparse.SUPPRESS, help=None):
+        super().__init__(option_strings, dest=dest, default=default, nargs=0, help=help)
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        sys.stdout.write(versions() + "\n")
+        parser.exit()
 
 
 class Terminated(BaseException):
