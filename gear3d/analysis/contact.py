@@ -256,9 +256,12 @@ def contact_ratio(mesh, span: float, band: float) -> dict:
     path = []
     for lo, hi in iv:
         inside = (phis > lo) & (phis < hi) & np.isfinite(where[:, 0])
-        e_lo, e_hi = mesh.match(np.array([lo, hi]), reach)[1]
-        pts = [e_lo] + list(where[inside]) + [e_hi]
-        path.append(np.array([q for q in pts if np.all(np.isfinite(q))]))
+        # the ends, a hair inside (the bisection leaves them within 1e-15 rad)
+        eps_in = min(1e-12, 0.25 * (hi - lo))
+        de, we = mesh.match(np.array([lo + eps_in, hi - eps_in]), reach)
+        ends = [we[i] if de[i] <= band else np.full(2, np.nan) for i in (0, 1)]
+        pts = [ends[0]] + list(where[inside]) + [ends[1]]
+        path.append(np.array([q for q in pts if np.all(np.isfinite(q))]).reshape(-1, 2))
     return {"contact_ratio": eps, "contact_ratio_uncertainty": unc, "intervals": iv, "path": path,
             "take_up": mesh.take_up, "band": band, "phis": phis, "gaps": d}
 
