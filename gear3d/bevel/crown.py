@@ -194,11 +194,11 @@ def crown_elements(form: str, crown_teeth: float, alpha: float, mu_tip: float, m
     lam_tip = math.atan2(Xt[0, 1], Xt[0, 0])
     lam_root = math.atan2(Xt[1, 1], Xt[1, 0])
     if lam_tip <= -p / 2:
-        raise GearError("shift_coeff", None, "a value that leaves the crown tooth a tip land",
-                        "the generating crown tooth is pointed (the gear's dedendum is too deep)")
+        raise GearError("pressure_angle_deg", round(math.degrees(alpha), 6), "a smaller value",
+                        "the generating crown tooth is pointed on this sphere: no tip land is left")
     if lam_root >= 0:
-        raise GearError("shift_coeff", None, "a value that leaves the crown a root land",
-                        "the crown's flanks meet before its root (the gear's addendum is too long)")
+        raise GearError("pressure_angle_deg", round(math.degrees(alpha), 6), "a smaller value",
+                        "the crown's flanks meet before its root: no root land is left")
     half = [
         _latitude_arc(-p / 2, lam_tip, mu_tip, "crown-tip"),
         Fan(tuple(Xt[0]), math.pi / 2, _normal_angle(flank, 0.0), "crown-tip-corner"),

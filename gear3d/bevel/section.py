@@ -42,7 +42,7 @@ def section(geo: PairGeometry, which: str, zs: float, tolerance: float):
     d = cone.pitch_angle
     params = dict(teeth=cone.teeth, module=m, pressure_angle_deg=math.degrees(a), shift_coeff=cone.shift_coeff,
                   form=geo.form, pitch_angle_deg=math.degrees(d), section_z=zs, tolerance=tolerance,
-                  addendum_coeff=None)
+                  addendum_coeff=cone.addendum / m - cone.shift_coeff)
     tip = zs * math.tan(cone.face_angle)
     return build_profile(f"bevel-{geo.form}", params, [p for p, _ in pieces], cone.teeth, zs * math.tan(d),
                          internal=False, tolerance=tolerance, names=[n for _, n in pieces],
