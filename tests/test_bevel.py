@@ -335,3 +335,23 @@ def test_octoid_brute_force_cut():
 
 def _area(q):
     return 0.5 * float(np.sum(q[:, 0] * np.roll(q[:, 1], -1) - np.roll(q[:, 0], -1) * q[:, 1]))
+
+
+def test_budget_refused_before_work(tmp_path, capsys):
+    from gear3d.cli import main
+    out = tmp_path / "big.stl"
+    rc = main(["--max-triangles", "5000", "bevel", "--teeth", "20", "--mate-teeth", "30", "--module", "2",
+               "-o", str(out)])
+    err = capsys.readouterr().err
+    assert rc == 2 and err.count("\n") == 1 and "tolerance" in err and "budget" in err
+    assert not out.exists()
+
+
+def test_package_is_callable_after_a_submodule_import():
+    import gear3d
+    import gear3d.bevel.crown  # noqa: F401  (binds gear3d.bevel to the package)
+    b = gear3d.bevel(12, 18, 1.0, tolerance=0.02)
+    assert [x.name for x in b.bodies] == ["gear"] and b.report.part == "gear"
+    d = b.report.to_dict()
+    json.dumps(d, allow_nan=False)
+    assert d["members"][0]["teeth"] == 12 and d["overlap_volume"] is None
