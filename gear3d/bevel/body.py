@@ -167,7 +167,7 @@ def member_body(geo: PairGeometry, which: str, tolerance: float, name: str | Non
     outline = _split_bands(cp.outline, layers) if layers else cp.outline
     capsolid = Manifold.revolve(CrossSection([outline], FillRule.Positive), n_seg)
     man = teeth ^ capsolid
-    e_s = sec.report["max_error"] + CLIPPER_ROUNDING
+    e_s = sec.report["max_error"] + CLIPPER_ROUNDING / k     # the scaled copy is rounded again
     e_c = cp.r_max * (1 - math.cos(math.pi / n_seg))
     max_err = (e_s + e_c) / worst + CLIPPER_ROUNDING
     V, F = np.asarray(man.to_mesh64().vert_properties), man.num_tri()
