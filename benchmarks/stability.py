@@ -245,12 +245,17 @@ def _worker(args):
     return run_case(case, spot)
 
 
-def run(n: int, seed: int, workers: int, spot: int, progress: bool = True, max_minutes: float | None = None) -> list:
+def run(n: int, seed: int, workers: int, spot: int, progress: bool = True, max_minutes: float | None = None,
+        family: str | None = None) -> list:
+    """Draw ``n`` cases from ``seed`` and run them (only those of ``family`` when given: the
+    same cases a full run of the seed holds)."""
     import multiprocessing as mp
     import numpy as np
     rng = np.random.default_rng(seed)
-    cases = [draw(rng) for _ in range(n)]
-    jobs = [(c, spot > 0 and i % spot == 0) for i, c in enumerate(cases)]
+    drawn = [draw(rng) for _ in range(n)]
+    chosen = [(i, c) for i, c in enumerate(drawn) if family is None or c["family"] == family]
+    cases = [c for _, c in chosen]
+    jobs = [(c, spot > 0 and i % spot == 0) for i, c in chosen]
     ctx = mp.get_context("forkserver" if sys.platform.startswith("linux") else "spawn")
     results = []
     t0 = time.time()
@@ -353,11 +358,12 @@ def main(argv=None) -> int:
     ap.add_argument("--spot", type=int, default=10, help="check one case in SPOT against the reference build (0: none)")
     ap.add_argument("--max-minutes", type=float, default=None,
                     help="stop after this long and report the cases done (the first ones of the seed's sequence)")
+    ap.add_argument("--family", default=None, help="run only the cases of this family (of the same N draws)")
     ap.add_argument("--json", default=str(ROOT / "out" / "bench" / "stability.json"))
     ap.add_argument("--publish", action="store_true", help="write the Stability section of BENCHMARKS.md and the plot")
     a = ap.parse_args(argv)
     t = time.time()
-    results = run(a.n, a.seed, a.workers, a.spot, max_minutes=a.max_minutes)
+    results = run(a.n, a.seed, a.workers, a.spot, max_minutes=a.max_minutes, family=a.family)
     meta = {"seed": a.seed, "workers": a.workers, "asked": a.n, "max_minutes": a.max_minutes, "spot": a.spot, "wall_s": time.time() - t,
             "load": " / ".join(f"{x:.2f}" for x in os.getloadavg()),
             "machine": f"{platform.machine()}, {os.cpu_count()} cores, Python {platform.python_version()}"}

@@ -77,6 +77,10 @@ class Profile:
     #: sector, t in [0, 1]; its sample parameters), else None. It is exact but not one of
     #: the raw ``pieces`` (the mate builder rolls it as part of the tool).
     tip_arc: tuple | None = field(repr=False, default=None)
+    #: the trimmed corners of tooth 0 as exact crossings: ((piece, t, copy), (piece, t, copy))
+    #: per corner (piece ``len(pieces)`` is :attr:`tip_arc`); :func:`gear3d.profiles.mate.tool_chain`
+    #: walks the exact boundary with them
+    corner_pairs: list = field(repr=False, default_factory=list)
 
     @property
     def boundary(self):
@@ -290,6 +294,7 @@ class _Trimmed:
     corner_cuts: dict
     corner_errs: list
     moved: float
+    corner_pairs: list = field(default_factory=list)
 
 
 def build_profile(family: str, params: dict, pieces, teeth: int, pitch_radius: float, *,
@@ -370,6 +375,7 @@ def build_profile(family: str, params: dict, pieces, teeth: int, pitch_radius: f
                    [np.array(t) for t in ts])
     if arc_piece is not None:
         prof.tip_arc = (arc_piece, np.array(arc_t))
+    prof.corner_pairs = list(tr.corner_pairs)
     tl = prof.tooth_loop
     rr = np.hypot(tl[:, 0], tl[:, 1])
     tip, root = (rr.min(), rr.max()) if internal else (rr.max(), rr.min())
@@ -485,7 +491,7 @@ def _trim_and_refine(samples: _Samples, nraw: int, teeth: int, internal: bool, r
     d = CORNER_SHARE x tol x sin(gamma) (at most (2/3) tol at the corner), trimmed again,
     and the corner is then *measured* (Newton on the exact curves, :func:`_measure_corners`).
     A corner that still misses shrinks d by CORNER_SHRINK, at most CORNER_ATTEMPTS times."""
-    corners, loops, moved, corner_cuts, corner_errs = [], [], 0.0, {}, []
+    corners, loops, moved, corner_cuts, corner_errs, corner_pairs = [], [], 0.0, {}, [], []
     shrink = 1.0
     fs = samples.fs
     from . import budget as _budget
@@ -529,12 +535,12 @@ def _trim_and_refine(samples: _Samples, nraw: int, teeth: int, internal: bool, r
                 corners.append((q, theta, near))
             if not changed:
                 break
-        corner_cuts = {}
-        corner_errs = _measure_corners(fs, samples.ts, corners, teeth, corner_cuts)
+        corner_cuts, corner_pairs = {}, []
+        corner_errs = _measure_corners(fs, samples.ts, corners, teeth, corner_cuts, corner_pairs)
         if not corner_errs or max(corner_errs) <= tol - 2 * CLIPPER_ROUNDING:
             break
         shrink /= CORNER_SHRINK
-    return _Trimmed(loops, corners, corner_cuts, corner_errs, moved)
+    return _Trimmed(loops, corners, corner_cuts, corner_errs, moved, corner_pairs)
 
 
 def _measured_error(samples: _Samples, tr: _Trimmed, internal: bool, rim_radius, tol: float) -> float:
@@ -726,9 +732,10 @@ def _tooth_loop(loops, internal):
     return max(loops, key=lambda l: abs(signed_area(l)))
 
 
-def _measure_corners(fs, ts, corners, teeth, cuts=None):
+def _measure_corners(fs, ts, corners, teeth, cuts=None, pairs=None):
     """Distance (mm) from each trimmed corner to the exact crossing of its two curves.
-    ``cuts`` (a dict, filled in): piece index -> parameters of the crossings on it."""
+    ``cuts`` (a dict, filled in): piece index -> parameters of the crossings on it;
+    ``pairs`` (a list, filled in): ((piece, t, copy), (piece, t, copy)) per corner."""
     errs = []
     for q, _theta, near in corners:
         best, best_cut = None, None
@@ -752,12 +759,14 @@ def _measure_corners(fs, ts, corners, teeth, cuts=None):
                 x, sa, ub = res
                 d = float(np.hypot(*(x - qa)))
                 if best is None or d < best:
-                    best, best_cut = d, ((pa, sa), (pb, ub))
+                    best, best_cut = d, ((pa, sa, ka), (pb, ub, kb))
         if best is not None:
             errs.append(best)
             if cuts is not None:
-                for pc, t in best_cut:
+                for pc, t, _k in best_cut:
                     cuts.setdefault(pc, []).append(t)
+            if pairs is not None:
+                pairs.append(best_cut)
     return errs
 
 

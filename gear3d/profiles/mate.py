@@ -10,239 +10,173 @@ builder as every family.
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 
+from ..curves import Chain, Run, untangle
 from ..envelope import wheel_envelope_pieces
 from ..errors import GearError, check_number
+from ..geometry import polyline_distance, rotate, signed_area
 
 
-def _rot(p, a):
-    c, s = math.cos(a), math.sin(a)
-    p = np.asarray(p, float)
-    return np.stack([c * p[..., 0] - s * p[..., 1], s * p[..., 0] + c * p[..., 1]], axis=-1)
+#: two cut parameters closer than this (in a piece's parameter) are one cut
+SAME_CUT = 1e-9
+#: fractions of a sub-interval probed to tell whether it survived trimming
+PROBES = (0.25, 0.5, 0.75)
+#: a probe within this many measured errors (+ Clipper's rounding) of the trimmed polygon
+#: lies on the boundary: the polygon is within the measured error of the exact boundary
+ALIVE_SLACK = 1.5
 
 
-def _project(G, q, ta, tb, rot=0.0):
-    """Parameter in [ta, tb] (either order) of the point of rot(G) nearest to q."""
-    lo, hi = min(ta, tb), max(ta, tb)
-    ts = np.linspace(lo, hi, 65)
-    d = np.hypot(*(_rot(G(ts), rot) - q).T)
-    t = ts[int(np.argmin(d))]
-    h = max(hi - lo, 1e-12) * 1e-6
-    for _ in range(30):
-        p0 = _rot(G(np.array([t - h, t, t + h])), rot)
-        d1 = (p0[2] - p0[0]) / (2 * h)
-        d2 = (p0[2] - 2 * p0[1] + p0[0]) / (h * h)
-        r = p0[1] - q
-        g = np.dot(r, d1)
-        H = np.dot(d1, d1) + np.dot(r, d2)
-        if H <= 0:
+@dataclass(frozen=True)
+class _Cutter:
+    """The tool's exact pieces split at its trimmed corners: per piece its sub-interval
+    bounds and whether each sub-interval survived trimming."""
+    pieces: list
+    bounds: list
+    alive: list
+    pairs: list
+    nraw: int
+    teeth: int
+
+    def end(self, i: int, j: int, d: int) -> float:
+        return float(self.bounds[i][j + 1] if d > 0 else self.bounds[i][j])
+
+    def start_at(self, i: int, u: float):
+        """(sub-interval, direction) of a surviving run of piece ``i`` that starts at ``u``."""
+        b = self.bounds[i]
+        j = int(np.argmin(np.abs(b - u)))
+        if abs(b[j] - u) > SAME_CUT:
+            return None
+        if j < len(b) - 1 and self.alive[i][j]:
+            return j, 1
+        if j > 0 and self.alive[i][j - 1]:
+            return j - 1, -1
+        return None
+
+
+def _cutter(prof) -> _Cutter:
+    """Split every exact piece of ``prof`` (and its turned tip arc) at the exact corner
+    parameters the builder found, and probe each sub-interval against the trimmed polygon."""
+    pieces = list(prof.pieces)
+    tps = [np.asarray(t, float) for t in prof.piece_params]
+    if prof.tip_arc is not None:
+        pieces.append(prof.tip_arc[0])
+        tps.append(np.asarray(prof.tip_arc[1], float))
+    cuts = [[] for _ in pieces]
+    for pair in prof.corner_pairs:
+        for i, t, _k in pair:
+            cuts[i].append(t)
+    tl = prof.tooth_loop
+    slack = ALIVE_SLACK * prof.report["max_error"] + 1e-8
+    bounds, alive = [], []
+    for G, tp, c in zip(pieces, tps, cuts):
+        b = np.sort(np.concatenate([[tp[0], tp[-1]], [x for x in c if tp[0] < x < tp[-1]]]))
+        b = b[np.concatenate([[True], np.diff(b) > SAME_CUT])]
+        frac = np.asarray(PROBES)
+        tq = (b[:-1, None] + np.diff(b)[:, None] * frac[None, :]).ravel()
+        with np.errstate(invalid="ignore"):
+            q = np.asarray(G(tq), float)
+        d = np.full(len(tq), np.inf)
+        ok = np.isfinite(q).all(axis=1)
+        d[ok] = polyline_distance([tl], q[ok]) if ok.any() else d[ok]
+        alive.append((d.reshape(-1, len(frac)) <= slack).sum(axis=1) >= 2)
+        bounds.append(b)
+    return _Cutter(pieces, bounds, alive, list(prof.corner_pairs), len(prof.pieces), prof.teeth)
+
+
+def _after_cut(c: _Cutter, i: int, te: float, k: int):
+    """The run that follows a trimmed corner at parameter ``te`` of piece ``i`` (copy k)."""
+    for a, b in c.pairs:
+        for (pa, sa, ka), (pb, ub, kb) in ((a, b), (b, a)):
+            if pa == i and abs(sa - te) <= SAME_CUT and (pb, ub) != (pa, sa):
+                nxt = c.start_at(pb, ub)
+                if nxt is not None:
+                    return pb, nxt[0], k + kb - ka, nxt[1]
+    return None
+
+
+def _after_end(c: _Cutter, i: int, j: int, k: int, d: int):
+    """The run that follows the end of piece ``i`` (its last sub-interval, direction d)."""
+    last = len(c.bounds[i]) - 2
+    if d > 0 and j == last:
+        if i == c.nraw:                        # the tip arc: its next copy
+            nxt, kn = i, k + 1
+        else:
+            nxt, kn = (i + 1, k) if i + 1 < c.nraw else (0, k + 1)
+        return (nxt, 0, kn, 1) if c.alive[nxt][0] else None
+    if d < 0 and j == 0:
+        if i == c.nraw:
+            prv, kp = i, k - 1
+        else:
+            prv, kp = (i - 1, k) if i > 0 else (c.nraw - 1, k - 1)
+        jl = len(c.bounds[prv]) - 2
+        return (prv, jl, kp, -1) if c.alive[prv][jl] else None
+    jn = j + d                                 # an inner bound that is no corner: go on
+    return (i, jn, k, d) if c.alive[i][jn] else None
+
+
+def _walk(c: _Cutter, start):
+    """The states (piece, sub-interval, copy, direction) of one period from ``start``; the
+    copy offset after one period (+1 or -1)."""
+    states, s = [start], start
+    limit = 4 * sum(len(b) for b in c.bounds) + 8
+    for _ in range(limit):
+        i, j, k, d = s
+        te = c.end(i, j, d)
+        s = _after_cut(c, i, te, k) or _after_end(c, i, j, k, d)
+        if s is None:
+            raise GearError("tool", "this profile", "a tool whose trimmed outline is one closed chain of exact pieces",
+                            f"the boundary stops at piece {i}, parameter {te:.6g}")
+        if s[:2] == start[:2] and s[3] == start[3]:
+            dk = s[2] - start[2]
+            if dk in (1, -1):
+                return states, dk
             break
-        step = -g / H
-        t = min(max(t + step, lo), hi)
-        if abs(step) < 1e-15:
-            break
-    return float(t)
+        states.append(s)
+    raise GearError("tool", "this profile", "a tool whose trimmed outline repeats every pitch",
+                    "the exact boundary does not close after one period")
+
+
+def tool_chain(prof) -> Chain:
+    """The exact boundary of one period of ``prof`` as a :class:`gear3d.curves.Chain`: the
+    exact pieces between the exact corner parameters (Newton crossings found by the
+    builder), with normal fans at the corners, in the tooth loop's order; the period starts
+    near angle -pi/z.
+
+    >>> import gear3d
+    >>> from gear3d.profiles.mate import tool_chain
+    >>> c = tool_chain(gear3d.profile("involute", teeth=20, module=1, tolerance=0.01))
+    >>> c.gaps() < 1e-9
+    True
+    """
+    c = _cutter(prof)
+    z = prof.teeth
+    cand = [(i, j) for i in range(len(c.pieces)) for j in range(len(c.alive[i])) if c.alive[i][j]]
+    if not cand:
+        raise GearError("tool", "this profile", "a tool with a surviving boundary")
+    ang = [abs(np.angle(np.exp(1j * (np.arctan2(*c.pieces[i](np.array([c.bounds[i][j]]))[0][::-1]) + math.pi / z))))
+           for i, j in cand]
+    i0, j0 = cand[int(np.argmin(ang))]
+    states, dk = _walk(c, (i0, j0, 0, 1))
+    runs = [Run(c.pieces[i], c.bounds[i][j], c.bounds[i][j + 1], 2 * math.pi * k / z) if d > 0 else
+            Run(c.pieces[i], c.bounds[i][j + 1], c.bounds[i][j], 2 * math.pi * k / z) for i, j, k, d in states]
+    loop_ccw = signed_area(prof.tooth_loop) > 0
+    if (dk > 0) != loop_ccw:
+        # traverse as the tooth loop runs (the period then repeats the other way round)
+        runs = [Run(r.G, r.tb, r.ta, r.rot) for r in reversed(runs)]
+        dk = -dk
+    # a swallowtail thinner than the cutter's chords holds no polygon corner: cut it here
+    return Chain.from_runs(untangle(runs, z, dk), z, step=dk)
 
 
 def tool_elements(prof):
-    """Exact elements of one period of ``prof``'s trimmed tooth boundary, in boundary order.
-
-    Returns a list of ``(point_normal, smooth)``: ``point_normal(t) -> (points (N,2),
-    normals (N,2))`` (mm; normal = tangent turned clockwise for smooth runs), ``smooth``
-    False for the corner fans. Tooth 0 at angle 0 of the tool frame.
-    """
-    from scipy.spatial import cKDTree
-    z = prof.teeth
-    pieces, tparams = list(prof.pieces), [np.asarray(t, float) for t in prof.piece_params]
-    if prof.tip_arc is not None:
-        # a tip circle the builder turned (clip radius binding) is exact too, but not one
-        # of the raw pieces: roll it as one more, so its land is a run and not a corner
-        pieces.append(prof.tip_arc[0])
-        tparams.append(np.asarray(prof.tip_arc[1], float))
-    copies = (0,) if z == 1 else ((0, 1) if z == 2 else (-1, 0, 1))
-    pts, rec = [], []
-    for i, (G, t) in enumerate(zip(pieces, tparams)):
-        P = G(t)
-        for k in copies:
-            pts.append(_rot(P, 2 * math.pi * k / z))
-            rec += [(i, j, k) for j in range(len(t))]
-    tree = cKDTree(np.concatenate(pts))
-    loop = prof.tooth_loop
-    d, idx = tree.query(loop)
-    raw = d <= 1e-7
-    # one period: from a raw vertex near angle -pi/z to its copy one pitch further
-    ang = np.arctan2(loop[:, 1], loop[:, 0])
-    cand = np.nonzero(raw)[0]
-    i0 = int(cand[np.argmin(np.abs(np.angle(np.exp(1j * (ang[cand] + math.pi / z)))))])
-    n = len(loop)
-    targets = [_rot(loop[i0], s * 2 * math.pi / z) for s in (1, -1)]
-    path = [i0]
-    for step in range(1, n + 1):
-        j = (i0 + step) % n
-        path.append(j)
-        if step > 2 and min(np.hypot(*(loop[j] - tg)) for tg in targets) < 1e-6:
-            break
-    else:
-        raise GearError("tool", prof.family, "a profile whose tooth boundary repeats every pitch")
-    # group into runs of one (piece, copy) and corners
-    items = []
-    for j in path:
-        if raw[j]:
-            i, jj, k = rec[idx[j]]
-            items.append(("raw", i, k, jj, loop[j]))
-        else:
-            items.append(("corner", loop[j]))
-    runs = []          # [piece, copy, t_start, t_end]
-    corner_after = {}  # run index -> corner point that follows it
-    for it in items:
-        if it[0] == "raw":
-            _, i, k, jj, q = it
-            t = tparams[i][jj]
-            if runs and runs[-1][0] == i and runs[-1][1] == k and not corner_after.get(len(runs) - 1) is not None:
-                runs[-1][3] = t
-            else:
-                runs.append([i, k, t, t])
-        else:
-            if runs:
-                corner_after[len(runs) - 1] = it[1]
-    runs, corner_after = _bridge_piece_junctions(runs, corner_after, prof, pieces, tparams)
-    # snap run ends to the corners / bridge piece junctions
-    els = []
-    for r_i, (i, k, ta, tb) in enumerate(runs):
-        G = pieces[i]
-        tp = tparams[i]
-        rot = 2 * math.pi * k / z
-        if r_i + 1 < len(runs):
-            q = corner_after.get(r_i)
-            if q is None:
-                q = _rot(pieces[runs[r_i + 1][0]](np.array([runs[r_i + 1][2]])), 2 * math.pi * runs[r_i + 1][1] / z)[0]
-            # extend to the next sample of this piece in the direction of travel, projected
-            jn = np.searchsorted(tp, tb)
-            nxt = tp[min(jn + 1, len(tp) - 1)] if tb >= ta else tp[max(jn - 1, 0)]
-            if nxt != tb:
-                tb_new = _project(G, q, tb, nxt, rot)
-                if np.hypot(*(_rot(G(np.array([tb_new])), rot)[0] - q)) < max(prof.tolerance, 1e-6) * 2:
-                    tb = tb_new
-        if r_i > 0:
-            q = corner_after.get(r_i - 1)
-            prev_end = els[-1][1] if els else None
-            target = q if q is not None else prev_end
-            if target is not None:
-                jn = np.searchsorted(tp, ta)
-                prv = tp[max(jn - 1, 0)] if tb >= ta else tp[min(jn + 1, len(tp) - 1)]
-                if prv != ta:
-                    ta_new = _project(G, target, prv, ta, rot)
-                    if np.hypot(*(_rot(G(np.array([ta_new])), rot)[0] - target)) < max(prof.tolerance, 1e-6) * 2:
-                        ta = ta_new
-        runs[r_i] = [i, k, ta, tb]
-        end_pt = _rot(G(np.array([tb])), rot)[0]
-        els.append((("smooth", i, k, ta, tb), end_pt))
-    out = []
-    for r_i, ((_, i, k, ta, tb), end_pt) in enumerate(els):
-        out.append((_smooth_pn(pieces[i], ta, tb, 2 * math.pi * k / z), True))
-        if r_i + 1 < len(els):
-            na = _normal(pieces[i], tb, 2 * math.pi * k / z, inward=-1e-5 * np.sign(tb - ta or 1))
-            i2, k2, ta2, tb2 = runs[r_i + 1]
-            nb = _normal(pieces[i2], ta2, 2 * math.pi * k2 / z, inward=1e-5 * np.sign(tb2 - ta2 or 1))
-            if abs(na[0] * nb[1] - na[1] * nb[0]) > 1e-9 or np.dot(na, nb) < 0:
-                out.append((_fan_pn(end_pt, na, nb), False))
-    return out
-
-
-def _bridge_piece_junctions(runs, corner_after, prof, pieces, tparams):
-    """Add the missing run where a corner follows (or precedes) a run that stops on its
-    piece's last (first) sample, and the corner lies on the neighbouring piece of the raw
-    chain instead: e.g. a tip circle generated as two half pieces whose only surviving
-    vertex (the tip's middle) was matched to one of them. Without it the fan of the corner
-    would sit at that vertex and the mate's flank would be cut by a chord."""
-    z, npc = prof.teeth, len(prof.pieces)
-    near = 2 * max(prof.tolerance, 1e-6)
-
-    def neighbour(i, k, at_end):
-        if at_end:
-            return (i + 1, k) if i + 1 < npc else (0, k + 1)
-        return (i - 1, k) if i > 0 else (npc - 1, k - 1)
-
-    def point(i, k, t):
-        return _rot(pieces[i](np.array([t])), 2 * math.pi * k / z)[0]
-
-    def extension(i, k, t, q):
-        """A run (j, kj, t_junction, t_q) on the neighbour of piece i past sample t, or None."""
-        if i >= npc or np.hypot(*(point(i, k, t) - q)) <= near:
-            return None
-        tp = tparams[i]
-        for at_end, hit in ((True, t == tp[-1]), (False, t == tp[0])):
-            if not hit:
-                continue
-            j, kj = neighbour(i, k, at_end)
-            tj = tparams[j]
-            t0 = tj[0] if at_end else tj[-1]
-            if np.hypot(*(point(j, kj, t0) - point(i, k, t))) > 1e-7:
-                continue
-            tq = _project(pieces[j], q, tj[0], tj[-1], 2 * math.pi * kj / z)
-            if np.hypot(*(point(j, kj, tq) - q)) <= near:
-                return [j, kj, t0, tq]
-        return None
-
-    out, corners = [], {}
-    for r_i, (i, k, ta, tb) in enumerate(runs):
-        before = corner_after.get(r_i - 1) if r_i > 0 else None
-        if before is not None:
-            ext = extension(i, k, ta, before)
-            if ext is not None:
-                j, kj, t0, tq = ext
-                out.append([j, kj, tq, t0])
-        out.append([i, k, ta, tb])
-        q = corner_after.get(r_i)
-        if q is not None:
-            ext = extension(i, k, tb, q)
-            if ext is not None:
-                out.append(ext)
-            corners[len(out) - 1] = q
-    return out, corners
-
-
-def _deriv(G, t, rot):
-    h = 1e-6
-    t = np.asarray(t, float)
-    return _rot((G(t + h) - G(t - h)) / (2 * h), rot)
-
-
-def _normal(G, t, rot, inward=0.0):
-    """Unit normal of piece G at t; at a singular point (dG/dt = 0) the limit from inside."""
-    d = _deriv(G, np.array([t]), rot)[0]
-    if np.hypot(*d) < 1e-9:
-        d = _deriv(G, np.array([t + (inward or 1e-5)]), rot)[0]
-    n = np.array([d[1], -d[0]])
-    return n / np.hypot(*n)
-
-
-def _smooth_pn(G, ta, tb, rot):
-    def pn(t):
-        t = np.asarray(t, float)
-        tt = ta + (tb - ta) * t
-        p = _rot(G(tt), rot)
-        d = _deriv(G, tt, rot)
-        # a run may end exactly on a singular point (dG/dt = 0): take the tangent's limit
-        # from inside the run there
-        stall = np.hypot(d[:, 0], d[:, 1]) < 1e-9
-        if stall.any():
-            inward = np.where(t[stall] < 0.5, 1.0, -1.0) * 1e-5 * (tb - ta if tb != ta else 1.0)
-            d[stall] = _deriv(G, tt[stall] + inward, rot)
-        return p, np.stack([d[:, 1], -d[:, 0]], axis=1)
-    return pn
-
-
-def _fan_pn(q, na, nb):
-    a0 = math.atan2(na[1], na[0])
-    da = math.atan2(na[0] * nb[1] - na[1] * nb[0], float(np.dot(na, nb)))
-
-    def pn(t):
-        a = a0 + da * np.asarray(t, float)
-        return np.repeat(q[None, :], len(a), axis=0), np.stack([np.cos(a), np.sin(a)], axis=1)
-    return pn
+    """Exact elements of one period of ``prof``'s trimmed tooth boundary, in boundary order:
+    ``[(point_normal, smooth)]`` with ``point_normal(t) -> (points (N,2), normals (N,2))``
+    (mm; normal = tangent turned clockwise for smooth runs), ``smooth`` False for the
+    corner fans. See :func:`tool_chain`."""
+    return tool_chain(prof).elements()
 
 
 def mate(tool, teeth: int, internal: bool | None = None, tolerance: float | None = None,
@@ -279,7 +213,7 @@ def mate(tool, teeth: int, internal: bool | None = None, tolerance: float | None
     def rotated(pn):
         def f(t):
             p, nn = pn(t)
-            return _rot(p, beta0), _rot(nn, beta0)
+            return rotate(p, beta0), rotate(nn, beta0)
         return f
     pieces = [piece for pn, smooth in els for piece in wheel_envelope_pieces(rotated(pn), r1, r2, pair_internal, smooth)]
     rt = tool.report
