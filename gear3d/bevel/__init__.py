@@ -100,20 +100,27 @@ class Bevel:
     report: BevelReport
 
 
-def _refuse_unbuilt(spiral_angle_deg, cutter_radius, hand):
-    for name, v in (("spiral_angle_deg", spiral_angle_deg), ("cutter_radius", cutter_radius), ("hand", hand)):
+#: keywords of the issue that are not built yet (spiral and Zerol bevels)
+UNBUILT = ("spiral_angle_deg", "cutter_radius", "hand")
+
+
+def _refuse_unbuilt(extra: dict):
+    for name, v in extra.items():
+        if name not in UNBUILT:
+            raise GearError(name, v, "not a parameter of gear3d.bevel")
         if v is not None and not (name == "spiral_angle_deg" and v == 0):
             raise GearError(name, v, "no value: spiral and Zerol bevels are not built (straight bevels only)")
 
 
 def build(teeth, mate_teeth, module, face_width=None, pressure_angle_deg=20.0, shaft_angle_deg=90.0,
           form="spherical-involute", shift_coeff=0.0, tolerance=DEFAULT_TOLERANCE, part="gear",
-          spiral_angle_deg=None, cutter_radius=None, hand=None) -> Bevel:
+          **unbuilt) -> Bevel:
     """Straight bevel member(s) (mm, degrees); see the package doc. ``part``: gear | mate |
-    pair (the mate placed on its axis at the shaft angle, in mesh). Raises
-    :class:`GearError` naming a bad parameter before any work."""
+    pair (the mate placed on its axis at the shaft angle, in mesh). ``spiral_angle_deg``,
+    ``cutter_radius`` and ``hand`` are refused (spiral and Zerol bevels are not built).
+    Raises :class:`GearError` naming a bad parameter before any work."""
     from .geometry import pair_geometry
-    _refuse_unbuilt(spiral_angle_deg, cutter_radius, hand)
+    _refuse_unbuilt(unbuilt)
     part = check_choice("part", part, PARTS)
     tol = check_number("tolerance", tolerance, 1e-6, 1.0, unit="mm")
     geo = pair_geometry(teeth, mate_teeth, module, face_width, pressure_angle_deg, shaft_angle_deg,

@@ -53,9 +53,9 @@ def run(args) -> int:
         check_path(args.json, "json", (".json",))
     if args.png is not None:
         check_path(args.png, "png", (".png",))
+    unbuilt = {k: getattr(args, k) for k in ("spiral_angle_deg", "cutter_radius", "hand") if getattr(args, k) is not None}
     b = build(args.teeth, args.mate_teeth, args.module, args.face_width, args.pressure_angle_deg,
-              args.shaft_angle_deg, args.form, args.shift_coeff, args.tolerance, args.part,
-              args.spiral_angle_deg, args.cutter_radius, args.hand)
+              args.shaft_angle_deg, args.form, args.shift_coeff, args.tolerance, args.part, **unbuilt)
     info = write(list(b.bodies), out)
     if args.json is not None:
         from ..export import atomic_path
