@@ -244,8 +244,8 @@ def test_pair_turns_without_interference(hand):
 def test_hobbing_simulation_matches_the_envelope():
     """Brute force: the wheel blank minus the hob (the worm with its tip raised by the
     clearance) at many (φ, φ z1/z2) positions around tooth 0's space; every section of the
-    simulated space lies within tolerance + the simulation's scallop of the exact section,
-    and the envelope never cuts more than the hob does."""
+    simulated space lies within tolerance + the simulation's scallop of the exact section
+    (one-sided: the simulated outline's vertices against the exact section)."""
     from manifold3d import CrossSection, FillRule, Manifold, OpType
     from gear3d.envelope import circle_loop
     from gear3d.wormgear import WHEEL_TURN, worm_transform
@@ -284,4 +284,5 @@ def test_hobbing_simulation_matches_the_envelope():
         # scallop of a rack step s on a flank of curvature radius >= r_b/4: s²/(8 ρ) + the
         # hob's own mesh error
         scallop = step ** 2 / (8 * (d.r2 * math.cos(d.alpha_x) / 4))
+        print("hobbing", h, float(dist.max()), 2 * tol + scallop)
         assert dist.max() <= 2 * tol + scallop, (h, dist.max(), scallop)
