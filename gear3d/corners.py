@@ -14,6 +14,7 @@ import math
 import numpy as np
 
 from .geometry import point_segment_distance, rotate
+from .curves import crossing as exact_crossing  # noqa: F401  (the one Newton crossing)
 from .tessellate import MAX_VERTICES, split_chords
 
 
@@ -119,56 +120,3 @@ def refine(f, t: np.ndarray, pts: np.ndarray, dev: np.ndarray, chords, target: f
             break      # the measured corner error then tells (the builder refuses if > tol)
         t, pts, dev = split_chords(f, t, pts, dev, np.nonzero(bad)[0])
     return t, pts, dev, True
-
-
-def exact_crossing(fa, ta0, ta1, fb, tb0, tb1, rot_b: float, q0: np.ndarray, iters: int = 30,
-                   params: bool = False):
-    """Crossing of exact curves fa (on [ta0, ta1]) and fb rotated by ``rot_b`` (on [tb0, tb1]).
-
-    Newton iteration in the two parameters from the chords' crossing; the Jacobian comes
-    from central differences, each curve evaluated once per step (three parameters).
-    Returns the point (mm) or None if it does not converge inside the intervals (widened x3);
-    with ``params`` also the two curves' parameters there: (point, s, u).
-    """
-    def A3(s, h):
-        return fa(np.array([s, s + h, s - h]))
-
-    def B3(u, h):
-        return _rot(fb(np.array([u, u + h, u - h])), rot_b)
-
-    # start from the chords' crossing parameters
-    pa = fa(np.array([ta0, ta1]))
-    pb = _rot(fb(np.array([tb0, tb1])), rot_b)
-    pa0, pa1, pb0, pb1 = pa[0], pa[1], pb[0], pb[1]
-    da, db = pa1 - pa0, pb1 - pb0
-    den = da[0] * (-db[1]) - da[1] * (-db[0])
-    if abs(den) < 1e-300:
-        return None
-    rhs = pb0 - pa0
-    sa = (rhs[0] * (-db[1]) - rhs[1] * (-db[0])) / den
-    sb = (da[0] * rhs[1] - da[1] * rhs[0]) / den
-    s, u = ta0 + sa * (ta1 - ta0), tb0 + sb * (tb1 - tb0)
-    ha = max(abs(ta1 - ta0), 1e-14) * 1e-4
-    hb = max(abs(tb1 - tb0), 1e-14) * 1e-4
-    for _ in range(iters):
-        a3, b3 = A3(s, ha), B3(u, hb)
-        F = a3[0] - b3[0]
-        if np.hypot(*F) < 1e-13:
-            break
-        Ja = (a3[1] - a3[2]) / (2 * ha)
-        Jb = -(b3[1] - b3[2]) / (2 * hb)
-        J = np.stack([Ja, Jb], axis=1)
-        try:
-            step = np.linalg.solve(J, -F)
-        except np.linalg.LinAlgError:
-            return None
-        if not np.all(np.isfinite(step)):
-            return None
-        s, u = s + step[0], u + step[1]
-    wa, wb = 3 * abs(ta1 - ta0), 3 * abs(tb1 - tb0)
-    if not (min(ta0, ta1) - wa <= s <= max(ta0, ta1) + wa and min(tb0, tb1) - wb <= u <= max(tb0, tb1) + wb):
-        return None
-    pa = fa(np.array([s]))[0]
-    if np.hypot(*(pa - _rot(fb(np.array([u])), rot_b)[0])) > 1e-9:
-        return None
-    return (pa, float(s), float(u)) if params else pa

@@ -110,6 +110,11 @@ def rack_envelope(rack: Rack, radius: float, shift: float = 0.0, internal: bool 
     return [(rack_envelope_piece(el, radius, shift, internal), el.name) for el in rack.elements]
 
 
+#: relative size (of |n|^2 r1^2) below which a negative discriminant is rounding: the normal
+#: line grazes the tool's pitch circle
+GRAZING = 1e-12
+
+
 def _wheel_roots(p, n, r1, branch):
     """lambda of the pitch point W = p + lambda n on the tool's pitch circle |W| = r1.
 
@@ -120,6 +125,9 @@ def _wheel_roots(p, n, r1, branch):
     nn = np.einsum("ij,ij->i", n, n)
     pp = np.einsum("ij,ij->i", p, p)
     disc = pn * pn - nn * (pp - r1 * r1)
+    # a tool point on the pitch circle with its normal along the circle (a cycloid's cusp)
+    # touches it: rounding must not turn that root into a miss
+    disc = np.where((disc < 0) & (disc > -GRAZING * nn * r1 * r1), 0.0, disc)
     with np.errstate(invalid="ignore"):
         sq = np.sqrt(disc)
     l1, l2 = (-pn - sq) / nn, (-pn + sq) / nn
