@@ -162,6 +162,14 @@ def test_refusals_one_line_exit_2_no_file(tmp_path, capsys, extra, word):
     assert list(tmp_path.iterdir()) == []
 
 
+def test_steep_worm_helix_is_built():
+    # q = 20, one start: lead angle 2.9 deg, the worm's helix angle 87.1 deg (beyond a gear body's range)
+    s = gear3d.worm(part="worm", module=1, starts=1, wheel_teeth=20, diameter_quotient=20, tolerance=0.1,
+                    worm_length=10)
+    assert s.worm.report["helix_angle_deg"] == pytest.approx(90 - math.degrees(math.atan(1 / 20)))
+    assert s.report.worm_max_error <= 0.1
+
+
 def test_zk_refused_in_python():
     with pytest.raises(GearError, match="not built yet"):
         design(worm_type="ZK")

@@ -71,13 +71,20 @@ def worm_body(d, tolerance=None, bore=None, name="worm"):
     L = d.worm_length
     beta = 90.0 - d.lead_angle_deg
     law = WormLaw(L, d.r1, d.sign, beta, z0=L / 2, theta0=math.pi + math.pi / d.starts)
+    # the body builder's own helix-angle range stops short of worms; the twist it builds
+    # and measures is the law's (its true angle), so the report is set to the law's after
+    from ..solids import body as _body_mod
+    shown = min(beta, getattr(_body_mod, "MAX_HELIX_DEG", 90.0))
     try:
-        b = body(prof, kind="helical", width=L, helix_angle_deg=beta, hand=d.hand, tolerance=tol, bore=bore,
+        b = body(prof, kind="helical", width=L, helix_angle_deg=shown, hand=d.hand, tolerance=tol, bore=bore,
                  name=name, _law=law)
     except GearError as e:
         if e.param == "bore":
             raise GearError("worm_bore", bore, e.allowed, e.why) from None
         raise
+    b.report["helix_angle_deg"] = beta
+    b.report["lead"] = d.lead
+    b.report["total_twist_deg"] = math.degrees(L / d.p)
     t = np.eye(4)
     t[2, 3] = -L / 2
     return b.placed(t, name)
