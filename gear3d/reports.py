@@ -175,4 +175,7 @@ class PairReport(Report):
     contact_band: float | None = None
     #: the play taken up before contact is judged (mm on wheel 2's pitch circle)
     contact_take_up: float | None = None
+    #: the conjugate contact counted once per contact point (a tooth touching two teeth at
+    #: once counts twice), in pitches: the mean number of contacts on the driving flanks
+    mean_contact_points: float | None = None
     extra: dict = field(default_factory=dict)

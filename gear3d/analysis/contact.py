@@ -50,8 +50,14 @@ GRID_PER_PITCH = 96
 END_ROUNDS = 8
 #: the band is divided by this for the uncertainty estimate
 BAND_SPLIT = 4.0
+#: distinct conjugate points of tooth 0 counted at one angle for mean_contact_points (a
+#: rolled mate or a one-tooth pinion can touch at two points at once)
+MAX_LEVELS = 4
 #: conjugate points of wheel 2 are looked for within REACH x band of tooth 0's
 REACH = 50
+#: a gap counts for the take-up when the distance to wheel 2 changes at this rate (of 1)
+#: along tooth 0's normal: wheel 2's nearest point lies along it (within ~8 deg)
+ALONG = 0.99
 #: floor of the stated uncertainty (pitches): the bisection and root precision, with room
 FLOOR = 1e-6
 
@@ -67,9 +73,9 @@ class Mesh:
         self.phase2, self.ratio = float(phase2), float(ratio)
         self.I = np.array([float(r1w), 0.0])
         self.take_up = 0.0
-        self.half = math.pi / p1.teeth if p1.teeth > 1 else math.pi
-        self._poly2 = None
+        self.half = math.pi / p1.teeth          # tooth 0's period: polar angles within this of +x
         self._t0 = None
+        self._poly2 = None
 
     def psi(self, phis):
         return self.phase2 + self.ratio * np.asarray(phis, float) + self.take_up
@@ -90,11 +96,13 @@ class Mesh:
         I1 = rotate(np.broadcast_to(self.I, (len(phis), 2)), -phis)
         rows, pts, nrm = [], [], []
         for k in ((0,) if w.teeth == 1 else (-1, 0, 1)):
-            sector = (-k * w.pitch, self.half - k * w.pitch)
+            sector = (-self.half - k * w.pitch, self.half - k * w.pitch)
             r, p, n = w.roots(rotate(I1, -k * w.pitch), sector=sector)
             p, n = rotate(p, k * w.pitch), rotate(n, k * w.pitch)
             ang = np.arctan2(p[:, 1], p[:, 0])
-            keep = (ang >= 0) & (ang <= self.half)
+            # tooth 0 (its period about +x), the flank that drives: wheel 2 pushes back on
+            # it against wheel 1's turn (the outward normal's moment about O1 is positive)
+            keep = (ang >= -self.half) & (ang <= self.half) & (p[:, 0] * n[:, 1] - p[:, 1] * n[:, 0] > 0)
             rows.append(r[keep])
             pts.append(p[keep])
             nrm.append(n[keep])
@@ -131,10 +139,12 @@ class Mesh:
         dist[dist > reach] = np.inf
         return dist
 
-    def match(self, phis, reach: float = math.inf):
+    def match(self, phis, reach: float = math.inf, level: int = 0):
         """At each angle: the distance (mm) from tooth 0's conjugate points to the nearest
         conjugate point of wheel 2 (inf: none within ``reach``), and that point of tooth 0
-        (fixed frame)."""
+        (fixed frame). ``level`` k > 0: the (k+1)-th smallest such distance among tooth 0's
+        distinct conjugate points (a tooth touching two teeth at once, as a one-tooth
+        pinion does)."""
         phis = np.atleast_1d(np.asarray(phis, float))
         M = len(phis)
         best = np.full(M, np.inf)
@@ -142,12 +152,13 @@ class Mesh:
         rows, c1, _ = self.tooth0(phis)
         if not len(rows):
             return best, where
+        rows, c1 = _distinct(rows, c1)
         cf = rotate(c1, phis[rows])
         dist = self.conj2(cf, phis[rows], reach)
         order = np.lexsort((dist, rows))          # by row, smallest distance first
-        first = np.ones(len(order), bool)
-        first[1:] = rows[order][1:] != rows[order][:-1]
-        pick = order[first]
+        rs = rows[order]
+        start = np.searchsorted(rs, rs, side="left")
+        pick = order[np.arange(len(order)) - start == level]
         best[rows[pick]] = dist[pick]
         where[rows[pick]] = cf[pick]
         return best, where
@@ -159,7 +170,6 @@ class Mesh:
         distance to wheel 2 over the normal's lever about wheel 2's centre. Points whose
         normal passes within 0.2 r2 of wheel 2's centre (pressure angles above ~78 deg)
         are left out."""
-        import shapely
         rows, c1, n1 = self.tooth0(phis)
         if not len(rows):
             return np.zeros(0), np.zeros(0)
@@ -167,19 +177,37 @@ class Mesh:
         cf, nf = rotate(c1, phis[rows]), rotate(n1, phis[rows])
         q2 = self._frame2(cf, psi)
         d = self.p2.exact_distance(q2)
-        if self._poly2 is None:
-            loops = [np.asarray(l, float) for l in self.p2.loops]
-            outer = max(loops, key=lambda l: np.ptp(l[:, 0]))
-            self._poly2 = shapely.Polygon(outer, [l for l in loops if l is not outer])
-        inside = shapely.contains_xy(self._poly2, q2[:, 0], q2[:, 1])
-        g = np.where(inside, -d, d)
+        sign = self._along_normal(q2, d, rotate(nf, -psi))
+        g = sign * d
         # wheel 2's surface moves by dpsi * J(x - c2); its outward normal there is -n1
         lever = (cf[:, 1] - self.c2[1]) * nf[:, 0] - (cf[:, 0] - self.c2[0]) * nf[:, 1]
         r2 = float(np.hypot(*(self.I - self.c2)))
-        ok = np.isfinite(g) & (np.abs(lever) >= 0.2 * r2)
+        ok = np.isfinite(g) & (sign != 0) & (np.abs(lever) >= 0.2 * r2)
         return g[ok] / lever[ok], g[ok] / np.abs(lever[ok])
 
-    def settle(self, phis, rounds: int = 2):
+    def _along_normal(self, q2, d, n2):
+        """The sign of the gap at points ``q2`` (wheel 2's frame, exact distances ``d`` from
+        wheel 2) along ``n2`` (tooth 0's outward normal): +1 a gap that turning wheel 2
+        closes there, -1 an overlap, 0 neither. A step of half the distance each way along
+        the normal changes the distance at the full rate only when wheel 2's nearest point
+        lies along it: ahead for a gap, behind for an overlap. Far from wheel 2 the polygon
+        says which side a point is on, and must agree; within a few of its tolerances (where
+        the polygon's own error could flip that) the rate alone decides."""
+        import shapely
+        if self._poly2 is None:
+            loops = [np.asarray(lp, float) for lp in self.p2.loops]
+            outer = max(loops, key=lambda lp: np.ptp(lp[:, 0]))
+            self._poly2 = shapely.Polygon(outer, [lp for lp in loops if lp is not outer])
+        s = np.maximum(0.5 * d, 1e-12)[:, None]
+        rate = (self.p2.exact_distance(q2 - s * n2) - self.p2.exact_distance(q2 + s * n2)) / (2 * s[:, 0])
+        sign = np.where(rate >= ALONG, 1.0, np.where(rate <= -ALONG, -1.0, 0.0))
+        far = d > 4 * self.p2.tolerance
+        if far.any():
+            inside = shapely.contains_xy(self._poly2, q2[far, 0], q2[far, 1])
+            sign[far] = np.where(sign[far] == np.where(inside, -1.0, 1.0), sign[far], 0.0)
+        return np.where(d <= 1e-9, 1.0, sign)
+
+    def settle(self, phis, rounds: int = 3):
         """Take up the play: turn wheel 2 by the turn that closes the smallest gap (over its
         lever) among tooth 0's conjugate points, or opens the deepest overlap (a pair set
         closer than its backlash allows); twice, the second round removing what the first
@@ -195,7 +223,7 @@ class Mesh:
         return self.take_up
 
 
-def _intervals(mesh, phis, d, band, reach):
+def _intervals(mesh, phis, d, band, reach, level: int = 0):
     """Intervals [(lo, hi)] of φ where ``d <= band`` on the grid ``phis``, each change of
     state narrowed on :meth:`Mesh.match` (all changes together, 31 points a round)."""
     on = d <= band
@@ -210,7 +238,7 @@ def _intervals(mesh, phis, d, band, reach):
         if not len(a) or np.all(b - a <= 1e-15):
             break
         x = a[:, None] + (b - a)[:, None] * frac[None, :]
-        xo = (mesh.match(x.ravel(), reach)[0] <= band).reshape(x.shape)
+        xo = (mesh.match(x.ravel(), reach, level)[0] <= band).reshape(x.shape)
         same = xo == a_on[:, None]
         k = np.where(same.all(axis=1), len(frac), np.argmin(same, axis=1)) - 1
         new_a = np.where(k >= 0, x[rows, np.maximum(k, 0)], a)
@@ -233,37 +261,77 @@ def _measure(iv) -> float:
     return float(sum(hi - lo for lo, hi in iv))
 
 
-def contact_ratio(mesh, span: float, band: float) -> dict:
-    """The conjugate contact of tooth 0 over wheel-1 angles [-span/2, span/2] (rad):
-    ``contact_ratio`` (pitches), ``contact_ratio_uncertainty``, the φ ``intervals`` (rad),
+def _epsilon(mesh, phis, band: float, reach: float, levels: bool = False):
+    """(contact ratio, the φ intervals of tooth 0's contact[, mean contact points]): the
+    measure of the φ where tooth 0 touches by conjugate action, over the pitch. With
+    ``levels`` also the measure counted once per distinct contact point (a tooth touching
+    at two points at once counts twice), over the pitch."""
+    p = 2 * math.pi / mesh.p1.teeth
+    d = mesh.match(phis, reach)[0]
+    first = _intervals(mesh, phis, d, band, reach)
+    if not levels:
+        return _measure(first) / p, first
+    total = _measure(first)
+    for level in range(1, MAX_LEVELS):
+        d = mesh.match(phis, reach, level)[0]
+        if not np.any(d <= band):
+            break
+        total += _measure(_intervals(mesh, phis, d, band, reach, level))
+    return _measure(first) / p, first, total / p
+
+
+def window(mesh) -> float:
+    """The span (rad) of wheel-1 angles about the line of centres in which tooth 0 can
+    touch wheel 2: where a circle through tooth 0's radii meets wheel 2's annulus of teeth
+    (sampled), widened by tooth 0's own width and a grid step; a whole turn when they meet
+    all round (a tooth difference of one, a one-tooth pinion)."""
+    r1 = np.hypot(*np.concatenate([r.p for r in mesh.w1.runs]).T)
+    r2 = np.hypot(*np.concatenate([r.p for r in mesh.w2.runs]).T)
+    rho = np.linspace(r1.min(), r1.max(), 16)
+    th = np.linspace(-math.pi, math.pi, 721)
+    x = rho[:, None, None] * np.stack([np.cos(th), np.sin(th)], axis=-1)[None]
+    d = np.hypot(x[..., 0] - mesh.c2[0], x[..., 1] - mesh.c2[1])
+    hit = ((d >= r2.min()) & (d <= r2.max())).any(axis=0)
+    if not hit.any():
+        return 2 * math.pi
+    p = 2 * math.pi / mesh.p1.teeth
+    half = float(np.abs(th[hit]).max()) + (th[1] - th[0]) + mesh.half + p / GRID_PER_PITCH * 2
+    return min(2 * half, 2 * math.pi)
+
+
+def contact_ratio(mesh, span, band: float) -> dict:
+    """The conjugate contact of tooth 0 over wheel-1 angles [-span/2, span/2] (rad; None:
+    the :func:`window` in which it can touch wheel 2, up to a whole turn): ``contact_ratio``
+    (pitches), ``contact_ratio_uncertainty``, the φ ``intervals`` (rad) of the first contact,
     the path points (fixed frame, mm), ``take_up`` (rad of wheel 2) and ``band`` (mm)."""
     p = 2 * math.pi / mesh.p1.teeth
-    n = int(math.ceil(span / p * GRID_PER_PITCH)) + 1
-    phis = np.linspace(-span / 2, span / 2, n)
-    mesh.settle(phis)
     reach = REACH * band
+    span = min(window(mesh) if span is None else span, 2 * math.pi)
+    n = int(math.ceil(span / p * GRID_PER_PITCH)) + 1
+    phis = np.linspace(-span / 2, span / 2, n, endpoint=span < 2 * math.pi)
+    mesh.settle(phis)
     d, where = mesh.match(phis, reach)
-    iv = _intervals(mesh, phis, d, band, reach)
-    iv_fine = _intervals(mesh, phis, d, band / BAND_SPLIT, reach)
-    eps, eps_fine = _measure(iv) / p, _measure(iv_fine) / p
+    step = phis[1] - phis[0]
+    eps, iv, mean = _epsilon(mesh, phis, band, reach, levels=True)
+    eps_fine = _epsilon(mesh, phis, band / BAND_SPLIT, reach)[0]
     unc = max(2 * abs(eps - eps_fine), FLOOR)
     if mesh.w1.fuzzy or mesh.w2.fuzzy:
         # corners found only to the polygon's error: the runs' other possible ends
         import copy
         alt = copy.copy(mesh)
-        alt.w1, alt.w2 = mesh.w1.shrunk(), mesh.w2.shrunk()
-        unc += abs(eps - _measure(_intervals(alt, phis, alt.match(phis, reach)[0], band, reach)) / p)
+        alt.w1, alt.w2, alt._t0 = mesh.w1.shrunk(), mesh.w2.shrunk(), None
+        unc += abs(eps - _epsilon(alt, phis, band, reach)[0])
     path = []
     for lo, hi in iv:
         inside = (phis > lo) & (phis < hi) & np.isfinite(where[:, 0])
         # the ends, a hair inside (the bisection leaves them within 1e-15 rad)
-        eps_in = min(1e-12, 0.25 * (hi - lo))
+        eps_in = min(1e-12, 0.25 * (hi - lo), 0.25 * step)
         de, we = mesh.match(np.array([lo + eps_in, hi - eps_in]), reach)
         ends = [we[i] if de[i] <= band else np.full(2, np.nan) for i in (0, 1)]
         pts = [ends[0]] + list(where[inside]) + [ends[1]]
         path.append(np.array([q for q in pts if np.all(np.isfinite(q))]).reshape(-1, 2))
-    return {"contact_ratio": eps, "contact_ratio_uncertainty": unc, "intervals": iv, "path": path,
-            "take_up": mesh.take_up, "band": band, "phis": phis, "gaps": d}
+    return {"contact_ratio": eps, "contact_ratio_uncertainty": unc, "mean_contact_points": mean,
+            "intervals": iv, "path": path, "take_up": mesh.take_up, "band": band, "phis": phis, "gaps": d}
 
 
 def edge_contacts(mesh, phis, band: float) -> list:
@@ -281,7 +349,7 @@ def edge_contacts(mesh, phis, band: float) -> list:
     for wheel, w in ((1, mesh.w1), (2, mesh.w2)):
         corners = [c for c in w.corners if c.turn > 0]
         if wheel == 1:
-            corners = [c for c in corners if 0 <= math.atan2(c.point[1], c.point[0]) <= mesh.half]
+            corners = [c for c in corners if abs(math.atan2(c.point[1], c.point[0])) <= mesh.half]
         for c in corners:
             for k in _copies(mesh, w, c, wheel, psi):
                 turn = phis if wheel == 1 else psi
@@ -294,7 +362,11 @@ def edge_contacts(mesh, phis, band: float) -> list:
                 ang0 = np.arctan2(fan0[:, 1], fan0[:, 0])
                 ok = np.zeros(len(phis), bool)
                 for sgn in (1.0, -1.0):
-                    ok |= (np.arctan2(sgn * u[:, 1], sgn * u[:, 0]) - ang0) % (2 * math.pi) <= c.turn
+                    inside = (np.arctan2(sgn * u[:, 1], sgn * u[:, 0]) - ang0) % (2 * math.pi) <= c.turn
+                    # the drive side: the push on wheel 1 resists its turn (wheel 1's outward
+                    # normal has a positive moment about O1; wheel 2's, a negative one)
+                    lever = fixed[:, 0] * u[:, 1] - fixed[:, 1] * u[:, 0]
+                    ok |= inside & (sgn * lever * (1 if wheel == 1 else -1) > 0)
                 if not ok.any():
                     continue
                 dist = np.full(len(phis), np.inf)
@@ -316,6 +388,17 @@ def _copies(mesh, w, c, wheel, psi):
     a = (np.arctan2(I2[:, 1], I2[:, 0]) - math.atan2(c.point[1], c.point[0])) / w.pitch
     lo, hi = int(math.floor(a.min())) - 1, int(math.ceil(a.max())) + 1
     return range(lo, hi + 1)
+
+
+def _distinct(rows, pts, tol: float = 1e-7):
+    """Drop repeated points of a row (one root found by two runs that meet there)."""
+    if len(rows) < 2:
+        return rows, pts
+    order = np.lexsort((pts[:, 1], pts[:, 0], rows))
+    r, p = rows[order], pts[order]
+    dup = np.zeros(len(r), bool)
+    dup[1:] = (r[1:] == r[:-1]) & (np.hypot(*(p[1:] - p[:-1]).T) <= tol)
+    return r[~dup], p[~dup]
 
 
 def _runs(mask):

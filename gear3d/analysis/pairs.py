@@ -185,7 +185,7 @@ def check_pair(p1, p2, internal=None, tolerance=None, center_distance=None, cycl
                  "radius2": float(np.hypot(*w2)), "angle2_deg": math.degrees(math.atan2(w2[1], w2[0])),
                  "opposite_pitch_point": bool(pt[0] < (c2[0] if internal else 0.0))}
     # contact: conjugate action of tooth 0's drive flank on the exact pieces (contact.py)
-    conj = _conjugate(p1, p2, a, c2, phase2, ratio, internal, span, tol)
+    conj = _conjugate(p1, p2, a, c2, phase2, ratio, internal, tol)
     # clearance on each flank: how far wheel 2 may turn each way before touching (mm on r2)
     drive, coast, te = [], [], []
     for ph in np.linspace(-pitch_ang / 2, pitch_ang / 2, backlash_phases, endpoint=False):
@@ -230,11 +230,12 @@ def check_pair(p1, p2, internal=None, tolerance=None, center_distance=None, cycl
         "edge_contact": conj["edge_contact"],
         "contact_band": conj["contact_band"],
         "contact_take_up": conj["contact_take_up"],
+        "mean_contact_points": conj["mean_contact_points"],
     })
     return rep
 
 
-def _conjugate(p1, p2, a, c2, phase2, ratio, internal, span, tol) -> dict:
+def _conjugate(p1, p2, a, c2, phase2, ratio, internal, tol) -> dict:
     """The contact facts of the report from :mod:`gear3d.analysis.contact` (conjugate
     action on the exact pieces, band ``tol`` mm): contact ratio and its uncertainty,
     ``continuous``, the path of contact (fixed frame, mm) and its length, specific sliding
@@ -242,7 +243,7 @@ def _conjugate(p1, p2, a, c2, phase2, ratio, internal, span, tol) -> dict:
     from ..placement import operating_pitch_radii
     from .contact import Mesh, contact_ratio, edge_contacts, sliding
     mesh = Mesh(p1, p2, c2, phase2, ratio, operating_pitch_radii(a, p1.teeth, p2.teeth, internal)[0])
-    c = contact_ratio(mesh, span, tol)
+    c = contact_ratio(mesh, None, tol)
     iv, pitch = c["intervals"], 2 * math.pi / p1.teeth
     path = [q for seg in c["path"] for q in seg]
     out = {"contact_ratio": c["contact_ratio"], "contact_ratio_uncertainty": c["contact_ratio_uncertainty"],
@@ -251,7 +252,8 @@ def _conjugate(p1, p2, a, c2, phase2, ratio, internal, span, tol) -> dict:
            "path_length": float(sum(np.hypot(*np.diff(seg, axis=0).T).sum() for seg in c["path"] if len(seg) > 1)),
            "sliding_start": None, "sliding_end": None,
            "edge_contact": edge_contacts(mesh, c["phis"], tol),
-           "contact_band": tol, "contact_take_up": float(c["take_up"] * p2.pitch_radius)}
+           "contact_band": tol, "contact_take_up": float(c["take_up"] * p2.pitch_radius),
+           "mean_contact_points": c["mean_contact_points"]}
     if iv:
         start, end = iv[0][0], iv[-1][1]
         # windows of 4 % of the path at each end, starting 1 % inside (flank on flank)

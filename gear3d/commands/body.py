@@ -73,6 +73,10 @@ def run(args) -> int:
     from ..solids.body import profile_tolerance
     kw.setdefault("tolerance", fp["tolerance"])
     fp["tolerance"] = profile_tolerance(kw["tolerance"], kw["kind"], bool(kw.get("xy_offset")))
+    from .profile import FAMILY_FLAGS_PLANNED
+    if args.family in FAMILY_FLAGS_PLANNED:     # profile, layers and export: refused before any is built
+        from ..plan import plan_body
+        plan_body(args.family, fp, kw, out, args.step)
     b = body(profile(args.family, **fp), **kw)
     if out is None:
         from ..export.json_format import dumps

@@ -14,6 +14,11 @@ MESH_EXTS = (".stl", ".3mf", ".step", ".stp", ".obj", ".ply", ".vtu")
 TOLERANCE_HELP = (f"max deviation from the exact curve (mm); default {DEFAULT_TOLERANCE:g} mm, "
                   f"{MESH_TOLERANCE:g} mm for mesh outputs ({' '.join(MESH_EXTS)})")
 
+#: families planned against the resource budget before the build (gear3d.plan): all tabulated ones
+FAMILY_FLAGS_PLANNED = ("involute", "sine", "sine-circular", "cycloidal", "epicycloid", "hypocycloid",
+                        "cycloid-disc", "cycloid-pins", "ec-pinion", "ec-wheel", "gerotor-inner",
+                        "gerotor-outer", "moineau-rotor", "moineau-stator", "triangular")
+
 #: a finite number (the families check their own ranges)
 FLOAT = number("float")
 
@@ -244,6 +249,9 @@ def run(args) -> int:
     check_figure_arg(args)
     opts = _write_options(args, out)
     kw = family_params(args, out)
+    if args.family in FAMILY_FLAGS_PLANNED:     # the profile, its export and figure: refused before any is built
+        from ..plan import plan_profile
+        plan_profile(args.family, kw, out, opts.get("width"), args.figure)
     given = [k for k in ("normal_module", "normal_pressure_angle_deg") if kw.get(k) is not None]
     if given and kw.get("helix_angle_deg") is None:
         from ..errors import GearError
