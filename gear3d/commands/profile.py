@@ -5,6 +5,7 @@ import argparse
 import sys
 
 from ..cliargs import number, number_or_auto
+from .mateflags import add_mate_flags, build_mate, tool_flags_given
 
 #: mm: the default tolerance of mesh outputs (printing), and of everything else (DXF, EDM)
 MESH_TOLERANCE = 0.01
@@ -233,6 +234,7 @@ def add_parser(sub):
                    help="also write the annotated figure (circles, undercut and pointing marks): .svg .png or .pdf")
     from .rackflags import add_rack_flags
     add_rack_flags(p)
+    add_mate_flags(p, flag_table(helix=True))
     return p
 
 
@@ -257,7 +259,15 @@ def run(args) -> int:
         from ..errors import GearError
         raise GearError("helix_angle_deg", None, f"a number in [0, 80] deg with --{given[0].replace('_', '-')} "
                         "(the helix angle its normal plane is taken at; 0 for a spur gear)")
-    prof = profile(args.family, **kw)
+    if args.family == "mate":
+        prof = build_mate(args, kw)
+    elif tool_flags_given(args):
+        from ..errors import GearError
+        flag = tool_flags_given(args)[0]
+        raise GearError(flag.lstrip("-").replace("-", "_"), "given", f"only for the family mate, not {args.family} "
+                        "(gear3d profile mate --teeth N --tool FAMILY --tool-…)")
+    else:
+        prof = profile(args.family, **kw)
     if out is None:
         from ..export.json_format import dumps
         sys.stdout.write(dumps(prof.report) + "\n")

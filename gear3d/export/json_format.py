@@ -23,6 +23,8 @@ def clean(x):
     if isinstance(x, (float, np.floating)):
         x = float(x)
         return x if math.isfinite(x) else None
+    if hasattr(x, "family") and hasattr(x, "params") and hasattr(x, "loops"):
+        return {"family": x.family, "params": clean(x.params)}      # a mate's cutter (a Profile)
     return x
 
 

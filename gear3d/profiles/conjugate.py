@@ -6,15 +6,31 @@ reaches it through ``gear3d pair --mate rolled``. Rebuilding at a finer toleranc
 """
 from __future__ import annotations
 
+from pathlib import PurePath
+
 from ..errors import GearError
 from . import register
 
 
 @register("mate")
-def conjugate(tool=None, teeth=None, internal=False, tolerance=None, tip_radius=None, rim_radius=None):
-    """The wheel with ``teeth`` teeth conjugate to ``tool`` (a Profile); see gear3d.mate."""
+def conjugate(tool=None, teeth=None, internal=False, tolerance=None, tip_radius=None, rim_radius=None,
+              tool_teeth=None, tool_pitch_radius=None, tool_center=(0.0, 0.0)):
+    """The wheel with ``teeth`` teeth conjugate to ``tool``: a Profile, or the path of a DXF
+    drawing of the cutter with ``tool_teeth`` teeth on ``tool_pitch_radius`` (mm) about
+    ``tool_center`` (mm); see gear3d.mate and :mod:`gear3d.profiles.drawn`."""
     from .mate import mate
     from ..model import Profile
+    if isinstance(tool, (str, PurePath)):
+        from .drawn import drawn_cutter
+        from .mate import roll
+        if tool_teeth is None or tool_pitch_radius is None:
+            raise GearError("tool_teeth" if tool_teeth is None else "tool_pitch_radius", None,
+                            "given with a drawn cutter (its teeth and pitch radius)")
+        tol = 1e-3 if tolerance is None else tolerance
+        cutter = drawn_cutter(tool, tool_teeth, tool_pitch_radius, tool_center, tol)
+        return roll(cutter, teeth, internal=internal, tolerance=tol, tip_radius=tip_radius, rim_radius=rim_radius,
+                    source=str(tool), source_params=dict(tool_teeth=tool_teeth, tool_pitch_radius=tool_pitch_radius,
+                                                         tool_center=tuple(tool_center)))
     if not isinstance(tool, Profile):
         raise GearError("tool", type(tool).__name__, "a gear3d Profile (the wheel used as the cutter)")
     if tolerance is not None and tolerance < tool.tolerance:
