@@ -84,9 +84,14 @@ COSTS = {
     # gear3d.model.build_profile after sampling: pattern, trim (Clipper), corners, measure
     "profile": Cost(12e-6, 900.0, 0.05, 40e6, "involute z=3000 (66,000 vertices) 0.31 s, +22 MB; "
                     "triangular z=20,000 (100,000 vertices) 0.21 s, +24 MB; cycloidal 0.38 s"),
+    # gear3d.model._sector_distance: per (point, edge) pair near tooth 0, numpy in chunks
+    "profile.pairs": Cost(1e-8, 0.0, 0.0, 0.0, "moineau-stator rho=1e5, e=1: 27,800 x 55,600 pairs, 5.4 s"),
     # solids.body: the layer mesh (float64 V, int64 F, intermediates) and its measurement
     "body": Cost(1.2e-6, 260.0, 0.1, 60e6, "helical z=20..400 at 2-10 um: 0.6-0.9 us and 180-240 B "
                  "a triangle"),
+    # manifold3d's polygon triangulation of the end faces: per (layer vertices)^2
+    "body.caps": Cost(4e-9, 0.0, 0.0, 0.0, "triangular z=2500..10,000 (12,500-60,000 vertices a layer): "
+                      "2.0-2.2e-9 s x n^2, z=20,000 (100,000): about 4e-9; involute z=1000-2000: 0.8-0.9e-9"),
     # manifold3d booleans (hubs, keyways, chamfers): extrude + warp + boolean + to_mesh64
     "body.manifold": Cost(4e-6, 600.0, 0.1, 60e6, "chamfered helical z=40..200: 2.5-3.5 us, "
                           "450-550 B a triangle"),
@@ -95,20 +100,23 @@ COSTS = {
     "write.dxf": Cost(2.5e-4, 4000.0, 1.0, 30e6, "triangular z=4000, 20,000 vertices: 3.4 s, +68 MB "
                       "(biarc fit + a reference profile 20x finer + read-back)"),
     "write.svg": Cost(2.2e-4, 3000.0, 0.5, 20e6, "triangular z=4000, 20,000 vertices: 2.9 s, +48 MB"),
-    "write.png": Cost(5e-5, 3000.0, 1.2, 60e6, "triangular z=4000: 0.8 s with matplotlib's import"),
-    "write.stl": Cost(0.6e-6, 120.0, 0.05, 0.0, "binary STL of a 1.6 M triangle body: 0.9 s"),
-    "write.mesh": Cost(4e-6, 500.0, 0.6, 20e6, "meshio OBJ/PLY/VTU, 80,000 triangles: 0.33 s"),
-    "write.3mf": Cost(2.5e-5, 2500.0, 2.5, 120e6, "trimesh + lxml 3MF, 80,000 triangles: 2.1 s "
-                      "with trimesh's import, +200 MB"),
-    "write.step": Cost(2.5e-5, 2500.0, 0.5, 60e6, "faceted STEP, 80,000 triangles: 3.7 s with "
-                       "the profile, +190 MB"),
-    # a B-rep STEP: per surface sample (faces x samples per face), OpenCascade
-    "write.brep": Cost(4e-5, 2000.0, 1.5, 150e6, "B-spline STEP of helical z=20..500: 25-40 us "
-                       "a sample"),
+    "write.png": Cost(5e-5, 3000.0, 1.0, 70e6, "profile figure, triangular z=4000 (20,000 vertices): 0.8 s "
+                      "with matplotlib's import; body preview, 10,000-56,000 triangles: 0.65-0.82 s, +47-68 MB"),
+    "write.stl": Cost(1.0e-6, 130.0, 0.05, 0.0, "binary STL, helical z=40..1000 (10,000-56,000 triangles): "
+                      "0.4-0.8 us and about 100-130 B a triangle"),
+    "write.mesh": Cost(1.0e-5, 500.0, 0.1, 10e6, "meshio OBJ/PLY/VTU, 10,000-56,000 triangles: 5-10 us a triangle"),
+    "write.3mf": Cost(3.0e-5, 2000.0, 0.8, 100e6, "trimesh + lxml 3MF, 10,000-56,000 triangles: 0.9-2.1 s "
+                      "(26 us a triangle + 0.6 s), +95-153 MB"),
+    "write.step": Cost(8.0e-5, 3000.0, 0.4, 60e6, "faceted STEP, 10,000-56,000 triangles: 1.0-3.3 s "
+                       "(60-95 us a triangle), +65-158 MB"),
+    # a B-rep STEP: per surface sample (profile vertices x law pieces x law knots), OpenCascade
+    "write.brep": Cost(4.0e-4, 20000.0, 1.2, 300e6, "B-spline STEP of helical z=40 and 200 (1,040 and 4,000 "
+                       "profile vertices): 1.57 and 2.67 s (0.37 ms a sample + 1.2 s), +296-336 MB"),
     # rolling check: per (position x vertex of both polygons), shapely
     "pair": Cost(1.2e-7, 300.0, 0.3, 30e6, "involute 20/21..200/210 at 1-10 um: 0.05-0.1 us"),
     # gerotor chamber areas: per (crank position x polygon vertex), shapely buffer/difference
-    "chambers": Cost(2.5e-7, 120.0, 0.0, 0.0, "gerotor 30 lobes R=300: 3.9 s for 62 x 540,000"),
+    "chambers": Cost(2.5e-7, 400.0, 0.0, 0.0, "gerotor 30 lobes R=300: 3.9 s for 62 positions x 366,000 "
+                     "polygon vertices (1.7e-7 s an item), +113 MB (300 B a polygon vertex)"),
     # figures (matplotlib), per profile vertex drawn
     "figure": Cost(5e-5, 3000.0, 1.2, 60e6, "annotated involute figure, 20,000 vertices: 1.1 s"),
 }
@@ -216,17 +224,28 @@ def limits(max_triangles=None, max_memory=None, max_seconds=None):
 @dataclass(frozen=True)
 class Estimate:
     """What a stage needs: CPU ``seconds``, peak ``bytes``, ``triangles`` (of its biggest
-    object) and the words that say what was counted (``"500,000 profile vertices"``)."""
+    object) and the words that say what was counted (``"500,000 profile vertices"``);
+    ``bytes_what`` / ``triangles_what``: the words of the stage the peak comes from (default
+    ``what``)."""
     seconds: float = 0.0
     bytes: float = 0.0
     triangles: float = 0.0
     what: str = ""
+    bytes_what: str = ""
+    triangles_what: str = ""
+
+    def said(self, resource: str) -> str:
+        """What the estimate of ``resource`` ("time", "memory", "triangles") counted."""
+        w = {"memory": self.bytes_what, "triangles": self.triangles_what}.get(resource, "")
+        return w or self.what
 
     def then(self, other: "Estimate") -> "Estimate":
         """This stage followed by ``other``: seconds add, peaks take the larger."""
         what = "; ".join(w for w in (self.what, other.what) if w)
+        bw = (other if other.bytes > self.bytes else self).said("memory")
+        tw = (other if other.triangles > self.triangles else self).said("triangles")
         return Estimate(self.seconds + other.seconds, max(self.bytes, other.bytes),
-                        max(self.triangles, other.triangles), what)
+                        max(self.triangles, other.triangles), what, bw, tw)
 
     def peak(self, other: "Estimate") -> "Estimate":
         """The larger of two tries of the same stage, resource by resource."""
@@ -243,16 +262,31 @@ def estimate(stage: str, count: float, triangles: float = 0.0, what: str = "") -
                     float(triangles), what or f"{count:,.0f} items of {stage}")
 
 
-def profile_estimate(vertices: float) -> Estimate:
-    """A profile of ``vertices`` vertices (all teeth): trimming and measuring it."""
-    return estimate("profile", vertices, PROFILE_VERTEX_COST * float(vertices),
-                    f"{float(vertices):,.0f} profile vertices")
+def profile_estimate(vertices: float, per_tooth: float = 0.0) -> Estimate:
+    """A profile of ``vertices`` vertices (all teeth) with ``per_tooth`` in one tooth period
+    (0: unknown): trimming and measuring it, and measuring what trimming removed from tooth
+    0 against the edges within 1.5 pitches (all edges for 4 teeth or fewer): per_tooth x
+    min(vertices, 3 per_tooth) point-edge pairs (``gear3d.model._sector_distance``)."""
+    v, p = float(vertices), float(per_tooth)
+    e = estimate("profile", v, PROFILE_VERTEX_COST * v, f"{v:,.0f} profile vertices")
+    if p:
+        pairs = p * min(v, 3 * p)
+        c = COSTS["profile.pairs"]
+        e = Estimate(e.seconds + c.seconds * pairs, e.bytes, e.triangles,
+                     e.what + (f" ({p:,.0f} a tooth)" if pairs > 1e8 else ""))
+    return e
 
 
-def body_estimate(triangles: float, manifold: bool = False, what: str = "") -> Estimate:
-    """A body of ``triangles`` (direct mesh, or manifold3d booleans when ``manifold``)."""
-    return estimate("body.manifold" if manifold else "body", triangles, triangles,
-                    what or f"a body of {float(triangles):,.0f} triangles")
+def body_estimate(triangles: float, manifold: bool = False, what: str = "", layer_vertices: float = 0.0) -> Estimate:
+    """A body of ``triangles`` (direct mesh, or manifold3d booleans when ``manifold``) whose
+    layers have ``layer_vertices`` vertices (0: unknown): the end faces' polygon
+    triangulation grows with their square."""
+    e = estimate("body.manifold" if manifold else "body", triangles, triangles,
+                 what or f"a body of {float(triangles):,.0f} triangles")
+    n = float(layer_vertices)
+    if n:
+        e = Estimate(e.seconds + COSTS["body.caps"].seconds * n * n, e.bytes, e.triangles, e.what)
+    return e
 
 
 # ------------------------------------------------------------------------ the ledger
@@ -339,7 +373,7 @@ class BudgetError(GearError):
         verb = "it used" if after else "estimated"
         allowed = f"a value that keeps the work within the {resource} budget of {lim}"
         why = (f"{verb} {e}" + (f" for {what}" if what else "") + f"; raise the limit with {RAISE[resource]}"
-               + ("" if after else ", or use a coarser tolerance"))
+               + (", or use a coarser tolerance" if param == "tolerance" else ""))
         super().__init__(param, value, allowed, why)
 
 
@@ -350,9 +384,9 @@ def check(est: Estimate, param: str, value, part: Estimate | None = None) -> Est
     b = _ACTIVE
     part = part or est
     if not est.triangles <= b.max_triangles:
-        raise BudgetError(param, value, "triangles", est.triangles, b.max_triangles, part.what)
+        raise BudgetError(param, value, "triangles", est.triangles, b.max_triangles, est.said("triangles"))
     if not est.bytes <= b.max_memory:
-        raise BudgetError(param, value, "memory", est.bytes, b.max_memory, part.what)
+        raise BudgetError(param, value, "memory", est.bytes, b.max_memory, est.said("memory"))
     if not est.seconds <= b.max_seconds:
         what = part.what
         if part is not est and part.seconds < est.seconds:
@@ -389,7 +423,7 @@ def charge(est: Estimate, param: str, value, info: dict | None = None, key: str 
     refining its corners); other charges add. ``info``: a profile's sample (see
     :func:`probing`)."""
     if _LOCAL.probe is not None and info is not None:
-        raise Probe(dict(info, estimate=est))
+        raise Probe(dict(_LOCAL.probe, **info, estimate=est))
     top = _LOCAL.frames[-1]
     k = key if key is not None and len(_LOCAL.frames) > 1 else f"#{len(top.own)}"
     old = top.own.get(k)
@@ -428,8 +462,9 @@ def log_plan(est: Estimate) -> None:
 
 def check_profile(vertices: float, param: str, value, info: dict | None = None) -> Estimate:
     """Charge a profile of ``vertices`` vertices before it is patterned and trimmed
-    (``info``: the sampled period, for :func:`probing`)."""
-    return charge(profile_estimate(vertices), param, value, info, key="profile")
+    (``info``: the sampled period, ``{"teeth", "points"}``, for :func:`probing`)."""
+    per = float(vertices) / max(int(info["teeth"]), 1) if info else 0.0
+    return charge(profile_estimate(vertices, per), param, value, info, key="profile")
 
 
 #: a ring's rim radius is at most this many pitch radii: a larger one is a plate with a
@@ -445,23 +480,52 @@ def circle_vertices(radius: float, tol: float) -> float:
 
 
 def check_rim(rim_radius, pitch_radius: float, tol: float, param: str = "rim_radius", shown=None,
-              scale: float = 1.0) -> None:
-    """A ring's rim: at most :data:`MAX_RIM_RATIO` pitch radii (GearError naming ``param``,
-    whose value is ``shown``, ``scale`` x the radius: 2 for a diameter); its circle charged."""
+              scale: float = 1.0, pieces=()) -> None:
+    """A ring's rim: at most :data:`MAX_RIM_RATIO` times the gear's size (the larger of its
+    pitch radius and the largest radius of its tooth period ``pieces``, evaluated coarsely);
+    GearError naming ``param``, whose value is ``shown`` (``scale`` x the radius: 2 for a
+    diameter). Its circle's vertices are charged."""
+    if _LOCAL.probe is not None:            # every profile build starts here: the plan's size
+        _LOCAL.probe.setdefault("pitch_radius", float(pitch_radius))
     if rim_radius is None:
         return
-    hi = MAX_RIM_RATIO * float(pitch_radius)
-    if not float(rim_radius) <= hi:
-        raise GearError(param, rim_radius * scale if shown is None else shown,
-                        f"at most {hi * scale:.6g} mm ({MAX_RIM_RATIO:g} x the pitch "
-                        f"{'diameter' if scale == 2 else 'radius'} {pitch_radius * scale:.6g} mm)",
-                        "a larger rim is a plate with a toothed hole: cut the hole in the plate instead")
+    rim_range(rim_radius, max(float(pitch_radius), _period_radius(pieces)), param, shown, scale)
     n = circle_vertices(float(rim_radius), tol)
     e = profile_estimate(n)
     charge(Estimate(e.seconds, e.bytes, e.triangles, f"a rim circle of {n:,.0f} vertices"), param,
            rim_radius * scale if shown is None else shown, key="rim")
 
 
-def check_body(triangles: float, param: str, value, manifold: bool = False, what: str = "") -> Estimate:
-    """Charge a body of ``triangles`` before it is extruded (``what``: how they were counted)."""
-    return charge(body_estimate(triangles, manifold, what), param, value, key="body")
+def rim_range(rim_radius, size: float, param: str = "rim_radius", shown=None, scale: float = 1.0) -> None:
+    """GearError unless ``rim_radius`` <= :data:`MAX_RIM_RATIO` x ``size`` (mm)."""
+    hi = MAX_RIM_RATIO * size
+    if not float(rim_radius) <= hi:
+        name = "diameter" if scale == 2 else "radius"
+        raise GearError(param, rim_radius * scale if shown is None else shown,
+                        f"at most {hi * scale:.6g} mm ({MAX_RIM_RATIO:g} x the gear's {name} "
+                        f"{size * scale:.6g} mm)",
+                        "a larger rim is a plate with a toothed hole: cut the hole in the plate instead")
+
+
+def _period_radius(pieces) -> float:
+    """The largest radius (mm) of the tooth period's pieces G(t), t in [0, 1], at 65 points."""
+    import numpy as np
+    r = 0.0
+    t = np.linspace(0.0, 1.0, 65)
+    for G in pieces or ():
+        try:
+            with np.errstate(all="ignore"):
+                P = np.asarray(G(t), float)
+            rr = np.hypot(P[:, 0], P[:, 1])
+            rr = rr[np.isfinite(rr)]
+            r = max(r, float(rr.max())) if len(rr) else r
+        except Exception:      # an evaluator that does not take arrays: the pitch radius decides
+            continue
+    return r
+
+
+def check_body(triangles: float, param: str, value, manifold: bool = False, what: str = "",
+               layer_vertices: float = 0.0) -> Estimate:
+    """Charge a body of ``triangles`` before it is extruded (``what``: how they were counted;
+    ``layer_vertices``: the vertices of one layer, see :func:`body_estimate`)."""
+    return charge(body_estimate(triangles, manifold, what, layer_vertices), param, value, key="body")

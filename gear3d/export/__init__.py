@@ -311,9 +311,13 @@ def write(obj, path, **opts):
     kind = _kind(obj)
     ext = check_output(path, kind)
     fmt = FORMATS[ext]
-    mod = importlib.import_module(f"{__name__}.{fmt.module}")
-    with atomic_path(path) as tmp:
-        return mod.write(obj, tmp, **opts)
+    from .. import budget
+    from ..plan import charge_write
+    with budget.stage():        # the export's estimate from the object's counts, before it runs
+        charge_write(obj, kind, ext, dict(opts, _path=str(path)))
+        mod = importlib.import_module(f"{__name__}.{fmt.module}")
+        with atomic_path(path) as tmp:
+            return mod.write(obj, tmp, **opts)
 
 
 def as_bodies(obj, width=None, **body_opts) -> list:

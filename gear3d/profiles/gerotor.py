@@ -101,9 +101,23 @@ def _build(family, d, outer, params, rim_radius):
            "shortening_coefficient": d["k"], "min_curvature_radius": d["rho"]}
     if d["variant"] == "epi":
         rep.update({k: v for k, v in reducer_report(d).items() if k not in ("ratio", "pins", "lobes")})
-    rep.update(chamber_report(d))
-    return build_profile(family, params, pieces, z, rp_, internal=outer, tolerance=d["tol"],
+    _charge_chambers(d)          # the budget first: the chambers cost (n + 1) n times the profile
+    prof = build_profile(family, params, pieces, z, rp_, internal=outer, tolerance=d["tol"],
                          rim_radius=rim, names=names, extra_report=rep)
+    prof.report.update(chamber_report(d))
+    return prof
+
+
+def _charge_chambers(d, samples: int = 6000) -> None:
+    """Charge :func:`chamber_areas` to the resource budget: 2 (n + 1) crank positions, each
+    a buffer and a difference of polygons of about (2 n + 1) x pieces x ``samples`` vertices."""
+    from .. import budget
+    n = int(d["n"])
+    verts = (2 * n + 1) * len(_pieces(d, False)[0]) * samples
+    items = 2 * (n + 1) * verts
+    c = budget.COSTS["chambers"]
+    budget.charge(budget.Estimate(c.seconds * items, c.bytes * verts, 0.0, f"the chamber areas: {2 * (n + 1)} "
+                                  f"positions x {verts:,} polygon vertices"), "lobes", n)
 
 
 @register("gerotor-inner")

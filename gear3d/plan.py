@@ -1,0 +1,358 @@
+"""Plans: a whole command's estimate (:mod:`gear3d.budget`) before any of its stages runs.
+
+The builders charge each stage as they reach it (a profile after sampling one tooth period,
+a body before its layers are made, an export before it writes). A command that chains
+stages (a profile and its DXF, a body and its STEP, two profiles and their rolling check)
+would then be refused only when it reaches the stage over the budget, after the work before
+it. So the command line and the web server first *plan* the command:
+
+* :func:`probe_profile` runs the family builder only up to its first charge with a sample
+  (``gear3d.budget.probing``): the tooth period sampled at the tolerance, which gives the
+  vertex count of every tooth, the largest radius and the outline's length, plus whatever
+  the builder charged before (a ring's rim circle, a gerotor's chamber areas). This costs
+  one period's sampling (milliseconds);
+* the later stages are estimated from those counts with the same per-item costs
+  (:data:`gear3d.budget.COSTS`): the body's layers by the body's own layer plan
+  (:func:`gear3d.solids.body.plan_layers`), an export by :func:`write_estimate`, a rolling
+  check by :func:`pair_estimate`;
+* the sum is checked (:func:`gear3d.budget.check`) and refused in one line before any stage.
+
+The charged API wrappers (:func:`check_pair`, :func:`largest_addendum`,
+:func:`tip_correction`, :func:`working_center_distance`) charge a rolling check or a search
+(iterations x checks) from the built profiles before they start.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from . import budget
+from .budget import Estimate, estimate
+
+#: the DXF and SVG writers certify their arcs against a reference profile built this much
+#: finer (gear3d.export.dxf), which has sqrt(20) times the vertices
+REFERENCE_FACTOR = 20.0
+
+
+@dataclass(frozen=True)
+class Sketch:
+    """A profile known from one sampled tooth period: ``teeth``, ``vertices`` (all teeth),
+    ``per_tooth``, ``r_max`` (mm), ``perimeter`` (mm, all teeth), ``tolerance`` (mm),
+    ``estimate`` (the profile's own stage, with what its builder charged before sampling),
+    ``pitch_radius`` (mm) and ``period`` (the sampled period's points, (n, 2) mm)."""
+    teeth: int
+    vertices: float
+    per_tooth: float
+    r_max: float
+    perimeter: float
+    tolerance: float
+    estimate: Estimate
+    pitch_radius: float = 0.0
+    period: object = None
+
+
+def probe_profile(family: str, params: dict) -> Sketch | None:
+    """Run ``family``'s builder up to its first sample (see the module doc). Bad input is
+    refused as the builder refuses it (GearError); None when the builder never samples a
+    period (it built the whole profile: nothing is left to plan)."""
+    import numpy as np
+
+    from .profiles import profile
+    with budget.probing() as root:
+        try:
+            profile(family, **dict(params))
+        except budget.Probe as p:
+            info = p.info
+        else:
+            return None
+        pre = root.total()
+    pts = info["points"]
+    z = int(info["teeth"])
+    per = float(sum(len(a) - 1 for a in pts))
+    chain = np.concatenate([np.asarray(a, float) for a in pts])
+    r = float(np.nanmax(np.hypot(chain[:, 0], chain[:, 1]))) if len(chain) else 0.0
+    seg = np.hypot(*np.diff(chain, axis=0).T) if len(chain) > 1 else np.zeros(0)
+    length = float(np.nansum(seg)) * z
+    est = pre.then(info["estimate"])
+    tol = float(params.get("tolerance", 1e-3))
+    return Sketch(z, per * z, per, r, length, tol, est, float(info.get("pitch_radius", r)), chain)
+
+
+def write_estimate(ext: str, *, vertices: float = 0.0, per_tooth: float = 0.0, triangles: float = 0.0,
+                   brep_samples: float = 0.0) -> Estimate:
+    """An export's estimate: 2D formats from the profile's ``vertices`` (``per_tooth``: of
+    one period; DXF and SVG also build their reference profile 20x finer), 3D formats from
+    the body's ``triangles`` (a B-rep STEP from ``brep_samples``)."""
+    ext = ext.lower()
+    if ext in (".dxf", ".svg"):
+        k = math.sqrt(REFERENCE_FACTOR)
+        ref = budget.profile_estimate(k * vertices, k * per_tooth)
+        return Estimate(ref.seconds + estimate("write" + ext, vertices).seconds,
+                        max(ref.bytes, estimate("write" + ext, vertices).bytes), 0.0,
+                        f"the {ext[1:].upper()} of {vertices:,.0f} vertices, certified against a reference "
+                        f"of {k * vertices:,.0f}")
+    if ext == ".png" and not triangles:
+        return estimate("write.png", vertices, 0.0, f"a figure of {vertices:,.0f} vertices")
+    if ext == ".json":
+        return estimate("write.json", vertices or triangles, 0.0, "a JSON report")
+    if brep_samples:
+        return estimate("write.brep", brep_samples, 0.0, f"a B-rep STEP of {brep_samples:,.0f} surface samples")
+    key = {".stl": "write.stl", ".3mf": "write.3mf", ".step": "write.step", ".stp": "write.step",
+           ".png": "write.png"}.get(ext, "write.mesh")
+    return estimate(key, triangles, 0.0, f"the {ext[1:].upper()} of {triangles:,.0f} triangles")
+
+
+def _report(obj) -> dict:
+    r = getattr(obj, "report", None)
+    return r if isinstance(r, dict) or hasattr(r, "get") else {}
+
+
+def charge_write(obj, kind: str, ext: str, opts: dict) -> Estimate:
+    """Charge the export of ``obj`` (a profile or one or more bodies) to ``ext`` from its
+    counts, before the exporter starts (:func:`gear3d.export.write`)."""
+    if kind == "profile":
+        r = _report(obj)
+        v = float(r.get("vertices") or sum(len(l) for l in getattr(obj, "loops", []) or []))
+        per = float(r.get("vertices_per_tooth") or 0.0)
+        tri = 4.0 * v if ext not in (".dxf", ".svg", ".png", ".json") else 0.0
+        est = write_estimate(ext, vertices=v, per_tooth=per, triangles=tri)
+    else:
+        bodies = list(obj) if isinstance(obj, (list, tuple)) else [obj]
+        tri, samples = 0.0, 0.0
+        for b in bodies:
+            r = _report(b)
+            tri += float(r.get("triangles") or 0.0)
+            if opts.get("step") == "brep":
+                pr = _report(getattr(b, "profile", None))
+                law = 3 if r.get("kind") == "chevron-arch" else (2 if r.get("kind") == "herringbone" else 1)
+                samples += float(pr.get("vertices") or 0.0) * law * max(1.0, float(r.get("layers") or 1) / 5.0)
+        est = write_estimate(ext, triangles=tri, brep_samples=samples)
+    return budget.charge(est, "output", opts.get("_path", ext), key="write")
+
+
+def brep_samples(sk: Sketch, law_pieces: int, layers: float) -> float:
+    """Surface samples of a B-rep STEP (faces x samples per face): the profile's vertices
+    (the flank fits' control points follow them) on every piece of the twist law, times
+    the law fit's knots (about a fifth of the mesh layers), at least one."""
+    return sk.vertices * max(1, law_pieces) * max(1.0, layers / 5.0)
+
+
+# --------------------------------------------------------------------- rolling checks
+
+def pair_positions(teeth1: int, r_max: float, tol: float, span_pitches: float = 3.2) -> int:
+    """Positions :func:`gear3d.analysis.pairs.check_pair` rolls: a span of ``span_pitches``
+    pitches of wheel 1 at the step whose tip path sags about ``tol``."""
+    pitch = 2 * math.pi / max(int(teeth1), 1)
+    step = min(pitch / 24, math.sqrt(8 * tol / max(r_max, 1e-9)) * 4)
+    return int(math.ceil(span_pitches * pitch / step)) + 1
+
+
+def pair_estimate(teeth1: int, r_max: float, v1: float, v2: float, tol: float, checks: float = 1.0,
+                  span_pitches: float = 3.2) -> Estimate:
+    """``checks`` rolling checks of polygons of ``v1`` and ``v2`` vertices (positions x
+    vertices), each over ``span_pitches`` pitches."""
+    n = pair_positions(teeth1, r_max, tol, span_pitches)
+    items = checks * n * (v1 + v2)
+    c = budget.COSTS["pair"]
+    what = (f"{checks:g} rolling check(s) of {n:,} positions x {v1 + v2:,.0f} vertices" if checks != 1
+            else f"a rolling check of {n:,} positions x {v1 + v2:,.0f} vertices")
+    return Estimate(c.fixed_seconds + c.seconds * items, c.fixed_bytes + c.bytes * (v1 + v2), 0.0, what)
+
+
+def _profile_counts(p) -> tuple:
+    """(teeth, vertices, largest radius) of a built profile."""
+    import numpy as np
+    loops = getattr(p, "loops", None) or []
+    v = float(sum(len(l) for l in loops))
+    r = float(max((np.hypot(*np.asarray(l, float).T).max() for l in loops), default=1.0))
+    return int(getattr(p, "teeth", 1) or 1), v, r
+
+
+def charge_pair(p1, p2, tolerance=None, checks: float = 1.0, span_pitches: float = 3.2, param="tolerance"):
+    """Charge ``checks`` rolling checks of built profiles ``p1``/``p2`` (refused before)."""
+    z1, v1, r1 = _profile_counts(p1)
+    _, v2, _ = _profile_counts(p2)
+    tol = float(tolerance if tolerance is not None else max(p1.tolerance, p2.tolerance))
+    est = pair_estimate(z1, r1, v1, v2, tol, checks, span_pitches)
+    return budget.charge(est, param, tol)
+
+
+def check_pair(p1, p2, *args, **kwargs):
+    """:func:`gear3d.analysis.pairs.check_pair`, charged to the budget first."""
+    from .analysis import pairs
+    with budget.stage():
+        charge_pair(p1, p2, kwargs.get("tolerance"))
+        return pairs.check_pair(p1, p2, *args, **kwargs)
+
+
+def search_iterations(span: float, precision: float, extra: int = 2) -> int:
+    """Bisection steps from a bracket ``span`` down to ``precision`` (plus ``extra``)."""
+    return extra + max(0, math.ceil(math.log2(max(span, precision) / precision)))
+
+
+def working_center_distance(p1, p2, internal=None, precision: float = 0.01, tolerance=None) -> dict:
+    """:func:`gear3d.analysis.pairs.working_center_distance`, charged first: up to 12
+    doubling steps and the bisection, each an interference roll over 1.05 pitches."""
+    from .analysis import pairs
+    from .errors import check_number
+    precision = check_number("precision", precision, 1e-4, 0.5, unit="modules")
+    n = 12 + search_iterations(0.25 * 2 ** 12, precision, 0)
+    with budget.stage():
+        charge_pair(p1, p2, tolerance, checks=n, span_pitches=1.05, param="precision")
+        return pairs.working_center_distance(p1, p2, internal=internal, precision=precision, tolerance=tolerance)
+
+
+def search_estimate(family: str, params: dict, teeth1: int, teeth2: int, internal: bool, iterations: int) -> Estimate:
+    """``iterations`` of (two profiles + a rolling check), from probes of both wheels."""
+    kw = {k: v for k, v in params.items()}
+    a = probe_profile(family, dict(kw, teeth=teeth1))
+    b = probe_profile(family, dict(kw, teeth=teeth2, **({"internal": True} if internal else {})))
+    if a is None or b is None:
+        return Estimate()
+    tol = float(kw.get("tolerance", 1e-3))
+    one = a.estimate.then(b.estimate).then(pair_estimate(teeth1, a.r_max, a.vertices, b.vertices, tol))
+    return Estimate(one.seconds * iterations, one.bytes, one.triangles,
+                    f"a search of {iterations} steps, each two profiles and {one.what.split('; ')[-1]}")
+
+
+def largest_addendum(family: str, teeth1: int, teeth2: int, internal: bool = False, precision: float = 1e-3,
+                     lo: float = 0.05, hi: float = 1.5, **params):
+    """:func:`gear3d.analysis.pairs.largest_addendum`, charged first (iterations x checks)."""
+    from .analysis import pairs
+    from .errors import check_number
+    precision = check_number("precision", precision, 1e-4, 0.5, unit="modules")
+    n = search_iterations(float(hi) - float(lo), precision)
+    est = search_estimate(family, dict(params, addendum_coeff=hi), teeth1, teeth2, internal, n)
+    budget.charge(est, "precision", precision)
+    with budget.job():          # the search's own profiles and checks: charged as a whole above
+        return pairs.largest_addendum(family, teeth1, teeth2, internal=internal, precision=precision,
+                                      lo=lo, hi=hi, **params)
+
+
+def tip_correction(family: str, teeth1: int, teeth2: int, internal: bool = True, addendum_coeff: float = 1.0,
+                   precision: float = 0.005, tolerance: float = 1e-3, **params):
+    """:func:`gear3d.analysis.pairs.tip_correction`, charged first (iterations x checks)."""
+    from .analysis import pairs
+    from .errors import check_number
+    precision = check_number("precision", precision, 1e-4, 0.5, unit="modules")
+    n = search_iterations(float(addendum_coeff), precision, 3)
+    est = search_estimate(family, dict(params, addendum_coeff=addendum_coeff, tolerance=tolerance),
+                          teeth1, teeth2, internal, n)
+    budget.charge(est, "precision", precision)
+    with budget.job():
+        return pairs.tip_correction(family, teeth1, teeth2, internal=internal, addendum_coeff=addendum_coeff,
+                                    precision=precision, tolerance=tolerance, **params)
+
+
+# --------------------------------------------------------------------- command plans
+
+def _param(sk: Sketch, tol: float):
+    """The parameter a refusal names: the teeth for huge gears, the tolerance otherwise."""
+    return ("teeth", sk.teeth) if sk.teeth > 1000 else ("tolerance", tol)
+
+
+def _decide(est: Estimate, param: str, value) -> Estimate:
+    budget.log_plan(est)
+    return budget.check(est, param, value)
+
+
+def plan_profile(family: str, params: dict, output=None, width=None, figure=None) -> Estimate | None:
+    """``gear3d profile FAMILY ... [-o OUT] [--figure F]``: the profile, its export and its
+    figure, refused before any of them is built (BudgetError)."""
+    import os
+    sk = probe_profile(family, params)
+    if sk is None:
+        return None
+    est = sk.estimate
+    ext = os.path.splitext(str(output))[1].lower() if output else ""
+    if ext and width is not None:                   # a spur body of the profile, then its mesh
+        tri = 4.0 * sk.vertices
+        est = est.then(budget.body_estimate(tri, layer_vertices=sk.vertices)).then(write_estimate(ext, triangles=tri))
+    elif ext:
+        est = est.then(write_estimate(ext, vertices=sk.vertices, per_tooth=sk.per_tooth))
+    if figure:
+        est = est.then(estimate("figure", sk.vertices, 0.0, f"a figure of {sk.vertices:,.0f} vertices"))
+    return _decide(est, *_param(sk, sk.tolerance))
+
+
+class _Layers(Exception):
+    def __init__(self, nv, layers):
+        super().__init__("layers")
+        self.nv, self.layers = nv, layers
+
+
+def body_layers(sk: Sketch, body_kw: dict, tol: float) -> tuple:
+    """(vertices a layer, layers) the body builder will plan for a body of the sketched
+    profile (``body_kw``: the body keywords; ``tol``: the body tolerance), by the builder's
+    own layer plan on one tooth period (the profile's error taken at its tolerance: the
+    estimate errs on the side of more layers)."""
+    import numpy as np
+
+    from .solids import body as B
+    from .solids.twist import default_arch_radius, twist_law
+    kind = body_kw.get("kind", "spur")
+    W = float(body_kw.get("width", 10.0))
+    per = max(float(sk.per_tooth), 3.0)
+    if kind == "spur":
+        return sk.vertices, 1
+    beta = float(body_kw.get("helix_angle_deg", 0.0))
+    gap = float(body_kw.get("gap", 0.0) or 0.0)
+    m = 2 * sk.pitch_radius / max(sk.teeth, 1)
+    R = body_kw.get("arch_radius")
+    if kind == "chevron-arch" and R is None:
+        hi = W / (2 * math.sin(math.radians(beta)))
+        R = min(max(default_arch_radius(W, beta), m), hi)
+    law = twist_law(kind, W, sk.pitch_radius, 1.0, beta, gap, R)
+    off = bool(body_kw.get("xy_offset"))
+    e_off = tol / 8 if off else 0.0
+    e_p = B.profile_tolerance(tol, kind, off)
+    e_z = max(tol - e_p - e_off, 0.0) * B.TWIST_OPTIMISM
+    ch = float(body_kw.get("chamfer", 0.0) or 0.0)
+    cb = max(float(body_kw.get("elephant_foot", 0.0) or 0.0), ch)
+
+    def stop(nv, layers):
+        raise _Layers(nv, layers)
+    try:
+        B._plan(law, W, max(sk.r_max, 1e-9), [np.asarray(sk.period, float)], e_z, (cb, ch), stop)
+    except _Layers as s:
+        return max(sk.vertices, s.nv * sk.vertices / per), s.layers
+    return sk.vertices, 1
+
+
+def plan_body(family: str, params: dict, body_kw: dict, output=None, step=None) -> Estimate | None:
+    """``gear3d body FAMILY ... -o OUT``: the profile (``params`` at the profile's share of
+    the tolerance), the body's layers and the export, refused before the profile is built."""
+    import os
+    sk = probe_profile(family, params)
+    if sk is None:
+        return None
+    tol = float(body_kw.get("tolerance") or params.get("tolerance", 0.01))
+    nv, layers = body_layers(sk, body_kw, tol)
+    tri = 2 * nv * layers + 2 * nv
+    features = any(body_kw.get(k) for k in ("chamfer", "elephant_foot", "gap", "hub_length", "keyway",
+                                             "set_screw", "lightening_holes", "web_thickness"))
+    est = sk.estimate
+    rim_d = body_kw.get("rim_diameter")
+    if rim_d:
+        budget.rim_range(float(rim_d) / 2, max(sk.pitch_radius, sk.r_max), "rim_diameter", rim_d, 2)
+        est = est.then(budget.profile_estimate(sk.vertices + budget.circle_vertices(float(rim_d) / 2, tol)))
+    est = est.then(budget.body_estimate(tri, features, f"a body of {nv:,.0f} vertices a layer x "
+                                                       f"{layers:,} layers", layer_vertices=nv))
+    ext = os.path.splitext(str(output))[1].lower() if output else ""
+    if ext:
+        law = 3 if body_kw.get("kind") == "chevron-arch" else (2 if body_kw.get("kind") == "herringbone" else 1)
+        samples = sk.vertices * law * max(1.0, layers / 5.0) if step == "brep" and ext in (".step", ".stp") else 0.0
+        est = est.then(write_estimate(ext, triangles=tri, brep_samples=samples))
+    return _decide(est, *(("teeth", sk.teeth) if sk.teeth > 1000 else ("tolerance", tol)))
+
+
+def plan_pair(family: str, kw1: dict, kw2: dict, precision_checks: float = 1.0) -> Estimate | None:
+    """``gear3d check pair``: both profiles and the rolling check(s), refused before."""
+    a = probe_profile(family, kw1)
+    b = probe_profile(family, kw2)
+    if a is None or b is None:
+        return None
+    tol = max(a.tolerance, b.tolerance)
+    est = a.estimate.then(b.estimate).then(pair_estimate(a.teeth, a.r_max, a.vertices, b.vertices, tol,
+                                                          precision_checks))
+    return _decide(est, *(("teeth", max(a.teeth, b.teeth)) if max(a.teeth, b.teeth) > 1000 else ("tolerance", tol)))
