@@ -1,8 +1,12 @@
 """Pair checks by rolling (issue #3): interference, clearance, contact, transmission error.
 
 Two profiles are placed at their centre distance in mesh phase and rolled through at
-least one full tooth cycle, the step chosen from the tolerance. Geometry is checked with
-shapely/GEOS on the placed polygons (independent of the Clipper trimming that built them).
+least one full tooth cycle, the step chosen from the tolerance. Interference and clearance
+are checked with shapely/GEOS on the placed polygons (independent of the Clipper trimming
+that built them). Contact is conjugate action on the exact flanks (issue #22,
+:mod:`gear3d.analysis.contact`): the contact ratio counts only the positions where tooth
+0's driving flank touches wheel 2 with the common normal through the pitch point, both
+points on smooth exact pieces; a corner touching by its edge is reported apart.
 
 Frames: wheel 1 at the origin, its tooth 0 on +x facing the pitch point (r1, 0).
 External: wheel 2 centred at (r1 + r2, 0). Internal: the ring centred at (r1 - r2, 0)
@@ -130,11 +134,21 @@ def check_pair(p1, p2, internal=None, tolerance=None, center_distance=None, cycl
                backlash_phases: int = 8):
     """Roll ``p1`` against ``p2`` and report interference, clearance and contact (mm, deg).
 
-    ``tolerance`` (mm) sets the rolling step and the contact threshold (default: the larger
-    of the two profiles' tolerances). Returns a dict, see the keys below.
+    ``tolerance`` (mm) sets the rolling step, the interference threshold (2 x) and the band
+    within which two conjugate points count as one contact (default: the larger of the two
+    profiles' tolerances). Returns a :class:`gear3d.reports.PairReport`; ``contact_ratio``
+    comes with ``contact_ratio_uncertainty`` (pitches), ``continuous`` (False: some part of
+    the cycle has no tooth in conjugate contact) and ``edge_contact``.
+
+    Example::
+
+        >>> import gear3d
+        >>> p = gear3d.profile("involute", teeth=20)
+        >>> r = check_pair(p, p)
+        >>> round(r["contact_ratio"], 4), r["continuous"]
+        (1.5568, True)
     """
     import shapely
-    import shapely.affinity
     internal, a, c2, phase2, ratio = setup(p1, p2, internal, center_distance)
     tol = max(p1.tolerance, p2.tolerance) if tolerance is None else check_number(
         "tolerance", tolerance, 1e-7, None, lo_open=True, unit="mm")
