@@ -113,7 +113,8 @@ COSTS = {
     "write.brep": Cost(4.0e-4, 20000.0, 1.2, 300e6, "B-spline STEP of helical z=40 and 200 (1,040 and 4,000 "
                        "profile vertices): 1.57 and 2.67 s (0.37 ms a sample + 1.2 s), +296-336 MB"),
     # rolling check: per (position x vertex of both polygons), shapely
-    "pair": Cost(1.2e-7, 300.0, 0.3, 30e6, "involute 20/21..200/210 at 1-10 um: 0.05-0.1 us"),
+    "pair": Cost(1.2e-5, 300.0, 0.3, 30e6, "check_pair, 78 positions: involute 20/21 to 1000/1000 at "
+                 "1-10 um 4.6-11 us, sine 200/210 internal 10 us a (position x vertex)"),
     # gerotor chamber areas: per (crank position x polygon vertex), shapely buffer/difference
     "chambers": Cost(2.5e-7, 400.0, 0.0, 0.0, "gerotor 30 lobes R=300: 3.9 s for 62 positions x 366,000 "
                      "polygon vertices (1.7e-7 s an item), +113 MB (300 B a polygon vertex)"),

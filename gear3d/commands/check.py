@@ -222,7 +222,7 @@ def run(args, alias: bool = False) -> int:
     """``gear3d check pair``; ``alias``: called as ``gear3d pair`` (JSON on stdout when no file
     is asked for, and a deprecation note on stderr)."""
     from ..errors import GearError
-    from ..analysis.pairs import check_pair, largest_addendum, tip_correction
+    from ..plan import check_pair, largest_addendum, tip_correction     # charged to the budget first
     if not alias and getattr(args, "check_what", None) != "pair":
         raise GearError("check", getattr(args, "check_what", None), "`pair` (see gear3d check pair --help)")
     if getattr(args, "rack", False):
@@ -261,10 +261,15 @@ def run(args, alias: bool = False) -> int:
                        f"{rep['tip_radius2']:.4f} mm, lost contact {rep['lost_contact']:.3f}")
     else:
         kw1, kw2, cd, design = pair_design(args, kw, z2, internal)
+        from .profile import FAMILY_FLAGS_PLANNED
+        if args.family in FAMILY_FLAGS_PLANNED and args.mate == "same":    # refused before any build
+            from ..plan import plan_pair
+            plan_pair(args.family, kw1, kw2 if kw2 is not None else
+                      dict(kw1, teeth=z2, **({"internal": True} if internal else {})))
         p1, p2 = build_pair(args.family, kw1, z2, internal, args.mate, kw2)
         found = None
         if cd == "auto":
-            from ..analysis.pairs import working_center_distance
+            from ..plan import working_center_distance
             found = working_center_distance(p1, p2, internal=internal, precision=args.precision)
             cd = found["center_distance"]
         rep = check_pair(p1, p2, internal=internal, center_distance=cd)
