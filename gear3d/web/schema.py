@@ -203,14 +203,17 @@ def form_schema(family: str) -> dict:
     Each field is ``{name, flag, type, default, unit, help, choices, range, required, label,
     group}`` (``label``: the words shown, :data:`LABELS`; ``group``: one of :data:`GROUPS`)
     (:func:`table_field`), read off the family's table in its builder's keyword order.
+    ``presets``: every design the page offers (any family; :func:`gear3d.web.presets.presets`).
     Raises ``GearError("family", ...)`` for a family no form can build.
     """
     names = families()
     if family not in names:
         raise GearError("family", family, "one of " + ", ".join(names))
     from ..params import FAMILY_PARAMS
+    from .presets import presets
     return {"family": family, "profile": [table_field(p) for p in FAMILY_PARAMS[family]],
-            "body": _body_fields(), "pair": _pair_fields(), "groups": list(GROUPS)}
+            "body": _body_fields(), "pair": _pair_fields(), "groups": list(GROUPS),
+            "presets": presets()}
 
 
 def parse_form(schema: dict, query) -> dict:

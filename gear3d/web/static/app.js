@@ -1,12 +1,16 @@
 // gear3d serve: the page. Forms come from /api/schema/<family>; every build is the server's.
 // Requests carry parameters only; a field left at its default is not sent (as with the CLI).
 // Errors come back as {error, param}: shown next to that field, never a traceback.
+// The current design lives in the URL's fragment (#family=...&teeth=...&b.width=...&pair.mate_teeth=...,
+// the API's own query keys): every change rewrites it, and opening such a link fills the form.
 
 const $ = (s) => document.querySelector(s);
 const SCOPES = ["profile", "body", "pair"];
 const PREFIX = { profile: "", body: "b.", pair: "pair." };
 let schema = null;            // current family's form schema
 const state = { anim: null, frame: 0, playing: true, timer: null };
+let presetList = [];          // the designs /api/schema offers (gear3d/web/presets.py)
+let lastHash = null;          // the fragment this page wrote last (a different one is a pasted link)
 
 function setStatus(text) { $("#status").textContent = text; }
 
@@ -192,7 +196,10 @@ async function preview() {
   }
   const { svg, report: r, neck } = res.body;
   $("#preview").innerHTML = svg;
-  $("#preview-info").textContent = `built in ${res.body.ms} ms, shown in ${Math.round(performance.now() - t0)} ms`;
+  const shown = Math.round(performance.now() - t0);
+  $("#preview-info").textContent = `built in ${res.body.ms} ms, shown in ${shown} ms`;
+  $("#preview").dataset.ms = String(shown);
+  $("#preview").dataset.query = q;         // what is drawn (the browser test waits on it)
   table($("#report"), [
     ["max_error (measured)", fmt(r.max_error * 1000, " um")], ["tolerance", fmt(r.tolerance * 1000, " um")],
     ["undercut", fmt(r.undercut) + (r.undercut ? ` (depth ${fmt(r.undercut_depth, " mm")})` : ""), r.undercut],
@@ -437,16 +444,92 @@ const scheduleBody = task(body3d, 800);
 function onChange(scope) {
   if (scope === "profile") { schedulePreview(); scheduleBody(); }
   if (scope === "body") scheduleBody();
+  notPreset();
+  saveURL();
 }
 
+// the family's forms, at their defaults (true once built)
 async function loadFamily(name) {
   const res = await getJSON(`/api/schema/${encodeURIComponent(name)}`);
-  if (res.status !== 200) { setStatus(res.body.error); return; }
+  if (res.status !== 200) { setStatus(res.body.error); return false; }
   schema = res.body;
   for (const s of SCOPES) buildForm(s, schema[s]);
   document.body.dataset.family = name;
+  if (!presetList.length && schema.presets) fillPresets(schema.presets);
+  return true;
+}
+
+// ------------------------------------------------------------------ presets + the design in the URL
+
+// the design in the URL's fragment, replaced (not pushed: no history entry per keystroke)
+function saveURL() {
+  const h = "#" + query(SCOPES);
+  lastHash = h;
+  if (location.hash !== h || location.search) history.replaceState(null, "", location.pathname + h);
+  $("#design-link").href = location.href;
+}
+
+function inputFor(key) {
+  const scope = key.startsWith("b.") ? "body" : (key.startsWith("pair.") ? "pair" : "profile");
+  return document.getElementById(`in-${fieldId(scope, key.slice(PREFIX[scope].length))}`);
+}
+
+// put a text in a field as a person would; false when the field cannot hold it (a select's unknown choice)
+function setInput(input, text) {
+  if (input.type === "checkbox") {
+    input.checked = ["1", "true", "on", "yes"].includes(text.toLowerCase());
+    return true;
+  }
+  input.value = text;
+  return input.value === text;
+}
+
+// fill the forms with a design (URLSearchParams of family, NAME, b.NAME, pair.NAME): the
+// fields it leaves out take their defaults; what no field takes is named beside the presets
+async function applyDesign(params) {
+  const sel = $("#family");
+  const fam = params.get("family") || sel.value || "involute";
+  const names = [...sel.options].map((o) => o.value);
+  if (!names.includes(fam)) {
+    $("#preset-info").textContent = `link: family = ${fam} is not allowed: one of ${names.join(", ")}`;
+    return false;
+  }
+  sel.value = fam;
+  if (!(await loadFamily(fam))) return false;
+  const ignored = [];
+  for (const [k, v] of params) {
+    if (k === "family") continue;
+    const input = inputFor(k);
+    if (!input || !setInput(input, v)) ignored.push(`${k}=${v}`);
+  }
+  $("#preset-info").textContent = ignored.length ? `link: no field takes ${ignored.join(", ")}` : "";
+  saveURL();
   schedulePreview();
   scheduleBody();
+  return true;
+}
+
+function fillPresets(list) {
+  presetList = list;
+  const sel = $("#preset");
+  for (const p of list) {
+    const o = new Option(p.label, p.name);
+    o.title = p.description;
+    sel.add(o);
+  }
+}
+
+async function choosePreset(name) {
+  const p = presetList.find((x) => x.name === name);
+  if (!p) return;
+  await applyDesign(new URLSearchParams(p.query));
+  $("#preset").value = p.name;
+  $("#preset-info").textContent = p.description;
+}
+
+// an edit makes the design the user's own
+function notPreset() {
+  if ($("#preset").value) { $("#preset").value = ""; $("#preset-info").textContent = ""; }
 }
 
 async function main() {
@@ -454,7 +537,14 @@ async function main() {
   const sel = $("#family");
   for (const f of res.body.families) sel.add(new Option(f, f));
   sel.value = res.body.families.includes("involute") ? "involute" : res.body.families[0];
-  sel.addEventListener("change", () => loadFamily(sel.value));
+  sel.addEventListener("change", async () => {
+    notPreset();
+    if (await loadFamily(sel.value)) { saveURL(); schedulePreview(); scheduleBody(); }
+  });
+  $("#preset").addEventListener("change", (e) => choosePreset(e.target.value));
+  window.addEventListener("hashchange", () => {     // a link pasted into this tab
+    if (location.hash !== lastHash) applyDesign(new URLSearchParams(location.hash.slice(1)));
+  });
   const dl = $("#downloads");
   for (const f of res.body.downloads) {
     const b = document.createElement("button");
@@ -467,7 +557,11 @@ async function main() {
   $("#check-pair").addEventListener("click", checkPair);
   $("#pair-play").addEventListener("click", () => play(!state.playing));
   $("#pair-frame").addEventListener("input", (e) => { play(false); showFrame(Number(e.target.value)); });
-  await loadFamily(sel.value);
+  // a link holds a design (#..., or ?... as the API's query): fill the form with it
+  const link = location.hash.length > 1 ? location.hash.slice(1) : location.search.slice(1);
+  const given = new URLSearchParams(link);
+  if ([...given.keys()].length) await applyDesign(given);
+  else if (await loadFamily(sel.value)) { saveURL(); schedulePreview(); scheduleBody(); }
   document.body.dataset.ready = "1";
 }
 
