@@ -12,8 +12,8 @@ parameters it excludes. The tables drive
 * the TOML schema of templates (:mod:`gear3d.jobs.template`),
 * the web form of ``gear3d serve`` (:mod:`gear3d.web.schema`),
 * the reference pages ``docs/parameters.md`` and ``docs/templates.md``
-  (``python -m gear3d.params --markdown > docs/parameters.md``,
-  ``python -m gear3d.params --templates > docs/templates.md``).
+  (``python -m gear3d.docsgen --markdown > docs/parameters.md``,
+  ``python -m gear3d.docsgen --templates > docs/templates.md``; :mod:`gear3d.docsgen`).
 
 Names: a TOML key (and a Python keyword) is the parameter's name; its CLI flag is the same
 name with ``-`` for ``_`` (``helix_angle_deg`` <-> ``--helix-angle-deg``). Older flag
@@ -463,7 +463,7 @@ def md_rows(params) -> list:
 def markdown() -> str:
     """``docs/parameters.md``: every family's table and the body table."""
     out = ["# Parameters", "",
-           "Generated from `gear3d/params.py` by `python -m gear3d.params --markdown > docs/parameters.md`;",
+           "Generated from `gear3d/params.py` by `python -m gear3d.docsgen --markdown > docs/parameters.md`;",
            "`tests/test_params.py` checks that this page is up to date. Do not edit by hand.", "",
            "One table per family drives the builder's validation, the CLI flags (`gear3d profile FAMILY",
            "--help`), the TOML keys of templates ([templates.md](templates.md)) and the form of",
@@ -492,20 +492,5 @@ def markdown() -> str:
     return "\n".join(out)
 
 
-def main(argv=None) -> int:
-    import sys
-    args = list(sys.argv[1:] if argv is None else argv)
-    if args == ["--markdown"]:
-        sys.stdout.write(markdown() + "\n")
-        return 0
-    if args == ["--templates"]:        # the TOML schema page, from the template checks' own tables
-        import importlib
-        sys.stdout.write(importlib.import_module("gear3d.jobs.template").markdown() + "\n")
-        return 0
-    sys.stderr.write("usage: python -m gear3d.params --markdown | --templates\n")
-    return 2
-
-
-if __name__ == "__main__":
-    raise SystemExit(main())
-
+if __name__ == "__main__":      # the pages' generator is gear3d.docsgen (it also needs jobs.template)
+    raise SystemExit("usage: python -m gear3d.docsgen --markdown | --templates")

@@ -19,12 +19,14 @@ from gear3d.params import BODY_PARAMS, FAMILY_PARAMS, markdown
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 
 
-def test_docs_pages_are_up_to_date():
-    assert (ROOT / "docs" / "parameters.md").read_text() == markdown() + "\n", \
-        "regenerate: python -m gear3d.params --markdown > docs/parameters.md"
-    from gear3d.jobs.template import markdown as tpl
-    assert (ROOT / "docs" / "templates.md").read_text() == tpl() + "\n", \
-        "regenerate: python -m gear3d.params --templates > docs/templates.md"
+def test_docs_pages_are_up_to_date(capsys):
+    from gear3d import docsgen
+    for flag, (page, _) in docsgen.PAGES.items():
+        assert docsgen.main([flag]) == 0
+        assert (ROOT / page).read_text() == capsys.readouterr().out, \
+            f"regenerate: python -m gear3d.docsgen {flag} > {page}"
+    assert docsgen.PAGES["--markdown"][1] is markdown
+    assert docsgen.main(["--markdown", "--templates"]) == 2 and "usage" in capsys.readouterr().err
 
 
 @pytest.mark.parametrize("family", sorted(FAMILY_PARAMS))

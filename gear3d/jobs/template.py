@@ -826,7 +826,7 @@ def tolerance_for(job: Job, kind: str) -> float:
 
 def markdown() -> str:
     """``docs/templates.md``: the TOML schema, generated from the same tables the checks
-    above use (``python -m gear3d.params --templates > docs/templates.md``)."""
+    above use (``python -m gear3d.docsgen --templates > docs/templates.md``)."""
     from ..params import BODY_PARAMS, CONVENTIONS, FAMILY_PARAMS, md_rows
     from ..rack_part import RACK_KEYS
     doc = (__doc__ or "").split("Scene (", 1)[1]
@@ -839,7 +839,7 @@ def markdown() -> str:
     body = [p for p in BODY_PARAMS if p.name not in ("tolerance", "name")]
     lines = ["# Templates: the TOML schema", "",
              "Generated from `gear3d/jobs/template.py` and `gear3d/params.py` by",
-             "`python -m gear3d.params --templates > docs/templates.md`; `tests/test_params.py`",
+             "`python -m gear3d.docsgen --templates > docs/templates.md`; `tests/test_params.py`",
              "checks that this page is up to date. Do not edit by hand.", "",
              "A template is data (nothing in it is evaluated). Every problem (a wrong type, an unknown",
              "key, an out-of-range value, a missing family, an unsafe output name) is refused before any",
