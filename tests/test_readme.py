@@ -56,13 +56,13 @@ def test_the_readme_has_commands_to_run():
 
 def test_the_readme_test_command_is_ci():
     """The README's test command is CI's script, and that script makes a fresh virtual
-    environment, installs Chromium when missing (as root, or through sudo) and runs both
-    parts of the suite."""
+    environment, installs Chromium and PrusaSlicer when missing (as root, or through sudo;
+    tests/test_ci_run.py runs that step) and runs both parts of the suite."""
     lines = [c for b in blocks(README) if b.lang == "bash" for c, _ in commands(b.body)]
     assert TEST_COMMAND in lines
     ci = (ROOT / ".ci" / "run").read_text(encoding="utf-8")
     for needed in ("python3 -m venv .venv", "pip install -q -e '.[test,docs]'", "\npython -m pytest\n",
-                   "python -m pytest -m slow", "apt-get install -y -qq chromium", 'SUDO="sudo"'):
+                   "python -m pytest -m slow", "apt-get install -y -qq$MISSING", 'SUDO="sudo"'):
         assert needed in ci, needed
 
 
