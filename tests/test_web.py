@@ -132,7 +132,7 @@ def test_busy_answers_503_and_the_budget_refuses_before_building(app, monkeypatc
     assert main(["body", "involute", "--teeth", "50000", "--width", "100", "--tolerance", "0.001", "-o", str(out)]) == 2
     assert not out.exists()                           # the CLI refuses it too (the same budget)
     st, _, body = _asgi_get(app, "/api/pair", "family=involute&teeth=3000&pair.mate_teeth=3001&tolerance=0.001")
-    assert st == 400 and "pair budget" in _strict(body)["error"]
+    assert st == 400 and "budget" in _strict(body)["error"]
 
 
 @pytest.mark.parametrize("fmt, cmd", [("3mf", "body"), ("dxf", "profile")])     # STL: in the browser below

@@ -44,6 +44,8 @@ DOWNLOADS = {"stl": ("body", "model/stl"), "3mf": ("body", "model/3mf"), "step":
              "dxf": ("profile", "image/vnd.dxf"), "svg": ("profile", "image/svg+xml")}
 
 MAX_QUERY_ITEMS = 80
+#: paths of the endpoints that build (HEAD is refused there: 405, no build for a header)
+BUILDS = ("/api/profile", "/api/body", "/api/pair", "/api/download")
 
 #: formats whose writers use process-wide state (OpenCascade for a B-rep STEP): one at a time
 UNSHARED = ("step",)
@@ -61,7 +63,21 @@ def _json(obj, status: int = 200):
 
 
 def _gear_error(e: GearError):
-    return _json({"error": str(e), "param": e.param, "value": str(e.value), "allowed": e.allowed}, 400)
+    c = strict.clean
+    return _json({"error": c(str(e)), "param": c(e.param), "value": c(str(e.value)), "allowed": c(e.allowed)}, 400)
+
+
+def _internal_error(e: BaseException, log=None):
+    """500 with the exception's kind only (its message may hold a local path); the details
+    go to the server's log, on one line."""
+    from ..errors import one_line
+    stream = log or sys.stderr
+    try:
+        stream.write(f"error: {type(e).__name__}: {one_line(e)}\n")
+        stream.flush()
+    except Exception:
+        pass
+    return _json({"error": f"internal error ({type(e).__name__}); the server's log has the details"}, 500)
 
 
 class _Slots:
@@ -95,18 +111,26 @@ def _request(query) -> dict:
 
 
 def _budget(form, kind: str, output=None) -> dict:
-    """What to build, as the CLI makes it, refused before building when over budget:
+    """What to build, as the CLI makes it, refused before building when over budget (the
+    CLI's own plan, :mod:`gear3d.web.budget`):
     ``{"profile": kw, "body": kw, "pair": (z2, internal, mate), "ns": the CLI's Namespace}``."""
+    fam = form["family"]
     if kind == "body":
         pk, bk, ns = formargs.body_kwargs(form, output)
-        budget.check("body", pk, bk)
+        if output is None:          # the preview: at the print tolerance (see _preview_body)
+            user = min(pk.get("tolerance", PREVIEW_TOLERANCE), bk.get("tolerance") or math.inf)
+            budget.check("body", fam, dict(pk, tolerance=max(user, PREVIEW_TOLERANCE)),
+                         dict(bk, tolerance=max(user, PREVIEW_TOLERANCE)))
+        else:
+            budget.check("body", fam, pk, bk, output=output)
         return {"profile": pk, "body": bk, "ns": ns}
     if kind == "pair":
         kw, z2, internal, mate = formargs.pair_kwargs(form)
-        budget.check("pair", kw, pair={"mate_teeth": z2})
+        if mate == "same":
+            budget.check("pair", fam, kw, pair={"mate_teeth": z2, "internal": internal})
         return {"profile": kw, "pair": (z2, internal, mate)}
     pk, ns = formargs.profile_kwargs(form, output)
-    budget.check("profile", pk)
+    budget.check("profile", fam, pk, output=output)
     return {"profile": pk, "ns": ns}
 
 
@@ -180,8 +204,8 @@ def _do_body(form, built):
 
 
 def _do_pair(form, built):
-    from ..analysis.pairs import check_pair
     from ..commands.check import build_pair, summary
+    from ..plan import check_pair
     from .pairview import pair_animation
     z2, internal, mate = built["pair"]
     p1, p2 = build_pair(form["family"], dict(built["profile"]), z2, internal, mate)
@@ -253,15 +277,16 @@ def create_app(max_builds: int = 2, log=None):
                 built = _budget(form, kind, output)
 
                 def run():
-                    with slots:
+                    from .. import budget as core
+                    with slots, core.job():          # the request's own ledger
                         return fn(form, built, *extra)
                 return await run_in_threadpool(run)
             except GearError as e:
                 return _gear_error(e)
             except Busy as e:
                 return _json({"error": str(e)}, 503)
-            except Exception as e:      # never a traceback: the message
-                return _json({"error": f"{type(e).__name__}: {e}"}, 500)
+            except Exception as e:      # never a traceback nor a path: the kind, details in the log
+                return _internal_error(e, log)
         return handler
 
     async def families(request):
@@ -274,6 +299,8 @@ def create_app(max_builds: int = 2, log=None):
             return _json(form_schema(request.path_params["family"]))
         except GearError as e:
             return _gear_error(e)
+        except Exception as e:
+            return _internal_error(e, log)
 
     async def index(request):
         return FileResponse(os.path.join(STATIC, "index.html"), headers={"Cache-Control": "no-store"})
@@ -288,9 +315,14 @@ def create_app(max_builds: int = 2, log=None):
         Route("/api/download", endpoint("download", _do_download)),
         Mount("/static", StaticFiles(directory=STATIC), name="static"),
     ]
-    app = Starlette(routes=routes)
+    async def not_found(request, exc):
+        code = getattr(exc, "status_code", 404)
+        return _json({"error": "not found" if code == 404 else f"HTTP {code}", "param": "path",
+                      "value": strict.clean(request.url.path)[:80], "allowed": "a page or an /api/ endpoint"}, code)
+
+    app = Starlette(routes=routes, exception_handlers={404: not_found, 405: not_found})
     app.state.slots = slots
-    return RequestLog(app, log)
+    return RequestLog(strict.Guard(app, BUILDS), log)
 
 
 class RequestLog:
@@ -315,7 +347,7 @@ class RequestLog:
             await self.app(scope, receive, send2)
         except Exception as e:
             if not started[0]:
-                body = strict.dumps({"error": f"{type(e).__name__}: {e}"}).encode()
+                body = strict.dumps({"error": f"internal error ({type(e).__name__})"}).encode()
                 await send2({"type": "http.response.start", "status": 500,
                              "headers": [(b"content-type", b"application/json")]})
                 await send({"type": "http.response.body", "body": body})

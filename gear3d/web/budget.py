@@ -1,73 +1,48 @@
-"""The server's build budget: the CLI's own (``gear3d.budget``), checked before any work.
+"""The server's build budget: the CLI's own plans (:mod:`gear3d.plan`), checked before any work.
 
-The builders check the core budget themselves (a profile after sampling one tooth period, a
-body before it is extruded), so the page refuses exactly what the CLI refuses, with the same
-message. Before handing a request to a builder, :func:`check` also asks the core budget
-about a cheap *lower bound* of the size (so it never refuses what the CLI would build) and
-refuses hopeless requests at once:
-
-* profile vertices >= teeth * 1.3 / sqrt(tolerance) (82 a tooth at 1 um measured, halved);
-* body triangles >= 4 x that (side quads and caps of a spur body at the body tolerance).
-
-Pairs have no core budget yet: the server refuses (z1 + z2) / sqrt(tolerance) > 5000
-(20 + 21 teeth at 1 um = 1.3e3, a few seconds of rolling).
+A request is planned exactly as the command line plans the same command (the family builder
+probed up to its first sampled period, then the body's layers, the export, the rolling
+check) and refused with the CLI's one-line message when it is over the budget in force
+(:mod:`gear3d.budget`: triangles, memory, CPU seconds). The builders then charge their
+stages as they go, in a ledger of the request's own (:func:`gear3d.budget.job`, one per
+thread), so one request never counts another's work.
 """
 from __future__ import annotations
 
-import math
-
 from ..errors import GearError
-
-#: the pair limit, (z1 + z2) / sqrt(tolerance / mm)
-PAIR_LIMIT = 5.0e3
-DEFAULT_TOLERANCE = 1e-3
-#: profile vertices a tooth at tolerance t (mm) is sure to need: VERTEX_FACTOR / sqrt(t)
-VERTEX_FACTOR = 1.3
-
-
-def _count(params: dict) -> float:
-    """Teeth-like count of a form (teeth, pins or lobes; 1 when none is a positive number)."""
-    for k in ("teeth", "pins", "lobes"):
-        v = params.get(k)
-        if isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) and v > 0:
-            return float(v)
-    return 1.0
-
-
-def _tol(*vals) -> float:
-    for v in vals:
-        if isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) and v > 0:
-            return float(v)
-    return DEFAULT_TOLERANCE
 
 
 def limits() -> dict:
-    """The limits in force (for the page): the core's triangle budget and the pair limit."""
+    """The limits in force (for the page): triangles, bytes and CPU seconds."""
     from .. import budget as core
-    return {"max_triangles": core.current().max_triangles, "pair": PAIR_LIMIT}
+    b = core.current()
+    return {"max_triangles": b.max_triangles, "max_memory": b.max_memory, "max_seconds": b.max_seconds}
 
 
-def check(what: str, profile: dict, body: dict | None = None, pair: dict | None = None) -> float:
-    """Raise the CLI's ``GearError`` when a ``what`` ("profile", "body", "pair") build is surely
-    over budget; return the lower-bound estimate. ``profile``/``body``/``pair`` are keywords."""
-    from .. import budget as core
-    body, pair = body or {}, pair or {}
-    z = _count(profile)
-    tol = _tol(profile.get("tolerance"))
-    vertices = z * VERTEX_FACTOR / math.sqrt(tol)
-    # the core names the teeth for huge gears, the tolerance otherwise (gear3d.model)
-    core.check_profile(vertices, *(("teeth", profile.get("teeth")) if z > 1000 else ("tolerance", tol)))
+def check(what: str, family: str, profile: dict, body: dict | None = None, pair: dict | None = None,
+          output: str | None = None):
+    """Plan a ``what`` ("profile", "body", "pair") request of ``family`` as the CLI plans it
+    (``profile``/``body`` keywords; ``pair``: ``{"mate_teeth", "internal"}``; ``output``: the
+    download's file name, whose extension is the export); raises the CLI's
+    :class:`gear3d.budget.BudgetError` (a GearError) when over budget. Returns the estimate
+    (None for a family that is not planned: it is charged by its builder as it goes)."""
+    from .. import plan
+    from ..commands.profile import FAMILY_FLAGS_PLANNED
+    if family not in FAMILY_FLAGS_PLANNED:
+        return None
     if what == "body":
-        btol = _tol(body.get("tolerance"), tol)
-        triangles = 4 * z * VERTEX_FACTOR / math.sqrt(btol)
-        core.check_body(triangles, "tolerance", btol)
-        return triangles
+        body = dict(body or {})
+        ptol = profile.get("tolerance", 0.01)
+        from ..solids.body import profile_tolerance
+        pk = dict(profile, tolerance=profile_tolerance(body.get("tolerance") or ptol, body.get("kind", "spur"),
+                                                       bool(body.get("xy_offset"))))
+        body.setdefault("tolerance", ptol)
+        return plan.plan_body(family, pk, body, output)
     if what == "pair":
-        z2 = _count({"teeth": pair.get("mate_teeth")})
-        est = (z + z2) / math.sqrt(tol)
-        if est > PAIR_LIMIT:
-            need = ((z + z2) / PAIR_LIMIT) ** 2
-            raise GearError("tolerance", tol, f"at least {need:.3g} mm for {z:g} + {z2:g} teeth",
-                            f"over the server's pair budget (z1+z2)/sqrt(tolerance) <= {PAIR_LIMIT:g}")
-        return est
-    return vertices
+        pair = pair or {}
+        z2 = pair.get("mate_teeth")
+        if z2 is None:
+            raise GearError("mate_teeth", None, "an integer in [1, 100000]")
+        kw2 = dict(profile, teeth=z2, **({"internal": True} if pair.get("internal") else {}))
+        return plan.plan_pair(family, profile, kw2)
+    return plan.plan_profile(family, profile, output)

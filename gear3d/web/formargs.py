@@ -21,11 +21,11 @@ _TRUE, _FALSE = ("1", "true", "on", "yes"), ("0", "false", "off", "no")
 
 def _shown(text: str):
     """The value as a GearError shows it: a number when the text is one, else the text."""
-    for cast in (int, float):
-        try:
-            return cast(text)
-        except ValueError:
-            pass
+    from ..cliargs import plain_int, plain_number
+    for cast in (plain_int, plain_number):
+        v = cast(text)
+        if v is not None:
+            return v
     return text
 
 
@@ -39,6 +39,12 @@ def typed(action, name: str, text: str):
     if action.choices and text not in action.choices:
         raise GearError(name, text, "one of " + ", ".join(map(str, action.choices)))
     conv = action.type or str
+    if conv in (int, float):               # plain ASCII numbers only (1_0 is not 10), as the CLI reads them
+        from ..cliargs import plain_int, plain_number
+        v = plain_int(text) if conv is int else plain_number(text)
+        if v is None:
+            raise GearError(name, _shown(text), "an integer" if conv is int else "a number")
+        return v
     try:
         return conv(text)
     except argparse.ArgumentTypeError as e:
