@@ -54,6 +54,68 @@ def test_midplane_section_is_the_involute_gear(x):
     assert np.abs(dev).max() <= tol / math.cos(a) + 1e-9
 
 
+@pytest.mark.parametrize("z2,x", [(30, 0.0), (18, 0.0), (18, 0.4)])
+def test_sheet_midplane_layer_is_the_involute_gear(z2, x):
+    """The shared tessellation's mid-plane section (all sections at once, undercut crossings
+    found by Newton: z2 = 18 undercuts at x = 0) against gear3d's involute family, whose
+    trimming is Clipper's: every sheet vertex on the involute gear's exact outline, every
+    involute vertex within the sheet polygon's measured chord error of it."""
+    from gear3d.geometry import polyline_distance, rotate
+    from gear3d.wormgear import sheet
+    from gear3d.wormgear.thread import axial_profile
+    d = design(module=2, starts=1, wheel_teeth=z2, axial_pressure_angle_deg=20, shift_coeff=x)
+    f = axial_profile(d)
+    S = sheet.sections(d, np.array([0.0]))
+    assert S.ok.all() and (S.tA0[0] > 0) == (z2 == 18 and x == 0)
+    tol = 0.002
+    nodes, errs = sheet.place_nodes(d, f, S, tol)
+    C = sheet.chains(d, f, S, nodes, [0])[0]
+    inv = gear3d.profile("involute", teeth=z2, module=2, pressure_angle_deg=20, addendum_coeff=d.addendum_coeff,
+                         dedendum_coeff=d.dedendum_coeff, tip_radius_coeff=0, shift_coeff=x, tolerance=tol / 5)
+    assert inv.exact_distance(C).max() <= inv.report["max_error"] + 1e-9
+    loop = np.concatenate([C, rotate(C[:1], 2 * math.pi / z2)])
+    tl = inv.tooth_loop
+    ang = np.arctan2(tl[:, 1], tl[:, 0])
+    a0, a1 = math.atan2(loop[0, 1], loop[0, 0]), math.atan2(loop[-1, 1], loop[-1, 0])
+    sel = (ang > a0 + 1e-3) & (ang < a1 - 1e-3)
+    chord = max(e.max() for e in errs)
+    assert chord <= tol
+    assert polyline_distance([loop], tl[sel]).max() <= chord + inv.report["max_error"] + 1e-9
+
+
+@pytest.mark.parametrize("kw", [dict(wheel_teeth=20), dict(wheel_teeth=26, starts=2, worm_type="ZI", hand="left"),
+                                dict(wheel_teeth=24, worm_type="ZN", shift_coeff=0.3, throat=False)])
+def test_wheel_mesh_slices_within_tolerance_of_the_exact_sections(kw):
+    """The finished wheel (shared tessellation, measured in-plane at each band's middle)
+    sliced by manifold3d at heights it never measured, against the per-section builder
+    (one rack envelope trimmed by Clipper per height, :func:`section`): every slice vertex
+    within the reported max_error (<= tolerance) plus that builder's own error."""
+    from gear3d.geometry import rotate
+    from gear3d.wormgear.wheel import section_turn
+    tol = 0.02
+    s = gear3d.worm(part="wheel", module=1.5, tolerance=tol, **kw)
+    rep = s.wheel.report
+    assert rep["method"] == "sheet" and rep["max_error"] <= tol
+    d = s.design
+    man = s.wheel.manifold
+    assert man.status().name == "NoError" and man.genus() == 0
+    z = d.wheel_teeth
+    for h in np.random.default_rng(7).uniform(-d.face_width / 2, d.face_width / 2, 5):
+        exact = section(d, float(h), tol / 20)
+        P = rotate(np.concatenate([np.asarray(p, float) for p in man.slice(float(h)).to_polygons()]),
+                   -section_turn(d, h))
+        k = np.round(np.arctan2(P[:, 1], P[:, 0]) / (2 * math.pi / z))
+        P = rotate(P, -k * 2 * math.pi / z)
+        assert exact.exact_distance(P).max() <= rep["max_error"] + exact.report["max_error"] + 1e-9, h
+
+
+def test_pointed_sections_fall_back_to_one_build_per_section():
+    # z2 = 12: the teeth are pointed near the faces (outside the sheet's chain)
+    s = gear3d.worm(part="wheel", module=1, starts=1, wheel_teeth=12, tolerance=0.05)
+    assert s.wheel.report["method"] == "sections"
+    assert s.report.wheel_max_error <= 0.05
+
+
 # ------------------------------------------------------------------ ZA section, closed form
 
 @pytest.mark.parametrize("hand", ["right", "left"])

@@ -1,11 +1,15 @@
 """The worm wheel's body: certified sections stacked and joined (see :mod:`gear3d.wormgear.wheel`).
 
-Plan (mm): layers at the faces ±B/2, the mid-plane and the throat's kinks (where the
-throat arc meets the outside cylinder), spaced at first so that the turn between layers
-sags by at most a quarter of the tolerance at the tip; then every band between two layers
-is measured at its middle plane against the exact section there, and a band that misses
-the tolerance is split there (the measured section becomes a layer). The mesh is closed
-by construction; bore and hub are manifold3d booleans.
+Plan (mm), on the shared tessellation of all sections (:mod:`gear3d.wormgear.sheet`, the
+default): layers at the faces ±B/2, the mid-plane and the throat's kinks (where the throat
+arc meets the outside cylinder), and between them heights predicted from the curvature
+along z; every section (layers and the bands' middle sections, all at once) is sampled at
+the same piece parameters, refined until every chord of every section is within half the
+tolerance; then every band between two layers is measured at its middle plane against the
+exact section there, and a band that misses the tolerance is split (the round repeats).
+Where a section's outline is not the sheet's chain (a pointed tooth), one profile is built
+per section instead (:func:`plan_layers`: the same measurement, one section at a time). The
+mesh is closed by construction; bore and hub are manifold3d booleans.
 
 Example::
 
@@ -100,6 +104,47 @@ def _one_stage():
     return st() if st is not None else contextlib.nullcontext()
 
 
+def plan_sheet(d, tol: float):
+    """:func:`plan_layers` on the shared tessellation (:mod:`gear3d.wormgear.sheet`): every
+    round builds all layers and middle sections at once, places the shared parameters,
+    measures every band and splits those that miss ``tol``. Raises
+    :class:`gear3d.wormgear.sheet.Unsupported` for a section outside its chain."""
+    from . import sheet
+    from .thread import axial_profile
+    f = axial_profile(d)
+    tol_s = tol * SECTION_SHARE
+    hs = sheet.plan_heights(d, f, SPLIT_MARGIN * (tol - tol_s))
+    bands = list(zip(hs[:-1], hs[1:]))
+    for _round in range(MAX_SPLITS + 1):
+        heights = sorted({x for ab in bands for x in ab})
+        if len(heights) > MAX_SECTIONS:
+            raise ToleranceError("tolerance", tol, "a coarser value",
+                                 f"the wheel would need more than {MAX_SECTIONS} sections")
+        H = np.array(heights + [0.5 * (a + b) for a, b in bands])
+        S = sheet.sections(d, H)
+        sheet.require(S)
+        nodes, errs = sheet.place_nodes(d, f, S, tol_s)
+        row = {h: i for i, h in enumerate(heights)}
+        ia = np.array([row[a] for a, _ in bands])
+        ib = np.array([row[b] for _, b in bands])
+        e, diag = sheet.band_errors(d, f, S, nodes, ia, ib, len(heights) + np.arange(len(bands)))
+        sec_err = float(max(x[:len(heights)].max() for x in errs))
+        if np.all(e <= tol):
+            break
+        bands = [ab for ab, x in zip(bands, e) if x <= tol] + \
+            [p for ab, x in zip(bands, e) if x > tol for p in _split(*ab, float(x), sec_err, tol)]
+        bands.sort()
+    else:
+        raise ToleranceError("tolerance", tol, "a coarser value",
+                             f"the wheel's bands still miss it after {MAX_SPLITS} splits")
+    rows = np.arange(len(heights))
+    V, F = sheet.mesh(d, heights, sheet.chains(d, f, S, nodes, rows), diag)
+    root = sheet.points(d, f, S, 0, 0.0, rows)
+    return V, F, {"heights": heights, "section_max_error": sec_err, "band_max_error": float(e.max()),
+                  "bands_measured": len(bands), "root_radius_min": float(np.hypot(root[:, 0], root[:, 1]).min()),
+                  "method": "sheet"}
+
+
 def _plan_layers(d, tol: float):
     tol_s = tol * SECTION_SHARE
     cache = {}
@@ -175,9 +220,8 @@ def wheel_body(d, tolerance=None, bore=None, hub_diameter=None, hub_length=None,
     tol = d.tolerance if tolerance is None else check_number("tolerance", tolerance, 1e-4, d.module / 10,
                                                              unit="mm")
     feats = _check_features(d, d.wheel_root_radius, bore, hub_diameter, hub_length, tol)
-    layers, sec_err, band_err, measured = plan_layers(d, tol)
-    root = min(float(L[1].report["root_radius"]) for L in layers)
-    V, F = assemble(d, layers)
+    V, F, info = _build(d, tol)
+    sec_err, band_err = info["section_max_error"], info["band_max_error"]
     budget.check_body(len(F), "tolerance", tol)
     man = None
     if feats:
@@ -187,12 +231,28 @@ def wheel_body(d, tolerance=None, bore=None, hub_diameter=None, hub_length=None,
     from ..solids.body import mesh_properties
     props = mesh_properties(V, F)
     rep = {"part": "wheel", "teeth": d.wheel_teeth, "module": d.module, "face_width": d.face_width,
-           "throat": d.throat, "sections": len(layers), "bands_measured": measured,
-           "section_max_error": sec_err, "band_max_error": band_err, "max_error": max(sec_err, band_err),
-           "tolerance": tol, "triangles": int(len(F)), "vertices": int(len(V)), "volume": props["volume"],
-           "genus": props["genus"], "root_radius_min": root, "features": feats,
-           "section_heights": [float(L[0]) for L in layers]}
+           "throat": d.throat, "sections": len(info["heights"]), "method": info["method"],
+           "bands_measured": info["bands_measured"], "section_max_error": sec_err, "band_max_error": band_err,
+           "max_error": max(sec_err, band_err), "tolerance": tol, "triangles": int(len(F)), "vertices": int(len(V)),
+           "volume": props["volume"], "genus": props["genus"], "root_radius_min": info["root_radius_min"],
+           "features": feats, "section_heights": [float(h) for h in info["heights"]]}
     return WormPart(V, F, name, rep, manifold=man)
+
+
+def _build(d, tol):
+    """(V, F, info): the wheel's teeth body on the shared tessellation of all sections
+    (:func:`plan_sheet`), or - where a section's outline is not the sheet's chain (a
+    pointed tooth, say) - from one profile build per section (:func:`plan_layers`)."""
+    from .sheet import Unsupported
+    try:
+        return plan_sheet(d, tol)
+    except Unsupported:
+        layers, sec_err, band_err, measured = plan_layers(d, tol)
+        V, F = assemble(d, layers)
+        return V, F, {"heights": [float(L[0]) for L in layers], "section_max_error": sec_err,
+                      "band_max_error": band_err, "bands_measured": measured,
+                      "root_radius_min": min(float(L[1].report["root_radius"]) for L in layers),
+                      "method": "sections"}
 
 
 def _check_features(d, root, bore, hub_diameter, hub_length, tol) -> dict:

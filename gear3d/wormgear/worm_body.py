@@ -15,7 +15,7 @@ L/2); in the set the worm's ψ = π side faces the wheel with a groove centred t
 Example::
 
     >>> from gear3d.wormgear.design import design
-    >>> b = worm_body(design(module=2, starts=1, wheel_teeth=30, worm_length=10), tolerance=0.02)
+    >>> b = worm_body(design(module=2, starts=1, wheel_teeth=30, worm_length=14), tolerance=0.02)
     >>> b.report["max_error"] <= 0.02
     True
 """
