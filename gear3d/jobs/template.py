@@ -123,9 +123,14 @@ def read_toml(path) -> dict:
     path = str(path)
     if not os.path.isfile(path):
         fail(path, "file", path, "an existing TOML file")
+    from .tomlguard import MAX_BYTES, check_text
     try:
+        if os.path.getsize(path) > MAX_BYTES:
+            fail(path, "file", f"{os.path.getsize(path):,} bytes", f"a template of at most {MAX_BYTES:,} bytes")
         with open(path, "rb") as f:
-            return tomllib.load(f)
+            raw = f.read()
+        check_text(raw.decode("utf-8"), path)      # nesting and key bounds before the parser recurses
+        return tomllib.loads(raw.decode("utf-8"))
     except tomllib.TOMLDecodeError as e:
         fail(path, "toml", None, "valid TOML", str(e))
     except UnicodeDecodeError as e:
@@ -150,6 +155,9 @@ def apply_sets(data: dict, sets, file) -> dict:
         if "=" not in item:
             fail(file, "--set", item, "key=value (a dotted key, a TOML value)")
         key, text = item.split("=", 1)
+        from .tomlguard import check_key, check_text
+        check_key(key.strip(), f"{file}: --set")
+        check_text(f"v = {text}", f"{file}: --set {key.strip()}")
         parts = [p for p in key.strip().split(".")]
         if not all(parts):
             fail(file, "--set", item, "key=value with a dotted key like part.pinion.teeth")
