@@ -35,7 +35,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-__all__ = ["ArcSpline", "fit_arcs", "arc_distance", "arc_points", "corner_indices", "tangent_jumps",
+__all__ = ["ArcSpline", "fit_arcs", "arc_distance", "segments_distance", "arc_points", "corner_indices", "tangent_jumps",
            "segment_tangents", "biarc"]
 
 #: corner test (degrees): polyline turn above CORNER_DEG, or above CORNER_MIN_DEG and
@@ -122,6 +122,28 @@ def arc_distance(Q, A, B, b) -> np.ndarray:
     inside = ((Q - A) @ tA >= 0) & ((Q - B) @ tB <= 0)
     de = np.minimum(np.hypot(*(Q - A).T), np.hypot(*(Q - B).T))
     return np.where(inside, dc, de)
+
+
+def segments_distance(Q, A, B, b) -> np.ndarray:
+    """Distance (mm) from every point Q (N, 2) to the nearest of the arcs (or segments,
+    b = 0) A[k] -> B[k] with bulges b[k], |b| <= 1: :func:`arc_distance` for all at once."""
+    Q = np.asarray(Q, float)[:, None, :]
+    A, B, b = np.asarray(A, float)[None], np.asarray(B, float)[None], np.asarray(b, float)[None]
+    d = B - A
+    c = np.hypot(d[..., 0], d[..., 1])
+    u = d / np.maximum(c, 1e-300)[..., None]
+    n = np.stack([u[..., 1], -u[..., 0]], axis=-1)
+    q = Q - 0.5 * (A + B)
+    f = b * (np.einsum("...j,...j->...", q, q) - 0.25 * c * c) - 0.5 * c * (b * b - 1.0) * np.einsum("...j,...j->...", q, n)
+    K = 0.5 * c * (1.0 + b * b)
+    dc = np.abs(2.0 * f / (K + np.sqrt(np.maximum(K * K + 4.0 * b * f, 0.0))))
+    h = 2.0 * np.arctan(b)
+    ch, sh = np.cos(h), np.sin(h)
+    tA = np.stack([u[..., 0] * ch + u[..., 1] * sh, -u[..., 0] * sh + u[..., 1] * ch], axis=-1)
+    tB = np.stack([u[..., 0] * ch - u[..., 1] * sh, u[..., 0] * sh + u[..., 1] * ch], axis=-1)
+    inside = (np.einsum("...j,...j->...", Q - A, tA) >= 0) & (np.einsum("...j,...j->...", Q - B, tB) <= 0)
+    de = np.minimum(np.hypot(*np.moveaxis(Q - A, -1, 0)), np.hypot(*np.moveaxis(Q - B, -1, 0)))
+    return np.where(inside, dc, de).min(axis=1)
 
 
 def arc_points(A, B, b, sag: float) -> np.ndarray:

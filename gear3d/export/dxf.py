@@ -2,40 +2,51 @@
 
 Pipeline (mm throughout):
 
-1. **Reference.** The profile is rebuilt at ``tolerance/20`` (never below the engine's
-   ``MIN_TOLERANCE``): its vertices lie on the exact curve to Clipper's 1e-8 mm rounding
-   and its chords sag by at most ``tolerance/20`` (measured by the engine).
-2. **Kerf** (optional, ``kerf=`` mm, signed: > 0 grows the material, i.e. the wire path
-   runs outside the part). The fine reference *region* is offset with shapely (round
-   joins, arc sag below the reference tolerance), which is a signed offset of the exact
-   curve to within the reference error (an offset moves every boundary point by the same
-   distance, so Hausdorff distances do not grow). Error budget: reference (<= tol/20) +
-   round-join sag (<= tol/20) + fit (<= 0.75 tol).
-3. **Fit.** :func:`gear3d.export.arcfit.fit_arcs` fits a G1 biarc spline (tangent-
-   continuous arcs; true corners of the curve stay corners) within 0.75 x tolerance of
-   the reference vertices.
-4. **Write** (R2000 by default, ``$INSUNITS`` = mm, ``$EXTMIN``/``$EXTMAX`` = the exact
+1. **Exact outline.** The part's outline as runs of its exact pieces
+   (:mod:`gear3d.export.outline`): every polygon vertex is looked up among the raw samples
+   it came from, trimmed corners become exact crossings, and one tooth period from the
+   start point (where the ray at ``start_angle_deg`` from the centre meets the contour:
+   outermost crossing for an outer contour, innermost for a hole) is a chain of runs; a
+   ring's rim is the exact circle; a rack is its exact tooth period shifted by the pitch,
+   plus its straight ends and back.
+2. **Fit and certificate** (:mod:`gear3d.export.arccert`). G1 biarcs (tangent-continuous;
+   true corners stay corners) within 0.9 x tolerance, each certified two-sided from its
+   own centre: the curve's distance to the arc's circle along the stretch of curve it
+   covers (Newton on the exact piece's parameter for the extremes), which bounds both the
+   file -> curve and the curve -> file distances. One period is fitted and certified; the
+   other teeth are the same arcs turned by the pitch (an isometry: the same errors).
+3. **Write** (R2000 by default, ``$INSUNITS`` = mm, ``$EXTMIN``/``$EXTMAX`` = the exact
    bounding box of everything written): layers ``OUTER`` (CCW loops: gear outline, ring
    rim), ``INNER`` (CW loops: holes), ``LEAD_IN`` (wire lead-in lines) and, only with
    ``construction=True``, ``CONSTRUCTION`` (centre cross, pitch circle; not plotted).
    ``dxf_version="R12"`` writes LINE/ARC entities in cutting order along each contour
    (each entity starts where the previous one ends; an arc cut clockwise is an ARC from
-   its end point to its start point, since DXF arcs run counter-clockwise: no negative
-   extrusion, which simple readers mirror); ``spline=True`` writes each contour as one
-   exact rational quadratic SPLINE (control points and weights, no fit points).
-5. **Measure.** The file is read back with ezdxf, every entity is sampled densely and
-   both distances are measured: DXF -> exact curve with ``Profile.exact_distance``
-   (nearest points on the exact evaluators; for a kerf: | distance - |kerf| |) and exact
-   curve (reference vertices, which lie on it) -> DXF. If either
-   exceeds the tolerance the fit is redone with a smaller budget; if that fails too a
-   :class:`ToleranceError` is raised and no file is left. A file is accepted only when
-   both measured distances are within the tolerance itself (no allowance for the
-   measurement's own uncertainty): no DXF is ever written whose measured error exceeds
-   its tolerance. Tolerances below :data:`DXF_MIN_TOLERANCE` are refused up front (the
-   reference could not be 20x finer than the tolerance). The tangent jump at every joint
-   is measured on the entities read back (arc centres, control polygons):
-   ``max_tangent_jump_deg`` over the smooth joints (~1e-10 deg), ``corners`` (true corners
-   of the curve, kept) and ``min_corner_deg``.
+   its end point to its start point, since DXF arcs run counter-clockwise); ``spline=True``
+   writes each contour as one exact rational quadratic SPLINE. R2000 and R12 without
+   construction geometry are written directly (:mod:`gear3d.export.dxfwrite`, the bytes
+   ezdxf would write); the other variants with ezdxf.
+
+A file is accepted only when the certified error (plus the rounding of any number the
+format recomputes, e.g. an R12 arc's centre) is within the tolerance itself. **Fallback:**
+with a ``kerf`` (signed offset, > 0 = the material grows, i.e. the wire path runs outside
+the part), or an outline the exact walk cannot follow, the old route is taken: a
+reference build 20x finer, offset with round joins (shapely), fitted by
+:func:`gear3d.export.arcfit.fit_arcs` and measured by sampling both ways against the exact
+curve (``Profile.exact_distance``), the budget shrinking (0.75, 0.45, 0.27 x tolerance)
+until it fits. The report says which (``certificate``: ``"exact"`` or ``"sampled"``).
+Tolerances below :data:`DXF_MIN_TOLERANCE` are refused up front. The tangent jump at every
+joint is measured on the arcs written: ``max_tangent_jump_deg`` over the smooth joints
+(~1e-10 deg), ``corners`` (true corners of the curve, kept) and ``min_corner_deg``.
+
+Reading back (:mod:`gear3d.export.dxfread`, ezdxf) is for the tests and benchmarks: it
+checks the certificate independently.
+
+>>> import gear3d, os, tempfile
+>>> from gear3d.export.dxf import write_dxf
+>>> p = gear3d.profile("involute", teeth=20, module=1.0, tolerance=1e-3)
+>>> r = write_dxf(p, os.path.join(tempfile.mkdtemp(), "g.dxf"))
+>>> r["certificate"], r["max_error"] <= 1e-3, r["corners"]
+('exact', True, 40)
 """
 from __future__ import annotations
 
@@ -44,14 +55,20 @@ import math
 import numpy as np
 
 from ..errors import GearError, ToleranceError, check_choice, check_number
-from .arcfit import ArcSpline, arc_points, fit_arcs, segment_tangents
+from . import arccert
+from .arcfit import ArcSpline, fit_arcs, segments_distance, tangent_jumps
+from .dxfread import joint_jumps, measure, measure_segments, read_back, read_segments, sample_segments  # noqa: F401
+from .outline import profile_outline, rack_outline, start_point
 
 VERSIONS = ("R12", "R2000", "R2004", "R2007", "R2010", "R2013", "R2018")
 OPTIONS = ("tolerance", "kerf", "lead_in", "start_angle_deg", "dxf_version", "spline",
            "construction", "pitch_circle", "max_arc_deg")
 LAYERS = {"OUTER": 7, "INNER": 5, "CONSTRUCTION": 8, "LEAD_IN": 3}
-#: mm: the finest DXF tolerance, 20x the engine's finest (the reference is built 20x finer)
+#: mm: the finest DXF tolerance, 20x the engine's finest (the fallback's reference is 20x finer)
 DXF_MIN_TOLERANCE = 2e-6
+#: the exact fit aims every span at this share of the tolerance
+BUDGET = 0.9
+_start_point = start_point          # the name the rack and SVG code used
 
 
 def write(profile, path, **opts) -> str:
@@ -67,7 +84,7 @@ def write_dxf(profile, path, tolerance=None, kerf: float = 0.0, lead_in=None,
               start_angle_deg: float = 0.0, dxf_version: str = "R2000", spline: bool = False,
               construction: bool = False, pitch_circle: bool = True, max_arc_deg: float = 90.0,
               **extra) -> dict:
-    """Write the DXF and return the measured report (segment counts, errors in mm).
+    """Write the DXF and return the certified report (segment counts, errors in mm).
 
     ``tolerance`` (mm, default the profile's): max distance between the written contours
     and the exact (offset) curve. ``kerf`` (mm): signed offset, > 0 = material grows.
@@ -92,15 +109,23 @@ def write_dxf(profile, path, tolerance=None, kerf: float = 0.0, lead_in=None,
         raise GearError("construction", construction, "False for a rack (it has no centre or pitch circle)")
     if lead_in is not None:
         lead_in = check_number("lead_in", lead_in, 0, 100 * _module(profile), lo_open=True, unit="mm")
+    fits, loops, rep = fit_profile(profile, tolerance=tolerance, kerf=kerf, start_angle_deg=start_angle_deg,
+                                   max_arc_deg=max_arc_deg)
+    leads = [_lead_in(f, lead_in, loops) for f in fits] if lead_in is not None else None
+    rounding = _write(path, fits, profile, dxf_version, spline, pitch_circle if construction else None,
+                      construction, leads)
+    rep = dict(rep, max_error=rep["max_error"] + rounding,
+               max_error_curve_to_dxf=rep["max_error_curve_to_dxf"] + rounding)
+    _accept(rep)
+    return {"dxf_version": dxf_version, "spline": bool(spline), "construction": bool(construction), **rep}
 
-    def write_measure(fits, loops, exact, kerf, tol):
-        _write_doc(path, fits, loops, profile, dxf_version, spline,
-                   pitch_circle if construction else None, construction, lead_in)
-        return measure(path, exact, loops, kerf, tol, fits)
 
-    r = fit_profile(profile, write_measure, tolerance=tolerance, kerf=kerf,
-                    start_angle_deg=start_angle_deg, max_arc_deg=max_arc_deg)
-    return {"dxf_version": dxf_version, "spline": bool(spline), "construction": bool(construction), **r}
+def _accept(rep):
+    """ToleranceError unless both certified distances are within the tolerance."""
+    worst = max(rep["max_error"], rep["max_error_curve_to_dxf"])
+    if not worst <= rep["tolerance"]:
+        raise ToleranceError("tolerance", rep["tolerance"], "a larger tolerance for the arc fit",
+                             f"certified {worst:.3g} mm")
 
 
 def _module(profile):
@@ -117,17 +142,19 @@ def _module(profile):
     return profile.module
 
 
-def fit_profile(profile, write_measure, tolerance=None, kerf: float = 0.0, start_angle_deg: float = 0.0,
-                max_arc_deg: float = 90.0) -> dict:
-    """Fit the profile's contours with G1 biarcs and certify a file written from them.
+def _is_rack(profile) -> bool:
+    return hasattr(profile, "straight_edges") and not hasattr(profile, "pitch_radius")
 
-    ``write_measure(fits, ref_loops, exact, kerf, tol) -> dict`` writes the file from the
-    fits (:class:`ArcSpline`, one per contour, in cutting order from the start point at
-    ``start_angle_deg``), reads it back and returns at least ``max_error`` (file -> exact
-    curve) and ``max_error_curve_to_dxf`` (exact curve -> file), mm. The fit budget shrinks
-    (0.75, 0.45, 0.27 x tolerance) until both are within the tolerance, else
-    :class:`ToleranceError`. Returns the report (counts, budget, measured errors); the
-    formats that share this: DXF and the SVG outline.
+
+def fit_profile(profile, tolerance=None, kerf: float = 0.0, start_angle_deg: float = 0.0,
+                max_arc_deg: float = 90.0):
+    """G1 biarc fits of the profile's contours, certified within the tolerance.
+
+    Returns (fits, loops, report): one :class:`ArcSpline` per contour in cutting order
+    from the start point at ``start_angle_deg``; the polygons the lead-in must not cross
+    (mm); the report (counts, budget, ``max_error`` = file -> exact curve and
+    ``max_error_curve_to_dxf`` = exact curve -> file, mm, ``certificate``). Shared by the
+    DXF and the SVG outline. ToleranceError when no fit meets the tolerance.
     """
     from ..tessellate import MIN_TOLERANCE
     m = _module(profile)
@@ -140,57 +167,167 @@ def fit_profile(profile, write_measure, tolerance=None, kerf: float = 0.0, start
     kerf = check_number("kerf", kerf, -m, m, unit="mm (at most one module)")
     start = math.radians(check_number("start_angle_deg", start_angle_deg, -360, 360, unit="deg"))
     max_arc_deg = check_number("max_arc_deg", max_arc_deg, 1, 180, unit="deg")
-
     exact = profile if abs(profile.tolerance - tol) <= 1e-15 else profile.at_tolerance(tol)
+    fits, loops, rep = certified_fits(exact, profile, tol, kerf, start, max_arc_deg)
+    _accept(dict(rep, tolerance=tol))
+    arcs = sum(f.arcs for f in fits)
+    lines = sum(f.lines for f in fits)
+    return fits, loops, {"tolerance": tol, "kerf": kerf, "arcs": arcs, "lines": lines, "segments": arcs + lines,
+                         "polyline_vertices": int(sum(len(l) for l in exact.loops)), **rep, **_joints_report(fits)}
+
+
+def certified_fits(exact, profile, tol: float, kerf: float, start: float, max_arc_deg: float):
+    """(fits, lead-in polygons, report): the exact route (``exact``: the part at the
+    tolerance), else the sampled fallback (from ``profile``). Nothing is accepted here:
+    :func:`fit_profile` checks the report against the tolerance."""
+    got = _exact_fits(exact, tol, start, max_arc_deg) if kerf == 0.0 else None
+    if got is not None:
+        return got[0], [np.asarray(l, float) for l in exact.loops], got[1]
+    return _sampled_fits(profile, tol, kerf, start, max_arc_deg)
+
+
+def _joints_report(fits) -> dict:
+    """Tangent jumps (deg) at the joints of the fits: the smooth ones and the corners."""
+    j = [tangent_jumps(f) for f in fits]
+    smooth = np.concatenate([a[~f.corners] for a, f in zip(j, fits)])
+    corner = np.concatenate([a[f.corners] for a, f in zip(j, fits)])
+    return {"contours": len(fits), "max_tangent_jump_deg": float(smooth.max(initial=0.0)),
+            "smooth_joints": int(len(smooth)), "corners": int(len(corner)),
+            "min_corner_deg": float(corner.min()) if len(corner) else None}
+
+
+# ---------------------------------------------------------------- the exact route
+
+def _exact_fits(profile, tol: float, start: float, max_arc_deg: float):
+    """(fits, report) from the exact outline and its certificate, or None when the outline
+    cannot be walked or a span cannot be certified within the tolerance."""
+    contours = rack_outline(profile, start) if _is_rack(profile) else profile_outline(profile, start)
+    if contours is None:
+        return None
+    fits, errs, gaps, evals, known = [], [], [], 0, 0
+    for c in contours:
+        F = arccert.fit(c.runs, BUDGET * tol, max_arc_deg)
+        if not F.error <= tol or not _passes_check(F, c):
+            return None
+        spline, err = _replicate(F, c, BUDGET * tol, max_arc_deg)
+        if not err <= tol:
+            return None
+        fits.append(spline)
+        errs.append(err)
+        gaps.append(F.gap)
+        evals += F.evaluations
+        known += sum(len(b) for b in c.runs.breaks)
+    err = float(max(errs))
+    return fits, {"certificate": "exact", "fit_budget": BUDGET * tol, "reference_vertices": int(known),
+                  "reference_error": float(max(gaps)), "measurement_uncertainty": 0.0,
+                  "max_error": err, "max_error_curve_to_dxf": err, "samples": int(evals)}
+
+
+def _passes_check(F: arccert.Fit, contour) -> bool:
+    """The outline walk's own check: every polygon vertex known to lie on the exact curve
+    in this period lies within the certified error (+ Clipper's rounding) of the fitted
+    arcs. A stretch of the outline the walk missed would show here."""
+    if contour.check is None or not len(contour.check):
+        return True
+    sp = F.spans
+    A = np.concatenate([sp.P0, sp.J])
+    B = np.concatenate([sp.J, sp.P1])
+    d = segments_distance(contour.check, A, B, np.concatenate([sp.b1, sp.b2]))
+    return bool(d.max() <= F.error + 1e-7)
+
+
+def _vertices(sp: arccert.Spans, corner):
+    """Vertices, bulges and corner flags of biarc spans (a span whose two arcs are
+    straight is one line)."""
+    line = (sp.b1 == 0.0) & (sp.b2 == 0.0)
+    n = len(sp.u0)
+    V = np.empty((2 * n, 2))
+    V[0::2], V[1::2] = sp.P0, sp.J
+    B = np.empty(2 * n)
+    B[0::2], B[1::2] = sp.b1, sp.b2
+    C = np.zeros(2 * n, bool)
+    C[0::2] = corner
+    keep = np.ones(2 * n, bool)
+    keep[1::2] = ~line
+    return V[keep], B[keep], C[keep]
+
+
+def _replicate(F: arccert.Fit, contour, budget: float, max_arc_deg: float):
+    """The whole contour as an :class:`ArcSpline` from its start point, and the largest
+    certified error (mm): the period's biarcs repeated ``contour.copies`` times, each
+    turned and shifted by ``close``. When the period starts at a corner, the biarc of
+    tooth 0 that holds the start point is split there (two biarcs, certified)."""
+    sp, cor = F.spans, F.corner
+    a, dx = contour.runs.close
+    cps = contour.copies
+    if contour.start_u is None:
+        V, B, C = _vertices(sp, cor)
+        reps = [V if k == 0 else arccert.transform(V, (k * a, k * dx)) for k in range(cps)]
+        return ArcSpline(np.concatenate(reps), np.tile(B, cps), np.tile(C, cps)), F.error
+    us = contour.start_u
+    j = int(np.clip(np.searchsorted(sp.u0, us, side="right") - 1, 0, len(sp.u0) - 1))
+    err = F.error
+    if us > sp.u0[j]:
+        parts = arccert.split_span(contour.runs, sp.take(np.array([j])), us, budget, max_arc_deg)
+        err = max(err, float(parts.error.max()) + F.gap)
+        first = parts.u0 < us
+        pc = np.zeros(len(parts.u0), bool)
+        pc[0] = cor[j]
+        head = arccert.Spans.cat(parts.take(np.nonzero(~first)[0]), sp.take(np.arange(j + 1, len(sp.u0))))
+        hc = np.concatenate([pc[~first], cor[j + 1:]])
+        tail = arccert.Spans.cat(sp.take(np.arange(0, j)), parts.take(np.nonzero(first)[0]))
+        tc = np.concatenate([cor[:j], pc[first]])
+    else:
+        head, hc = sp.take(np.arange(j, len(sp.u0))), cor[j:]
+        tail, tc = sp.take(np.arange(0, j)), cor[:j]
+    # the start point lies one period on: the part after it, turned one period back, leads;
+    # the periods follow; the part before it (turned back the same way) closes the contour
+    Vh, Bh, Ch = _vertices(head, hc)
+    Vt, Bt, Ct = _vertices(tail, tc)
+    Vh, Vt = arccert.untransform(Vh, (a, dx)), arccert.untransform(Vt, (a, dx))
+    V, B, C = _vertices(sp, cor)
+    mid = [V if k == 0 else arccert.transform(V, (k * a, k * dx)) for k in range(0, cps - 1)]
+    return (ArcSpline(np.concatenate([Vh, *mid, Vt]), np.concatenate([Bh, np.tile(B, cps - 1), Bt]),
+                      np.concatenate([Ch, np.tile(C, cps - 1), Ct])), err)
+
+
+# ---------------------------------------------------------------- the sampled fallback
+
+def _sampled_fits(profile, tol: float, kerf: float, start: float, max_arc_deg: float):
+    """The old route (see the module doc): a fit on a reference polygon 20x finer (offset
+    by the kerf), measured by sampling both ways against the exact curve."""
+    from ..tessellate import MIN_TOLERANCE
     ref_tol = max(tol / 20, MIN_TOLERANCE)
     ref = profile if profile.tolerance <= ref_tol else profile.at_tolerance(ref_tol)
-    ref_err = float(ref.report["max_error"])
     loops = [np.asarray(l, float) for l in ref.loops]
     if kerf != 0.0:
         loops = offset_loops(loops, kerf, ref_tol)
-    starts = [_start_point(l, start) for l in loops]
+    starts = [start_point(l, start) for l in loops]
     loops = [np.insert(l, i + 1, p, axis=0) if ins else l for l, (i, p, ins) in zip(loops, starts)]
     start_idx = [(i + 1) if ins else i for i, _, ins in starts]
-
-    # a rack's straight edges (flanks, ends, back) are known exactly: each one LINE
     straight = [None] * len(loops)
     if kerf == 0.0 and hasattr(ref, "straight_edges"):
         straight = [ref.straight_edges(l) for l in loops]
     budget = 0.75 * tol
-    for attempt in range(3):
+    for _attempt in range(3):
         fits = [fit_arcs(l, budget, start=s, max_angle_deg=max_arc_deg, straight=st)
                 for l, s, st in zip(loops, start_idx, straight)]
-        # measured on the fine build's exact boundary: the same exact evaluators, but its
-        # trimmed corners are bounded 20x tighter (a coarse build's boundary lets a foot
-        # point run past a trimmed corner by up to its own tolerance)
-        meas = write_measure(fits, loops, ref, kerf, tol)
+        segs = [(f.vertices, np.roll(f.vertices, -1, axis=0), f.bulges) for f in fits]
+        meas = certify_sampled(segs, ref, loops, kerf, tol)
         if meas["max_error"] <= tol and meas["max_error_curve_to_dxf"] <= tol:
             break
         budget *= 0.6
-    else:
-        raise ToleranceError("tolerance", tol, "a larger tolerance for the arc fit",
-                             f"measured {max(meas['max_error'], meas['max_error_curve_to_dxf']):.3g} mm "
-                             f"after 3 fits")
-    arcs = sum(f.arcs for f in fits)
-    lines = sum(f.lines for f in fits)
-    return {
-        "tolerance": tol, "kerf": kerf,
-        "arcs": arcs, "lines": lines, "segments": arcs + lines,
-        "polyline_vertices": int(sum(len(l) for l in exact.loops)),
-        "reference_vertices": int(sum(len(l) for l in loops)),
-        "fit_budget": budget, "reference_error": ref_err,
-        # file -> curve is measured on the exact evaluators (Newton's nearest points); the
-        # curve -> file side uses the reference vertices, which lie on the exact curve
-        "measurement_uncertainty": 0.0,
-        **meas,
-    }
+    rep = {"certificate": "sampled", "fit_budget": budget, "reference_vertices": int(sum(len(l) for l in loops)),
+           "reference_error": float(ref.report["max_error"]), "measurement_uncertainty": 0.0,
+           "max_error": float(meas["max_error"]), "max_error_curve_to_dxf": float(meas["max_error_curve_to_dxf"]),
+           "samples": int(meas["samples"])}
+    return fits, loops, rep
 
 
-# ---------------------------------------------------------------- geometry helpers
-
-def _signed_area(l):
-    x, y = l[:, 0], l[:, 1]
-    return 0.5 * float(np.dot(x, np.roll(y, -1)) - np.dot(np.roll(x, -1), y))
+def certify_sampled(segs, exact, ref_loops, kerf: float, tol: float) -> dict:
+    """The fallback's measurement of contours (A, B, bulge) against the exact curve
+    (:func:`gear3d.export.dxfread.measure_segments`)."""
+    return measure_segments(segs, exact, ref_loops, kerf, tol)
 
 
 def offset_loops(loops, kerf: float, sag: float) -> list:
@@ -221,34 +358,30 @@ def offset_loops(loops, kerf: float, sag: float) -> list:
     return out
 
 
-def _start_point(loop, angle):
-    """(segment index i, point, inserted?) where the ray at ``angle`` meets ``loop``:
-    outermost crossing for a CCW loop, innermost for a CW loop."""
-    d = np.array([math.cos(angle), math.sin(angle)])
-    a = loop
-    b = np.roll(loop, -1, axis=0)
-    e = b - a
-    den = e[:, 0] * d[1] - e[:, 1] * d[0]           # cross(e, d)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        s = (a[:, 1] * d[0] - a[:, 0] * d[1]) / den  # a + s e lies on the line t d
-        pts = a + s[:, None] * e
-        t = pts @ d
-    ok = (den != 0) & (s >= 0) & (s < 1) & (t > 0)
-    if not ok.any():
-        return 0, loop[0], False
-    idx = np.nonzero(ok)[0]
-    k = idx[np.argmax(t[idx])] if _signed_area(loop) > 0 else idx[np.argmin(t[idx])]
-    p = pts[k]
-    if np.hypot(*(p - a[k])) < 1e-9:
-        return int(k), a[k], False
-    if np.hypot(*(p - b[k])) < 1e-9:
-        return int((k + 1) % len(loop)), b[k], False
-    return int(k), p, True
+# ---------------------------------------------------------------- geometry helpers
+
+def _signed_area(l):
+    x, y = l[:, 0], l[:, 1]
+    return 0.5 * float(np.dot(x, np.roll(y, -1)) - np.dot(np.roll(x, -1), y))
+
+
+def _crosses(a, b, loops) -> bool:
+    """True when the segment a -> b crosses or touches an edge of any closed polygon."""
+    for l in loops:
+        p, q = l, np.roll(l, -1, axis=0)
+        d1, d2 = b - a, q - p
+        den = d1[0] * d2[:, 1] - d1[1] * d2[:, 0]
+        w = p - a
+        with np.errstate(divide="ignore", invalid="ignore"):
+            s = (w[:, 0] * d2[:, 1] - w[:, 1] * d2[:, 0]) / den
+            t = (w[:, 0] * d1[1] - w[:, 1] * d1[0]) / den
+        if np.any((den != 0) & (s >= 0) & (s <= 1) & (t >= 0) & (t <= 1)):
+            return True
+    return False
 
 
 def _lead_in(fit: ArcSpline, length: float, loops_all):
     """Wire start point: ``length`` along the contour's scrap-side normal at its first vertex."""
-    import shapely
     P = fit.vertices[0]
     A, B, bu = next(fit.segments())
     u = (B - A) / np.hypot(*(B - A))
@@ -256,102 +389,9 @@ def _lead_in(fit: ArcSpline, length: float, loops_all):
     t = np.array([u[0] * math.cos(h) + u[1] * math.sin(h), -u[0] * math.sin(h) + u[1] * math.cos(h)])
     n = np.array([t[1], -t[0]])                       # right of travel = scrap side
     W = P + length * n
-    seg = shapely.LineString([W, P + 1e-6 * length * n])
-    for l in loops_all:
-        if seg.intersects(shapely.LinearRing(l)):
-            raise GearError("lead_in", length, "a shorter lead-in", "it crosses a contour")
+    if _crosses(W, P + 1e-6 * length * n, loops_all):
+        raise GearError("lead_in", length, "a shorter lead-in", "it crosses a contour")
     return W, P
-
-
-# ---------------------------------------------------------------- writing
-
-def _rational_quadratic(fit: ArcSpline):
-    """Control points, weights and knots of the exact degree-2 NURBS of an arc spline."""
-    cps, ws = [], []
-    for A, B, b in fit.segments():
-        c = np.hypot(*(B - A))
-        u = (B - A) / c
-        n = np.array([u[1], -u[0]])
-        half = 2 * math.atan(b)                        # half the included angle
-        M = 0.5 * (A + B) + n * (0.5 * c * math.tan(half))
-        cps += [A, M]
-        ws += [1.0, math.cos(half)]
-    cps.append(fit.vertices[0])
-    ws.append(1.0)
-    m = len(fit.vertices)
-    knots = [0.0, 0.0, 0.0] + [float(k) for k in range(1, m) for _ in (0, 1)] + [float(m)] * 3
-    return np.array(cps), ws, knots
-
-
-def _write_doc(path, *args):
-    import ezdxf
-    import logging
-    log = logging.getLogger("ezdxf")
-    fixed, level = ezdxf.options.write_fixed_meta_data_for_testing, log.level
-    ezdxf.options.write_fixed_meta_data_for_testing = True   # no dates, constant GUIDs
-    log.setLevel(logging.ERROR)                              # R12: "$INSUNITS not exported"
-    try:
-        doc = _make_doc(*args)
-        doc.saveas(path)
-    finally:
-        ezdxf.options.write_fixed_meta_data_for_testing = fixed
-        log.setLevel(level)
-
-
-def _make_doc(fits, loops, profile, version, spline, pitch_circle, construction, lead_in):
-    import ezdxf
-    from ezdxf.math import bulge_to_arc
-    # R12 has no $INSUNITS (ezdxf logs that it drops it); mm is still the drawing's unit
-    doc = ezdxf.new(version, units=ezdxf.units.MM if version != "R12" else 0)
-    doc.header["$MEASUREMENT"] = 1
-    doc.header["$LUNITS"] = 2
-    for name, color in LAYERS.items():
-        if name == "CONSTRUCTION" and not construction:
-            continue
-        lay = doc.layers.add(name, color=color)
-        if name == "CONSTRUCTION":
-            lay.dxf.plot = 0
-    msp = doc.modelspace()
-    boxes = []
-    for fit, loop in zip(fits, loops):
-        layer = "OUTER" if _signed_area(loop) > 0 else "INNER"
-        at = {"layer": layer}
-        boxes.append(spline_bbox(fit))
-        if version == "R12":
-            # cutting order: each entity starts where the previous one ends; an arc cut
-            # clockwise (bulge < 0) is the counter-clockwise ARC from its end to its start
-            for A, B, b in fit.segments():
-                if b == 0.0:
-                    msp.add_line(tuple(A), tuple(B), dxfattribs=at)
-                else:
-                    c, a0, a1, r = bulge_to_arc(tuple(A), tuple(B), b)
-                    msp.add_arc((c.x, c.y), r, math.degrees(a0), math.degrees(a1), dxfattribs=at)
-        elif spline:
-            cps, ws, knots = _rational_quadratic(fit)
-            msp.add_rational_spline([tuple(p) for p in cps], ws, degree=2, knots=knots, dxfattribs=at)
-        else:
-            pts = [(float(v[0]), float(v[1]), 0.0, 0.0, float(b)) for v, b in zip(fit.vertices, fit.bulges)]
-            msp.add_lwpolyline(pts, format="xyseb", close=True, dxfattribs=at)
-        if lead_in is not None:
-            W, P = _lead_in(fit, lead_in, loops)
-            msp.add_line(tuple(W), tuple(P), dxfattribs={"layer": "LEAD_IN"})
-            boxes.append(np.array([W, W]))
-    if construction:
-        mark = 0.5 * profile.module
-        cat = {"layer": "CONSTRUCTION"}
-        msp.add_line((-mark, 0), (mark, 0), dxfattribs=cat)
-        msp.add_line((0, -mark), (0, mark), dxfattribs=cat)
-        boxes.append(np.array([[-mark, -mark], [mark, mark]]))
-        if pitch_circle:
-            rp = profile.pitch_radius
-            msp.add_circle((0, 0), rp, dxfattribs=cat)
-            boxes.append(np.array([[-rp, -rp], [rp, rp]]))
-    allp = np.concatenate(boxes)
-    lo, hi = allp.min(axis=0), allp.max(axis=0)
-    ext = (float(lo[0]), float(lo[1]), 0.0), (float(hi[0]), float(hi[1]), 0.0)
-    doc.header["$EXTMIN"], doc.header["$EXTMAX"] = ext
-    msp.reset_extents(*ext)            # ezdxf copies the layout's extents into the header on save
-    return doc
 
 
 def spline_bbox(fit: ArcSpline) -> np.ndarray:
@@ -382,123 +422,120 @@ def spline_bbox(fit: ArcSpline) -> np.ndarray:
     return np.stack([P.min(axis=0), P.max(axis=0)])
 
 
-# ---------------------------------------------------------------- reading back
+# ---------------------------------------------------------------- writing
 
-def read_segments(path, layers=("OUTER", "INNER")) -> list:
-    """The contours of a DXF file on ``layers`` as arc splines read back from the entities:
-    a list of (A (N,2), B (N,2), bulge (N,)) in the direction of travel, mm.
+def _write(path, fits, profile, version, spline, pitch_circle, construction, leads) -> float:
+    """Write the file; return the rounding (mm) of numbers the format recomputes from the
+    fits (an R12 arc's centre, radius and angles; a SPLINE's control points), else 0."""
+    from . import dxfwrite
+    boxes = [spline_bbox(f) for f in fits] + ([np.array([W, W]) for W, _ in leads] if leads else [])
+    allp = np.concatenate(boxes)
+    box = (tuple(allp.min(axis=0)), tuple(allp.max(axis=0)))
+    if version in dxfwrite.FAST_VERSIONS and not spline and not construction:
+        ents = []
+        for k, f in enumerate(fits):
+            ents.append(dxfwrite.Polyline("OUTER" if _signed_area(f.vertices) > 0 else "INNER", f.vertices, f.bulges))
+            if leads:
+                ents.append(dxfwrite.Line("LEAD_IN", tuple(leads[k][0]), tuple(leads[k][1])))
+        dxfwrite.write(path, version, ents, box)
+    else:
+        _write_doc(path, fits, profile, version, spline, pitch_circle, construction, leads, box)
+    return _rounding(fits, version, spline)
 
-    LWPOLYLINE: its vertices and bulges. LINE/ARC (R12): chained in file order, each entity
-    joined to the previous one's end (an ARC met at its end point is reversed: negative
-    bulge); a chain closes when the next entity does not touch it. SPLINE (the exact
-    rational quadratic of :func:`_rational_quadratic`): each span's control triangle
-    (A, M, B) gives the arc's bulge tan(theta/4) with cos(theta/2) = the middle weight."""
+
+def _rounding(fits, version, spline) -> float:
+    """How far (mm) the arcs a reader rebuilds from the numbers the format stores can lie
+    from the fitted arcs: R12 (ARC centre, radius, angles in degrees) and SPLINE (control
+    points, weights) are recomputed from the bulges, in double precision; a bound of
+    64 ulps of the largest coordinate (LWPOLYLINE stores the fit's own numbers: 0)."""
+    if version != "R12" and not spline:
+        return 0.0
+    big = max(float(np.abs(f.vertices).max(initial=1.0)) for f in fits)
+    return 64 * np.spacing(max(big, 1.0))
+
+
+def _rational_quadratic(fit: ArcSpline):
+    """Control points, weights and knots of the exact degree-2 NURBS of an arc spline."""
+    cps, ws = [], []
+    for A, B, b in fit.segments():
+        c = np.hypot(*(B - A))
+        u = (B - A) / c
+        n = np.array([u[1], -u[0]])
+        half = 2 * math.atan(b)                        # half the included angle
+        M = 0.5 * (A + B) + n * (0.5 * c * math.tan(half))
+        cps += [A, M]
+        ws += [1.0, math.cos(half)]
+    cps.append(fit.vertices[0])
+    ws.append(1.0)
+    m = len(fit.vertices)
+    knots = [0.0, 0.0, 0.0] + [float(k) for k in range(1, m) for _ in (0, 1)] + [float(m)] * 3
+    return np.array(cps), ws, knots
+
+
+def _write_doc(path, *args):
+    import logging
+
     import ezdxf
-    doc = ezdxf.readfile(path)
-    out, chain = [], []
-    for e in doc.modelspace():
-        if e.dxf.layer not in layers:
-            continue
-        t = e.dxftype()
-        if t == "LWPOLYLINE":
-            p = np.array([(x, y, b) for x, y, b in e.get_points("xyb")], float)
-            out.append((p[:, :2], np.roll(p[:, :2], -1, axis=0), p[:, 2]))
-        elif t == "SPLINE":
-            cp = np.array([(v[0], v[1]) for v in e.control_points], float)
-            w = np.asarray(e.weights, float) if len(e.weights) else np.ones(len(cp))
-            A, M, B = cp[0:-1:2], cp[1::2], cp[2::2]
-            half = np.arccos(np.clip(w[1::2], -1, 1))
-            side = np.sign((B - A)[:, 0] * (M - A)[:, 1] - (B - A)[:, 1] * (M - A)[:, 0])
-            out.append((A, B, -side * np.tan(half / 2)))       # M left of the chord: CW (b < 0)
-        elif t == "LINE":
-            chain.append((np.array([e.dxf.start.x, e.dxf.start.y]), np.array([e.dxf.end.x, e.dxf.end.y]), 0.0))
-        elif t == "ARC":
-            c, r = e.dxf.center, e.dxf.radius
-            a0, a1 = math.radians(e.dxf.start_angle), math.radians(e.dxf.end_angle)
-            sweep = (a1 - a0) % (2 * math.pi)
-            S = np.array([c.x + r * math.cos(a0), c.y + r * math.sin(a0)])
-            E = np.array([c.x + r * math.cos(a1), c.y + r * math.sin(a1)])
-            chain.append((S, E, math.tan(sweep / 4)))
-    out += _chain(chain)
-    return out
+    log = logging.getLogger("ezdxf")
+    fixed, level = ezdxf.options.write_fixed_meta_data_for_testing, log.level
+    ezdxf.options.write_fixed_meta_data_for_testing = True   # no dates, constant GUIDs
+    log.setLevel(logging.ERROR)                              # R12: "$INSUNITS not exported"
+    try:
+        doc = _make_doc(*args)
+        doc.saveas(path)
+    finally:
+        ezdxf.options.write_fixed_meta_data_for_testing = fixed
+        log.setLevel(level)
 
 
-def _chain(segs, eps=1e-7):
-    """Join (A, B, bulge) entities end to end, in file order, into closed contours."""
-    loops, cur = [], []
-    for A, B, b in segs:
-        if not cur:
-            cur = [(A, B, b)]
+def _make_doc(fits, profile, version, spline, pitch_circle, construction, leads, box):
+    import ezdxf
+    from ezdxf.math import bulge_to_arc
+    # R12 has no $INSUNITS (ezdxf logs that it drops it); mm is still the drawing's unit
+    doc = ezdxf.new(version, units=ezdxf.units.MM if version != "R12" else 0)
+    doc.header["$MEASUREMENT"] = 1
+    doc.header["$LUNITS"] = 2
+    for name, color in LAYERS.items():
+        if name == "CONSTRUCTION" and not construction:
             continue
-        end = cur[-1][1]
-        if np.hypot(*(A - end)) <= eps:
-            cur.append((A, B, b))
-        elif np.hypot(*(B - end)) <= eps:
-            cur.append((B, A, -b))
-        elif len(cur) == 1 and np.hypot(*(A - cur[0][0])) <= eps:
-            cur = [(cur[0][1], cur[0][0], -cur[0][2]), (A, B, b)]
-        elif len(cur) == 1 and np.hypot(*(B - cur[0][0])) <= eps:
-            cur = [(cur[0][1], cur[0][0], -cur[0][2]), (B, A, -b)]
+        lay = doc.layers.add(name, color=color)
+        if name == "CONSTRUCTION":
+            lay.dxf.plot = 0
+    msp = doc.modelspace()
+    boxes = [np.asarray(box, float)]
+    for k, fit in enumerate(fits):
+        at = {"layer": "OUTER" if _signed_area(fit.vertices) > 0 else "INNER"}
+        if version == "R12":
+            # cutting order: each entity starts where the previous one ends; an arc cut
+            # clockwise (bulge < 0) is the counter-clockwise ARC from its end to its start
+            for A, B, b in fit.segments():
+                if b == 0.0:
+                    msp.add_line(tuple(A), tuple(B), dxfattribs=at)
+                else:
+                    c, a0, a1, r = bulge_to_arc(tuple(A), tuple(B), b)
+                    msp.add_arc((c.x, c.y), r, math.degrees(a0), math.degrees(a1), dxfattribs=at)
+        elif spline:
+            cps, ws, knots = _rational_quadratic(fit)
+            msp.add_rational_spline([tuple(p) for p in cps], ws, degree=2, knots=knots, dxfattribs=at)
         else:
-            loops.append(cur)
-            cur = [(A, B, b)]
-    if cur:
-        loops.append(cur)
-    return [(np.array([s[0] for s in c]), np.array([s[1] for s in c]), np.array([s[2] for s in c], float))
-            for c in loops]
-
-
-def sample_segments(segs, sag: float) -> np.ndarray:
-    """Points (N,2) along one contour (A, B, bulge) with chord sag <= ``sag`` mm."""
-    A, B, b = segs
-    return np.concatenate([arc_points(a, e, float(k), sag)[:-1] for a, e, k in zip(A, B, b)])
-
-
-def joint_jumps(segs) -> np.ndarray:
-    """Tangent change (deg) at every joint of one closed contour (A, B, bulge): joint k is
-    where segment k starts."""
-    A, B, b = segs
-    t0, t1 = segment_tangents(A, B, b)
-    tin = np.roll(t1, 1, axis=0)
-    cross = tin[:, 0] * t0[:, 1] - tin[:, 1] * t0[:, 0]
-    return np.degrees(np.abs(np.arctan2(cross, np.einsum("ij,ij->i", tin, t0))))
-
-
-def read_back(path, sag: float, layers=("OUTER", "INNER")) -> list:
-    """Closed contours (list of (N,2) mm arrays) of a DXF file on ``layers``, sampled with
-    chord sag <= ``sag`` mm: LWPOLYLINE (bulges), LINE/ARC chains, SPLINE."""
-    return [sample_segments(s, sag) for s in read_segments(path, layers)]
-
-
-def measure(path, exact, ref_loops, kerf: float, tol: float, fits=None) -> dict:
-    """Two-sided distance (mm) between the DXF read back and the exact (offset) curve, and
-    the tangent jumps at its joints (deg; the fits say which joints are true corners)."""
-    segs = read_segments(path)
-    return measure_segments(segs, exact, ref_loops, kerf, tol, fits)
-
-
-def measure_segments(segs, exact, ref_loops, kerf: float, tol: float, fits=None) -> dict:
-    """:func:`measure` for contours already read back as (A, B, bulge) (any format)."""
-    from ..geometry import nearest_distance
-    got = [sample_segments(s, tol / 100) for s in segs]
-    pts = np.concatenate(got)
-    d = exact.exact_distance(pts)
-    if kerf:
-        d = np.abs(d - abs(kerf))
-    back = nearest_distance(got, np.concatenate(ref_loops))
-    r = {"max_error": float(d.max()), "max_error_curve_to_dxf": float(back.max()),
-         "contours": len(got), "samples": int(len(pts))}
-    if fits is not None:
-        smooth, corner = [], []
-        for s, f in zip(segs, fits):
-            j = joint_jumps(s)
-            if len(j) != len(f.corners):
-                raise GearError("file", len(j), f"{len(f.corners)} joints read back")
-            smooth.append(j[~f.corners])
-            corner.append(j[f.corners])
-        smooth, corner = np.concatenate(smooth), np.concatenate(corner)
-        r["max_tangent_jump_deg"] = float(smooth.max(initial=0.0))
-        r["smooth_joints"] = int(len(smooth))
-        r["corners"] = int(len(corner))
-        r["min_corner_deg"] = float(corner.min()) if len(corner) else None
-    return r
+            pts = [(float(v[0]), float(v[1]), 0.0, 0.0, float(b)) for v, b in zip(fit.vertices, fit.bulges)]
+            msp.add_lwpolyline(pts, format="xyseb", close=True, dxfattribs=at)
+        if leads:
+            W, P = leads[k]
+            msp.add_line(tuple(W), tuple(P), dxfattribs={"layer": "LEAD_IN"})
+    if construction:
+        mark = 0.5 * profile.module
+        cat = {"layer": "CONSTRUCTION"}
+        msp.add_line((-mark, 0), (mark, 0), dxfattribs=cat)
+        msp.add_line((0, -mark), (0, mark), dxfattribs=cat)
+        boxes.append(np.array([[-mark, -mark], [mark, mark]]))
+        if pitch_circle:
+            rp = profile.pitch_radius
+            msp.add_circle((0, 0), rp, dxfattribs=cat)
+            boxes.append(np.array([[-rp, -rp], [rp, rp]]))
+    allp = np.concatenate(boxes)
+    lo, hi = allp.min(axis=0), allp.max(axis=0)
+    ext = (float(lo[0]), float(lo[1]), 0.0), (float(hi[0]), float(hi[1]), 0.0)
+    doc.header["$EXTMIN"], doc.header["$EXTMAX"] = ext
+    msp.reset_extents(*ext)            # ezdxf copies the layout's extents into the header on save
+    return doc

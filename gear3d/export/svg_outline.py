@@ -2,23 +2,29 @@
 
 Pipeline (mm throughout):
 
-1. **Fit.** The same G1 biarc fit as the DXF (:func:`gear3d.export.dxf.fit_profile`): a
-   reference 20x finer than the tolerance, an optional signed ``kerf`` offset, biarcs
-   within 0.75 x tolerance, true corners kept.
+1. **Fit.** The same certified G1 biarc fit as the DXF (:func:`gear3d.export.dxf.fit_profile`:
+   the exact outline, biarcs certified two-sided from their own centres; an optional
+   signed ``kerf`` offset; true corners kept).
 2. **Write.** ``width``/``height`` in ``mm`` and a ``viewBox`` in mm, so one user unit is
    one millimetre and the file loads at 1:1 in Inkscape, LightBurn or a browser. One
    ``<path>`` per closed contour (``class="outer"``: the part's outline or a ring's rim,
    ``class="inner"``: holes) built from ``M``, ``A`` (elliptical-arc command with equal
    radii) and ``L``; nothing else is drawn: no circles, text or construction. SVG's y axis
    points down, so the part's y is written negated (the drawing is the part seen from
-   above, not mirrored). Coordinates carry 10 significant digits (1e-6 mm at 100 mm).
-3. **Measure.** The file is read back with *svgelements* (an independent SVG reader):
-   every path's arcs and lines are taken from the parsed path data, sampled and measured
-   both ways against the exact curve exactly as the DXF is (file -> exact curve with
-   ``Profile.exact_distance``, exact curve -> file through the reference vertices), and
-   the tangent jumps at the joints are measured. A file is accepted only when both
-   distances are within the tolerance; otherwise the fit is redone with a smaller budget
-   or a :class:`ToleranceError` is raised and no file is left.
+   above, not mirrored). Coordinates and radii carry 12 decimals (1e-12 mm), without
+   exponents; the error they add (an end point moves by the rounding d, and the arc
+   through the rounded ends and radius by at most d (2 + 1/cos(sweep/2))) is added to the
+   certified error.
+3. **Accept.** The file is kept only when the certified error is within the tolerance;
+   otherwise a :class:`ToleranceError` is raised and no file is left. Reading it back with
+   *svgelements* (an independent SVG reader, :func:`measure`) is for the tests.
+
+>>> import gear3d, os, tempfile
+>>> from gear3d.export.svg_outline import write_svg_outline
+>>> p = gear3d.profile("involute", teeth=20, module=1.0, tolerance=1e-3)
+>>> r = write_svg_outline(p, os.path.join(tempfile.mkdtemp(), "g.svg"))
+>>> r["certificate"], r["max_error"] <= 1e-3
+('exact', True)
 """
 from __future__ import annotations
 
@@ -53,43 +59,52 @@ def write_svg_outline(profile, path, tolerance=None, kerf: float = 0.0, start_an
     ``stroke_width`` (mm) of the cut lines; ``margin`` (mm) of empty page around the part.
     """
     from ..errors import check_number
-    from .dxf import fit_profile
+    from .dxf import _accept, fit_profile
     if extra:
         k = sorted(extra)[0]
         raise GearError(k, extra[k], "not an option of the SVG outline: one of " + ", ".join(OPTIONS))
     stroke_width = check_number("stroke_width", stroke_width, 0, 10, lo_open=True, unit="mm")
     margin = check_number("margin", margin, 0, 1000, unit="mm")
-    page = {}
-
-    def write_measure(fits, loops, exact, kerf_, tol):
-        page.update(_write(path, fits, stroke_width, margin))
-        return measure(path, exact, loops, kerf_, tol, fits)
-
-    r = fit_profile(profile, write_measure, tolerance=tolerance, kerf=kerf,
-                    start_angle_deg=start_angle_deg, max_arc_deg=max_arc_deg)
+    fits, _loops, r = fit_profile(profile, tolerance=tolerance, kerf=kerf, start_angle_deg=start_angle_deg,
+                                  max_arc_deg=max_arc_deg)
+    page = _write(path, fits, stroke_width, margin)
+    rounding = page.pop("rounding")
+    r = dict(r, max_error=r["max_error"] + rounding, max_error_curve_to_dxf=r["max_error_curve_to_dxf"] + rounding)
+    _accept(r)
     return {**page, **r}
 
 
+#: decimals of the written numbers (mm)
+DECIMALS = 12
+
+
 def _num(v: float) -> str:
-    s = f"{v:.10g}"
-    return "0" if s == "-0" else s
+    s = f"{v:.{DECIMALS}f}".rstrip("0").rstrip(".")
+    return "0" if s in ("-0", "") else s
 
 
-def _path_data(fit) -> str:
+def _path_data(fit, worst: list) -> str:
     """``d`` of one closed contour; y negated (SVG's y points down), so a counter-clockwise
-    arc of the part (bulge > 0) is written with sweep-flag 0."""
+    arc of the part (bulge > 0) is written with sweep-flag 0. ``worst`` collects the
+    rounding bound (mm) of the numbers written (see the module doc)."""
     V = fit.vertices
     parts = [f"M{_num(V[0, 0])},{_num(-V[0, 1])}"]
+    d, cmin = 0.0, 1.0
     for A, B, b in fit.segments():
         x, y = _num(B[0]), _num(-B[1])
+        d = max(d, abs(float(x) - B[0]), abs(float(y) + B[1]))
         if b == 0.0:
             parts.append(f"L{x},{y}")
             continue
         c = math.hypot(*(B - A))
         r = c * (1 + b * b) / (4 * abs(b))
+        rs = _num(r)
+        d = max(d, abs(float(rs) - r))
+        cmin = min(cmin, math.cos(2 * math.atan(abs(b))))
         large = 1 if abs(b) > 1 else 0
         sweep = 0 if b > 0 else 1
-        parts.append(f"A{_num(r)},{_num(r)} 0 {large} {sweep} {x},{y}")
+        parts.append(f"A{rs},{rs} 0 {large} {sweep} {x},{y}")
+    worst.append(float(d * (2 + 1 / max(cmin, 1e-3))))
     return " ".join(parts) + " Z"
 
 
@@ -109,14 +124,16 @@ def _write(path, fits, stroke_width, margin) -> dict:
     lines = ['<?xml version="1.0" encoding="UTF-8"?>',
              f'<svg xmlns="http://www.w3.org/2000/svg" version="1.1" width="{_num(w)}mm" height="{_num(h)}mm" '
              f'viewBox="{_num(x0)} {_num(y0)} {_num(w)} {_num(h)}">']
+    worst = [0.0]
     for k, f in enumerate(fits):
         cls = "outer" if signed_area(f.vertices) > 0 else "inner"
         lines.append(f'<path id="contour-{k}" class="{cls}" fill="none" stroke="#000000" '
-                     f'stroke-width="{_num(stroke_width)}" d="{_path_data(f)}"/>')
+                     f'stroke-width="{_num(stroke_width)}" d="{_path_data(f, worst)}"/>')
     lines.append("</svg>")
     with open(path, "w", encoding="utf-8", newline="\n") as fh:
         fh.write("\n".join(lines) + "\n")
-    return {"width_mm": float(w), "height_mm": float(h), "viewbox": [float(x0), float(y0), float(w), float(h)]}
+    return {"width_mm": float(w), "height_mm": float(h), "viewbox": [float(x0), float(y0), float(w), float(h)],
+            "rounding": max(worst)}
 
 
 def write_polygons(loops, path, stroke_width: float = STROKE_WIDTH, margin: float = 1.0) -> dict:
@@ -124,7 +141,9 @@ def write_polygons(loops, path, stroke_width: float = STROKE_WIDTH, margin: floa
     outline) as a 1:1 SVG outline of straight segments; return the page size (mm)."""
     from .arcfit import ArcSpline
     fits = [ArcSpline(np.asarray(l, float), np.zeros(len(l)), np.zeros(len(l), bool)) for l in loops]
-    return _write(path, fits, stroke_width, margin)
+    page = _write(path, fits, stroke_width, margin)
+    page.pop("rounding")
+    return page
 
 
 def read_segments(path) -> list:

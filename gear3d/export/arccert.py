@@ -1,0 +1,620 @@
+"""Biarcs fitted to exact curve runs, and their two-sided certificate, for all arcs at once.
+
+A *run* is a smooth stretch of an exact piece ``G(t) -> (N, 2)`` (mm), from parameter
+``ta`` to ``tb`` (either order: travel goes from ``ta`` to ``tb``), turned by ``rot`` (rad)
+and shifted by ``dx`` (mm, along x). A closed contour (or one period of it) is a list of
+runs in travel order; consecutive runs meet at *joints*: a corner where the two one-sided
+tangents differ, else a smooth joint whose tangent both sides share.
+
+**Fit** (:func:`fit`). Between two joints P0, P1 of one run, with unit tangents T0, T1
+from the exact evaluator, the equal tangent length biarc is used (the two arcs meet at J
+with the tangent Tm). A joint shared by two biarcs gives both the same tangent, so the
+chain is G1 by construction. Joints sit on the run's known samples (``breaks``: the
+profile's own vertices), placed by an error model: a biarc's error grows as the cube of
+its length, and for one chord of length c whose end tangents make the angles a0, a1 with
+it, the error is close to c |a0 + a1| / 42 (a circle has a0 = -a1); the cube roots add up
+along a run. Every span that misses the budget, or has an arc of more than
+``max_arc_deg``, is split (at its middle sample, else its parameter midpoint) until all
+pass.
+
+**Certificate** (:func:`certify`). The arc from A to B with centre C covers the stretch of
+curve between the rays from C through A and through B. A is the curve point at the span's
+start; J is off the curve, and the normal line at J (which holds both centres: the biarc
+is G1 there) meets the curve at the parameter tJ (Newton on (G(t) - J).Tm = 0). Along
+each stretch the curve is checked to move forward round the centre (monotone angle), so
+every curve point has the arc point on its ray and every arc point has a curve point on
+its ray, at the distance |e(t)| with e(t) = |G(t) - C| - R (the signed distance to the
+circle, in a form that stays exact as R -> infinity, a line). Both one-sided distances
+(file -> curve and curve -> file) are therefore at most max |e| over the stretch. That
+maximum is taken over 17 exact samples per arc, refined by a Newton step on e'(t) = 0 from
+the samples' parabola, plus a margin of max |second difference| / 4 of the samples (the
+interpolation bound for what lies between them), plus the residual |(G(tJ) - J).Tm|.
+Nothing is read back and no finer polygon is built.
+
+Units: mm, radians inside.
+
+Example
+-------
+>>> import numpy as np
+>>> from gear3d.export.arccert import Runs, fit
+>>> quarter = lambda t: 10.0 * np.stack([np.cos(t), np.sin(t)], axis=-1)
+>>> runs = Runs.single([quarter], [0], [0.0], [np.pi / 2], close=None)
+>>> f = fit(runs, budget=1e-6)
+>>> len(f.spans.u0), bool(f.error < 1e-9)           # a circle: one biarc, exact
+(1, True)
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+#: samples per arc of the certificate (uniform in the run's parameter), plus both ends
+SAMPLES = 16
+#: samples per span that locate the biarc's joint on the curve
+SPLIT_SAMPLES = 8
+#: parameter step (absolute: pieces run over [0, 1]) of the finite-difference tangents
+STEP = 1e-6
+#: rad: joints whose two one-sided tangents differ by more are corners
+CORNER_RAD = 1e-4
+#: |bulge| below this is a straight line (tangent change <= 4e-12 rad)
+LINE_BULGE = 1e-12
+#: the error model: one chord's biarc error ~ c |a0 + a1| * MODEL (measured: 1/55 .. 1/42)
+MODEL = 1 / 40
+#: joints between runs whose chords' curvatures differ by more than this share are kept
+JUMP = 0.25
+#: the model aims at this share of the budget (the checked fit then mostly passes)
+AIM = 0.7
+#: partitions re-made from the measured errors
+CALIBRATE = 1
+#: split rounds before the fit gives up on a span
+MAX_ROUNDS = 40
+
+
+@dataclass
+class Runs:
+    """Exact runs in travel order (see the module doc). ``breaks[r]``: parameters of known
+    curve samples along run r, from ``ta[r]`` to ``tb[r]`` in travel order (the profile's
+    own vertices). ``corner[r]``: the joint at the start of run r is a corner whatever the
+    tangents say. ``close``: (angle rad, dx mm) that carries the start of run 0 to the end
+    of the last run (a closed contour: (0, 0); one period of z teeth: (+-2 pi/z, 0)); None
+    for an open chain."""
+    pieces: list
+    piece: np.ndarray
+    ta: np.ndarray
+    tb: np.ndarray
+    rot: np.ndarray
+    dx: np.ndarray
+    breaks: list
+    corner: np.ndarray
+    close: tuple | None = (0.0, 0.0)
+
+    @classmethod
+    def single(cls, pieces, piece, ta, tb, rot=None, dx=None, breaks=None, corner=None, close=(0.0, 0.0)):
+        """Runs from plain lists (rot, dx default 0; breaks default: each run's two ends)."""
+        n = len(ta)
+        z = np.zeros(n)
+        return cls(list(pieces), np.asarray(piece, int), np.asarray(ta, float), np.asarray(tb, float),
+                   z if rot is None else np.asarray(rot, float), z if dx is None else np.asarray(dx, float),
+                   breaks if breaks is not None else [np.array([a, b], float) for a, b in zip(ta, tb)],
+                   np.zeros(n, bool) if corner is None else np.asarray(corner, bool), close)
+
+    def eval(self, r, t) -> np.ndarray:
+        """Points (N, 2) mm of runs ``r`` (N,) at parameters ``t`` (N,)."""
+        r = np.asarray(r, int)
+        t = np.asarray(t, float)
+        out = np.empty((len(t), 2))
+        pc = self.piece[r]
+        for i in np.unique(pc):
+            sel = pc == i
+            with np.errstate(invalid="ignore", over="ignore"):
+                out[sel] = self.pieces[i](t[sel])
+        c, s = np.cos(self.rot[r]), np.sin(self.rot[r])
+        x, y = out[:, 0], out[:, 1]
+        return np.stack([c * x - s * y + self.dx[r], s * x + c * y], axis=1)
+
+    def locate(self, u):
+        """Run and parameter of the chain parameter ``u`` (run k covers [k, k + 1])."""
+        u = np.asarray(u, float)
+        k = np.clip(np.floor(u).astype(int), 0, len(self.ta) - 1)
+        return k, self.ta[k] + (u - k) * (self.tb[k] - self.ta[k])
+
+    def eval_u(self, u) -> np.ndarray:
+        """Points (N, 2) mm at chain parameters ``u`` (see :meth:`locate`)."""
+        return self.eval(*self.locate(u))
+
+
+def transform(p, close):
+    """Points or vectors ``p`` (N, 2) carried by ``close`` = (angle rad, dx mm)."""
+    a, dx = close
+    c, s = math.cos(a), math.sin(a)
+    p = np.asarray(p, float)
+    return np.stack([c * p[..., 0] - s * p[..., 1] + dx, s * p[..., 0] + c * p[..., 1]], axis=-1)
+
+
+def untransform(p, close):
+    """The inverse of :func:`transform`."""
+    a, dx = close
+    return transform(np.asarray(p, float) - np.array([dx, 0.0]), (-a, 0.0))
+
+
+def _unit(v):
+    n = np.hypot(v[..., 0], v[..., 1])
+    return v / np.maximum(n, 1e-300)[..., None], n
+
+
+def point_tangents(R: Runs, r, t, mode):
+    """Points (N, 2) and unit tangents (N, 2), in travel order, at runs ``r`` and
+    parameters ``t``; ``mode`` per point: 0 central differences, +1 one-sided forward (a
+    run's start), -1 one-sided backward (its end).
+
+    Where a run's parametrisation is singular at its end (the speed |dG/dt| nearly
+    vanishes: a cycloid's at the pitch circle) the one-sided derivative says nothing about
+    the curve's direction; there the tangent is the limit of the secants, extrapolated
+    (Richardson) from the secants to 1e-3 and 2e-3 of the run further in."""
+    r, t, mode = np.asarray(r, int), np.asarray(t, float), np.asarray(mode, int)
+    s = np.sign(R.tb[r] - R.ta[r])
+    w = np.abs(R.tb[r] - R.ta[r])
+    h = np.minimum(STEP, w / 4)
+    central = mode == 0
+    d = np.where(central, 1.0, mode) * s * h
+    base = np.where(central, t - d, t)
+    far = mode * s * w * 1e-3
+    G = R.eval(np.repeat(r, 5), np.stack([base, base + d, base + 2 * d, t + far, t + 2 * far],
+                                         axis=1).ravel()).reshape(-1, 5, 2)
+    # both are 2h dG/dtau, tau the travel (backward one-sided: the sign of mode turns it)
+    D = np.where(central[:, None], G[:, 2] - G[:, 0], (-3 * G[:, 0] + 4 * G[:, 1] - G[:, 2]) * mode[:, None])
+    T, n = _unit(D)
+    s1, l1 = _unit((G[:, 3] - G[:, 0]) * mode[:, None])
+    s2, _ = _unit((G[:, 4] - G[:, 0]) * mode[:, None])
+    sec, _ = _unit(2 * s1 - s2)
+    slow = ~central & (n / (2 * h) * (w * 1e-3) < 0.5 * l1)
+    P = np.where(central[:, None], G[:, 1], G[:, 0])
+    return P, np.where(slow[:, None], sec, T)
+
+
+# ------------------------------------------------------------------ biarcs and circles
+
+def bulges(A, B, T) -> np.ndarray:
+    """Bulges (N,) of the arcs from A to B whose tangent at A is T (unit), all (N, 2)."""
+    d = B - A
+    alpha = np.arctan2(d[:, 0] * T[:, 1] - d[:, 1] * T[:, 0], d[:, 0] * T[:, 0] + d[:, 1] * T[:, 1])
+    b = np.tan(-0.5 * alpha)
+    return np.where(np.abs(b) < LINE_BULGE, 0.0, b)
+
+
+def biarcs(P0, T0, P1, T1):
+    """Equal tangent length biarcs for all spans at once: (J, Tm, b1, b2, ok): the joint
+    J, its unit tangent Tm and the two bulges; ``ok`` False where none exists (the
+    tangents point away from each other) or an arc would turn by more than 180 deg."""
+    v = P1 - P0
+    t = T0 + T1
+    vv = np.einsum("ij,ij->i", v, v)
+    vt = np.einsum("ij,ij->i", v, t)
+    c1 = 1.0 - np.einsum("ij,ij->i", T0, T1)
+    den = vt + np.sqrt(np.maximum(vt * vt + 2.0 * c1 * vv, 0.0))
+    ok = (vv > 0) & (den > 1e-12 * np.sqrt(vv))
+    d = np.where(ok, vv / np.where(ok, den, 1.0), 0.0)
+    Q0, Q1 = P0 + d[:, None] * T0, P1 - d[:, None] * T1
+    J = 0.5 * (Q0 + Q1)
+    Tm, nm = _unit(Q1 - Q0)
+    ok &= nm > 0
+    b1, b2 = bulges(P0, J, T0), bulges(J, P1, Tm)
+    ok &= np.isfinite(b1) & np.isfinite(b2) & (np.abs(b1) <= 1) & (np.abs(b2) <= 1)
+    return J, Tm, b1, b2, ok
+
+
+def _frame(A, B):
+    d = B - A
+    c = np.hypot(d[:, 0], d[:, 1])
+    u = d / np.maximum(c, 1e-300)[:, None]
+    return c, u, np.stack([u[:, 1], -u[:, 0]], axis=1)
+
+
+def circle_distance(Q, A, B, b) -> np.ndarray:
+    """Signed distance (N, K) from points Q (N, K, 2) to the full circles through A[n],
+    B[n] (N, 2) with bulges b[n] (exact as b -> 0, where the circle becomes the chord's
+    line): with q = Q - mid, f = b(|q|^2 - c^2/4) - (c/2)(b^2 - 1) q.n equals
+    b(|Q - C|^2 - R^2), and the distance d solves b d^2 + K d - f = 0, K = c(1 + b^2)/2."""
+    c, _u, n = _frame(A, B)
+    q = Q - (0.5 * (A + B))[:, None, :]
+    qq = np.einsum("nkj,nkj->nk", q, q) - 0.25 * (c * c)[:, None]
+    qn = np.einsum("nkj,nj->nk", q, n)
+    bb = b[:, None]
+    f = bb * qq - 0.5 * c[:, None] * (bb * bb - 1.0) * qn
+    K = 0.5 * c * (1.0 + b * b)
+    disc = np.maximum(K[:, None] ** 2 + 4.0 * bb * f, 0.0)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return 2.0 * f / (K[:, None] + np.sqrt(disc))
+
+
+def forward(Q, A, B, b) -> np.ndarray:
+    """(N, K-1) True where Q[:, k] -> Q[:, k+1] moves forward round the arc A -> B (bulge
+    b): along the circle's direction of travel at the radial foot of Q[:, k]."""
+    c, u, n = _frame(A, B)
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        Rs = c * (1 + b * b) / (4 * b)                         # signed radius (inf: a line)
+        C = 0.5 * (A + B) + n * (0.5 * b * c - Rs)[:, None]
+    line = ~np.isfinite(C).all(axis=1) | (np.abs(b) < 1e-9)
+    rad, _ = _unit(Q - np.where(line[:, None], 0.0, C)[:, None, :])
+    sgn = np.where(b < 0, -1.0, 1.0)[:, None, None]
+    tang = np.where(line[:, None, None], u[:, None, :], np.stack([-rad[..., 1], rad[..., 0]], axis=-1) * sgn)
+    return np.einsum("nkj,nkj->nk", np.diff(Q, axis=1), tang[:, :-1]) > 0
+
+
+# ------------------------------------------------------------------ the certificate
+
+@dataclass
+class Spans:
+    """Biarcs along a chain: chain parameters u0 -> u1 (run k covers [k, k + 1]; a span
+    may cross smooth joints), ends P0 -> P1 (on the curve) with unit tangents T0, T1, the
+    joint J, bulges b1 (P0 -> J) and b2 (J -> P1), the certified error (mm; inf where the
+    biarc is not valid), and the joint indices j0, j1 of its ends (-1: not a joint)."""
+    u0: np.ndarray
+    u1: np.ndarray
+    P0: np.ndarray
+    P1: np.ndarray
+    T0: np.ndarray
+    T1: np.ndarray
+    J: np.ndarray
+    b1: np.ndarray
+    b2: np.ndarray
+    error: np.ndarray
+    j0: np.ndarray
+    j1: np.ndarray
+
+    FIELDS = ("u0", "u1", "P0", "P1", "T0", "T1", "J", "b1", "b2", "error", "j0", "j1")
+
+    def take(self, idx) -> "Spans":
+        return Spans(*(getattr(self, f)[idx] for f in self.FIELDS))
+
+    @staticmethod
+    def cat(a: "Spans", b: "Spans") -> "Spans":
+        return Spans(*(np.concatenate([getattr(a, f), getattr(b, f)]) for f in Spans.FIELDS))
+
+
+def _half_error(e, t, T3, e3):
+    """Certified max |e| of one arc: its uniform samples ``e`` (n, K+1) at ``t``, plus e at
+    t* - h, t*, t* + h (``e3``) around the samples' parabola vertex t* (``T3``): the largest
+    value seen, the Newton-predicted peak e(t*) - e'^2 / (2 e'') when Newton's step stays
+    within a sample spacing, and the interpolation margin max |second difference| / 4."""
+    h = (T3[:, 2] - T3[:, 0]) / 2
+    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+        d1 = (e3[:, 2] - e3[:, 0]) / (2 * h)
+        d2 = (e3[:, 2] - 2 * e3[:, 1] + e3[:, 0]) / (h * h)
+        step = np.abs(d1 / d2)
+        peak = e3[:, 1] - d1 * d1 / (2 * d2)
+    near = np.isfinite(step) & (step <= np.abs(t[:, 1] - t[:, 0])) & np.isfinite(peak)
+    seen = np.maximum(np.abs(e).max(axis=1), np.abs(e3).max(axis=1))
+    top = np.where(near, np.maximum(seen, np.abs(np.where(near, peak, 0.0))), seen)
+    return top + 0.25 * np.abs(np.diff(e, 2, axis=1)).max(axis=1)
+
+
+def _vertex(t, e):
+    """(n, 3): t* - h, t*, t* + h around the vertex of the parabola through the largest
+    |e| sample and its neighbours (h = 1 % of the sample spacing)."""
+    n, k = e.shape
+    m = np.clip(np.argmax(np.abs(e), axis=1), 1, k - 2)
+    rows = np.arange(n)
+    em, e0, ep = e[rows, m - 1], e[rows, m], e[rows, m + 1]
+    curv = em - 2 * e0 + ep
+    with np.errstate(invalid="ignore", divide="ignore"):
+        frac = np.where(np.abs(curv) > 0, -(ep - em) / (2 * curv), 0.0)
+    dt = t[:, 1] - t[:, 0]
+    ts = t[rows, m] + np.clip(np.nan_to_num(frac), -1, 1) * dt
+    h = np.abs(dt) * 1e-2
+    return np.stack([ts - h, ts, ts + h], axis=1)
+
+
+def certify(R: Runs, u0, u1, P0, P1, T0, T1, j0=None, j1=None) -> Spans:
+    """Biarcs between (P0, T0) and (P1, T1) over the chain parameters [u0, u1] with their
+    certified two-sided error (mm, see the module doc; inf where no valid biarc exists).
+    Three rounds of exact evaluations for all spans at once."""
+    u0, u1 = np.asarray(u0, float), np.asarray(u1, float)
+    n = len(u0)
+    j0 = np.full(n, -1) if j0 is None else np.asarray(j0, int)
+    j1 = np.full(n, -1) if j1 is None else np.asarray(j1, int)
+    J, Tm, b1, b2, ok = biarcs(P0, T0, P1, T1)
+    if n == 0:
+        return Spans(u0, u1, P0, P1, T0, T1, J, b1, b2, np.zeros(0), j0, j1)
+    rows = np.arange(n)
+    # 1: where the normal at J meets the curve, first from a few samples (g rises along the span)
+    Us = u0[:, None] + (u1 - u0)[:, None] * np.linspace(0.0, 1.0, SPLIT_SAMPLES + 1)
+    Q = R.eval_u(Us.ravel()).reshape(n, -1, 2)
+    Q[:, 0], Q[:, -1] = P0, P1
+    g = np.einsum("nkj,nj->nk", Q - J[:, None, :], Tm)
+    ok &= np.isfinite(g).all(axis=1) & (np.diff(g, axis=1) > 0).all(axis=1) & (g[:, 0] < 0) & (g[:, -1] > 0)
+    k = np.clip(np.argmax(g >= 0, axis=1), 1, SPLIT_SAMPLES)
+    ga, gb = g[rows, k - 1], g[rows, k]
+    lo, hi = Us[rows, k - 1], Us[rows, k]
+    uJ = lo + (hi - lo) * np.where(gb > ga, -ga / np.where(gb > ga, gb - ga, 1.0), 0.5)
+    # 2: a Newton step on uJ; each arc's samples, uniform over its stretch [u0, uJ], [uJ, u1]
+    hJ = (u1 - u0) * 1e-6
+    v = np.linspace(0.0, 1.0, SAMPLES + 1)
+    A1 = u0[:, None] + (uJ - u0)[:, None] * v
+    A2 = uJ[:, None] + (u1 - uJ)[:, None] * v
+    pts = R.eval_u(np.concatenate([uJ[:, None], (uJ + hJ)[:, None], A1, A2], axis=1).ravel()).reshape(n, -1, 2)
+    gj = np.einsum("nkj,nj->nk", pts[:, :2] - J[:, None, :], Tm)
+    der = (gj[:, 1] - gj[:, 0]) / hJ
+    uJ1 = np.clip(uJ - np.where(der > 0, gj[:, 0] / np.where(der > 0, der, 1.0), 0.0), lo, hi)
+    Q1, Q2 = pts[:, 2:2 + len(v)], pts[:, 2 + len(v):]
+    Q1[:, 0], Q2[:, -1] = P0, P1
+    e1, e2 = circle_distance(Q1, P0, J, b1), circle_distance(Q2, J, P1, b2)
+    # 3: the curve at the refined uJ, and around each arc's largest sample
+    V1, V2 = _vertex(A1, e1), _vertex(A2, e2)
+    last = R.eval_u(np.concatenate([uJ1[:, None], V1, V2], axis=1).ravel()).reshape(n, 7, 2)
+    GJ = last[:, :1]
+    eJ = np.maximum(np.abs(circle_distance(GJ, P0, J, b1)[:, 0]), np.abs(circle_distance(GJ, J, P1, b2)[:, 0]))
+    res = np.abs(np.einsum("nj,nj->n", GJ[:, 0] - J, Tm))
+    h1 = _half_error(e1, A1, V1, circle_distance(last[:, 1:4], P0, J, b1))
+    h2 = _half_error(e2, A2, V2, circle_distance(last[:, 4:7], J, P1, b2))
+    # the curve moves forward round each arc, up to and from the refined uJ
+    Q1[:, -1], Q2[:, 0] = GJ[:, 0], GJ[:, 0]
+    ok &= forward(Q1, P0, J, b1).all(axis=1) & forward(Q2, J, P1, b2).all(axis=1)
+    err = np.maximum(np.maximum(h1, h2), eJ) + res
+    err = np.where(ok & np.isfinite(err), err, np.inf)
+    return Spans(u0, u1, P0, P1, T0, T1, J, b1, b2, err, j0, j1)
+
+
+#: exact evaluations per span of one :func:`certify` call
+EVALS_PER_SPAN = SPLIT_SAMPLES + 1 + 2 + 2 * (SAMPLES + 1) + 7
+
+
+# ------------------------------------------------------------------ the fit
+
+@dataclass
+class Joints:
+    """The chain's known points (every run's breaks, one entry per joint between runs):
+    chain parameter u, point P, tangents in and out (equal except at a corner), corner."""
+    u: np.ndarray
+    P: np.ndarray
+    Tin: np.ndarray
+    Tout: np.ndarray
+    corner: np.ndarray
+    gap: float
+
+
+def _breaks(R: Runs):
+    """Every run's breaks, flattened: run, parameter, mode (+1 run start, -1 end, 0 inner)."""
+    rs, ts, ms = [], [], []
+    for k, b in enumerate(R.breaks):
+        b = np.asarray(b, float)
+        if len(b) < 2 or b[0] != R.ta[k] or b[-1] != R.tb[k]:
+            b = np.array([R.ta[k], R.tb[k]])
+        rs.append(np.full(len(b), k))
+        ts.append(b)
+        m = np.zeros(len(b), int)
+        m[0], m[-1] = 1, -1
+        ms.append(m)
+    return np.concatenate(rs), np.concatenate(ts), np.concatenate(ms)
+
+
+def joints(R: Runs) -> Joints:
+    """Points and tangents at every break (one evaluation round); at each joint between
+    runs the corner decision (the one-sided tangents differ by more than CORNER_RAD, or
+    the run says so) and, where smooth, the tangent both sides share. For a closed chain
+    the last joint is the first one carried by ``close``."""
+    r, t, mode = _breaks(R)
+    P, T = point_tangents(R, r, t, mode)
+    first, last = np.nonzero(mode == 1)[0], np.nonzero(mode == -1)[0]
+    Ts, Te, Ps, Pe = T[first], T[last], P[first], P[last]
+    if R.close is not None:
+        prev_T = np.concatenate([transform(Te[-1:], (-R.close[0], 0.0)), Te[:-1]])
+        prev_P = np.concatenate([untransform(Pe[-1:], R.close), Pe[:-1]])
+    else:
+        prev_T, prev_P = np.concatenate([Ts[:1], Te[:-1]]), np.concatenate([Ps[:1], Pe[:-1]])
+    cross = prev_T[:, 0] * Ts[:, 1] - prev_T[:, 1] * Ts[:, 0]
+    corner = R.corner | (np.abs(np.arctan2(cross, np.einsum("ij,ij->i", prev_T, Ts))) > CORNER_RAD)
+    gap = np.hypot(*(prev_P - Ps).T)
+    if R.close is None:
+        corner[0], gap[0] = True, 0.0
+    shared, _ = _unit(prev_T + Ts)
+    Tout_run = np.where(corner[:, None], Ts, shared)
+    Tin_run = np.where(corner[:, None], prev_T, shared)
+    # one entry per joint: the run starts, the inner breaks, and the chain's end
+    keep = mode != -1
+    u = np.arange(len(t), dtype=float)
+    u = r + (t - R.ta[r]) / np.where(R.tb[r] != R.ta[r], R.tb[r] - R.ta[r], 1.0)
+    Tin, Tout, cor = T.copy(), T.copy(), np.zeros(len(t), bool)
+    Tin[first], Tout[first], cor[first] = Tin_run, Tout_run, corner
+    uj, Pj, Tinj, Toutj, cj = u[keep], P[keep], Tin[keep], Tout[keep], cor[keep]
+    if R.close is not None:
+        Pend = transform(Ps[:1], R.close)
+        Tend = transform(Tin_run[:1], (R.close[0], 0.0))
+    else:
+        Pend, Tend = Pe[-1:], Te[-1:]
+    return Joints(np.concatenate([uj, [float(len(R.ta))]]), np.concatenate([Pj, Pend]),
+                  np.concatenate([Tinj, Tend]), np.concatenate([Toutj, Tend]),
+                  np.concatenate([cj, [True]]), float(gap.max(initial=0.0)))
+
+
+def _chord_weights(jt: Joints):
+    """Per chord between known joints the cube root of its modelled biarc error (mm^1/3),
+    and the forced joints: corners, curvature jumps between runs, the chain's ends."""
+    P, T0, T1 = jt.P, jt.Tout[:-1], jt.Tin[1:]
+    d = P[1:] - P[:-1]
+    c = np.hypot(d[:, 0], d[:, 1])
+    u = d / np.maximum(c, 1e-300)[:, None]
+    a0 = np.arctan2(u[:, 0] * T0[:, 1] - u[:, 1] * T0[:, 0], np.einsum("ij,ij->i", u, T0))
+    a1 = np.arctan2(u[:, 0] * T1[:, 1] - u[:, 1] * T1[:, 0], np.einsum("ij,ij->i", u, T1))
+    w = np.cbrt(MODEL * c * np.abs(a0 + a1))
+    # joints between runs where the curvature jumps (a fillet meets a flank) are kept
+    # too: the model, which sees each chord alone, cannot see a jump between chords
+    kappa = (a1 - a0) / np.maximum(c, 1e-300)
+    runs_end = np.nonzero(np.abs(jt.u[1:-1] - np.round(jt.u[1:-1])) == 0)[0] + 1
+    ka, kb = kappa[runs_end - 1], kappa[runs_end]
+    jump = np.abs(kb - ka) > JUMP * np.maximum(np.abs(ka), np.abs(kb))
+    forced = np.union1d(np.nonzero(jt.corner)[0], runs_end[jump])
+    if forced[0] != 0:
+        forced = np.concatenate([[0], forced])
+    return w, forced
+
+
+def _partition(jt: Joints, w, forced, share: float) -> np.ndarray:
+    """Chain parameters of the joints between the forced ones: equal parts of the summed
+    chord weights ``w``, each at most ``share`` (interpolated linearly within chords)."""
+    cum = np.concatenate([[0.0], np.cumsum(w)]) / share
+    a, b = forced[:-1], forced[1:]
+    total = cum[b] - cum[a]
+    count = np.maximum(1, np.ceil(total - 1e-9)).astype(int)
+    many = np.nonzero(count > 1)[0]
+    if not len(many):
+        return np.zeros(0)
+    seg = np.repeat(many, count[many] - 1)
+    kk = np.concatenate([np.arange(1, m) for m in count[many]])
+    target = cum[a[seg]] + total[seg] * kk / count[seg]
+    keep = np.concatenate([[True], np.diff(cum) > 0])
+    return np.interp(target, cum[keep], jt.u[keep])
+
+
+def _calibrated(jt: Joints, w, sp: "Spans", budget: float) -> np.ndarray:
+    """The chord weights rescaled so that along every certified span they add up to the
+    cube root of its measured error (a span that failed counts as 8 x budget)."""
+    cum = np.concatenate([[0.0], np.cumsum(w)])
+    span_w = np.interp(sp.u1, jt.u, cum) - np.interp(sp.u0, jt.u, cum)
+    e = np.where(np.isfinite(sp.error), np.minimum(sp.error, 8 * budget), 8 * budget)
+    f = np.cbrt(np.maximum(e, 1e-18)) / np.maximum(span_w, 1e-12)
+    mid = 0.5 * (jt.u[:-1] + jt.u[1:])
+    k = np.clip(np.searchsorted(sp.u0, mid, side="right") - 1, 0, len(sp.u0) - 1)
+    return w * f[k]
+
+
+def _too_wide(b, max_arc_deg):
+    return 4 * np.arctan(np.abs(b)) > math.radians(max_arc_deg) * (1 + 1e-12)
+
+
+@dataclass
+class Fit:
+    """A certified biarc chain: ``spans`` in travel order, ``corner`` (per span: its start
+    is a corner), ``gap`` (mm: the largest distance between two runs' ends that meet at a
+    joint), ``evaluations`` (exact curve points evaluated)."""
+    spans: Spans
+    corner: np.ndarray
+    gap: float
+    evaluations: int
+
+    @property
+    def error(self) -> float:
+        """The certified two-sided error (mm) of the chain: the worst span plus the gap."""
+        return float(self.spans.error.max(initial=0.0)) + self.gap
+
+
+def fit(R: Runs, budget: float, max_arc_deg: float = 90.0) -> Fit:
+    """Certified G1 biarcs along the chain, each within ``budget`` (mm), with arcs of at
+    most ``max_arc_deg``; a span that cannot meet them keeps its error (inf when no biarc
+    is valid): the caller checks :attr:`Fit.error`.
+
+    Rounds: the modelled partition, certified; the partition again with every span's
+    weights calibrated by its measured error (spans aimed at AIM x budget); then failing
+    spans are split and neighbours merged where one biarc passes."""
+    jt = joints(R)
+    w, forced = _chord_weights(jt)
+    sp, evals = _certify_partition(R, jt, forced, _partition(jt, w, forced, np.cbrt(AIM * budget)))
+    evals += 5 * sum(len(b) for b in R.breaks)
+    for _ in range(CALIBRATE):
+        w = _calibrated(jt, w, sp, budget)
+        sp2, ev = _certify_partition(R, jt, forced, _partition(jt, w, forced, np.cbrt(AIM * budget)))
+        evals += ev
+        if np.count_nonzero(sp2.error > budget) + len(sp2.u0) <= np.count_nonzero(sp.error > budget) + len(sp.u0):
+            sp = sp2
+    sp, evals = _refine(R, sp, budget, max_arc_deg, jt, evals)
+    fixed = np.zeros(len(jt.u), bool)
+    fixed[forced] = True
+    for parity in (0, 1):
+        sp, evals = _merge(R, sp, budget, max_arc_deg, fixed, parity, evals)
+    corner = (sp.j0 >= 0) & jt.corner[np.maximum(sp.j0, 0)]
+    return Fit(sp, corner, jt.gap, evals)
+
+
+def _certify_partition(R: Runs, jt: Joints, forced, ut):
+    """Certified biarcs between the forced joints and the joints at chain parameters
+    ``ut``; (spans, exact evaluations)."""
+    k, t = R.locate(ut)
+    Pt, Tt = point_tangents(R, k, t, _inner_mode(R, k, t))
+    idx = np.concatenate([forced, np.full(len(ut), -1)])
+    u = np.concatenate([jt.u[forced], ut])
+    o = np.argsort(u, kind="stable")
+    idx, u = idx[o], u[o]
+    P = np.concatenate([jt.P[forced], Pt])[o]
+    Tin = np.concatenate([jt.Tin[forced], Tt])[o]
+    Tout = np.concatenate([jt.Tout[forced], Tt])[o]
+    sp = certify(R, u[:-1], u[1:], P[:-1], P[1:], Tout[:-1], Tin[1:], idx[:-1], idx[1:])
+    return sp, 5 * len(ut) + EVALS_PER_SPAN * (len(u) - 1)
+
+
+def _refine(R: Runs, sp: Spans, budget: float, max_arc_deg: float, jt: Joints, evals):
+    """Split every span that misses the budget (or has too wide an arc) at its middle
+    joint, or its parameter midpoint when it spans one chord, until all pass; gives up on
+    a span narrower than 1e-9 of a run (the caller sees its error)."""
+    limit = 16 * len(jt.u) + 64                       # spans: far more than any fit needs
+    for _ in range(MAX_ROUNDS):
+        bad = ~(sp.error <= budget) | _too_wide(sp.b1, max_arc_deg) | _too_wide(sp.b2, max_arc_deg)
+        bad &= (sp.u1 - sp.u0) > 1e-9
+        if not bad.any() or len(sp.u0) > limit:
+            break
+        idx = np.nonzero(bad)[0]
+        at = (sp.j0[idx] >= 0) & (sp.j1[idx] - sp.j0[idx] >= 2)
+        jm = np.where(at, (sp.j0[idx] + sp.j1[idx]) // 2, -1)
+        um = np.where(at, jt.u[np.maximum(jm, 0)], 0.5 * (sp.u0[idx] + sp.u1[idx]))
+        Pm, Tm = jt.P[np.maximum(jm, 0)].copy(), jt.Tin[np.maximum(jm, 0)].copy()
+        mid = ~at
+        if mid.any():
+            k, t = R.locate(um[mid])
+            Pm[mid], Tm[mid] = point_tangents(R, k, t, _inner_mode(R, k, t))
+            evals += 5 * int(mid.sum())
+        cat = np.concatenate
+        new = certify(R, cat([sp.u0[idx], um]), cat([um, sp.u1[idx]]), cat([sp.P0[idx], Pm]),
+                      cat([Pm, sp.P1[idx]]), cat([sp.T0[idx], Tm]), cat([Tm, sp.T1[idx]]),
+                      cat([sp.j0[idx], jm]), cat([jm, sp.j1[idx]]))
+        evals += EVALS_PER_SPAN * len(new.u0)
+        both = Spans.cat(sp.take(np.nonzero(~bad)[0]), new)
+        sp = both.take(np.argsort(both.u0, kind="stable"))
+    return sp, evals
+
+
+def _merge(R: Runs, sp: Spans, budget: float, max_arc_deg: float, fixed, parity: int, evals):
+    """Join neighbouring spans k, k + 1 (k of the given parity) whose joint is not
+    forced, where the one biarc over both passes (the split left room)."""
+    n = len(sp.u0)
+    k = np.arange(parity, n - 1, 2)
+    free = ~((sp.j1[k] >= 0) & fixed[np.maximum(sp.j1[k], 0)])
+    guess = (np.cbrt(sp.error[k]) + np.cbrt(sp.error[k + 1])) ** 3 <= 1.5 * budget
+    k = k[free & guess]
+    if not len(k):
+        return sp, evals
+    new = certify(R, sp.u0[k], sp.u1[k + 1], sp.P0[k], sp.P1[k + 1], sp.T0[k], sp.T1[k + 1], sp.j0[k], sp.j1[k + 1])
+    evals += EVALS_PER_SPAN * len(k)
+    good = (new.error <= budget) & ~_too_wide(new.b1, max_arc_deg) & ~_too_wide(new.b2, max_arc_deg)
+    if not good.any():
+        return sp, evals
+    k = k[good]
+    drop = np.zeros(n, bool)
+    drop[k], drop[k + 1] = True, True
+    both = Spans.cat(sp.take(np.nonzero(~drop)[0]), new.take(np.nonzero(good)[0]))
+    return both.take(np.argsort(both.u0, kind="stable")), evals
+
+
+def split_span(R: Runs, sp: Spans, u: float, budget: float, max_arc_deg: float) -> Spans:
+    """The one span ``sp`` split at the chain parameter ``u`` (a joint there, with the
+    curve's tangent): certified biarcs in chain order, the halves split further where they
+    miss the budget; a joint stays at ``u``."""
+    k, t = R.locate(np.array([u]))
+    P, T = point_tangents(R, k, t, _inner_mode(R, k, t))
+    cat = np.concatenate
+    two = certify(R, cat([sp.u0, [u]]), cat([[u], sp.u1]), cat([sp.P0, P]), cat([P, sp.P1]),
+                  cat([sp.T0, T]), cat([T, sp.T1]))
+    if (two.error <= budget).all():
+        return two
+    none = Joints(np.zeros(0), np.zeros((0, 2)), np.zeros((0, 2)), np.zeros((0, 2)), np.zeros(0, bool), 0.0)
+    return _refine(R, two, budget, max_arc_deg, none, 0)[0]
+
+
+def _inner_mode(R: Runs, k, t):
+    """Central differences, or one-sided into the run within two steps of its ends."""
+    w = np.abs(R.tb[k] - R.ta[k])
+    h = np.minimum(STEP, w / 4)
+    s = np.sign(R.tb[k] - R.ta[k])
+    from_start = (t - R.ta[k]) * s
+    to_end = (R.tb[k] - t) * s
+    return np.where(from_start < 2 * h, 1, np.where(to_end < 2 * h, -1, 0))

@@ -1,0 +1,524 @@
+"""The exact outline of a part as runs of exact pieces, for the certified arc fit.
+
+A profile's polygon (:attr:`gear3d.model.Profile.loops`) is what trimming left of the
+exact pieces' samples: every vertex is a raw sample (piece i, sample j, tooth copy k),
+turned into place and rounded by Clipper (1e-8 mm), or a trimmed corner (a crossing of
+two chords). :func:`profile_outline` labels the tooth loop's vertices by looking every
+one up among the raw samples (by polar angle, then within :data:`MATCH` mm), so each
+polygon edge becomes an exact parameter interval of one piece; a corner becomes the
+exact crossing of the two pieces (Newton's method from the crossing of the two chords
+that pass through it). One tooth period from the start point (where the ray at
+``start_angle`` meets the loop: outermost for an outer loop, innermost for a hole) is
+then a chain of runs; the other teeth are the same chain turned by the pitch. A ring's
+rim is the exact circle. Anything that does not fit this picture (a vertex that is
+neither, two corners in a row, a loop that does not repeat every pitch) returns None,
+and the caller falls back to a fit on a polygon measured by sampling.
+
+:func:`rack_outline` builds a rack's outline directly from its exact tooth period
+(translated by the pitch) and its straight ends and back.
+
+Units: mm, radians inside.
+
+>>> import gear3d
+>>> from gear3d.export.outline import profile_outline
+>>> c = profile_outline(gear3d.profile("involute", teeth=20, module=1.0, tolerance=1e-3), 0.0)
+>>> [(x.copies, x.outer) for x in c], len(c[0].runs.ta)
+([(20, True)], 8)
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..geometry import rotate, signed_area
+from .arccert import Runs
+
+#: mm: a polygon vertex lies within this of its raw sample (Clipper rounds to 1e-8 mm)
+MATCH = 5e-8
+#: mm: a trimmed corner lies on the two chords whose crossing it is (Clipper's rounding)
+THROUGH = 1e-6
+#: rad: a polygon turn above this at a labelled vertex is kept as a corner (a cusp)
+SHARP = math.radians(20.0)
+
+
+def start_point(loop, angle):
+    """(edge index i, point, inserted?) where the ray from the origin at ``angle`` (rad)
+    meets the closed polygon ``loop``: the outermost crossing for a CCW loop, the
+    innermost for a CW loop; (0, loop[0], False) when it misses."""
+    d = np.array([math.cos(angle), math.sin(angle)])
+    a = loop
+    b = np.roll(loop, -1, axis=0)
+    e = b - a
+    den = e[:, 0] * d[1] - e[:, 1] * d[0]           # cross(e, d)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        s = (a[:, 1] * d[0] - a[:, 0] * d[1]) / den  # a + s e lies on the line t d
+        pts = a + s[:, None] * e
+        t = pts @ d
+    ok = (den != 0) & (s >= 0) & (s < 1) & (t > 0)
+    if not ok.any():
+        return 0, loop[0], False
+    idx = np.nonzero(ok)[0]
+    k = idx[np.argmax(t[idx])] if signed_area(loop) > 0 else idx[np.argmin(t[idx])]
+    p = pts[k]
+    if np.hypot(*(p - a[k])) < 1e-9:
+        return int(k), a[k], False
+    if np.hypot(*(p - b[k])) < 1e-9:
+        return int((k + 1) % len(loop)), b[k], False
+    return int(k), p, True
+
+
+@dataclass
+class Contour:
+    """One closed contour: ``runs`` of one period (travel order, from the start point),
+    repeated ``copies`` times, each copy turned by ``close[0]`` and shifted by
+    ``close[1]`` from the previous; ``outer`` (CCW, the material on its left) or a hole."""
+    runs: Runs
+    copies: int
+    outer: bool
+    #: points known to lie on the exact curve along this period (mm): the polygon's
+    #: labelled vertices; the fitted period must pass within its certified error of each
+    check: np.ndarray = None
+    #: chain parameter of the start point when the period starts elsewhere (at a corner)
+    start_u: float | None = None
+
+
+def _circle(radius: float):
+    def f(t):
+        t = np.asarray(t, float)
+        return np.stack([radius * np.cos(t), radius * np.sin(t)], axis=-1)
+    return f
+
+
+def circle_contour(radius: float, start_angle: float, ccw: bool = True) -> Contour:
+    """The exact circle of ``radius`` (mm) about the origin, from the angle ``start_angle``."""
+    s = 1.0 if ccw else -1.0
+    b = start_angle + s * np.linspace(0.0, 2 * math.pi, 9)
+    runs = Runs.single([_circle(radius)], [0], [b[0]], [b[-1]], breaks=[b])
+    return Contour(runs, 1, ccw, radius * np.stack([np.cos(b), np.sin(b)], axis=1))
+
+
+# ------------------------------------------------------------------ labelling
+
+def _samples(prof):
+    pieces = list(prof.pieces)
+    tps = [np.asarray(t, float) for t in prof.piece_params]
+    if prof.tip_arc is not None:
+        pieces.append(prof.tip_arc[0])
+        tps.append(np.asarray(prof.tip_arc[1], float))
+    P, I, J = [], [], []
+    for i, (G, t) in enumerate(zip(pieces, tps)):
+        with np.errstate(invalid="ignore", over="ignore"):
+            P.append(np.asarray(G(t), float))
+        I.append(np.full(len(t), i))
+        J.append(np.arange(len(t)))
+    P, I, J = np.concatenate(P), np.concatenate(I), np.concatenate(J)
+    ok = np.isfinite(P).all(axis=1)
+    return pieces, tps, P[ok], I[ok], J[ok]
+
+
+def _labels(L, S, I, J, teeth):
+    """Per vertex of L: the set of (piece, sample, copy mod teeth) it matches."""
+    pitch = 2 * math.pi / teeth
+    aS = np.arctan2(S[:, 1], S[:, 0])
+    c = math.atan2(float(np.sin(aS).sum()), float(np.cos(aS).sum()))
+    # samples near angle +-pi once more on the other side, so the search needs no wrap
+    wrap = np.nonzero(np.abs(aS) > math.pi - 0.1)[0]
+    ids = np.concatenate([np.arange(len(aS)), wrap])
+    ang = np.concatenate([aS, aS[wrap] - 2 * math.pi * np.sign(aS[wrap])])
+    o = np.argsort(ang)
+    order, aSs = ids[o], ang[o]
+    aL = np.arctan2(L[:, 1], L[:, 0])
+    rL = np.maximum(np.hypot(L[:, 0], L[:, 1]), 1e-12)
+    k0 = np.rint(((aL - c + np.pi) % (2 * np.pi) - np.pi + c) / pitch) if teeth > 1 else np.zeros(len(L))
+    labs = [set() for _ in range(len(L))]
+    for dk in ((-1, 0, 1) if teeth > 1 else (0,)):
+        k = k0 + dk
+        u = rotate(L, -k * pitch) if teeth > 1 else L
+        au = np.arctan2(u[:, 1], u[:, 0])
+        w = 2 * MATCH / rL
+        lo = np.searchsorted(aSs, au - w)
+        hi = np.searchsorted(aSs, au + w)
+        for off in range(int((hi - lo).max(initial=0))):
+            v = np.nonzero(lo + off < hi)[0]
+            m = order[lo[v] + off]
+            near = np.hypot(*(S[m] - u[v]).T) < MATCH
+            for vv, mm, kk in zip(v[near], m[near], k[v][near]):
+                labs[vv].add((int(I[mm]), int(J[mm]), int(kk) % teeth))
+    return labs
+
+
+def _edge(la, lb):
+    """The (piece, copy, ja, jb) both ends of a polygon edge share (adjacent samples
+    first), or None."""
+    best = None
+    for pa, ja, ka in la:
+        for pb, jb, kb in lb:
+            if pa == pb and ka == kb and ja != jb:
+                if abs(ja - jb) == 1:
+                    return pa, ka, ja, jb
+                if best is None or abs(ja - jb) < abs(best[2] - best[3]):
+                    best = (pa, ka, ja, jb)
+    return best
+
+
+# ------------------------------------------------------------------ corners
+
+def _crossing(pieces, pa, ka, sa, pb, kb, sb, pitch, iters: int = 30):
+    """Newton on R_ka Ga(s) = R_kb Gb(u) from (sa, sb); returns (s, u, residual mm)."""
+    Ga, Gb = pieces[pa], pieces[pb]
+    ra, rb = ka * pitch, kb * pitch
+    s, u = float(sa), float(sb)
+    h = 1e-7
+    res = math.inf
+    for _ in range(iters):
+        A = rotate(Ga(np.array([s - h, s, s + h])), ra)
+        B = rotate(Gb(np.array([u - h, u, u + h])), rb)
+        F = A[1] - B[1]
+        res = math.hypot(*F)
+        if not np.isfinite(res) or res < 1e-12:
+            break
+        a, b = (A[2] - A[0]) / (2 * h), -(B[2] - B[0]) / (2 * h)
+        det = a[0] * b[1] - a[1] * b[0]
+        if det == 0:
+            return None
+        ds = (-F[0] * b[1] + F[1] * b[0]) / det
+        du = (-a[0] * F[1] + a[1] * F[0]) / det
+        s, u = s + ds, u + du
+    return (s, u, res) if np.isfinite(res) else None
+
+
+def _chord_candidates(lab, exclude, tps, pieces, pitch):
+    """Chords (piece, copy, j0, j1) through a labelled vertex, other than ``exclude``."""
+    out = []
+    for p, j, k in lab:
+        for j1 in (j - 1, j + 1):
+            if 0 <= j1 < len(tps[p]) and (p, k, j, j1) != exclude and (p, k, j1, j) != exclude:
+                out.append((p, k, j, j1))
+    return out
+
+
+def _corner(V, la, prev_a, lb, next_b, pieces, tps, pitch):
+    """The exact corner at the unlabelled vertex V between labelled vertices a and b:
+    (span a -> corner, span corner -> b) as (piece, copy, t_from, t_to), or None."""
+    def through(cands):
+        good = []
+        for p, k, j0, j1 in cands:
+            ends = rotate(pieces[p](np.array([tps[p][j0], tps[p][j1]])), k * pitch)
+            d = ends[1] - ends[0]
+            L2 = float(d @ d)
+            if L2 == 0:
+                continue
+            f = float((V - ends[0]) @ d) / L2
+            if -1e-9 <= f <= 1 + 1e-9 and math.hypot(*(ends[0] + f * d - V)) <= THROUGH:
+                good.append((p, k, j0, j1, f))
+        return good
+    A = through(_chord_candidates(la, prev_a, tps, pieces, pitch))
+    B = through(_chord_candidates(lb, next_b, tps, pieces, pitch))
+    best = None
+    for p, k, j0, j1, f in A:
+        for q, m, i0, i1, g in B:
+            if (p, k) == (q, m):
+                continue
+            sa = tps[p][j0] + f * (tps[p][j1] - tps[p][j0])
+            # B's chord runs from b toward the corner: i0 is b's sample
+            sb = tps[q][i0] + g * (tps[q][i1] - tps[q][i0])
+            r = _crossing(pieces, p, k, sa, q, m, sb, pitch)
+            if r is None or r[2] > 1e-9:
+                continue
+            s, u, res = r
+            w_a, w_b = abs(tps[p][j1] - tps[p][j0]), abs(tps[q][i1] - tps[q][i0])
+            lo_a, hi_a = sorted((tps[p][j0], tps[p][j1]))
+            lo_b, hi_b = sorted((tps[q][i0], tps[q][i1]))
+            if not (lo_a - w_a <= s <= hi_a + w_a and lo_b - w_b <= u <= hi_b + w_b):
+                continue
+            if best is None or res < best[0]:
+                best = (res, (p, k, tps[p][j0], s), (q, m, u, tps[q][i0]))
+    return None if best is None else best[1:]
+
+
+# ------------------------------------------------------------------ spans and runs
+
+def _spans(L, labs, edges_wanted, pieces, tps, pitch):
+    """Exact spans (piece, copy, t0, t1, corner_before) of the polygon edges
+    ``edges_wanted`` (edge v runs from vertex v to v + 1; ``labs``: vertex -> labels, for
+    those vertices and two more on each side). A corner vertex splits its two edges at the
+    exact crossing. Returns {edge: span}, or None when an edge cannot be labelled."""
+    n = len(L)
+    lab = lambda v: labs.get(v % n, set())             # noqa: E731
+    edges = {}
+    for v in range(edges_wanted[0] - 2, edges_wanted[-1] + 3):
+        a, b = lab(v), lab(v + 1)
+        if a and b:
+            e = _edge(a, b)
+            if e is None:
+                return None
+            edges[v % n] = e
+    spans = {}
+    for v in edges_wanted:
+        if v % n in edges:
+            p, k, ja, jb = edges[v % n]
+            spans[v % n] = (p, k, tps[p][ja], tps[p][jb], False)
+    for v in range(edges_wanted[0], edges_wanted[-1] + 2):
+        if lab(v):
+            continue
+        a, b = (v - 1) % n, (v + 1) % n
+        ea, eb = edges.get((a - 1) % n), edges.get(b)
+        if not lab(a) or not lab(b) or ea is None or eb is None:
+            return None
+        got = _corner(L[v % n], lab(a), ea, lab(b), eb, pieces, tps, pitch)
+        if got is None:
+            return None
+        (p, k, t0, s), (q, m, u, t1) = got
+        spans[a] = (p, k, t0, s, False)
+        spans[v % n] = (q, m, u, t1, True)
+    if any(v % n not in spans for v in edges_wanted):
+        return None
+    return spans
+
+
+def _sharp(L) -> np.ndarray:
+    """Polygon turn (rad) at every vertex."""
+    d = np.roll(L, -1, axis=0) - L
+    a = np.arctan2(d[:, 1], d[:, 0])
+    return np.abs((a - np.roll(a, 1) + np.pi) % (2 * np.pi) - np.pi)
+
+
+def _to_runs(seq, pieces, pitch, close, sharp_before):
+    """Merge consecutive spans on one piece and copy into runs (breaks: the parameters
+    of the polygon's vertices along each run)."""
+    piece, ta, tb, rot, breaks, corner = [], [], [], [], [], []
+    where = []                                    # the run each span went into
+    for (p, k, t0, t1, cb), sh in zip(seq, sharp_before):
+        if abs(t1 - t0) <= 1e-12:                 # the start point on a vertex: no stretch
+            where.append(None)
+            continue
+        where.append(len(piece))
+        if piece and piece[-1] == p and rot[-1] == k and breaks[-1][-1] == t0 and not cb and not sh \
+                and (breaks[-1][-1] - breaks[-1][-2]) * (t1 - t0) > 0:
+            breaks[-1].append(t1)
+            tb[-1] = t1
+            where[-1] -= 1
+            continue
+        piece.append(p)
+        ta.append(t0)
+        tb.append(t1)
+        rot.append(k)
+        breaks.append([t0, t1])
+        corner.append(bool(cb or sh))
+    rot = np.asarray(rot, float) * pitch
+    return Runs(list(pieces), np.asarray(piece, int), np.asarray(ta, float), np.asarray(tb, float),
+                rot, np.zeros(len(ta)), [np.asarray(b, float) for b in breaks], np.asarray(corner, bool),
+                close), where
+
+
+def _start_param(span, pieces, pitch, d):
+    """Parameter in span (piece, copy, t0, t1) where the exact curve crosses the line
+    through the origin along ``d`` (bisection + secant on the cross product; the nearer
+    end when the span does not straddle it)."""
+    p, k, t0, t1 = span[:4]
+    G = pieces[p]
+
+    def f(t):
+        q = rotate(G(np.atleast_1d(np.asarray(t, float))), k * pitch)
+        return q[:, 0] * d[1] - q[:, 1] * d[0]
+    a, b = f(t0)[0], f(t1)[0]
+    if a == 0:
+        return t0
+    if b == 0 or a * b > 0:
+        return t1 if abs(b) < abs(a) else t0
+    lo, hi = t0, t1
+    for _ in range(60):
+        m = 0.5 * (lo + hi)
+        fm = f(m)[0]
+        if fm == 0:
+            return m
+        if (fm > 0) == (a > 0):
+            lo = m
+        else:
+            hi = m
+    t = 0.5 * (lo + hi)
+    return t0 if abs(t - t0) <= 1e-12 else (t1 if abs(t - t1) <= 1e-12 else t)
+
+
+def profile_outline(prof, start_angle: float):
+    """The exact contours of a :class:`gear3d.model.Profile` (see the module doc), or None."""
+    from ..model import _tooth_loop
+    z = int(prof.teeth)
+    pitch = 2 * math.pi / z
+    if not prof.pieces or not prof.piece_params:
+        return None
+    tl = _tooth_loop(prof.loops, prof.internal)
+    out = []
+    for loop in prof.loops:
+        L = np.asarray(loop, float)
+        outer = signed_area(L) > 0
+        if loop is not tl:
+            r = np.hypot(L[:, 0], L[:, 1])
+            R = prof.report.get("rim_radius")
+            if R is None or np.abs(r - R).max() > 1e-7:
+                return None
+            c = circle_contour(float(R), start_angle, ccw=outer)
+            c.check = L
+            out.append(c)
+            continue
+        c = _tooth_contour(prof, L, z, pitch, start_angle, outer)
+        if c is None:
+            return None
+        out.append(c)
+    return out
+
+
+def _tooth_contour(prof, L, z, pitch, start_angle, outer):
+    """One tooth period of the tooth loop ``L`` from the start point, as runs."""
+    n = len(L)
+    if n % z:
+        return None
+    m = n // z
+    i, _p, _ins = start_point(L, start_angle)
+    pieces, tps, S, I, J = _samples(prof)
+    window = np.arange(i - 3, i + m + 5) % n
+    labs = dict(zip(window.tolist(), _labels(L[window], S, I, J, z)))
+    spans = _spans(L, labs, list(range(i, i + m + 1)), pieces, tps, pitch)
+    if spans is None:
+        return None
+    # the edge one period on must be the same edge, one copy on
+    e0, e1 = spans[i], spans[(i + m) % n]
+    if e0[0] != e1[0] or abs(e0[2] - e1[2]) > 1e-9 or abs(e0[3] - e1[3]) > 1e-9:
+        return None
+    step = (e1[1] - e0[1]) % z
+    if z > 1 and step not in (1, z - 1):
+        return None
+    step = 1 if step == 1 else (-1 if z > 1 else 0)
+    d = np.array([math.cos(start_angle), math.sin(start_angle)])
+    ts = _start_param(e0, pieces, pitch, d)
+    turn = _sharp(L) > SHARP
+    # the period runs from the first corner after the start point (the start point then
+    # splits one biarc of tooth 0 only); a corner-free outline runs from the start point
+    corner_at = [v for v in range(i + 1, i + m) if spans[v % n][4]]
+    c = corner_at[0] if corner_at else i
+    seq, sh = [], []
+    for v in list(range(c, i + m)) + list(range(i, c)):
+        p_, k, t0, t1, cb = spans[v % n]
+        k = (k - e0[1]) % z
+        k = k - z if k > z // 2 else k                        # the copy relative to the start's
+        if v < c:
+            k += step                                       # these edges, one period on
+        if c == i and v == i:
+            t0 = ts
+        seq.append((p_, k, t0, t1, cb))
+        sh.append(bool(turn[v % n]) and not cb and not (c == i and v == i))
+    if c == i:                                               # back to the start point
+        p_, k, t0, t1, cb = spans[i % n]
+        seq.append((p_, step, t0, ts, cb))
+        sh.append(bool(turn[i % n]) and not cb)
+    runs, where = _to_runs(seq, pieces, pitch, (step * pitch, 0.0), sh)
+    runs.rot = runs.rot + e0[1] * pitch
+    if len(runs.ta) == 0:
+        return None
+    start_u = None
+    if c != i:
+        r = where[m - (c - i)]                              # edge i, one period on
+        if r is None:
+            return None
+        start_u = r + (ts - runs.ta[r]) / (runs.tb[r] - runs.ta[r])
+    # the labelled vertices of this period: (c, i + m] as they are, (i, c] one period on
+    on = [v for v in range(i + 1, i + m + 1) if labs.get(v % n)]
+    pts = np.array([L[v % n] for v in on]).reshape(-1, 2)
+    before = np.array([v <= c for v in on], bool)
+    if before.any():
+        pts[before] = rotate(pts[before], step * pitch)
+    return Contour(runs, z, outer, pts, start_u)
+
+
+# ------------------------------------------------------------------ racks
+
+def _line(a, b):
+    a, b = np.asarray(a, float), np.asarray(b, float)
+
+    def f(t):
+        t = np.asarray(t, float)[:, None]
+        return a + t * (b - a)
+    return f
+
+
+def rack_outline(part, start_angle: float):
+    """The exact contour of a rack part (:class:`gear3d.rack_part.RackPart`): its tooth
+    period's exact pieces for every tooth (shifted by the pitch), the two straight ends and
+    the back, as one closed chain of runs from the start point; or None."""
+    pieces = list(part.pieces)
+    if not pieces or len(part.samples) != len(pieces):
+        return None
+    p = part.pitch
+    N = int(part.teeth)
+    yr, yb = float(part.report["root_y"]), float(part.back_y)
+    x0, x1 = -p / 2, (N - 0.5) * p
+    ends = [np.asarray(f(np.array([0.0, 1.0])), float) for f in pieces]
+    if abs(ends[0][0, 0] - x0) > 1e-9 or abs(ends[-1][1, 0] - (x0 + p)) > 1e-9:
+        return None
+    if any(np.hypot(*(ends[i][1] - ends[i + 1][0])) > 1e-9 for i in range(len(ends) - 1)):
+        return None
+    # CCW: the back left to right, up the right end, the top right to left, down the left end
+    lines = [_line((x0, yb), (x1, yb)), _line((x1, yb), (x1, yr))]
+    allp = lines + pieces + [_line((x0, yr), (x0, yb))]
+    np_ = len(pieces)
+    piece, ta, tb, dx, brk = [0, 1], [0.0, 0.0], [1.0, 1.0], [0.0, 0.0], [np.array([0.0, 1.0])] * 2
+    for k in range(N - 1, -1, -1):
+        for i in range(np_ - 1, -1, -1):
+            t = np.asarray(part.samples[i][0], float)
+            piece.append(2 + i)
+            ta.append(float(t[-1]))
+            tb.append(float(t[0]))
+            dx.append(k * p)
+            brk.append(t[::-1].copy())
+    piece.append(2 + np_)
+    ta.append(0.0)
+    tb.append(1.0)
+    dx.append(0.0)
+    brk.append(np.array([0.0, 1.0]))
+    runs = Runs(allp, np.asarray(piece, int), np.asarray(ta), np.asarray(tb), np.zeros(len(ta)),
+                np.asarray(dx, float), brk, np.zeros(len(ta), bool), (0.0, 0.0))
+    runs = _rotate_start(runs, part.loops[0], start_angle)
+    return None if runs is None else [Contour(runs, 1, True, np.asarray(part.loops[0], float))]
+
+
+def _rotate_start(runs: Runs, loop, start_angle):
+    """The closed chain re-started where the ray at ``start_angle`` meets ``loop``."""
+    _i, P, _ins = start_point(np.asarray(loop, float), start_angle)
+    d = np.array([math.cos(start_angle), math.sin(start_angle)])
+    # the run whose chord span holds the polygon point: nearest break chord
+    best = None
+    for r in range(len(runs.ta)):
+        b = runs.breaks[r]
+        q = runs.eval(np.full(len(b), r), b)
+        a, e = q[:-1], q[1:]
+        de = e - a
+        L2 = np.maximum(np.einsum("ij,ij->i", de, de), 1e-300)
+        f = np.clip(np.einsum("ij,ij->i", P - a, de) / L2, 0, 1)
+        dist = np.hypot(*(a + f[:, None] * de - P).T)
+        j = int(np.argmin(dist))
+        if best is None or dist[j] < best[0]:
+            best = (dist[j], r, j)
+    _, r, j = best
+    b = runs.breaks[r]
+    span = (runs.piece[r], 0, b[j], b[j + 1])
+    pieces = [lambda t, r=r: runs.eval(np.full(len(np.atleast_1d(t)), r), np.atleast_1d(t))]
+    ts = _start_param((0, 0, span[2], span[3]), pieces, 0.0, d)
+    order = list(range(r, len(runs.ta))) + list(range(0, r + 1))
+    f = lambda a: np.asarray(a)[order]                 # noqa: E731
+    ta, tb = f(runs.ta).astype(float), f(runs.tb).astype(float)
+    brk = [runs.breaks[k] for k in order]
+    ta[0] = ts
+    tb[-1] = ts
+    bs = np.asarray(brk[0])
+    brk[0] = np.concatenate([[ts], bs[(bs - ts) * np.sign(tb[0] - ta[0]) > 0]])
+    be = np.asarray(brk[-1])
+    brk[-1] = np.concatenate([be[(ts - be) * np.sign(ts - be[0]) > 0], [ts]])
+    out = Runs(runs.pieces, f(runs.piece), ta, tb, f(runs.rot), f(runs.dx), brk, f(runs.corner), (0.0, 0.0))
+    keep = np.abs(out.tb - out.ta) > 0
+    if not keep.all():
+        idx = np.nonzero(keep)[0]
+        out = Runs(out.pieces, out.piece[idx], out.ta[idx], out.tb[idx], out.rot[idx], out.dx[idx],
+                   [out.breaks[k] for k in idx], out.corner[idx], (0.0, 0.0))
+    return out
