@@ -111,20 +111,20 @@ def test_dxf_below_certifiable_tolerance_refused(tol, cwd, capsys):
 
 
 def test_dxf_refused_when_measured_error_exceeds_tolerance(tmp_path, monkeypatch):
-    """The exporter's acceptance is the tolerance itself: a measurement 1 % over it (with
-    no allowance for the measurement's uncertainty) is refused and leaves no file."""
+    """The exporter's acceptance is the tolerance itself: a certified error 1 % over it (with
+    no allowance for the certificate's uncertainty) is refused and leaves no file."""
     from gear3d.export import dxf
     p = gear3d.profile("involute", teeth=8, tolerance=0.05)
-    real = dxf.measure
+    real = dxf.certified_fits
 
-    def over(path, exact, loops, kerf, tol, *rest):
-        r = real(path, exact, loops, kerf, tol, *rest)
-        return dict(r, max_error=1.01 * tol)
-    monkeypatch.setattr(dxf, "measure", over)
+    def over(exact, profile, tol, *rest):
+        fits, loops, r = real(exact, profile, tol, *rest)
+        return fits, loops, dict(r, max_error=1.01 * tol)
+    monkeypatch.setattr(dxf, "certified_fits", over)
     with pytest.raises(ToleranceError, match="tolerance"):
         gear3d.write(p, tmp_path / "g.dxf")
     assert os.listdir(tmp_path) == []
-    monkeypatch.setattr(dxf, "measure", real)
+    monkeypatch.setattr(dxf, "certified_fits", real)
     r = dxf.write_dxf(p, str(tmp_path / "g.dxf"))
     assert r["max_error"] <= r["tolerance"] and r["max_error_curve_to_dxf"] <= r["tolerance"]
 
