@@ -172,7 +172,7 @@ class Mesh:
         are left out."""
         rows, c1, n1 = self.tooth0(phis)
         if not len(rows):
-            return np.zeros(0), np.zeros(0)
+            return np.zeros(0), np.zeros(0), np.zeros(0)
         psi = self.psi(phis[rows])
         cf, nf = rotate(c1, phis[rows]), rotate(n1, phis[rows])
         q2 = self._frame2(cf, psi)
@@ -183,7 +183,7 @@ class Mesh:
         lever = (cf[:, 1] - self.c2[1]) * nf[:, 0] - (cf[:, 0] - self.c2[0]) * nf[:, 1]
         r2 = float(np.hypot(*(self.I - self.c2)))
         ok = np.isfinite(g) & (sign != 0) & (np.abs(lever) >= 0.2 * r2)
-        return g[ok] / lever[ok], g[ok] / np.abs(lever[ok])
+        return g[ok] / lever[ok], g[ok] / np.abs(lever[ok]), g[ok]
 
     def _along_normal(self, q2, d, n2):
         """The sign of the gap at points ``q2`` (wheel 2's frame, exact distances ``d`` from
@@ -207,16 +207,17 @@ class Mesh:
             sign[far] = np.where(sign[far] == np.where(inside, -1.0, 1.0), sign[far], 0.0)
         return np.where(d <= 1e-9, 1.0, sign)
 
-    def settle(self, phis, rounds: int = 3):
+    def settle(self, phis, overlaps: bool = True, rounds: int = 3):
         """Take up the play: turn wheel 2 by the turn that closes the smallest gap (over its
-        lever) among tooth 0's conjugate points, or opens the deepest overlap (a pair set
-        closer than its backlash allows); twice, the second round removing what the first
-        one's linear lever left."""
+        lever) among tooth 0's conjugate points or, with ``overlaps`` (a pair that does not
+        interfere but sits a little closer than its backlash allows), opens the deepest
+        overlap; three rounds, each removing what the previous one's linear lever left."""
         for _ in range(rounds):
-            turn, order = self.gap_turns(phis)
-            if not len(order):
+            turn, order, g = self.gap_turns(phis)
+            ok = (g >= 0) | overlaps
+            if not ok.any():
                 break
-            i = int(np.argmin(order))
+            i = int(np.argmin(np.where(ok, order, np.inf)))
             if abs(order[i]) <= 1e-12:
                 break
             self.take_up += float(turn[i])
@@ -299,9 +300,11 @@ def window(mesh) -> float:
     return min(2 * half, 2 * math.pi)
 
 
-def contact_ratio(mesh, span, band: float) -> dict:
+def contact_ratio(mesh, span, band: float, overlaps: bool = True) -> dict:
     """The conjugate contact of tooth 0 over wheel-1 angles [-span/2, span/2] (rad; None:
-    the :func:`window` in which it can touch wheel 2, up to a whole turn): ``contact_ratio``
+    the :func:`window` in which it can touch wheel 2, up to a whole turn), after the play is
+    taken up (:meth:`Mesh.settle`; ``overlaps`` False for a pair that interferes: only gaps
+    are closed, its overlaps are interference, not play): ``contact_ratio``
     (pitches), ``contact_ratio_uncertainty``, the φ ``intervals`` (rad) of the first contact,
     the path points (fixed frame, mm), ``take_up`` (rad of wheel 2) and ``band`` (mm)."""
     p = 2 * math.pi / mesh.p1.teeth
@@ -309,7 +312,7 @@ def contact_ratio(mesh, span, band: float) -> dict:
     span = min(window(mesh) if span is None else span, 2 * math.pi)
     n = int(math.ceil(span / p * GRID_PER_PITCH)) + 1
     phis = np.linspace(-span / 2, span / 2, n, endpoint=span < 2 * math.pi)
-    mesh.settle(phis)
+    mesh.settle(phis, overlaps)
     d, where = mesh.match(phis, reach)
     step = phis[1] - phis[0]
     eps, iv, mean = _epsilon(mesh, phis, band, reach, levels=True)

@@ -112,12 +112,67 @@ class Run:
         d = np.maximum(np.maximum(self._lo - q, q - self._hi), 0.0)
         return np.hypot(d[:, 0], d[:, 1])
 
-    def pitch_angles(self, R: float):
-        """:func:`pitch_angles` of the samples (raw normals) on the circle ``R``, cached."""
+    def pitch_data(self, R: float):
+        """Samples for the circle ``R`` (cached), per branch of :func:`pitch_angles` (raw
+        normals): (parameters, points, the branch's polar angles). Two kinds of exact
+        parameters are added where a contact folds away, so that a root next to a fold is
+        bracketed like any other and the fold itself is exact: where a normal line stops
+        meeting the circle (it turns tangent to it; both branches meet there), and where a
+        branch's angle turns back (two contacts merge)."""
         key = round(R, 12)
         if key not in self._th:
-            self._th[key] = pitch_angles(self.p, self.n * self.sign, R)
+            t, p, nr = self.t, self.p, self.n * self.sign
+            ok = _disc(p, nr, R) >= 0
+            flips = np.nonzero(ok[:-1] != ok[1:])[0]
+            if len(flips):
+                tf = _fold(self.f, np.where(ok[flips], t[flips], t[flips + 1]),
+                           np.where(ok[flips], t[flips + 1], t[flips]), R)
+                t, p, nr = _insert(self.f, t, p, nr, tf)
+            th = pitch_angles(p, nr, R, clamp=True)
+            out = []
+            for b in (0, 1):
+                te = _turns(self.f, t, th[b], R, b)
+                tb, pb, nb = _insert(self.f, t, p, nr, te) if len(te) else (t, p, nr)
+                out.append((tb, pb, pitch_angles(pb, nb, R, clamp=True)[b]))
+            self._th[key] = out
         return self._th[key]
+
+
+def _insert(f, t, p, n, tn):
+    """The samples (t, p, raw normals n) with the parameters ``tn`` added, in order."""
+    pn, nn = point_normal(f, tn)
+    t2 = np.concatenate([t, tn])
+    order = np.argsort(t2, kind="stable")
+    return t2[order], np.concatenate([p, pn])[order], np.concatenate([n, nn])[order]
+
+
+def _turns(f, t, th, R: float, branch: int):
+    """Parameters where a branch's polar angle ``th`` (at samples ``t``) turns back: each
+    sign change of its steps, refined by a golden-section search on the exact curve."""
+    d = _wrap(np.diff(th))
+    ok = np.isfinite(d)
+    i = np.nonzero(ok[:-1] & ok[1:] & (np.sign(d[:-1]) * np.sign(d[1:]) < 0))[0]
+    if not len(i):
+        return np.zeros(0)
+    a, b = t[i].copy(), t[i + 2].copy()
+    ref = th[i + 1]
+    sgn = np.sign(d[i])                       # rising then falling: a maximum (+1)
+    g = (math.sqrt(5) - 1) / 2
+
+    def val(x):
+        return sgn * _branch_gap(f, x, ref, R, branch)
+    c, e = b - g * (b - a), a + g * (b - a)
+    fc, fe = val(c), val(e)
+    for _ in range(70):
+        left = ~(fc < fe)                     # the maximum lies in [a, e]
+        b = np.where(left, e, b)
+        a = np.where(left, a, c)
+        c2, e2 = b - g * (b - a), a + g * (b - a)
+        c, e = c2, e2
+        fc, fe = val(c), val(e)
+        if np.all(b - a <= 1e-15):
+            break
+    return 0.5 * (a + b)
 
 
 @dataclass
@@ -361,21 +416,20 @@ class ExactWheel:
                 continue
             if near is not None and not np.any(r.box_distance(near) <= reach):
                 continue
-            th = r.pitch_angles(R)
-            for branch in (0, 1):
-                if not np.isfinite(th[branch]).any():
+            for branch, (rt, rp, th) in enumerate(r.pitch_data(R)):
+                if not np.isfinite(th).any():
                     continue
                 for s0 in range(0, len(Q), CHUNK):
                     al = alpha[s0:s0 + CHUNK]
-                    g = th[branch][None, :] - al[:, None]
+                    g = th[None, :] - al[:, None]
                     g -= 2 * math.pi * (g > math.pi)
                     g += 2 * math.pi * (g <= -math.pi)
                     ok = np.isfinite(g[:, :-1]) & np.isfinite(g[:, 1:]) & (np.abs(g[:, 1:] - g[:, :-1]) < math.pi)
                     m, j = np.nonzero(ok & ((g[:, :-1] <= 0) != (g[:, 1:] <= 0)))
-                    m, j = self._select(r, m, j, s0, near, reach, sector)
+                    m, j = self._select(rp, m, j, s0, near, reach, sector)
                     if not len(m):
                         continue
-                    t = _zoom(r.f, r.t[j], r.t[j + 1], al[m], g[m, j], g[m, j + 1], R, branch)
+                    t = _zoom(r.f, rt[j], rt[j + 1], al[m], g[m, j], g[m, j + 1], R, branch)
                     p, n = point_normal(r.f, t)
                     ok = np.isfinite(p).all(axis=1) & np.isfinite(n).all(axis=1)
                     rows.append(m[ok] + s0)
@@ -386,27 +440,49 @@ class ExactWheel:
         return np.concatenate(rows), np.concatenate(pts), np.concatenate(nrm)
 
     @staticmethod
-    def _select(r, m, j, s0, near, reach, sector):
-        """The brackets (rows ``m``, chords ``j``) worth narrowing (see :meth:`roots`)."""
+    def _select(rp, m, j, s0, near, reach, sector):
+        """The brackets (rows ``m``, chords ``j`` of the samples ``rp``) worth narrowing
+        (see :meth:`roots`)."""
         if near is not None and len(m):
-            ln = np.hypot(*(r.p[j + 1] - r.p[j]).T)
-            d, _ = segment_foot(near[s0:s0 + CHUNK][m], r.p[j], r.p[j + 1])
+            ln = np.hypot(*(rp[j + 1] - rp[j]).T)
+            d, _ = segment_foot(near[s0:s0 + CHUNK][m], rp[j], rp[j + 1])
             keep = d <= reach + ln
             m, j = m[keep], j[keep]
         if sector is not None and len(m):
-            a0 = np.arctan2(r.p[j, 1], r.p[j, 0])
-            a1 = np.arctan2(r.p[j + 1, 1], r.p[j + 1, 0])
+            a0 = np.arctan2(rp[j, 1], rp[j, 0])
+            a1 = np.arctan2(rp[j + 1, 1], rp[j + 1, 0])
             keep = (np.maximum(a0, a1) >= sector[0]) & (np.minimum(a0, a1) <= sector[1])
             m, j = m[keep], j[keep]
         return m, j
 
 
-def pitch_angles(p, n, R: float):
+def _disc(p, n, R: float):
+    """(p.n)^2 - |p|^2 + R^2: >= 0 where the normal line p + λ n meets the circle R."""
+    pn = np.einsum("ij,ij->i", p, n)
+    return pn * pn - np.einsum("ij,ij->i", p, p) + R * R
+
+
+def _fold(f, t_in, t_out, R: float):
+    """The last parameter (from ``t_in``, where the normal meets the circle R, toward
+    ``t_out``, where it misses) at which it still meets it: 50 bisections."""
+    t_in, t_out = np.asarray(t_in, float).copy(), np.asarray(t_out, float).copy()
+    for _ in range(50):
+        m = 0.5 * (t_in + t_out)
+        p, n = point_normal(f, m)
+        ok = _disc(p, n, R) >= 0
+        t_in, t_out = np.where(ok, m, t_in), np.where(ok, t_out, m)
+    return t_in
+
+
+def pitch_angles(p, n, R: float, clamp: bool = False):
     """Polar angles (rad) of the two points where the normal lines p + λ n (unit n) meet the
     circle |x| = R: (branch 0: λ = -p.n - sqrt(D), branch 1: λ = -p.n + sqrt(D)), NaN where
-    the line misses the circle (D = (p.n)^2 - |p|^2 + R^2 < 0)."""
+    the line misses the circle (D = (p.n)^2 - |p|^2 + R^2 < 0; with ``clamp`` a D above
+    -1e-12 R^2 counts as 0: a fold sample, where both branches meet)."""
     pn = np.einsum("ij,ij->i", p, n)
     disc = pn * pn - np.einsum("ij,ij->i", p, p) + R * R
+    if clamp:
+        disc = np.where((disc < 0) & (disc > -1e-12 * R * R), 0.0, disc)
     with np.errstate(invalid="ignore"):
         sq = np.sqrt(disc)
     out = []
@@ -475,7 +551,7 @@ def _branch_gap(f, t, alpha, R: float, branch: int):
     """Polar angle of branch ``branch`` of piece ``f``'s normal on the circle R, minus
     ``alpha`` (wrapped, rad)."""
     p, n = point_normal(f, t)
-    return _wrap(pitch_angles(p, n, R)[branch] - alpha)
+    return _wrap(pitch_angles(p, n, R, clamp=True)[branch] - alpha)
 
 
 def _zoom(f, ta, tb, alpha, fa, fb, R, branch):

@@ -199,7 +199,7 @@ def check_pair(p1, p2, internal=None, tolerance=None, center_distance=None, cycl
                  "radius2": float(np.hypot(*w2)), "angle2_deg": math.degrees(math.atan2(w2[1], w2[0])),
                  "opposite_pitch_point": bool(pt[0] < (c2[0] if internal else 0.0))}
     # contact: conjugate action of tooth 0's drive flank on the exact pieces (contact.py)
-    conj = _conjugate(p1, p2, a, c2, phase2, ratio, internal, tol)
+    conj = _conjugate(p1, p2, a, c2, phase2, ratio, internal, tol, interference)
     # clearance on each flank: how far wheel 2 may turn each way before touching (mm on r2)
     drive, coast, te = [], [], []
     for ph in np.linspace(-pitch_ang / 2, pitch_ang / 2, backlash_phases, endpoint=False):
@@ -249,7 +249,7 @@ def check_pair(p1, p2, internal=None, tolerance=None, center_distance=None, cycl
     return rep
 
 
-def _conjugate(p1, p2, a, c2, phase2, ratio, internal, tol) -> dict:
+def _conjugate(p1, p2, a, c2, phase2, ratio, internal, tol, interference=False) -> dict:
     """The contact facts of the report from :mod:`gear3d.analysis.contact` (conjugate
     action on the exact pieces, band ``tol`` mm): contact ratio and its uncertainty,
     ``continuous``, the path of contact (fixed frame, mm) and its length, specific sliding
@@ -257,7 +257,7 @@ def _conjugate(p1, p2, a, c2, phase2, ratio, internal, tol) -> dict:
     from ..placement import operating_pitch_radii
     from .contact import Mesh, contact_ratio, edge_contacts, sliding
     mesh = Mesh(p1, p2, c2, phase2, ratio, operating_pitch_radii(a, p1.teeth, p2.teeth, internal)[0])
-    c = contact_ratio(mesh, None, tol)
+    c = contact_ratio(mesh, None, tol, overlaps=not interference)
     iv, pitch = c["intervals"], 2 * math.pi / p1.teeth
     path = [q for seg in c["path"] for q in seg]
     out = {"contact_ratio": c["contact_ratio"], "contact_ratio_uncertainty": c["contact_ratio_uncertainty"],
