@@ -57,7 +57,23 @@ def involute(teeth=20, module=1.0, pressure_angle_deg=20.0, addendum_coeff=1.0,
                          names=[n for _, n in pieces],
                          flank_pieces=[i for i, (_, n) in enumerate(pieces) if n == "rack-flank"],
                          nominal_tip_radius=nominal_tip(tip_gen, clip, internal),
-                         extra_report={"base_radius": rb, "generated_tip_radius": tip_gen})
+                         extra_report={"base_radius": rb, "generated_tip_radius": tip_gen,
+                                       **({"involute_end_radius": ring_involute_end(r, a, (ha + x) * m)}
+                                          if internal else {})})
+
+
+def ring_involute_end(r: float, alpha_deg: float, depth: float) -> float:
+    """The smallest radius (mm) of a rack-generated ring's involute flank: the rack's straight
+    flank ends ``depth`` (mm, the ring's addendum plus its shift) below the datum, and that end
+    point generates the ring at sqrt((r - depth)^2 + (depth cot a)^2), beyond the tip circle
+    r - depth (never inside the base circle). Between it and the tip circle the flank is the
+    trochoid of the rack's root corner, which the builder measures like every piece.
+
+    >>> round(ring_involute_end(20.0, 20.0, 1.0), 4)          # 40 teeth, m 1, 20 deg
+    19.1976
+    """
+    a = math.radians(alpha_deg)
+    return max(math.hypot(r - depth, depth / math.tan(a)), r * math.cos(a))
 
 
 def nominal_tip(tip_gen, clip, internal):
