@@ -376,3 +376,115 @@ def test_package_is_callable_after_a_submodule_import():
     d = b.report.to_dict()
     json.dumps(d, allow_nan=False)
     assert d["members"][0]["teeth"] == 12 and d["overlap_volume"] is None
+
+
+# ------------------------------------------------------------------ rolling check (gear3d.bevel.rolling)
+
+def spherical_involute_contact_ratio(g):
+    """Exact, for a spherical-involute pair whose contact runs from tip cone to tip cone: the
+    path of contact is the great circle through the pitch element P tangent to both base
+    cones (inclined at α to the crown plane); gear 1 turning by one pitch moves the contact
+    along it by (2π/z1) sin δb1 (the action plane rolls on the base cone, sin δb = sin δ cos α).
+    The path's ends are its crossings with the two tip cones."""
+    d1, d2, a = g.gear.pitch_angle, g.mate.pitch_angle, g.pressure_angle
+    P = np.array([math.sin(d1), 0.0, math.cos(d1)])
+    axes = (np.array([0.0, 0.0, 1.0]), np.array([math.sin(g.shaft_angle), 0.0, math.cos(g.shaft_angle)]))
+    N = np.array([-math.cos(d1), 0.0, math.sin(d1)])           # the crown axis
+    d = math.cos(a) * np.cross(N, P) + math.sin(a) * N
+
+    def tip_crossing(ax, tip):                                  # cos s P.ax + sin s d.ax = cos tip
+        A, B = P @ ax, d @ ax
+        w, h = math.atan2(B, A), math.acos(math.cos(tip) / math.hypot(A, B))
+        return min(w + h, w - h, key=abs)
+    s1 = tip_crossing(axes[0], g.gear.face_angle)
+    s2 = tip_crossing(axes[1], g.mate.face_angle)
+    return abs(s1 - s2) / (2 * math.pi / g.gear.teeth * math.sin(d1) * math.cos(a))
+
+
+def tredgold_contact_ratio(g):
+    """The virtual spur pair on the back cones: pitch radii R_e tan δ, heel addenda."""
+    a, m = g.pressure_angle, g.module
+    s = sum(math.sqrt((r + c.addendum) ** 2 - (r * math.cos(a)) ** 2) - r * math.sin(a)
+            for c, r in ((c, g.cone_distance * math.tan(c.pitch_angle)) for c in (g.gear, g.mate)))
+    return s / (math.pi * m * math.cos(a))
+
+
+@pytest.mark.parametrize("z1,z2,sig", [(20, 30, 90), (25, 19, 115), (18, 24, 60)])
+def test_check_contact_ratio_exact_spherical_involute(z1, z2, sig):
+    from gear3d.bevel.rolling import check_pair
+    g = pair_geometry(z1, z2, 2.0, shaft_angle_deg=sig)
+    r = check_pair(g, grid=16)
+    assert r["conjugate"] and r["path_distance"] < 1e-6
+    assert r["contact_ratio"] == pytest.approx(spherical_involute_contact_ratio(g), abs=1e-9)
+
+
+def test_check_contact_ratio_tends_to_tredgold():
+    """|ε - ε_v| falls as the teeth grow (ratio and shaft angle kept): 2.0e-3, 7.9e-4, 2.6e-4."""
+    from gear3d.bevel.rolling import check_pair
+    diffs = []
+    for k in (1, 2, 4):
+        g = pair_geometry(20 * k, 30 * k, 2.0 / k)
+        diffs.append(abs(check_pair(g, grid=16)["contact_ratio"] - tredgold_contact_ratio(g)))
+    assert diffs[0] > 2 * diffs[1] > 4 * diffs[2] and diffs[2] < 5e-4
+
+
+@pytest.mark.parametrize("form,kw", [("spherical-involute", dict(z1=20, z2=30)),
+                                     ("spherical-involute", dict(z1=13, z2=29, sig=70, x=0.3)),
+                                     ("octoid", dict(z1=25, z2=19, sig=115)),
+                                     ("octoid", dict(z1=12, z2=18))])
+def test_check_zero_backlash_no_transmission_error(form, kw):
+    """Conjugate pairs at the nominal placement: no interference, zero backlash and zero
+    transmission error to the check's tolerance (0.1 µm; measured ≤ 8 nm)."""
+    from gear3d.bevel.rolling import check_pair
+    g = pair_geometry(kw["z1"], kw["z2"], 2.0, shaft_angle_deg=kw.get("sig", 90), shift_coeff=kw.get("x", 0.0),
+                      form=form)
+    r = check_pair(g, grid=48)
+    assert not r["interference"] and r["max_penetration"] == 0.0
+    assert -2e-5 < r["backlash_min"] <= r["backlash_max"] < 2e-5
+    assert r["transmission_error_drive"] < 2e-5 and r["transmission_error_coast"] < 2e-5
+    assert r["conjugate"] and r["contact_ratio"] > 1
+
+
+def test_check_backlash_of_a_thinned_mate():
+    """A mate cut by a crown whose flanks are turned in by x m tan α / R_e (the profile
+    shift's tooth thinning) against the unshifted gear: conjugate, with the circumferential
+    backlash 2 x m tan α on the heel pitch circles at every position."""
+    from gear3d.bevel import rolling
+    x, m = 0.2, 2.0
+    g0, gx = pair_geometry(20, 30, m), pair_geometry(20, 30, m, shift_coeff=x)
+    t1, t2 = rolling.tooth(g0, "gear"), rolling.tooth(gx, "mate")
+    place = rolling.Placement(g0)
+    phis = np.linspace(0, 2 * math.pi / 20, 24, endpoint=False)
+    lash = (rolling.closing_turns(t1, t2, place, phis, "upper")
+            + rolling.closing_turns(t1, t2, place, phis, "lower")) * m * 30 / 2
+    assert lash == pytest.approx(np.full(len(phis), 2 * x * m * math.tan(g0.pressure_angle)), abs=2e-5)
+
+
+def test_check_octoid_against_spherical_involute():
+    """Not conjugate: the flanks agree to second order at the pitch cone only, so the pair
+    turns with a transmission error (2.56 µm here, ~1000x the conjugate pairs') and binds
+    at zero nominal backlash; conjugate action only near the pitch element."""
+    from gear3d.bevel.rolling import check_pair
+    g = pair_geometry(20, 30, 2.0, form="octoid")
+    r = check_pair(g, mate_form="spherical-involute", grid=48)
+    assert not r["conjugate"] and r["path_distance"] > 1e-3 and r["contact_ratio"] < 0.2
+    assert 1e-3 < r["transmission_error_drive"] < 1e-2
+    assert r["backlash_min"] < 0 and r["interference"]
+    assert "not conjugate" in r["pairing"]
+
+
+def test_cli_check(tmp_path, capsys):
+    from gear3d.cli import main
+    out, js = tmp_path / "p.stl", tmp_path / "p.json"
+    base = ["bevel", "--teeth", "16", "--mate-teeth", "24", "--module", "1", "--part", "pair", "--check"]
+    rc = main(base + ["-o", str(out), "--json", str(js)])
+    lines = capsys.readouterr().out.strip().splitlines()
+    assert rc == 0 and len(lines) == 2 and lines[1].startswith("no interference") and "contact ratio" in lines[1]
+    data = json.loads(js.read_text(), parse_constant=lambda c: pytest.fail(f"non-strict JSON {c}"))
+    assert data["check"]["conjugate"] and data["check"]["contact_ratio"] > 1
+    rc = main(base + ["--form", "octoid", "--mate-form", "spherical-involute", "-o", str(out)])
+    assert rc == 1 and "not conjugate" in capsys.readouterr().out
+    bad = tmp_path / "g.stl"
+    rc = main(["bevel", "--teeth", "16", "--mate-teeth", "24", "--module", "1", "--check", "-o", str(bad)])
+    err = capsys.readouterr().err
+    assert rc == 2 and err.count("\n") == 1 and "check" in err and not bad.exists()

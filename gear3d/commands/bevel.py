@@ -1,10 +1,13 @@
 """``gear3d bevel --teeth Z1 --mate-teeth Z2 --module M --face-width B [--pressure-angle-deg A]
-[--shaft-angle-deg S] [--form spherical-involute|octoid] [--shift-coeff X] [--tolerance T]
---part gear|mate|pair -o FILE [--json FILE] [--png FILE]``: straight bevel gears.
+[--shaft-angle-deg S] [--form spherical-involute|octoid] [--mate-form F] [--shift-coeff X]
+[--tolerance T] --part gear|mate|pair -o FILE [--json FILE] [--png FILE] [--check]``: straight
+bevel gears.
 
 ``-o``'s extension picks the mesh format (.stl .3mf .step .obj .ply .vtu; .json for the
 bodies' reports); ``--part pair`` places the mate on its own axis at the shaft angle, in mesh;
-``--json`` writes the typed report (strict JSON), ``--png`` a 3D preview. Spiral and Zerol
+``--json`` writes the typed report (strict JSON), ``--png`` a 3D preview; ``--check`` (pair)
+rolls the pair (:mod:`gear3d.bevel.rolling`): one summary line, exit 1 on interference or a
+contact ratio below 1 (the files are still written). Spiral and Zerol
 flags (``--spiral-angle-deg``, ``--cutter-radius``, ``--hand``) are refused with one line:
 only straight bevels are built. Bad input: one line on stderr, exit 2, no file.
 """
@@ -13,6 +16,7 @@ from __future__ import annotations
 import sys
 
 from ..cliargs import number
+from ..export import atomic_path, check_output, check_path, write
 
 
 def add_parser(sub):
@@ -30,6 +34,8 @@ def add_parser(sub):
                    help="shaft angle Σ (deg), default 90")
     p.add_argument("--form", default="spherical-involute", choices=list(FORMS),
                    help="tooth form: spherical-involute (default) or octoid (plane-flank crown gear)")
+    p.add_argument("--mate-form", default=None, choices=list(FORMS),
+                   help="the mate's tooth form (default --form; an octoid is not conjugate to a spherical involute)")
     p.add_argument("--shift-coeff", type=number("float", -2, 2), default=0.0,
                    help="profile shift x of the gear (the mate gets -x), default 0")
     p.add_argument("--tolerance", type=number("float", 0, 1, lo_open=True, unit="mm"), default=0.01,
@@ -39,6 +45,10 @@ def add_parser(sub):
     p.add_argument("-o", "--output", required=True, help="output file; extension picks the format")
     p.add_argument("--json", default=None, help="write the report as strict JSON")
     p.add_argument("--png", default=None, help="write a 3D preview (.png)")
+    p.add_argument("--check", action="store_true",
+                   help="--part pair: roll the pair (interference, backlash, contact ratio, transmission error): "
+                        "one summary line, the numbers under 'check' in --json; exit 1 on interference or a "
+                        "contact ratio below 1")
     for flag in ("--spiral-angle-deg", "--cutter-radius", "--hand"):
         p.add_argument(flag, default=None, help="refused: spiral and Zerol bevels are not built")
     return p
@@ -46,7 +56,6 @@ def add_parser(sub):
 
 def run(args) -> int:
     from ..bevel import build
-    from ..export import check_output, check_path, write
     out = args.output
     check_output(out, kinds="body")
     if args.json is not None:
@@ -55,15 +64,14 @@ def run(args) -> int:
         check_path(args.png, "png", (".png",))
     unbuilt = {k: getattr(args, k) for k in ("spiral_angle_deg", "cutter_radius", "hand") if getattr(args, k) is not None}
     b = build(args.teeth, args.mate_teeth, args.module, args.face_width, args.pressure_angle_deg,
-              args.shaft_angle_deg, args.form, args.shift_coeff, args.tolerance, args.part, **unbuilt)
+              args.shaft_angle_deg, args.form, args.shift_coeff, args.tolerance, args.part,
+              mate_form=args.mate_form, check=args.check, **unbuilt)
     info = write(list(b.bodies), out)
     if args.json is not None:
-        from ..export import atomic_path
         from ..export.json_format import dumps
         with atomic_path(args.json, "json") as tmp, open(tmp, "w", encoding="utf-8") as f:
             f.write(dumps(b.report.to_dict()) + "\n")
     if args.png is not None:
-        from ..export import atomic_path
         from ..figures import mesh_preview
         with atomic_path(args.png, "png") as tmp:
             mesh_preview(list(b.bodies), tmp)
@@ -71,4 +79,8 @@ def run(args) -> int:
     sys.stdout.write(f"wrote {out}: bevel {r.form} {args.teeth}/{args.mate_teeth} {r.part}, "
                      f"{sum(m.triangles for m in r.members)} triangles, max_error={r.max_error:.3g} mm "
                      f"(tolerance {r.tolerance:g} mm)" + (f" {info}" if info else "") + "\n")
-    return 0
+    if r.check is None:
+        return 0
+    from ..bevel.rolling import finding_code, summary
+    sys.stdout.write(summary(r.check) + "\n")
+    return finding_code(r.check)

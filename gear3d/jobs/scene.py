@@ -13,6 +13,7 @@ bodies, DXF fits), the pair checks, each file's sha256 and the stage counts.
 """
 from __future__ import annotations
 
+import functools
 import hashlib
 import json
 import os
@@ -30,11 +31,17 @@ EXT = {k: "." + k for k in ("dxf", "svg", "png", "json", "stl", "3mf", "step", "
 
 def out_path(out_dir, fname, file="", key="name") -> str:
     """``out_dir/fname``, refused unless it stays inside ``out_dir``."""
-    base = os.path.realpath(out_dir)
+    base = _realpath(out_dir)
     p = os.path.realpath(os.path.join(base, fname))
     if os.path.dirname(p) != base or os.path.isabs(fname) or os.sep in fname or ".." in fname:
         raise TemplateError(file, key, fname, f"a file name inside the output folder {out_dir}")
     return p
+
+
+@functools.lru_cache(maxsize=64)
+def _realpath(out_dir) -> str:
+    """The output folder resolved once a run (every part's path asked it: 7 lstat calls each)."""
+    return os.path.realpath(out_dir)
 
 
 def sha256(path) -> str:

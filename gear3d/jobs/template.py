@@ -73,6 +73,7 @@ Library (``[library]`` with ``part`` and ``sweep`` tables)::
 """
 from __future__ import annotations
 
+import functools
 import inspect
 import itertools
 import math
@@ -251,11 +252,17 @@ def _kinds(file, key, v, allowed=OUTPUT_KINDS):
 
 def family_signature(family):
     """{parameter: default} of a registered family builder (tolerance excluded)."""
+    return dict(_family_signature(family))
+
+
+@functools.lru_cache(maxsize=None)
+def _family_signature(family):
+    """Read once per family: a scene of 100,000 parts asked 200,000 times (10 s of a dry run)."""
     from ..profiles import FAMILIES, families
     families()                  # imports every family module
     sig = inspect.signature(FAMILIES[family])
-    return {n: p.default for n, p in sig.parameters.items()
-            if p.kind not in (p.VAR_KEYWORD, p.VAR_POSITIONAL) and n != "tolerance"}
+    return tuple((n, p.default) for n, p in sig.parameters.items()
+                 if p.kind not in (p.VAR_KEYWORD, p.VAR_POSITIONAL) and n != "tolerance")
 
 
 def check_family(file, key, family):
