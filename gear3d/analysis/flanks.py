@@ -35,55 +35,16 @@ import numpy as np
 
 from ..errors import GearError
 from ..geometry import rotate, segment_foot
+from .pitchroots import pitch_samples, point_normal, zoom
 
 #: subdivisions of each tessellation chord when bracketing contact roots (at most), and
 #: the samples a run gets at least (fine tolerances already sample densely)
 SUB = 4
 SAMPLES = 240
-#: finite-difference step (piece parameter) of the exact normals, and the larger steps
-#: tried where the curve barely moves (a cusp)
-H = 1e-7
-CUSP_STEPS = (1e-5, 1e-3)
-#: Illinois (safeguarded secant) steps that narrow a root's bracket after one 64-section
-ILLINOIS_STEPS = 8
 #: tangent turn (rad) above which two runs meet at a corner
 CORNER_TURN = 1e-4
 #: query rows handled at once (the bracket search holds rows x samples)
 CHUNK = 256
-
-
-def point_normal(f, t):
-    """Points (N, 2) of the exact piece ``f`` at parameters ``t`` and unit normals (the
-    tangent dG/dt turned clockwise), from a central difference kept inside [0, 1]. Where
-    the curve barely moves over the step (a cusp: envelopes and cycloids start at zero
-    speed) the step grows (1e-5, then 1e-3): the normal there is the limit direction."""
-    t = np.asarray(t, float)
-    p, d = _diff(f, t, H)
-    for h in CUSP_STEPS:
-        slow = ~(np.hypot(d[:, 0], d[:, 1]) * h > 1e-9 * np.maximum(1.0, np.hypot(p[:, 0], p[:, 1])))
-        slow &= np.isfinite(p).all(axis=1)
-        if not slow.any():
-            break
-        d[slow] = _diff(f, t[slow], h)[1]
-    ln = np.hypot(d[:, 0], d[:, 1])
-    with np.errstate(invalid="ignore", divide="ignore"):
-        nrm = np.stack([d[:, 1], -d[:, 0]], axis=1) / ln[:, None]
-    return p, nrm
-
-
-def _diff(f, t, h):
-    """G(t) and dG/dt from a central difference of step ``h`` kept inside [0, 1] (one-sided
-    where a neighbour falls off the piece's domain, NaN)."""
-    n = len(t)
-    tp, tm = np.minimum(t + h, 1.0), np.maximum(t - h, 0.0)
-    with np.errstate(invalid="ignore"):
-        g = np.asarray(f(np.concatenate([t, tp, tm])), float)
-    p, gp, gm = g[:n], g[n:2 * n], g[2 * n:]
-    okp, okm = np.isfinite(gp).all(axis=1), np.isfinite(gm).all(axis=1)
-    gp = np.where(okp[:, None], gp, p)
-    gm = np.where(okm[:, None], gm, p)
-    span = np.where(okp, tp, t) - np.where(okm, tm, t)
-    return p, (gp - gm) / np.maximum(span, 1e-300)[:, None]
 
 
 @dataclass
@@ -113,7 +74,7 @@ class Run:
         return np.hypot(d[:, 0], d[:, 1])
 
     def pitch_data(self, R: float):
-        """Samples for the circle ``R`` (cached), per branch of :func:`pitch_angles` (raw
+        """Samples for the circle ``R`` (cached), per branch of :func:`~gear3d.analysis.pitchroots.pitch_angles` (raw
         normals): (parameters, points, the branch's polar angles). Two kinds of exact
         parameters are added where a contact folds away, so that a root next to a fold is
         bracketed like any other and the fold itself is exact: where a normal line stops
@@ -121,58 +82,8 @@ class Run:
         branch's angle turns back (two contacts merge)."""
         key = round(R, 12)
         if key not in self._th:
-            t, p, nr = self.t, self.p, self.n * self.sign
-            ok = _disc(p, nr, R) >= 0
-            flips = np.nonzero(ok[:-1] != ok[1:])[0]
-            if len(flips):
-                tf = _fold(self.f, np.where(ok[flips], t[flips], t[flips + 1]),
-                           np.where(ok[flips], t[flips + 1], t[flips]), R)
-                t, p, nr = _insert(self.f, t, p, nr, tf)
-            th = pitch_angles(p, nr, R, clamp=True)
-            out = []
-            for b in (0, 1):
-                te = _turns(self.f, t, th[b], R, b)
-                tb, pb, nb = _insert(self.f, t, p, nr, te) if len(te) else (t, p, nr)
-                out.append((tb, pb, pitch_angles(pb, nb, R, clamp=True)[b]))
-            self._th[key] = out
+            self._th[key] = pitch_samples(self.f, self.t, self.p, self.n * self.sign, R)
         return self._th[key]
-
-
-def _insert(f, t, p, n, tn):
-    """The samples (t, p, raw normals n) with the parameters ``tn`` added, in order."""
-    pn, nn = point_normal(f, tn)
-    t2 = np.concatenate([t, tn])
-    order = np.argsort(t2, kind="stable")
-    return t2[order], np.concatenate([p, pn])[order], np.concatenate([n, nn])[order]
-
-
-def _turns(f, t, th, R: float, branch: int):
-    """Parameters where a branch's polar angle ``th`` (at samples ``t``) turns back: each
-    sign change of its steps, refined by a golden-section search on the exact curve."""
-    d = _wrap(np.diff(th))
-    ok = np.isfinite(d)
-    i = np.nonzero(ok[:-1] & ok[1:] & (np.sign(d[:-1]) * np.sign(d[1:]) < 0))[0]
-    if not len(i):
-        return np.zeros(0)
-    a, b = t[i].copy(), t[i + 2].copy()
-    ref = th[i + 1]
-    sgn = np.sign(d[i])                       # rising then falling: a maximum (+1)
-    g = (math.sqrt(5) - 1) / 2
-
-    def val(x):
-        return sgn * _branch_gap(f, x, ref, R, branch)
-    c, e = b - g * (b - a), a + g * (b - a)
-    fc, fe = val(c), val(e)
-    for _ in range(70):
-        left = ~(fc < fe)                     # the maximum lies in [a, e]
-        b = np.where(left, e, b)
-        a = np.where(left, a, c)
-        c2, e2 = b - g * (b - a), a + g * (b - a)
-        c, e = c2, e2
-        fc, fe = val(c), val(e)
-        if np.all(b - a <= 1e-15):
-            break
-    return 0.5 * (a + b)
 
 
 @dataclass
@@ -398,7 +309,7 @@ class ExactWheel:
 
         All queries lie on one circle |Q| = R about the wheel's centre (the pitch circle the
         pitch point runs on). A normal line meets that circle at two points (the two roots of
-        a quadratic, :func:`pitch_angles`); the root is where the polar angle of one of them
+        a quadratic, :func:`~gear3d.analysis.pitchroots.pitch_angles`); the root is where the polar angle of one of them
         equals the query's. Each branch is a smooth function of the parameter, so two
         contacts close together (a normal nearly tangent to the circle, as cycloids have at
         the pitch point) are two simple roots, not one double root. Only brackets that can
@@ -429,7 +340,7 @@ class ExactWheel:
                     m, j = self._select(rp, m, j, s0, near, reach, sector)
                     if not len(m):
                         continue
-                    t = _zoom(r.f, rt[j], rt[j + 1], al[m], g[m, j], g[m, j + 1], R, branch)
+                    t = zoom(r.f, rt[j], rt[j + 1], al[m], g[m, j], g[m, j + 1], R, branch)
                     p, n = point_normal(r.f, t)
                     ok = np.isfinite(p).all(axis=1) & np.isfinite(n).all(axis=1)
                     rows.append(m[ok] + s0)
@@ -454,47 +365,6 @@ class ExactWheel:
             keep = (np.maximum(a0, a1) >= sector[0]) & (np.minimum(a0, a1) <= sector[1])
             m, j = m[keep], j[keep]
         return m, j
-
-
-def _disc(p, n, R: float):
-    """(p.n)^2 - |p|^2 + R^2: >= 0 where the normal line p + λ n meets the circle R."""
-    pn = np.einsum("ij,ij->i", p, n)
-    return pn * pn - np.einsum("ij,ij->i", p, p) + R * R
-
-
-def _fold(f, t_in, t_out, R: float):
-    """The last parameter (from ``t_in``, where the normal meets the circle R, toward
-    ``t_out``, where it misses) at which it still meets it: 50 bisections."""
-    t_in, t_out = np.asarray(t_in, float).copy(), np.asarray(t_out, float).copy()
-    for _ in range(50):
-        m = 0.5 * (t_in + t_out)
-        p, n = point_normal(f, m)
-        ok = _disc(p, n, R) >= 0
-        t_in, t_out = np.where(ok, m, t_in), np.where(ok, t_out, m)
-    return t_in
-
-
-def pitch_angles(p, n, R: float, clamp: bool = False):
-    """Polar angles (rad) of the two points where the normal lines p + λ n (unit n) meet the
-    circle |x| = R: (branch 0: λ = -p.n - sqrt(D), branch 1: λ = -p.n + sqrt(D)), NaN where
-    the line misses the circle (D = (p.n)^2 - |p|^2 + R^2 < 0; with ``clamp`` a D above
-    -1e-12 R^2 counts as 0: a fold sample, where both branches meet)."""
-    pn = np.einsum("ij,ij->i", p, n)
-    disc = pn * pn - np.einsum("ij,ij->i", p, p) + R * R
-    if clamp:
-        disc = np.where((disc < 0) & (disc > -1e-12 * R * R), 0.0, disc)
-    with np.errstate(invalid="ignore"):
-        sq = np.sqrt(disc)
-    out = []
-    for lam in (-pn - sq, -pn + sq):
-        w = p + lam[:, None] * n
-        out.append(np.arctan2(w[:, 1], w[:, 0]))
-    return out
-
-
-def _wrap(a):
-    """Angles wrapped into (-π, π]."""
-    return (a + math.pi) % (2 * math.pi) - math.pi
 
 
 def _resolve_fuzzy(bnd, ivs, pitch: float, teeth: int) -> int:
@@ -547,54 +417,3 @@ def _local_step(pc, t: float) -> float:
     return float(pc.t[k] - pc.t[k - 1])
 
 
-def _branch_gap(f, t, alpha, R: float, branch: int):
-    """Polar angle of branch ``branch`` of piece ``f``'s normal on the circle R, minus
-    ``alpha`` (wrapped, rad)."""
-    p, n = point_normal(f, t)
-    return _wrap(pitch_angles(p, n, R, clamp=True)[branch] - alpha)
-
-
-def _zoom(f, ta, tb, alpha, fa, fb, R, branch):
-    """Narrow the brackets [ta, tb] of :func:`_branch_gap` = 0 (values ``fa``, ``fb`` at
-    the ends, of opposite signs): one round of 63 interior points keeps the sub-interval
-    where the sign changes, then Illinois steps (a safeguarded secant) to 1e-15.
-
-    (Only the sign of the normal's orientation could flip a branch: the raw normals are
-    used throughout, as in :meth:`ExactWheel.roots`, which passes them with their sign.)"""
-    ta, tb = ta.astype(float).copy(), tb.astype(float).copy()
-    fa, fb = fa.astype(float).copy(), fb.astype(float).copy()
-    frac = np.arange(1, 64) / 64
-    K = len(ta)
-    rows = np.arange(K)
-    x = ta[:, None] + (tb - ta)[:, None] * frac[None, :]
-    fx = _branch_gap(f, x.ravel(), np.repeat(alpha, len(frac)), R, branch).reshape(x.shape)
-    fx = np.where(np.isfinite(fx), fx, fa[:, None])
-    same = (fx <= 0) == (fa <= 0)[:, None]
-    k = np.where(same.all(axis=1), len(frac), np.argmin(same, axis=1)) - 1
-    has = k >= 0
-    kk = np.maximum(k, 0)
-    nxt = np.minimum(k + 1, len(frac) - 1)
-    inside = k + 1 < len(frac)
-    ta, fa, tb, fb = (np.where(has, x[rows, kk], ta), np.where(has, fx[rows, kk], fa),
-                      np.where(inside, x[rows, nxt], tb), np.where(inside, fx[rows, nxt], fb))
-    side = np.zeros(K)
-    for _ in range(ILLINOIS_STEPS):
-        with np.errstate(invalid="ignore", divide="ignore"):
-            t = (ta * fb - tb * fa) / (fb - fa)
-        bad = ~np.isfinite(t) | (t <= np.minimum(ta, tb)) | (t >= np.maximum(ta, tb))
-        t = np.where(bad, 0.5 * (ta + tb), t)
-        ft = _branch_gap(f, t, alpha, R, branch)
-        ft = np.where(np.isfinite(ft), ft, fa)
-        left = (ft <= 0) == (fa <= 0)            # the root lies in [t, tb]
-        # Illinois: halve the value kept twice in a row at the same end
-        fb = np.where(left & (side > 0), 0.5 * fb, fb)
-        fa = np.where(~left & (side < 0), 0.5 * fa, fa)
-        ta, fa = np.where(left, t, ta), np.where(left, ft, fa)
-        tb, fb = np.where(left, tb, t), np.where(left, fb, ft)
-        side = np.where(left, 1.0, -1.0)
-        if np.all((np.abs(tb - ta) <= 1e-15 * np.maximum(1.0, np.abs(ta))) | (np.abs(ft) <= 1e-15)):
-            break
-    with np.errstate(invalid="ignore", divide="ignore"):
-        t = (ta * fb - tb * fa) / (fb - fa)
-    good = np.isfinite(t) & (t >= np.minimum(ta, tb)) & (t <= np.maximum(ta, tb))
-    return np.where(good, t, 0.5 * (ta + tb))
