@@ -52,6 +52,9 @@ import numpy as np
 
 from .measure import (body_slice_error, equal_sag_min, involute_error, min_body_vertices,
                       profile_error)
+from . import families as registered, profile
+from .errors import GearError
+from .export import write
 
 #: profile tolerances (mm), full run; bodies stop at 1e-4 (0.1 µm)
 TOLERANCES = [1e-1, 1e-2, 1e-3, 1e-4, 1e-5]
@@ -81,7 +84,6 @@ def family_params(family: str, tol: float) -> dict:
     here at ``tol`` so that its time is not charged to the mate's row)."""
     params = dict(FAMILY_PARAMS.get(family, {}))
     if family == "mate":
-        from . import profile
         tool = dict(MATE_TOOL)
         params["tool"] = profile(tool.pop("family"), tolerance=tol, **tool)
     return params
@@ -96,8 +98,6 @@ def _err_row(base, e):
 
 def profile_row(family: str, tol: float, params: dict) -> tuple:
     """(row, profile) for one profile build; profile is None on a GearError."""
-    from . import profile
-    from .errors import GearError
     base = {"family": family, "body": "none", "tolerance": tol}
     t0 = time.perf_counter()
     try:
@@ -122,9 +122,6 @@ def profile_row(family: str, tol: float, params: dict) -> tuple:
 
 def body_row(family: str, kind: str, tol: float, params: dict, out_dir: Path) -> dict:
     """One body row: profile + body + STL written, measured."""
-    from . import profile
-    from .errors import GearError
-    from .export import write
     from .solids.body import body
     base = {"family": family, "body": kind, "tolerance": tol}
     stl = out_dir / "bench_body.stl"
@@ -157,7 +154,6 @@ def body_row(family: str, kind: str, tol: float, params: dict, out_dir: Path) ->
 def brute_force_rows(positions, teeth=20, module=1.0) -> list:
     """Seed 001's cutting simulation at increasing rack positions; error against a
     0.01 µm engine profile of the same gear (tooth 0, two-sided, blank circle excluded)."""
-    from . import profile
     from .analysis.cutting import compare_tooth, simulate_cut
     from .racks import involute_rack
     ref = profile("involute", teeth=teeth, module=module, tolerance=1e-5)
@@ -337,8 +333,6 @@ def _strict_json(data) -> str:
 def run(quick: bool = False, json_path=None, out_dir="out/bench", families=None, progress=True) -> list:
     """Run the benchmark; write the table, plot and JSON rows to ``out_dir`` (and the rows
     to ``json_path`` if given). Returns the rows (list of dicts, errors in mm)."""
-    from . import families as registered
-    from .errors import GearError
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     t_start = time.perf_counter()
@@ -349,7 +343,6 @@ def run(quick: bool = False, json_path=None, out_dir="out/bench", families=None,
     import manifold3d  # noqa: F401
     import shapely  # noqa: F401
     import trimesh  # noqa: F401
-    from . import profile
     from .solids.body import body
     body(profile("involute", tolerance=1e-2), width=1.0)
     jobs = []

@@ -18,6 +18,13 @@ import signal
 import sys
 
 from . import __version__
+from .budget import (DEFAULT_MAX_MEMORY, DEFAULT_MAX_SECONDS, HARD_MAX_MEMORY, HARD_MAX_SECONDS,
+                     HARD_MAX_TRIANGLES, MIN_MEMORY, MIN_SECONDS, MIN_TRIANGLES, check_limit, current,
+                     fmt_bytes, limits, parse_bytes)
+from .cliargs import plain_int, plain_number
+from .errors import GearError, one_line, show
+from .export import remove_live_temps
+from .progress import Reporter
 
 # one BLAS thread: gear3d's arrays are small, and idle BLAS threads only add CPU time to
 # every process (set before numpy is first imported; a user's own setting wins)
@@ -32,7 +39,6 @@ SIGNAL_EXIT = {signal.SIGINT: 130, signal.SIGTERM: 143}
 
 
 def _one_line(text) -> str:
-    from .errors import one_line
     return one_line(text)
 
 
@@ -47,10 +53,8 @@ class _Parser(argparse.ArgumentParser):
     def _get_value(self, action, arg_string):
         """``type=int`` / ``type=float`` read plain ASCII numbers only (``1_0`` is not 10)."""
         if action.type in (int, float) and isinstance(arg_string, str):
-            from .cliargs import plain_int, plain_number
             v = plain_int(arg_string) if action.type is int else plain_number(arg_string)
             if v is None:
-                from .errors import show
                 raise argparse.ArgumentError(action, f"{show(arg_string)} is not allowed: "
                                              + ("an integer" if action.type is int else "a number")
                                              + " (plain ASCII digits)")
@@ -135,7 +139,6 @@ class Terminated(BaseException):
 
 
 def _remove_live_temps():
-    from .export import remove_live_temps
     remove_live_temps()
 
 
@@ -168,9 +171,6 @@ def _take_budget(words):
     """Remove ``--max-triangles N``, ``--max-memory SIZE`` and ``--max-seconds S`` (accepted
     before or after the command) from the words; return (words, {limit: value}), each
     validated (GearError naming the limit)."""
-    from .budget import check_limit, parse_bytes
-    from .cliargs import plain_number
-    from .errors import GearError
     out, got = [], {}
     i = 0
     while i < len(words):
@@ -199,8 +199,6 @@ def _take_budget(words):
 
 def check_limit_range(name: str) -> str:
     """The words of a refused budget flag."""
-    from .budget import (HARD_MAX_MEMORY, HARD_MAX_SECONDS, HARD_MAX_TRIANGLES, MIN_MEMORY, MIN_SECONDS,
-                         MIN_TRIANGLES, fmt_bytes)
     return {"max_triangles": f"an integer in [{MIN_TRIANGLES}, {HARD_MAX_TRIANGLES}] triangles",
             "max_memory": f"a size in [{fmt_bytes(MIN_MEMORY)}, {fmt_bytes(HARD_MAX_MEMORY)}] (bytes, or a "
                           "number with KiB, MiB, GiB, MB or GB: 4GiB)",
@@ -214,7 +212,6 @@ def main(argv=None) -> int:
     watchdog's supervisor (:func:`gear3d.watchdog.supervise`: a child process whose CPU
     time and memory are watched from outside); called with a list (tests, embedding) it
     runs in this process under :func:`gear3d.watchdog.guard` alone."""
-    from .errors import GearError
     words = list(sys.argv[1:] if argv is None else argv)
     try:
         words, lim = _take_budget(words)
@@ -224,7 +221,6 @@ def main(argv=None) -> int:
     first = next((w for w in words if not w.startswith("-")), None)
     if argv is None and first in COMMANDS and first not in UNSUPERVISED and hasattr(os, "fork") \
             and os.environ.get("GEAR3D_NO_SUPERVISOR") != "1":
-        from .budget import DEFAULT_MAX_MEMORY, DEFAULT_MAX_SECONDS
         from .watchdog import supervise
         return supervise(lambda: _main(words, lim), lim.get("max_seconds", DEFAULT_MAX_SECONDS),
                          lim.get("max_memory", DEFAULT_MAX_MEMORY))
@@ -232,7 +228,6 @@ def main(argv=None) -> int:
 
 
 def _main(words, lim) -> int:
-    from .errors import GearError
     old = _install_handlers()
     try:
         first = next((w for w in words if not w.startswith("-")), None)
@@ -247,8 +242,6 @@ def _main(words, lim) -> int:
                              + ", ".join(c for c in COMMANDS) + "\n")
             return 2
         try:
-            from .budget import current, limits
-            from .progress import Reporter
             with limits(**lim), Reporter():
                 if args.command in UNSUPERVISED:
                     rc = args._run(args)

@@ -8,6 +8,8 @@ import argparse
 import math
 import re
 
+from .errors import allowed_range, show
+
 #: a plain ASCII decimal number: optional sign, digits with an optional point, optional
 #: exponent; no underscores (``1_0``), no hex, no spaces, no other digits (``٣``)
 PLAIN_NUMBER = re.compile(r"[+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?\Z")
@@ -44,7 +46,6 @@ def number(kind: str = "float", lo=None, hi=None, *, lo_open=False, hi_open=Fals
     ``kind`` is ``"int"`` or ``"float"``; ``lo``/``hi`` bound it (None = unbounded); the
     family builders still check their own, tighter, ranges.
     """
-    from .errors import allowed_range
     integer = kind == "int"
     allowed = allowed_range(lo, hi, lo_open=lo_open, hi_open=hi_open, integer=integer, unit=unit)
 
@@ -58,7 +59,6 @@ def number(kind: str = "float", lo=None, hi=None, *, lo_open=False, hi_open=Fals
         except (ValueError, OverflowError):
             ok = False
         if not ok:
-            from .errors import show
             raise argparse.ArgumentTypeError(f"{show(text)} is not allowed: {allowed}")
         return v
     parse.__name__ = "integer" if integer else "number"

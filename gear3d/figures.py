@@ -14,6 +14,8 @@ import os
 import numpy as np
 
 from .errors import GearError, check_choice
+from . import profile as make
+from .export import as_bodies, atomic_path, body_mesh, check_path
 
 #: file types of the annotated figures (matplotlib's writers)
 FIGURE_EXTS = ("svg", "png", "pdf")
@@ -51,7 +53,6 @@ def figure(obj, path, **opts) -> str:
     (:func:`gear3d.rack`): its outline and pitch line; a body or list of bodies:
     :func:`mesh_preview`. Not a cut outline: ``gear3d.write(profile, "x.svg")`` writes that
     (1:1, mm, paths only)."""
-    from .export import atomic_path, check_path
     from .model import Profile
     check_path(path, "figure", exts=tuple("." + e for e in FIGURE_EXTS))
     with atomic_path(path, "figure") as tmp:
@@ -211,7 +212,6 @@ def rolling_figure(family: str, path=None, *, positions: int = 11, travel: float
 
     ``params`` are the family's parameters (mm, degrees). Rack-generated families only.
     """
-    from . import profile as make
     from .analysis.cutting import rack_outline
     plt = _plt()
     prof = make(family, **params)
@@ -256,7 +256,6 @@ def rolling_figure(family: str, path=None, *, positions: int = 11, travel: float
 def mesh_preview(body, path=None, *, elev: float = 30.0, azim: float = -60.0, max_faces: int = 60000):
     """Shaded 3D preview (PNG/SVG) of a body or list of bodies (matplotlib 3D)."""
     from mpl_toolkits.mplot3d.art3d import Poly3DCollection
-    from .export import as_bodies, body_mesh
     plt = _plt()
     bodies = as_bodies(body)
     fig = plt.figure(figsize=(7, 6))

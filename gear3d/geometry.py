@@ -5,10 +5,11 @@ import math
 
 import numpy as np
 
+from .errors import GearError
+
 
 def check_points(points) -> np.ndarray:
     """``points`` as a finite (N, 2) float array (mm), or GearError naming ``points``."""
-    from .errors import GearError
     try:
         q = np.asarray(points, float)
     except (TypeError, ValueError):

@@ -19,6 +19,9 @@ from .corners import chords_near, corner_angle, exact_crossing, new_vertices, re
 from .geometry import check_points, circle_crossings, point_segment_distance, rotate, segment_foot, unique_sorted
 from .reports import ProfileReport
 from .tessellate import chord_deviation, tessellate
+from . import budget as _budget
+from .profiles import profile as make
+from .progress import stage
 
 #: Clipper2 (inside manifold3d) rounds to 1e-8 mm; half a unit in each axis
 CLIPPER_ROUNDING = 0.5e-8 * math.sqrt(2)
@@ -111,7 +114,6 @@ class Profile:
 
     def at_tolerance(self, tolerance: float) -> "Profile":
         """The same gear rebuilt at another tolerance (mm)."""
-        from .profiles import profile as make
         params = dict(self.params)
         params["tolerance"] = tolerance
         return make(self.family, **params)
@@ -315,10 +317,8 @@ def build_profile(family: str, params: dict, pieces, teeth: int, pitch_radius: f
     :func:`_trim_and_refine` (pattern, trim, tighten the chords at trimmed corners, measure
     the corners) → :func:`_measured_error` → the report.
     """
-    from .progress import stage
     stage("profile")
     tol = tolerance
-    from . import budget as _budget
     _budget.check_rim(rim_radius, pitch_radius, RIM_SHARE * tol)     # range and the circle's vertices
     fs = [_finite(G) for G in pieces]
     # the share of the tolerance the chords may use: Clipper rounds every vertex to 1e-8 mm
@@ -452,7 +452,6 @@ def _sample(pieces, fs, teeth: int, tol: float, budget: float):
     the physical branches end exactly there. Returns (samples, fewest vertices per tooth)."""
     tess = [tessellate(f, budget) for f in fs]
     samples = _Samples(list(fs), [x.t for x in tess], [x.points for x in tess], [x.deviation for x in tess])
-    from . import budget as _budget
     _budget.check_profile(teeth * sum(len(t) - 1 for t in samples.ts), "teeth" if teeth > 1000 else "tolerance",
                           teeth if teeth > 1000 else tol, info={"teeth": teeth, "points": samples.pts})
     for i, G in enumerate(pieces):
@@ -494,7 +493,6 @@ def _trim_and_refine(samples: _Samples, nraw: int, teeth: int, internal: bool, r
     corners, loops, moved, corner_cuts, corner_errs, corner_pairs = [], [], 0.0, {}, [], []
     shrink = 1.0
     fs = samples.fs
-    from . import budget as _budget
     for _attempt in range(CORNER_ATTEMPTS):
         for it in range(REFINE_PASSES):
             # refinement adds vertices: the resource budget again, before patterning

@@ -42,6 +42,10 @@ from dataclasses import dataclass, field
 from .errors import GearError, check_bool, check_choice, check_number
 from .params import BODY, TOLERANCE, Param
 from .reports import Report
+from . import profile
+from .budget import check_body
+from .conventions import to_transverse
+from .placement import mesh_phase, standard_center_distance
 
 #: rack-generated families with a module whose same-family pairs mesh (issue #14 item 1)
 PLANETARY_FAMILIES = ("cycloidal", "involute", "sine", "triangular")
@@ -174,7 +178,6 @@ def _mate_turn(teeth_b: int, toward_b: float, phase_a: float, internal: bool) ->
     """Turn (rad) of wheel B that meshes with wheel A whose phase at the pitch point is
     ``phase_a``: :func:`gear3d.placement.mesh_phase` (B's space on the pitch point, A's tooth
     there) rolled by A's phase: f_B = ½ − f_A (external), f_A − ½ (B a ring)."""
-    from .placement import mesh_phase
     pitch = 2 * math.pi / teeth_b
     return mesh_phase(teeth_b, toward_b) + (-phase_a if internal else phase_a) * pitch
 
@@ -218,7 +221,6 @@ def planetary_set(family: str, sun: int, planet: int, ring: int, planets: int = 
     ``family_params``: the family's other parameters (pressure angle, addendum, ...), the
     same for all wheels. Returns a :class:`PlanetarySet`.
     """
-    from . import profile
     if not isinstance(family, str) or family not in PLANETARY_FAMILIES:
         raise GearError("family", family, "one of " + ", ".join(PLANETARY_FAMILIES)
                         + " (rack-generated families with a module)")
@@ -241,7 +243,6 @@ def planetary_set(family: str, sun: int, planet: int, ring: int, planets: int = 
     p_sun = profile(family, teeth=zs, tolerance=tol, **fp)
     p_pl = profile(family, teeth=zp, tolerance=tol, **fp)
     p_ring = profile(family, teeth=zr, internal=True, tolerance=tol, **fp)
-    from .placement import standard_center_distance
     m = float(p_sun.module)                        # the module the wheels were built with (mm)
     a = standard_center_distance(zs, zp, m)
     r_tip = float(p_pl.report["tip_radius"])
@@ -337,7 +338,6 @@ def _required(name):
 def _family_params(family, module, given) -> dict:
     """The family keywords every wheel shares: reserved names refused, the rest checked
     against the family's table; ``module`` resolved (default 1 mm, or a diametral pitch)."""
-    from .conventions import to_transverse
     from .params import check_family
     fp = dict(given)
     for k in RESERVED:
@@ -419,7 +419,6 @@ def _bodies(p_sun, p_pl, p_ring, placements, width, tol, dims):
     # each body was checked against the budget before it was extruded; the set holds the
     # planet N times: the whole assembly is checked before it is placed and written
     n = sum(1 for q in placements if q["name"].startswith("planet-"))
-    from .budget import check_body
     check_body(b_sun.report["triangles"] + n * b_pl.report["triangles"] + b_ring.report["triangles"],
                "planets", n)
     out = [b_sun.placed(_transform(0.0, (0, 0)), name="sun")]

@@ -16,6 +16,8 @@ from __future__ import annotations
 import os
 import sys
 
+from ..errors import GearError
+
 
 MAX_WORKERS = 1024
 
@@ -59,7 +61,6 @@ def _one_line(text: str, limit: int | None = 300) -> str:
 
 
 def run(args) -> int:
-    from ..errors import GearError
     from ..jobs.template import load_library
     lib = load_library(args.library, args.sets)
     out = args.out or os.path.join("out", lib.name)

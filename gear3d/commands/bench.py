@@ -12,6 +12,10 @@ from __future__ import annotations
 
 import sys
 
+from .. import families
+from ..errors import GearError
+from ..export import check_out_dir
+
 
 def add_parser(sub):
     p = sub.add_parser("bench", help="speed against measured error for every family")
@@ -25,10 +29,7 @@ def add_parser(sub):
 
 def run(args) -> int:
     import os
-    from .. import families
     from ..bench import headline, run as bench_run
-    from ..errors import GearError
-    from ..export import check_out_dir
     if args.json is not None:            # a file; its missing folders are created at the end
         if os.path.isdir(args.json) or args.json.endswith(os.sep):
             raise GearError("json", args.json, "a file path (missing folders are created)", "it is a folder")

@@ -8,19 +8,21 @@ from __future__ import annotations
 import sys
 
 from .profile import add_param_flag, add_profile_flags, family_params, print_notes
+from .. import profile
+from ..conventions import uses_conventions
+from ..export import check_output, write
+from ..params import BODY, BODY_PARAMS
 
 def body_flags() -> list:
     """``[(flag, argparse type, help, dest, Param)]``: the ``body()`` keywords of the one
     table (gear3d.params.BODY_PARAMS) but ``kind``, ``hand`` and ``keyway`` (choices and a
     switch, added by :func:`add_parser`)."""
-    from ..params import BODY_PARAMS
     from .profile import arg_type
     return [(p.flag, arg_type(p), p.help_text(), p.name, p) for p in BODY_PARAMS
             if p.name not in ("kind", "hand", "keyway")]
 
 
 def add_parser(sub):
-    from ..params import BODY
     p = sub.add_parser("body", help="a 3D gear body -> .stl .3mf .step .png .json", add_help=False)
     add_profile_flags(p)
     for a in p._actions:        # a body is a mesh: its default is the printing tolerance
@@ -55,18 +57,14 @@ def run(args) -> int:
     if getattr(args, "rack", False):
         from .rackflags import run_body_cli
         return run_body_cli(args, family_params)
-    from .. import profile
     from ..solids.body import body
     out = args.output
     if out is not None:
-        from ..export import check_output
         check_output(out, kinds="body")
     kw = body_params(args)
     if "width" not in kw:                     # the default the help states (gear3d.params)
-        from ..params import BODY
         kw["width"] = BODY["width"].default
     fp = family_params(args, out, mesh=True)
-    from ..conventions import uses_conventions
     if uses_conventions(fp):                  # normal sizes are taken at the body's helix angle
         fp["helix_angle_deg"] = kw.get("helix_angle_deg", 0.0)
     # build the profile once, at the share of the body tolerance the body plan gives it
@@ -83,7 +81,6 @@ def run(args) -> int:
         sys.stdout.write(dumps(b.report) + "\n")
         print_notes(args)
         return 0
-    from ..export import write
     step_opts = {"step": args.step} if args.step and out.lower().endswith((".step", ".stp")) else {}
     info = write(b, out, **step_opts)
     r = b.report

@@ -19,6 +19,10 @@ import os
 import sys
 import time
 
+from ..cliargs import number
+from ..errors import GearError
+from ..export import check_out_dir
+
 
 def add_parser(sub):
     p = sub.add_parser("build", help="build a scene template (TOML) -> files + report")
@@ -37,7 +41,6 @@ def add_parser(sub):
 
 def add_arrange_flags(p, what: str):
     """``--arrange`` and ``--arrange-gap MM``: lay ``what`` out flat on the print bed."""
-    from ..cliargs import number
     from ..export.threemf import ARRANGE_GAP, MAX_GAP
     p.add_argument("--arrange", action="store_true",
                    help=f"lay {what} flat on the print bed, side by side without overlap, "
@@ -49,7 +52,6 @@ def add_arrange_flags(p, what: str):
 def arrange_options(args) -> dict:
     """The 3MF writer options of ``--arrange`` / ``--arrange-gap`` ({} when neither is given);
     ``--arrange-gap`` alone is refused (it would change nothing)."""
-    from ..errors import GearError
     if args.arrange_gap is not None and not args.arrange:
         raise GearError("arrange_gap", args.arrange_gap, "given only with --arrange")
     opts = {"arrange": True} if args.arrange else {}
@@ -73,7 +75,6 @@ def apply_arrange(scene, opts: dict):
 def run(args) -> int:
     from ..jobs.scene import build_scene
     from ..jobs.template import load_scene
-    from ..export import check_out_dir
     opts = arrange_options(args)
     scene = apply_arrange(load_scene(args.scene, args.sets), opts)
     out = args.out or os.path.join("out", scene.name)

@@ -20,6 +20,9 @@ import sys
 
 from ..cliargs import number, number_or_auto
 from .profile import add_profile_flags, family_params
+from .. import profile
+from ..errors import GearError, check_number
+from ..export import atomic_path, check_path
 
 #: families whose builder takes ``center_distance`` itself (not a pair placement)
 CENTER_DISTANCE_FAMILIES = ("ec-pinion", "ec-wheel")
@@ -57,7 +60,6 @@ def add_pair_flags(c):
 
 def pair_profiles(args):
     """(family params of wheel 1 without mate_teeth/internal, z2, internal) from CLI args."""
-    from ..errors import GearError, check_number
     check_number("precision", args.precision, *PRECISION_RANGE, unit="modules")
     kw = family_params(args)
     if args.family not in CENTER_DISTANCE_FAMILIES:
@@ -79,7 +81,6 @@ def pair_profiles(args):
 def pair_design(args, kw, z2, internal):
     """(wheel-1 keywords, wheel-2 keywords, centre distance or None or "auto", design report
     or None) of a pair from its shift and centre-distance flags (see the module doc)."""
-    from ..errors import GearError
     x1 = getattr(args, "shift_coeff", None)
     x2 = getattr(args, "mate_shift_coeff", None)
     cd = getattr(args, "center_distance", None)
@@ -128,13 +129,11 @@ def pair_design(args, kw, z2, internal):
 def check_figure_path(param: str, path):
     """A figure path (.png or .svg) checked before any work; None passes."""
     if path is not None:
-        from ..export import check_path
         check_path(path, param, (".png", ".svg"))
 
 
 def write_report(path, rep: dict, param: str = "json"):
     """The report as strict JSON, atomically."""
-    from ..export import atomic_path
     from ..export.json_format import dumps
     with atomic_path(path, param) as tmp, open(tmp, "w", encoding="utf-8") as fh:
         fh.write(dumps(rep) + "\n")
@@ -142,7 +141,6 @@ def write_report(path, rep: dict, param: str = "json"):
 
 def write_figure(path, draw, param: str = "png"):
     """``draw(tmp_path)`` into a temporary file that replaces ``path`` when it is complete."""
-    from ..export import atomic_path
     with atomic_path(path, param) as tmp:
         draw(tmp)
 
@@ -150,7 +148,6 @@ def write_figure(path, draw, param: str = "png"):
 def build_pair(family, kw, z2, internal, mate_mode, kw2=None):
     """Wheel 1 and its mate (same family, with ``kw2`` when given, or rolled with wheel 1 as
     the cutter)."""
-    from .. import profile
     from ..profiles.mate import mate
     p1 = profile(family, **kw)
     if mate_mode == "rolled":
@@ -199,8 +196,6 @@ def add_parser(sub):
 
 def _outputs(args):
     """(json path, figure path) from --json/--png/-o, checked before any work."""
-    from ..errors import GearError
-    from ..export import check_path
     js, fig, out = args.json, args.png, args.output
     if out is not None:
         check_path(out, "output", (".json", ".png", ".svg"))
@@ -221,7 +216,6 @@ def _outputs(args):
 def run(args, alias: bool = False) -> int:
     """``gear3d check pair``; ``alias``: called as ``gear3d pair`` (JSON on stdout when no file
     is asked for, and a deprecation note on stderr)."""
-    from ..errors import GearError
     from ..plan import check_pair, largest_addendum, tip_correction     # charged to the budget first
     if not alias and getattr(args, "check_what", None) != "pair":
         raise GearError("check", getattr(args, "check_what", None), "`pair` (see gear3d check pair --help)")
@@ -304,7 +298,6 @@ def finding_code(rep) -> int:
 def _rack_pair(args, alias: bool) -> int:
     """``--rack``: the pinion on a rack of its family (:func:`gear3d.commands.rackflags.run_pair_cli`,
     output by ``-o``)."""
-    from ..errors import GearError
     from .profile import family_params
     from .rackflags import run_pair_cli
     for n in ("json", "png", "mate_shift_coeff", "center_distance", "max_safe_addendum"):

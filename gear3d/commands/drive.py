@@ -9,6 +9,7 @@ from __future__ import annotations
 import sys
 
 from . import harmonic
+from ..errors import GearError
 
 NOTE = "gear3d: note: `gear3d drive harmonic` is deprecated; use `gear3d harmonic`\n"
 
@@ -22,7 +23,6 @@ def add_parser(sub):
 
 def run(args) -> int:
     if getattr(args, "drive_kind", None) != "harmonic":
-        from ..errors import GearError
         raise GearError("drive", getattr(args, "drive_kind", None),
                         "`harmonic design|build|check` (now spelled gear3d harmonic ...)")
     rc = harmonic.run(args)

@@ -6,6 +6,9 @@ Example::
     gear3d families
 """
 
+from ..params import FAMILY_PARAMS
+from ..profiles import families
+
 #: one line on each family: what it is
 WHAT = {
     "involute": "the standard gear (ISO 53 rack), shifts and rings",
@@ -35,8 +38,6 @@ def add_parser(sub):
 
 def lines() -> list:
     """``NAME  what it is; needs --flag ... (defaults shown by gear3d profile NAME --help)``."""
-    from ..params import FAMILY_PARAMS
-    from ..profiles import families
     out = []
     width = max(len(f) for f in families())
     for fam in families():

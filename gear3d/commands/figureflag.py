@@ -3,11 +3,12 @@ from __future__ import annotations
 
 import sys
 
+from ..export import check_path
+
 
 def check_figure_arg(args):
     """``--figure FILE`` checked before any work (extension, folder)."""
     if getattr(args, "figure", None) is not None:
-        from ..export import check_path
         from ..figures import FIGURE_EXTS
         check_path(args.figure, "figure", exts=tuple("." + e for e in FIGURE_EXTS))
 

@@ -16,6 +16,8 @@ import os
 import sys
 
 from ..cliargs import number
+from ..errors import GearError
+from ..export import atomic_path, check_out_dir, check_path, make_out_dir, remove_dirs, write
 
 #: mm: default tolerance of ``build`` (mesh outputs, printing) and of ``check``
 BUILD_TOLERANCE = 0.01
@@ -47,7 +49,6 @@ def _design_flags(p):
 
 
 def _design(args):
-    from ..errors import GearError
     from ..harmonic.synthesis import SEED002, double_harmonic, single_harmonic
     names = ["module", "z2", "z3", "z2_inner", "z4", "w0", "w0_inner", "c0_coeff", "wall", "face_width",
              "length", "length_fixed", "length_mobile"]
@@ -70,7 +71,6 @@ def _design(args):
 
 def _write_json(path, data, param="json"):
     """``data`` as strict JSON (NaN/inf -> null), atomically."""
-    from ..export import atomic_path
     from ..export.json_format import dumps
     with atomic_path(path, param) as tmp, open(tmp, "w", encoding="utf-8") as f:
         f.write(dumps(data) + "\n")
@@ -78,7 +78,6 @@ def _write_json(path, data, param="json"):
 
 def _check_paths(args):
     """Every output path of the action, checked before any work."""
-    from ..export import check_out_dir, check_path
     if getattr(args, "json", None) is not None:
         check_path(args.json, "json", (".json",))
     if getattr(args, "png", None) is not None:
@@ -123,7 +122,6 @@ def add_actions(p):
 
 
 def run(args) -> int:
-    from ..errors import GearError
     if not getattr(args, "harmonic_action", None):
         raise GearError("action", None, "design | build | check (see gear3d harmonic --help)")
     _check_paths(args)
@@ -135,7 +133,6 @@ def run(args) -> int:
         sys.stdout.write(design.table() + "\n")
         return 0
     if act == "build":
-        from ..export import make_out_dir, remove_dirs, write
         from ..harmonic.parts import assembly, build_parts
         _arrange_opts(args)                   # refused before any work
         out = args.output
@@ -156,7 +153,6 @@ def run(args) -> int:
     chk = mesh_check(design, args.stage - 1, tooth=args.tooth, tolerance=args.tolerance,
                      w0=args.deflection, positions=args.positions)
     if args.png:
-        from ..export import atomic_path
         with atomic_path(args.png, "png") as tmp:
             mesh_figure(chk, tmp)
     # one line either way; the whole report only in a file (--json FILE)
@@ -175,7 +171,6 @@ def run(args) -> int:
 
 def _arrange_opts(args) -> dict:
     """``--arrange`` / ``--arrange-gap``: the 3MF writer's options; only with ``--3mf``."""
-    from ..errors import GearError
     from .build import arrange_options
     opts = arrange_options(args)
     if opts and not args.threemf:

@@ -14,6 +14,9 @@ import sys
 import tempfile
 
 from .profile import DeprecatedFlag, add_profile_flags, family_params, print_notes
+from .. import profile
+from ..errors import GearError
+from ..export import LIVE_TEMPS
 
 
 def add_parser(sub):
@@ -33,7 +36,6 @@ def add_parser(sub):
 
 
 def run(args) -> int:
-    from .. import profile
     from ..analysis.inspection import inspect
     if args.json is not None:
         _check_path(args.json, "json", (".json",))
@@ -120,7 +122,6 @@ def table(ins) -> str:
 
 def _check_path(path: str, param: str, exts) -> None:
     """Refuse a bad destination before any work (GearError naming ``param``)."""
-    from ..errors import GearError
     if not path or "\x00" in path:
         raise GearError(param, path, "a file path (non-empty text)")
     if os.path.splitext(path)[1].lower() not in exts:
@@ -140,8 +141,6 @@ def _atomic(path: str, param: str):
     """A temporary file next to ``path`` (same extension) that replaces it when the block
     completes and is removed otherwise: no partial or temporary file is left. While it
     lives it is listed where the CLI's signal handler looks (``gear3d.export.LIVE_TEMPS``)."""
-    from ..errors import GearError
-    from ..export import LIVE_TEMPS
     full = os.path.abspath(path)
     try:
         fd, tmp = tempfile.mkstemp(prefix="." + os.path.basename(full)[:100] + ".",

@@ -5,6 +5,8 @@ from __future__ import annotations
 import argparse
 
 from ..cliargs import number
+from .. import profile
+from ..errors import GearError
 
 #: flags of the drawn tool
 DRAWING_FLAGS = [
@@ -41,7 +43,6 @@ def tool_flags_given(args) -> list:
 def build_mate(args, kw: dict):
     """The mate profile of the command line: ``kw`` holds the mate's own keywords (teeth,
     tolerance, internal, tip/rim radius)."""
-    from ..errors import GearError
     from ..profiles.mate import mate
     teeth = kw.pop("teeth", None)
     if teeth is None:
@@ -54,18 +55,15 @@ def build_mate(args, kw: dict):
         raise GearError("tool", args.tool, "exactly one of --tool FAMILY and --tool-dxf FILE")
     if args.tool_dxf is not None:
         _check_drawn(args)
-        from .. import profile as make
-        return make("mate", tool=args.tool_dxf, teeth=teeth, tool_teeth=args.tool__teeth,
-                    tool_pitch_radius=args.tool_pitch_radius,
-                    tool_center=(args.tool_center_x or 0.0, args.tool_center_y or 0.0), **rest)
-    from .. import profile
+        return profile("mate", tool=args.tool_dxf, teeth=teeth, tool_teeth=args.tool__teeth,
+                       tool_pitch_radius=args.tool_pitch_radius,
+                       tool_center=(args.tool_center_x or 0.0, args.tool_center_y or 0.0), **rest)
     tool_kw = {k[6:]: v for k, v in vars(args).items() if k.startswith("tool__") and v not in (None, False)}
     tool_kw.setdefault("tolerance", rest["tolerance"])
     return mate(profile(args.tool, **tool_kw), teeth, **rest)
 
 
 def _check_drawn(args) -> None:
-    from ..errors import GearError
     teeth = getattr(args, "tool__teeth", None)
     if teeth is None or args.tool_pitch_radius is None:
         raise GearError("tool_teeth" if teeth is None else "tool_pitch_radius", None,

@@ -25,13 +25,16 @@ import argparse
 import os
 import sys
 
+from ..errors import GearError
+from ..export import check_out_dir, check_path, make_out_dir, remove_dirs, write
+from ..params import BODY, TOLERANCE, check_family
+
 #: family flags a set does not take (hidden from --help, refused by the library)
 HIDDEN = ("teeth", "internal", "mate_teeth", "center_distance", "shift_coeff", "tip_radius", "rim_radius",
           "helix_angle_deg", "normal_module", "normal_pressure_angle_deg")
 
 
 def add_parser(sub):
-    from ..params import BODY
     from ..planetary import PLANETARY_PARAMS
     from .profile import MESH_EXTS, add_param_flag, add_profile_flags
     p = sub.add_parser("planetary", add_help=False,
@@ -72,9 +75,7 @@ def read_template(path) -> dict:
     """A ``[planetary]`` template, validated: {key: value} with the set's keys typed and
     ranged, the family's parameters checked against its table. Every problem names the
     file and the key (:class:`gear3d.jobs.template.TemplateError`)."""
-    from ..errors import GearError
     from ..jobs.template import fail, read_toml
-    from ..params import BODY, TOLERANCE, check_family
     from ..planetary import PLANETARY, PLANETARY_FAMILIES
     file = str(path)
     data = read_toml(file)
@@ -119,7 +120,6 @@ def read_template(path) -> dict:
 
 def _outputs(args):
     """(-o path or None, --json path or None), checked before any work."""
-    from ..errors import GearError
     from .profile import MESH_EXTS
     out, js = args.output, args.json
     if out is not None:
@@ -134,8 +134,6 @@ def _outputs(args):
 def _check_new(path, param, exts, note=""):
     """A destination checked before any work (:func:`gear3d.export.check_path`); one whose
     folder does not exist yet is checked for its extension and for a folder that can be made."""
-    from ..errors import GearError
-    from ..export import check_out_dir, check_path
     if not isinstance(path, str) or not path or "\x00" in path:
         raise GearError(param, path, "a file path (non-empty text)")
     if not path.lower().endswith(tuple(exts)):
@@ -148,7 +146,6 @@ def _check_new(path, param, exts, note=""):
 
 
 def run(args) -> int:
-    from ..errors import GearError
     from ..planetary import PLANETARY, planetary_set, summary
     from .check import write_report
     from .profile import default_tolerance, family_params, print_notes
@@ -180,14 +177,12 @@ def run(args) -> int:
                       bodies=out is not None, **fam_kw)
     rep = s.report
     msg = [summary(rep)]
-    from ..export import make_out_dir, remove_dirs
     made = []
     try:
         for path, param in ((out, "output"), (js, "json")):
             if path is not None:
                 made += make_out_dir(os.path.dirname(os.path.abspath(path)), param)
         if out is not None:
-            from ..export import write
             opts = dict(arrange, title=f"planetary {args.family}") if out.lower().endswith(".3mf") else {}
             info = write(s.bodies, out, **opts)
             msg.append(f"wrote {out}: {len(s.bodies)} bodies" + (f" ({info})" if info else ""))

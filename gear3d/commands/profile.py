@@ -6,6 +6,11 @@ import sys
 
 from ..cliargs import number, number_or_auto
 from .mateflags import add_mate_flags, build_mate, tool_flags_given
+from .. import profile
+from ..errors import GearError, ToleranceError, check_choice
+from ..export import check_output, write
+from ..params import (CONV_HELIX, FAMILY_PARAMS, INTERNAL, TOLERANCE, Param, all_params, by_name,
+                      check_excludes, union)
 
 #: mm: the default tolerance of mesh outputs (printing), and of everything else (DXF, EDM)
 MESH_TOLERANCE = 0.01
@@ -26,7 +31,6 @@ FLOAT = number("float")
 
 def _pair_params():
     """Parameters the pair commands give every family (the mate's teeth)."""
-    from ..params import Param
     return {"mate_teeth": Param("mate_teeth", int, "", 1, 100_000, help="EC, Moineau and pairs: teeth of the mating wheel")}
 
 
@@ -35,7 +39,6 @@ def _flag_params(helix: bool = False) -> list:
     (gear3d.params), its range the union of the families' (each family's own range is
     checked after parsing, :func:`family_params`). ``internal`` and ``tolerance`` are added
     by :func:`add_profile_flags` itself."""
-    from ..params import CONV_HELIX, all_params, union
     extra = _pair_params()
     out = []
     for name, ps in all_params().items():
@@ -129,7 +132,6 @@ class FamilyHelp(argparse.Action):
 
 def show_family_help(parser, family) -> None:
     """Print ``parser``'s help for ``family`` (None or unknown: the families and the other flags)."""
-    from ..params import FAMILY_PARAMS, by_name
     tab = by_name(family) if family in FAMILY_PARAMS else {}
     saved = [(a, a.help) for a in parser._actions]
     saved_epilog = parser.epilog
@@ -176,7 +178,6 @@ def add_profile_flags(p, helix: bool = False):
     p.add_argument("family", help="gear family (see `gear3d families`; `FAMILY --help` for its flags)")
     for flag, typ, hlp, dest, param in flag_table(helix):
         add_param_flag(p, param, dest, typ, hlp)
-    from ..params import INTERNAL, TOLERANCE
     add_param_flag(p, INTERNAL, "internal").gear3d_param = None          # every family: always shown
     add_param_flag(p, TOLERANCE, "tolerance", number("float", 0, 1, lo_open=True, unit="mm"),
                    TOLERANCE_HELP).gear3d_param = None
@@ -208,7 +209,6 @@ def _check_family(family, kw) -> None:
     """The given flags against ``family``'s own table (ranges, exclusions); flags the family
     does not take are left to its builder, which refuses them by name (the pair commands
     take ``mate_teeth`` and ``center_distance`` off first)."""
-    from ..params import FAMILY_PARAMS, by_name, check_excludes
     if family not in FAMILY_PARAMS:
         return
     tab = by_name(family)
@@ -242,10 +242,8 @@ def run(args) -> int:
     if getattr(args, "rack", False):
         from .rackflags import run_profile_cli
         return run_profile_cli(args, family_params)
-    from .. import profile
     out = args.output
     if out is not None:
-        from ..export import check_output
         check_output(out, kinds="profile")
     from .figureflag import check_figure_arg, write_figure_arg
     check_figure_arg(args)
@@ -256,13 +254,11 @@ def run(args) -> int:
         plan_profile(args.family, kw, out, opts.get("width"), args.figure)
     given = [k for k in ("normal_module", "normal_pressure_angle_deg") if kw.get(k) is not None]
     if given and kw.get("helix_angle_deg") is None:
-        from ..errors import GearError
         raise GearError("helix_angle_deg", None, f"a number in [0, 80] deg with --{given[0].replace('_', '-')} "
                         "(the helix angle its normal plane is taken at; 0 for a spur gear)")
     if args.family == "mate":
         prof = build_mate(args, kw)
     elif tool_flags_given(args):
-        from ..errors import GearError
         flag = tool_flags_given(args)[0]
         raise GearError(flag.lstrip("-").replace("-", "_"), "given", f"only for the family mate, not {args.family} "
                         "(gear3d profile mate --teeth N --tool FAMILY --tool-…)")
@@ -274,7 +270,6 @@ def run(args) -> int:
         write_figure_arg(args, prof)
         print_notes(args)
         return 0
-    from ..export import write
     info = write(prof, out, **opts)
     write_figure_arg(args, prof)
     r = prof.report
@@ -286,7 +281,6 @@ def run(args) -> int:
 
 def _write_options(args, out) -> dict:
     """Exporter options from the flags, checked against the output before any work."""
-    from ..errors import GearError
     opts = {}
     if out is None:
         given = [f for f in ("width", "kerf", "lead_in", "start_angle_deg", "dxf_version")
@@ -312,11 +306,9 @@ def _write_options(args, out) -> dict:
     if out.lower().endswith(".dxf") and args.tolerance is not None:
         from ..export.dxf import DXF_MIN_TOLERANCE
         if args.tolerance < DXF_MIN_TOLERANCE:
-            from ..errors import ToleranceError
             raise ToleranceError("tolerance", args.tolerance, f"a number >= {DXF_MIN_TOLERANCE:g} mm for a DXF",
                                  "the fit is certified against a reference 20x finer")
     if "dxf_version" in dxf_opts:
-        from ..errors import check_choice
         from ..export.dxf import VERSIONS
         dxf_opts["dxf_version"] = check_choice("dxf_version", str(dxf_opts["dxf_version"]).upper(), VERSIONS)
     if dxf_opts and not out.lower().endswith(".dxf"):

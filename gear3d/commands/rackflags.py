@@ -9,11 +9,13 @@ from __future__ import annotations
 import sys
 
 from ..errors import GearError
+from ..cliargs import number
+from ..export import atomic_path, check_output, check_path, write
+from ..params import BODY
 
 
 def add_rack_flags(p, pair: bool = False):
     """``--rack`` and its flags (``gear3d profile|body|pair``)."""
-    from ..cliargs import number
     p.add_argument("--rack", action="store_true", help="a linear rack of the family (issue #14): "
                    "--teeth rack teeth" + (" ; the pinion has --teeth, the rack --rack-teeth" if pair else ""))
     p.add_argument("--back-height", type=number("float", 0, None, lo_open=True, unit="mm"), default=None,
@@ -49,7 +51,6 @@ def run_profile_cli(args, family_params) -> int:
     from ..rack_part import rack, write_rack
     out = args.output
     if out is not None:
-        from ..export import check_path
         check_path(out, "output", (".json", ".svg", ".png", ".dxf", ".stl", ".3mf", ".step", ".stp",
                                    ".obj", ".ply", ".vtu"))
     _check_given(args, ("kerf", "lead_in", "start_angle_deg", "dxf_version", "spline", "construction",
@@ -78,10 +79,8 @@ def run_body_cli(args, family_params) -> int:
     from ..rack_part import rack, rack_body
     out = args.output
     if out is not None:
-        from ..export import check_output
         check_output(out, kinds="body")
     if args.b_width is None:                  # the default the help states (gear3d.params)
-        from ..params import BODY
         args.b_width = BODY["width"].default
     if args.kind not in ("spur", "helical"):
         raise GearError("kind", args.kind, "spur or helical for a rack")
@@ -99,7 +98,6 @@ def run_body_cli(args, family_params) -> int:
         from ..export.json_format import dumps
         sys.stdout.write(dumps(b.report) + "\n")
         return 0
-    from ..export import write
     info = write(b, out)
     r = b.report
     sys.stdout.write(f"wrote {out}: {r['kind']} {r['family']} rack {r['teeth']} teeth, {r['triangles']} triangles, "
@@ -121,7 +119,6 @@ def run_pair_cli(args, family_params) -> int:
     mesh = out is not None and out.lower().endswith(PAIR_MESH_EXTS)
     width = getattr(args, "width", None)
     if out is not None:
-        from ..export import check_path
         check_path(out, "output", (".json", ".png", ".svg") + PAIR_MESH_EXTS)
     if mesh and width is None:
         raise GearError("width", None, "a number > 0 mm (--width) for a 3D output")
@@ -134,7 +131,6 @@ def run_pair_cli(args, family_params) -> int:
     z = kw.pop("teeth", 20)
     pin, part, rep = rack_pair(args.family, z, getattr(args, "rack_teeth", None), **kw)
     if mesh:
-        from ..export import write
         bodies = rack_pair_bodies(pin, part, rep, width)
         info = write(bodies, out)
         pl = rep["placement"]["pinion_centre"]
@@ -144,7 +140,6 @@ def run_pair_cli(args, family_params) -> int:
                          + (f" {info}" if info else "") + "\n")
         return 0
     if out is not None and out.lower().endswith((".png", ".svg")):
-        from ..export import atomic_path
         with atomic_path(out) as tmp:
             rack_figure(part, tmp, pin, rep["placement"]["pinion_centre"], report=rep,
                         title=f"{part.family} pinion z={z} on a {part.teeth}-tooth rack: "
@@ -157,7 +152,6 @@ def run_pair_cli(args, family_params) -> int:
     if out is None:
         sys.stdout.write(dumps(rep) + "\n")
     else:
-        from ..export import atomic_path
         with atomic_path(out) as tmp, open(tmp, "w", encoding="utf-8") as fh:
             fh.write(dumps(rep) + "\n")
         sys.stdout.write(f"wrote {out}\n")

@@ -8,6 +8,9 @@ from __future__ import annotations
 
 import sys
 
+from .. import profile
+from ..errors import GearError, check_number
+
 
 def add_parser(sub):
     p = sub.add_parser("serve", help="local web page: design a gear, see it, check it, download it")
@@ -21,7 +24,6 @@ def _socket(host: str, port: int):
     """A listening socket on host:port, or GearError naming the one that cannot be bound."""
     import socket
 
-    from ..errors import GearError
     try:
         infos = socket.getaddrinfo(host, port, type=socket.SOCK_STREAM)
     except OSError as e:
@@ -40,7 +42,6 @@ def _socket(host: str, port: int):
 
 
 def run(args) -> int:
-    from ..errors import GearError, check_number
     port = check_number("port", args.port, 0, 65535, integer=True)
     check_number("max_builds", args.max_builds, 1, 64, integer=True)
     try:
@@ -64,6 +65,5 @@ def run(args) -> int:
 
 def _warm_up():
     """Import what a preview needs and build one profile, so the page's first answer is fast."""
-    from .. import profile
     from ..web.svg import profile_svg
     profile_svg(profile("involute", teeth=20))

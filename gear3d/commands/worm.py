@@ -15,6 +15,9 @@ from __future__ import annotations
 
 import sys
 
+from ..errors import GearError
+from ..export import atomic_path, check_path, write
+
 
 def add_parser(sub):
     p = sub.add_parser("worm", help="a worm and its throated wheel (exact envelope) -> .stl .3mf .json .png")
@@ -68,8 +71,6 @@ def _params(args) -> dict:
 
 
 def _check_outputs(args):
-    from ..errors import GearError
-    from ..export import check_path
     if args.output is None and args.json is None and args.png is None:
         raise GearError("output", None, "at least one of -o FILE.stl|.3mf, --json, --png")
     if args.output is not None:
@@ -89,7 +90,6 @@ def run(args) -> int:
     s = worm(part=args.part, **kw)
     lines = []
     if args.output is not None:
-        from ..export import write
         info = write(s.parts(), args.output)
         lines.append(f"wrote {args.output}: {args.part}, max_error={s.report.max_error:.3g} mm "
                      f"(tolerance {s.report.tolerance:g} mm)" + (f" {info}" if info else ""))
@@ -100,7 +100,6 @@ def run(args) -> int:
         figure(mid, args.png, title=f"worm wheel z2={d.wheel_teeth}, mid-plane section ({d.worm_type})")
         lines.append(f"wrote {args.png}: mid-plane section figure")
     if args.json is not None:
-        from ..export import atomic_path
         from ..export.json_format import dumps
         with atomic_path(args.json, "json") as tmp:
             with open(tmp, "w") as fh:

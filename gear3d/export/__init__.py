@@ -25,6 +25,8 @@ import tempfile
 from dataclasses import dataclass
 
 from ..errors import GearError
+from .. import budget
+from ..progress import stage
 
 __all__ = ["write", "check_output", "check_path", "check_out_dir", "register", "FORMATS", "formats_for",
            "atomic_path", "LIVE_TEMPS", "remove_live_temps"]
@@ -306,12 +308,10 @@ def write(obj, path, **opts):
     """Write ``obj`` to ``path``; the extension picks the exporter. Returns a short info
     string (segment counts, measured error...) or None. Nothing is left on error."""
     import importlib
-    from ..progress import stage
     stage("write")
     kind = _kind(obj)
     ext = check_output(path, kind)
     fmt = FORMATS[ext]
-    from .. import budget
     from ..plan import charge_write
     with budget.stage():        # the export's estimate from the object's counts, before it runs
         charge_write(obj, kind, ext, dict(opts, _path=str(path)))

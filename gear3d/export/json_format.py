@@ -7,6 +7,9 @@ from collections.abc import Mapping
 
 import numpy as np
 
+from ..errors import GearError
+from . import as_bodies, body_name
+
 
 def clean(x):
     """JSON-safe copy: numpy scalars/arrays to Python, NaN/inf to None, keys to str."""
@@ -49,7 +52,6 @@ def to_dict(obj) -> dict:
         return {"family": obj.family, "params": clean(obj.params),
                 "loops": [np.asarray(l, float).tolist() for l in obj.loops],
                 "report": clean(obj.report)}
-    from . import as_bodies, body_name
     bodies = as_bodies(obj)
     return {"bodies": [{"name": body_name(b, i), "report": clean(getattr(b, "report", {}) or {})}
                        for i, b in enumerate(bodies)]}
@@ -57,7 +59,6 @@ def to_dict(obj) -> dict:
 
 def write(obj, path, **opts):
     if opts:
-        from ..errors import GearError
         k = sorted(opts)[0]
         raise GearError(k, opts[k], "not an option of the JSON exporter")
     data = clean(to_dict(obj))

@@ -6,12 +6,13 @@ import os
 
 import numpy as np
 
+from . import as_bodies, body_mesh
+
 FORMAT = {".obj": "obj", ".ply": "ply", ".vtu": "vtu"}
 
 
 def write(obj, path, **opts):
     import meshio
-    from . import as_bodies, body_mesh
     bodies = as_bodies(obj, **opts)
     vs, fs, part, off = [], [], [], 0
     for i, b in enumerate(bodies):

@@ -23,6 +23,8 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import GearError
+from .. import __version__
+from . import as_bodies, body_mesh, body_name
 
 
 def _r(x: float) -> str:
@@ -219,7 +221,6 @@ def _brep(w: _Writer, name: str, V: np.ndarray, F: np.ndarray) -> int:
 
 def step_text(parts, product: str = "gear") -> str:
     """The STEP file for ``parts`` = [(name, vertices (n,3) mm, faces (m,3))]."""
-    from .. import __version__
     w = _Writer()
     ac = w.add("APPLICATION_CONTEXT('core data for automotive mechanical design processes')")
     w.add(f"APPLICATION_PROTOCOL_DEFINITION('international standard','automotive_design',2000,#{ac})")
@@ -267,7 +268,6 @@ def write(obj, path, step: str = "faceted", **opts):
         from . import step_brep
         step_brep.require_occ()
         return step_brep.write(obj, path, **opts)
-    from . import as_bodies, body_mesh, body_name
     bodies = as_bodies(obj, **opts)
     parts = []
     for i, b in enumerate(bodies):

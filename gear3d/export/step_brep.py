@@ -38,6 +38,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import GearError, ToleranceError
+from .. import __version__
+from . import as_bodies, body_name
 
 #: share of the tolerance given to the curve fit and to the twist interpolation each
 FIT_SHARE = 0.25
@@ -1006,7 +1008,6 @@ def _measure(prof, law, flanks, recs, tol):
 
 def _fixed_header(path, product: str):
     """Make the file deterministic and named: a fixed FILE_NAME timestamp, the product name."""
-    from .. import __version__
     with open(path, encoding="ascii", errors="replace") as fh:
         text = fh.read()
     text = re.sub(r"FILE_NAME\('[^']*','[^']*'", f"FILE_NAME('{product}','1970-01-01T00:00:00'", text, count=1)
@@ -1058,7 +1059,6 @@ def write(obj, path, **opts):
     """Write a body (or a list of placed bodies) as exact B-rep STEP; returns a short info
     string with the measured error. Nothing is written when a check fails."""
     require_occ()
-    from . import as_bodies, body_name
     bodies = as_bodies(obj, **opts)
     shapes, infos = [], []
     for b in bodies:

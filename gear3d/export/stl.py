@@ -9,6 +9,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from . import as_bodies, body_mesh
+
 #: one binary STL facet record
 FACET = np.dtype([("normal", "<f4", (3,)), ("vertices", "<f4", (3, 3)), ("attr", "<u2")])
 HEADER = b"gear3d binary STL (mm)".ljust(80, b" ")
@@ -30,7 +32,6 @@ def stl_bytes(vertices: np.ndarray, faces: np.ndarray) -> bytes:
 
 
 def write(obj, path, **opts):
-    from . import as_bodies, body_mesh
     bodies = as_bodies(obj, **opts)
     vs, fs, off = [], [], 0
     for b in bodies:

@@ -24,6 +24,10 @@ import zipfile
 
 import numpy as np
 
+from .. import __version__
+from ..errors import GearError, check_number
+from . import as_bodies, body_name
+
 NS_CORE = "http://schemas.microsoft.com/3dmanufacturing/core/2015/02"
 NS_PROD = "http://schemas.microsoft.com/3dmanufacturing/production/2015/06"
 NS_G3D = "https://gear3d.invalid/3mf/2026"
@@ -38,7 +42,6 @@ MAX_GAP = 1000.0
 def check_arrange(arrange=False, gap=ARRANGE_GAP):
     """(arrange, gap) validated: ``arrange`` true or false, ``gap`` a finite number of mm
     in [0, :data:`MAX_GAP`]; anything else raises :class:`~gear3d.errors.GearError`."""
-    from ..errors import GearError, check_number
     if not isinstance(arrange, (bool, np.bool_)):
         raise GearError("arrange", arrange, "true or false")
     return bool(arrange), check_number("gap", gap, 0, MAX_GAP, unit="mm")
@@ -94,7 +97,6 @@ def write(obj, path, title: str | None = None, arrange=False, gap=ARRANGE_GAP, *
     """Write ``obj`` (a body, a list of bodies, or a profile with ``width=``) as 3MF; with
     ``arrange`` the parts are laid flat and side by side for printing (see the module)."""
     import trimesh
-    from . import as_bodies, body_name
     arrange, gap = check_arrange(arrange, gap)
     bodies = as_bodies(obj, **opts)
     placements = _arranged(bodies, gap) if arrange else None
@@ -173,7 +175,6 @@ def _postprocess(raw: bytes, title: str, meta: dict) -> bytes:
 
 def _model_xml(root, title, meta) -> bytes:
     from lxml import etree
-    from .. import __version__
     q = lambda tag: f"{{{NS_CORE}}}{tag}"
     nsmap = dict(root.nsmap)
     nsmap["gear3d"] = NS_G3D

@@ -19,6 +19,8 @@ import numpy as np
 from ..envelope import circle_loop
 from ..errors import GearError, check_choice, check_number
 from .synthesis import HarmonicDesign
+from .. import profile
+from ..tessellate import tessellate
 
 TOOTH_FAMILIES = ("triangular", "sine", "involute")
 
@@ -103,7 +105,6 @@ def tooth_profile(design: HarmonicDesign, role: str, tooth="triangular", toleran
       (addendum 7/8 m), so the tip/root clearance of Table 1 is kept;
     * involute: ``pressure_angle_deg`` (default 20) with Table 1's addendum/dedendum.
     """
-    from .. import profile
     tooth = check_choice("tooth", tooth, TOOTH_FAMILIES)
     w = design.wheel(role)
     m = design.module
@@ -288,7 +289,6 @@ def wave_generator(design: HarmonicDesign, *, tolerance=1e-3, w0=None, bearing_t
     mobile wheel inside the inner teeth) for a double drive, l - t_d for a cup.
     Returns ``(cam, ring_or_None)``; the cam's major axis lies on +x.
     """
-    from ..tessellate import tessellate
     tol = _check_tol(tolerance)
     shape = check_choice("shape", shape, ("ellipse", "cosine"))
     f = design.flexspline

@@ -43,6 +43,8 @@ from .graph import Graph, canonical
 from .scene import part_targets, profile_stage, body_stage, sha256, write_json
 from .specs import Job, Library, LibraryPart
 from .template import MESH_KINDS
+from ..export import FORMATS, atomic_path, check_out_dir, make_out_dir
+from ..profiles import FAMILY_MODULES
 
 RECORDS = ".records"
 
@@ -210,8 +212,6 @@ def worker_modules(lib: Library) -> list:
     """The modules a worker needs for this library's outputs (the forkserver preloads
     them once): the batch and stage code, the family registry, manifold3d and the solids
     for mesh outputs, and each output's exporter module."""
-    from ..export import FORMATS
-    from ..profiles import FAMILY_MODULES
     from .scene import EXT
     kinds = {k for p in lib.parts for k in p.outputs}
     mods = ["numpy", "gear3d.jobs.batch", "gear3d.jobs.scene", "gear3d.export", "gear3d.export.json_format"]
@@ -258,7 +258,6 @@ def run_library(lib: Library, out_dir, workers: int = 2, engine: str = "local", 
     GearError before anything is written.
     """
     from ..errors import check_choice, check_number
-    from ..export import check_out_dir, make_out_dir
     engine = check_choice("engine", engine, ("local", "dask"))
     workers = check_number("workers", workers, 0, 1024, integer=True)
     if scheduler is not None and engine != "dask":
@@ -482,7 +481,6 @@ def _write_manifest(out_dir, lib: Library, records) -> dict:
                     "" if r["triangles"] is None else r["triangles"],
                     "" if not me else repr(max(v for v in me.values() if v is not None)),
                     r["error"] or ""])
-    from ..export import atomic_path
     with atomic_path(os.path.join(out_dir, "manifest.csv")) as tmp:
         with open(tmp, "w", encoding="utf-8", newline="") as f:
             f.write(buf.getvalue())

@@ -19,6 +19,8 @@ from __future__ import annotations
 import html
 import os
 
+from ..export import atomic_path
+
 PREVIEWS = "previews"
 _STYLE = """body{font-family:system-ui,sans-serif;margin:1.5em;color:#222}
 table{border-collapse:collapse;width:100%}td,th{border-bottom:1px solid #ddd;padding:.4em;vertical-align:top;text-align:left}
@@ -161,7 +163,6 @@ def _part_rows(report, g, owners, out_dir) -> list:
 def _save(obj, out_dir, name):
     if obj is None:
         return None
-    from ..export import atomic_path
     os.makedirs(os.path.join(out_dir, PREVIEWS), exist_ok=True)
     rel = f"{PREVIEWS}/{name}.png"
     with atomic_path(os.path.join(out_dir, rel), "preview") as tmp:
@@ -232,7 +233,6 @@ def write_report_html(report: dict, out_dir, path: str = "report.html") -> str:
     page = ("<!DOCTYPE html><html lang=\"en\"><head><meta charset=\"utf-8\">"
             f"<title>{html.escape(report['scene'])}: gear3d report</title><style>{_STYLE}</style></head>"
             "<body>" + "\n".join(body) + "</body></html>\n")
-    from ..export import atomic_path
     out = os.path.join(out_dir, path)
     with atomic_path(out, "report") as tmp, open(tmp, "w", encoding="utf-8") as fh:
         fh.write(page)

@@ -23,6 +23,9 @@ from ..errors import GearError
 from .graph import Graph
 from .specs import AssemblySpec, Job, PartSpec, Scene
 from .template import MESH_KINDS, TemplateError
+from .. import profile
+from ..budget import limits
+from ..export import atomic_path, check_out_dir, make_out_dir, remove_dirs, write
 
 EXT = {k: "." + k for k in ("dxf", "svg", "png", "json", "stl", "3mf", "step", "obj", "ply", "vtu")}
 
@@ -54,7 +57,6 @@ def sha256(path) -> str:
 
 def write_json(path, data):
     """Deterministic JSON (NaN/inf -> null), atomically."""
-    from ..export import atomic_path
     from ..export.json_format import clean
     with atomic_path(path) as tmp:
         with open(tmp, "w", encoding="utf-8") as f:
@@ -81,7 +83,6 @@ def _wrap(stage, e: GearError):
 
 
 def run_profile(stage):
-    from .. import profile
     i = stage.inputs
     try:
         if i.get("rack"):
@@ -112,7 +113,6 @@ def run_body(stage, prof, like=None):
 
 def run_write(stage, obj):
     """Write one file (profile kinds from a Profile, mesh kinds from a Body or list)."""
-    from ..export import atomic_path, write
     i = stage.inputs
     path, out_dir, kind = stage.ctx["path"], stage.ctx["out_dir"], i["kind"]
     extra = {}
@@ -374,7 +374,6 @@ def build_scene(scene: Scene, out_dir, only=None, dry_run=False, log=None) -> di
     plan (``{"stages": [lines]}``) and write nothing. Returns the scene report (also
     written to ``out_dir/<scene>.report.json``), whose ``stages`` counts the stages run.
     """
-    from ..export import check_out_dir, make_out_dir, remove_dirs
     if not dry_run:
         check_out_dir(out_dir, "out")
     # every output name is claimed (collisions refused) before any folder or file is made
@@ -384,7 +383,6 @@ def build_scene(scene: Scene, out_dir, only=None, dry_run=False, log=None) -> di
         return {"stages": g.plan(targets), "graph": g}
     made = make_out_dir(out_dir, "out")
     try:
-        from ..budget import limits
         with limits(scene.max_triangles):
             res = g.run(targets, on_stage=(lambda s: log(f"{s.kind:<9} {s.label}")) if log else None)
         report = _report(scene, g, owners, res)

@@ -83,6 +83,11 @@ import string
 
 from ..errors import GearError
 from .specs import AssemblySpec, Job, Library, LibraryPart, PairSpec, PartSpec, Scene
+from ..budget import HARD_MAX_TRIANGLES
+from ..conventions import to_transverse
+from ..params import (BODY, BODY_PARAMS, CONVENTIONS, FAMILY_PARAMS, by_name, check_excludes, family_table,
+                      md_rows)
+from ..profiles import FAMILIES, families
 
 MESH_KINDS = ("stl", "3mf", "step", "obj", "ply", "vtu")
 PROFILE_KINDS = ("dxf", "svg", "png", "json")
@@ -258,7 +263,6 @@ def family_signature(family):
 @functools.lru_cache(maxsize=None)
 def _family_signature(family):
     """Read once per family: a scene of 100,000 parts asked 200,000 times (10 s of a dry run)."""
-    from ..profiles import FAMILIES, families
     families()                  # imports every family module
     sig = inspect.signature(FAMILIES[family])
     return tuple((n, p.default) for n, p in sig.parameters.items()
@@ -266,7 +270,6 @@ def _family_signature(family):
 
 
 def check_family(file, key, family):
-    from .. import families
     fams = families()
     if family is None:
         fail(file, key, None, "required: one of " + ", ".join(fams))
@@ -306,7 +309,6 @@ def check_param(file, key, family, name, value, sig, ranged: bool = True):
     if name == "tolerance":
         fail(file, key, value, "not a part key: set [scene] tolerance / [scene.tolerances] "
              "([library] tolerance / [library.tolerances])")
-    from ..params import FAMILY_PARAMS, by_name
     if family in FAMILY_PARAMS:
         tab = by_name(family)
         if name not in tab:
@@ -333,7 +335,6 @@ def check_param(file, key, family, name, value, sig, ranged: bool = True):
 def body_signature():
     """{key: default} of a ``[part.body]`` table: the body table (gear3d.params) but the
     tolerance and name (the scene's), plus ``mate``."""
-    from ..params import BODY_PARAMS
     out = {p.name: p.default for p in BODY_PARAMS if p.name not in ("tolerance", "name")}
     out["mate"] = None
     return out
@@ -342,7 +343,6 @@ def body_signature():
 def check_body(file, key, table, *, names=None):
     """A ``[part.body]`` table (gear3d.solids.body keywords plus ``mate``), typed and ranged
     by the body table (gear3d.params.BODY_PARAMS)."""
-    from ..params import BODY
     _table(file, key, table)
     sig = body_signature()
     _unknown(file, key, table, sig)
@@ -447,8 +447,6 @@ def check_part(file, key, raw, *, default_outputs, names=None, require_name=True
     sig = family_signature(fam)
     # helical / inch conventions: normal_module, normal_pressure_angle_deg, diametral_pitch
     # (keys of the family's table, which excludes them against module / pressure_angle_deg)
-    from ..conventions import to_transverse
-    from ..params import FAMILY_PARAMS, check_excludes, family_table
     params = {k: check_param(file, f"{key}.{k}", fam, k, v, sig) for k, v in raw.items()}
     if fam in FAMILY_PARAMS:
         try:
@@ -491,7 +489,6 @@ def _rack_part(file, key, fam, raw, body):
     """A ``rack = true`` part: (params, body) checked by the rack builder's own rules
     (:func:`gear3d.rack_part.rack`; its keys :data:`gear3d.rack_part.RACK_KEYS` and
     ``back_height``), the body a straight or helical rack (width, helix_angle_deg, hand)."""
-    from ..params import BODY, FAMILY_PARAMS, by_name
     from ..rack_part import RACK_FAMILIES, RACK_KEYS, rack_params
     if fam not in RACK_FAMILIES:
         fail(file, f"{key}.family", fam, "a family with a rack: " + ", ".join(RACK_FAMILIES))
@@ -578,7 +575,6 @@ def load_scene(path, sets=()) -> Scene:
         fail(file, "part", None, "at least one [[part]] or [[assembly]]")
     max_tri = None
     if "max_triangles" in top:
-        from ..budget import HARD_MAX_TRIANGLES
         v = top["max_triangles"]
         if isinstance(v, bool) or not isinstance(v, int) or not 1000 <= v <= HARD_MAX_TRIANGLES:
             fail(file, "scene.max_triangles", v, f"an integer in [1000, {HARD_MAX_TRIANGLES}] (the resource budget)")
@@ -842,7 +838,6 @@ def tolerance_for(job: Job, kind: str) -> float:
 def markdown() -> str:
     """``docs/templates.md``: the TOML schema, generated from the same tables the checks
     above use (``python -m gear3d.docsgen --templates > docs/templates.md``)."""
-    from ..params import BODY_PARAMS, CONVENTIONS, FAMILY_PARAMS, md_rows
     from ..rack_part import RACK_KEYS
     doc = (__doc__ or "").split("Scene (", 1)[1]
     scene_doc, library_doc = doc.split("Library (", 1)

@@ -6,6 +6,9 @@ closed forms (sine-circular, ...) hand their exact evaluators to the same builde
 from __future__ import annotations
 
 from ..errors import GearError, check_bool, check_number
+from .. import budget
+from ..conventions import to_transverse, uses_conventions
+from ..params import MODULE, TEETH, by_name, check_excludes, family_table
 
 FAMILIES: dict = {}
 
@@ -41,9 +44,7 @@ def profile(family: str, **params):
     if not isinstance(family, str) or family not in FAMILIES:
         _load()
         raise GearError("family", family, "one of " + ", ".join(sorted(FAMILIES)))
-    from ..conventions import to_transverse, uses_conventions
     if family in FAMILY_MODULE and family != "mate":
-        from ..params import check_excludes, family_table
         check_excludes(params, family_table(family))      # one size, one angle (declared in the table)
     if uses_conventions(params) or params.get("helix_angle_deg") is not None:
         # normal module / normal pressure angle / diametral pitch -> the transverse plane
@@ -52,7 +53,6 @@ def profile(family: str, **params):
         params["internal"] = check_bool("internal", params["internal"])
     if family != "mate" and params.get("rim_radius") is not None and not params.get("internal"):
         raise GearError("rim_radius", params["rim_radius"], "only for a ring gear (internal=True)")
-    from .. import budget
     with budget.stage():             # one profile: its re-checks are tries, not a sum
         return FAMILIES[family](**params)
 
@@ -60,7 +60,6 @@ def profile(family: str, **params):
 def table(family: str) -> dict:
     """{name: :class:`gear3d.params.Param`} of ``family``'s builder keywords: the one table
     its validation, the CLI, the TOML schema and the web form share."""
-    from ..params import by_name
     return by_name(family, conventions=False)
 
 
@@ -84,7 +83,6 @@ def common(teeth, module, tolerance, *, max_teeth=100_000):
     """Validate the parameters every family shares; return (teeth, module, tolerance)."""
     from ..errors import ToleranceError
     from ..tessellate import MIN_TOLERANCE
-    from ..params import MODULE, TEETH
     z = TEETH.check(teeth) if max_teeth == TEETH.hi else check_number("teeth", teeth, 1, max_teeth, integer=True)
     m = MODULE.check(module)
     t = check_number("tolerance", tolerance, 0, m / 4, lo_open=True, unit="mm (at most module/4)")

@@ -31,6 +31,7 @@ from ..model import build_profile
 from . import register, reject_unknown, table
 from .cycloid import (lobe_angles, reducer_report, size_tolerance, min_curvature_radius, pin_ring_pieces,
                       reducer_design, trochoid_left_normal, trochoid_piece, trochoid_point)
+from .. import budget
 
 
 def gerotor_design(lobes, pin_circle_radius, pin_radius, eccentricity, variant, tolerance, teeth,
@@ -111,7 +112,6 @@ def _build(family, d, outer, params, rim_radius):
 def _charge_chambers(d, samples: int = 6000) -> None:
     """Charge :func:`chamber_areas` to the resource budget: 2 (n + 1) crank positions, each
     a buffer and a difference of polygons of about (2 n + 1) x pieces x ``samples`` vertices."""
-    from .. import budget
     n = int(d["n"])
     verts = (2 * n + 1) * len(_pieces(d, False)[0]) * samples
     items = 2 * (n + 1) * verts

@@ -41,6 +41,10 @@ from .features import (apply_features, chamfer_vectors, offset_loops,
 from ..reports import BodyReport
 from .twist import KINDS, TwistLaw, default_arch_radius, twist_law
 from ..budget import staged
+from ..params import BODY          # the one table (ranges stated once)
+from ..placement import mesh_placement, standard_center_distance
+from ..profiles import profile as make
+from ..progress import stage
 
 #: the steepest helix angle (deg) of a body: at 85 deg a tooth wraps tan 85 = 11.4 face
 #: widths around the pitch cylinder; steeper helices are worms (gear3d worm), and near 90
@@ -163,10 +167,8 @@ def body(profile, kind="spur", width=10.0, helix_angle_deg=0.0, hand="right", ga
     Raises :class:`GearError` naming the bad parameter; :class:`ToleranceError` when the
     tolerance is out of reach (too fine or too many triangles).
     """
-    from ..progress import stage
     prof = _check_profile(profile)
     stage("body")
-    from ..params import BODY          # the one table (ranges stated once)
     kind = check_choice("kind", kind, KINDS)
     W = BODY["width"].check(width if width is not None else float("nan"))
     if kind == "spur":
@@ -320,7 +322,6 @@ def place_pair(body1: Body, body2: Body, internal: bool = False, center_distance
     if not body2.twist.is_mate_of(body1.twist, internal):
         raise GearError("body2", body2.name, "a body whose twist law mates body1's "
                         "(build it with mate_body(profile2, like=body1))")
-    from ..placement import mesh_placement, standard_center_distance
     a = (standard_center_distance(p1.teeth, p2.teeth, p1.module, internal) if center_distance is None
          else check_number("center_distance", center_distance, 0, None, lo_open=True, unit="mm"))
     pl = mesh_placement(p1.teeth, p2.teeth, a, 0 if not internal else (2 if p2.internal else 1))
@@ -478,7 +479,6 @@ def _check_profile(profile):
 
 
 def _rebuild(prof, **changes):
-    from ..profiles import profile as make
     params = dict(prof.params)
     params.update(changes)
     return make(prof.family, **params)
@@ -619,7 +619,6 @@ def measure_mesh(V, F, law, prof, knots, delta=0.0, skip=(), min_radius=0.0):
     The end faces are the profile polygon itself, whose measured error the profile
     reports. Triangles whose centroid lies within ``min_radius`` (mm: a bore) are not the
     tooth surface. Returns (max error in mm, the measured band heights in mm)."""
-    from ..progress import stage
     stage("measure")
     knots = np.asarray(knots, float)
     bands = _measured_bands(knots, law, list(skip))

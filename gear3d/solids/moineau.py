@@ -15,13 +15,13 @@ import math
 import numpy as np
 
 from ..errors import check_number
+from ..profiles import profile
 
 
 def moineau_pair(eccentricity: float = 1.0, tooth_radius: float = 2.5, rotor_lead: float = 30.0,
                  length: float = 60.0, tolerance: float = 0.01, rim_radius: float | None = None,
                  hand: str = "right"):
     """Rotor and stator bodies (mm), placed in mesh. Returns (rotor, stator)."""
-    from ..profiles import profile
     from .body import body
     e = check_number("eccentricity", eccentricity, 0, None, lo_open=True, unit="mm")
     L = check_number("rotor_lead", rotor_lead, 0, None, lo_open=True, unit="mm")
