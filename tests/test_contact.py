@@ -272,6 +272,32 @@ def test_cycloidal_contact_through_the_pitch_point():
     assert r["continuous"]
 
 
+def test_cycloid_drive_half_the_pins_drive():
+    """A cycloidal reducer without clearance: half of the pins carry the load at any time
+    (the textbook figure of Blanche and Yang), so each lobe drives for pins/2 pitches of the
+    disc; a tooth difference of one makes the window a whole turn."""
+    for pins in (8, 12):
+        p = gear3d.profile("cycloid-disc", pins=pins, tolerance=1e-3)
+        q = gear3d.profile("cycloid-pins", pins=pins, tolerance=1e-3)
+        r = check_pair(p, q, internal=True)
+        assert abs(r["contact_ratio"] - pins / 2) <= r["contact_ratio_uncertainty"] + 1e-6
+        assert r["continuous"] and not r["interference"]
+
+
+@pytest.mark.slow
+def test_rolled_sine_circular_mate_converges():
+    """The README's SCP pair (20 rolled on 30): the contact folds away where two contacts
+    on one tooth merge; the fold is exact, so the value does not move with the tolerance,
+    and it stays below 1."""
+    from gear3d.profiles.mate import mate
+
+    def build(t):
+        p = gear3d.profile("sine-circular", teeth=20, tolerance=t)
+        return p, mate(p, 30), {}
+    for e, u in _sweep(build):
+        assert e + u < 1
+
+
 # ----------------------------------------------------------------------------- edge contact
 
 def test_rolled_mate_edge_contact_is_reported_not_counted():

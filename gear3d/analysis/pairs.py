@@ -279,19 +279,21 @@ def _conjugate(p1, p2, a, c2, phase2, ratio, internal, tol, interference=False) 
 
 def _covers(intervals, pitch: float) -> bool:
     """Whether the φ intervals (rad) of one tooth's contact, repeated every ``pitch``, leave
-    no angle without a tooth in contact."""
+    no angle without a tooth in contact: the union of their copies holds a whole pitch."""
     if not intervals:
         return False
     lo = min(a for a, _ in intervals)
-    marks = sorted(((a - lo) % pitch, (a - lo) % pitch + (b - a)) for a, b in intervals)
-    reach = 0.0
-    for a, b in marks + [(m[0] + pitch, m[1] + pitch) for m in marks]:
+    hi = max(b for _, b in intervals)
+    k = int(math.ceil((hi - lo) / pitch)) + 1
+    copies = sorted((a + j * pitch, b + j * pitch) for a, b in intervals for j in range(-k, k + 1))
+    reach = -math.inf
+    for a, b in copies:
         if a > reach + 1e-12:
-            return False
-        reach = max(reach, b)
-        if reach >= pitch:
+            start = a                       # a new run of the union starts here
+        reach = max(reach, b) if a <= reach + 1e-12 else b
+        if reach - start >= pitch - 1e-12:
             return True
-    return reach >= pitch
+    return False
 
 
 def _working_angle(p1, p2, a, internal):
