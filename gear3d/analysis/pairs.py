@@ -256,6 +256,11 @@ def _conjugate(p1, p2, a, c2, phase2, ratio, internal, tol, interference=False) 
     near both ends, edge contacts and the play taken up (mm on wheel 2's pitch circle)."""
     from ..placement import operating_pitch_radii
     from .contact import Mesh, contact_ratio, edge_contacts, sliding
+    if p1.boundary is None or p2.boundary is None:
+        # a profile built by hand has no exact pieces: no conjugate contact to judge
+        return {"contact_ratio": None, "contact_ratio_uncertainty": None, "continuous": None,
+                "path_of_contact": [], "path_length": 0.0, "sliding_start": None, "sliding_end": None,
+                "edge_contact": [], "contact_band": tol, "contact_take_up": None, "mean_contact_points": None}
     mesh = Mesh(p1, p2, c2, phase2, ratio, operating_pitch_radii(a, p1.teeth, p2.teeth, internal)[0])
     c = contact_ratio(mesh, None, tol, overlaps=not interference)
     iv, pitch = c["intervals"], 2 * math.pi / p1.teeth

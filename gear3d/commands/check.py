@@ -335,6 +335,8 @@ def contact_phrase(rep) -> str:
     """The contact ratio for a summary line, with its uncertainty when it shows in three
     decimals, and what it means when the teeth lose contact (``continuous`` False)."""
     eps, unc = rep["contact_ratio"], rep.get("contact_ratio_uncertainty")
+    if eps is None:
+        return "contact ratio - (no exact pieces)"
     text = f"contact ratio {eps:.3f}" + (f" +- {unc:.3f}" if unc is not None and unc >= 5e-4 else "")
     if rep.get("continuous") is not False:
         return text
