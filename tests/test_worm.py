@@ -317,7 +317,6 @@ def test_hobbing_simulation_matches_the_envelope():
     simulated space lies within tolerance + the simulation's scallop of the exact section
     (one-sided: the simulated outline's vertices against the exact section)."""
     from manifold3d import CrossSection, FillRule, Manifold, OpType
-    from gear3d.envelope import circle_loop
     from gear3d.wormgear import WHEEL_TURN, worm_transform
     from gear3d.wormgear.worm_body import worm_body
     from gear3d.wormgear.wheel import section_turn
@@ -356,3 +355,133 @@ def test_hobbing_simulation_matches_the_envelope():
         scallop = step ** 2 / (8 * (d.r2 * math.cos(d.alpha_x) / 4))
         print("hobbing", h, float(dist.max()), 2 * tol + scallop)
         assert dist.max() <= 2 * tol + scallop, (h, dist.max(), scallop)
+
+
+# ------------------------------------------------------------------ rolling check of the pair
+
+def _roll(**kw):
+    from gear3d.wormgear.rolling import rolling_check
+    d = design(module=2, starts=1, wheel_teeth=30, axial_pressure_angle_deg=20, **kw)
+    return d, rolling_check(d, positions=8, heights=33)
+
+
+@pytest.mark.parametrize("x", [0.0, 0.25])
+def test_rolling_midplane_contacts_on_the_za_line_of_action(x):
+    """ZA, mid-plane: the worm's section is the straight rack of (m, αx), so every contact
+    point lies on a line through the pitch point (r2, 0) at αx from the X axis's normal:
+    Y = ±(X - r2) / tan αx; the path runs from the worm's tip line X = r2 - (ha - x) m to
+    the wheel's throat circle R = d_a2 / 2 (the textbook's ends of the path of contact)."""
+    d, r = _roll(shift_coeff=x)
+    ta, r2, m = math.tan(math.radians(20)), 30.0, 2.0
+    for name in ("a", "b"):
+        Z = r["_zones"][name]
+        i = int(np.argmin(np.abs(Z["h"])))
+        assert Z["h"][i] == 0.0 and Z["ok"][i]
+        assert Z["X"][i, 0] == pytest.approx(r2 - (1.0 - x) * m, abs=1e-9)
+        assert math.hypot(Z["X"][i, -1], Z["Y"][i, -1]) == pytest.approx(r2 + (1 + x) * m, abs=1e-9)
+        pts = [(C["X"][C["h"] == 0.0], C["Y"][C["h"] == 0.0]) for C in r["_lines"][name]]
+        X, Y = (np.concatenate(v) for v in zip(*pts))
+        assert len(X) >= 8
+        res = np.minimum(np.abs(Y * ta - (X - r2)), np.abs(Y * ta + (X - r2)))
+        assert res.max() < 1e-9
+        # one flank, one line
+        sg = np.sign(Y * (X - r2))[np.abs(X - r2) > 1e-6]
+        assert np.all(sg == sg[0])
+
+
+def test_rolling_conjugate_pair_no_backlash_no_te_clearance_c():
+    """The wheel is the worm's envelope: no interference, no backlash, no transmission
+    error (to double precision), and the radial clearances are the bottom clearance
+    c = (hf - ha) m (the throat is a torus about the worm axis of radius r_f1 + c; the
+    wheel's root is cut by the hob tip r1 + hf m, the worm's tip is r1 + ha m)."""
+    d, r = _roll()
+    c = (1.2 - 1.0) * 2
+    assert r["interference"] is False
+    assert r["min_gap"] == 0.0 and r["backlash_circumferential"] == 0.0
+    assert r["transmission_error_urad"] == 0.0
+    assert r["clearance_wheel_tip"] == pytest.approx(c, abs=1e-9)
+    assert r["clearance_worm_tip"] == pytest.approx(c, abs=1e-9)
+    for name in ("a", "b"):
+        assert r[f"flank_{name}"]["lines_in_contact"][0] >= 2
+    assert r["worm_length_ok"]
+
+
+@pytest.mark.parametrize("dx", [0.01, -0.004])
+def test_rolling_sees_a_thinned_or_thickened_worm(dx):
+    """Move the worm's flanks dx into its thread (the wheel stays the nominal worm's
+    envelope): the check must find exactly an axial play 2 dx (negative: interference),
+    the normal backlash 2 dx cos αn cos γ, and still no transmission error."""
+    d, r = _roll()
+    from gear3d.wormgear.rolling import rolling_check
+    r = rolling_check(d, positions=8, heights=33, thinning=dx)
+    g = math.atan(1 * 2 / 20)
+    an = math.atan(math.tan(math.radians(20)) * math.cos(g))
+    assert r["backlash_circumferential"] == pytest.approx(2 * dx, abs=1e-9)
+    assert r["backlash_normal"] == pytest.approx(2 * dx * math.cos(an) * math.cos(g), abs=1e-9)
+    assert r["min_gap"] == pytest.approx(dx, abs=1e-9)
+    assert r["interference"] is (dx < 0)
+    assert r["transmission_error_urad"] == 0.0
+
+
+@pytest.mark.parametrize("throat", [True, False])
+def test_contact_pattern_mirrors_and_spans_the_face_width(throat):
+    """The section at -h is the mirror of the one at h with the flanks swapped, so flank a's
+    pattern at h is flank b's at -h; the union spans the face width symmetric about the
+    mid-plane (the default face width is what the worm still cuts an addendum deep)."""
+    d, r = _roll(throat=throat)
+    a, b = r["flank_a"], r["flank_b"]
+    assert a["face_width_extent"][0] == pytest.approx(-b["face_width_extent"][1], abs=1e-9)
+    assert a["face_width_extent"][1] == pytest.approx(-b["face_width_extent"][0], abs=1e-9)
+    assert a["radius_extent"] == pytest.approx(b["radius_extent"], abs=1e-9)
+    lo = min(a["face_width_extent"][0], b["face_width_extent"][0])
+    hi = max(a["face_width_extent"][1], b["face_width_extent"][1])
+    assert lo == pytest.approx(-hi, abs=1e-9) and hi == pytest.approx(d.face_width / 2, abs=1e-9)
+    assert a["lines_in_contact"] == b["lines_in_contact"]
+    assert a["contact_length"] == pytest.approx(b["contact_length"], rel=1e-9)
+
+
+def test_contact_points_are_on_the_wheel_with_the_normal_through_the_pitch_point():
+    """Willis from the wheel's side: at every contact point the wheel's exact section (the
+    sheet's flank, turned to the position) passes through the point, and its normal there
+    (finite differences on the exact piece) passes through the pitch point (r2, 0)."""
+    from gear3d.geometry import rotate
+    from gear3d.wormgear import sheet
+    d, r = _roll(shift_coeff=0.1)
+    S, f = r["_zones"]["a"]["S"], r["_zones"]["a"]["f"]
+    phis = 2 * math.pi / 30 * np.arange(8) / 8
+    worst_p = worst_n = 0.0
+    for name, piece in (("a", 2), ("b", 4)):
+        Z = r["_zones"][name]
+        t0, t1 = (S.tA0, S.tA) if name == "a" else (S.tB, S.tB0)
+        for C, phi in zip(r["_lines"][name], phis):
+            rows = Z["rows"][C["row"]]
+            s = (C["t"] - t0[rows]) / (t1[rows] - t0[rows])
+            ang = phi + sheet.turn(d, S.h[rows]) + 2 * math.pi * C["k"] / 30
+            P = rotate(sheet.points(d, f, S, piece, s, rows), ang)
+            Q = np.stack([C["X"], C["Y"]], axis=1)
+            worst_p = max(worst_p, float(np.abs(P - Q).max()))
+            e = 1e-6
+            T = rotate(sheet.points(d, f, S, piece, s + e, rows) - sheet.points(d, f, S, piece, s - e, rows), ang)
+            T /= np.hypot(T[:, 0], T[:, 1])[:, None]
+            # distance from the pitch point (r2, 0) to the normal line through Q
+            w = np.array([30.0, 0.0]) - Q
+            worst_n = max(worst_n, float(np.abs(w[:, 0] * T[:, 0] + w[:, 1] * T[:, 1]).max()))
+    assert worst_p < 1e-9 and worst_n < 1e-6
+
+
+def test_cli_check_and_contact_png(tmp_path, capsys):
+    from gear3d.cli import main
+    js, png = tmp_path / "r.json", tmp_path / "cp.png"
+    args = ["worm", "--module", "1", "--starts", "2", "--wheel-teeth", "24", "--worm-type", "ZN", "--tolerance",
+            "0.05", "--part", "wheel", "--check", "--contact-png", str(png), "--json", str(js)]
+    assert main(args) == 0
+    out = capsys.readouterr().out
+    assert "no interference" in out and "transmission error" in out and "contact pattern" in out
+    rep = json.loads(js.read_text(), parse_constant=lambda c: pytest.fail(c))
+    roll = rep["rolling"]
+    assert roll["interference"] is False and roll["positions"] == 24
+    assert roll["contact_lines"] and all(len(p) == 3 for L in roll["contact_lines"] for p in L["points"])
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    # a worm shorter than the contact zone: exit 1, said in the summary, files still written
+    assert main(args[:-4] + ["--worm-length", "7"]) == 1
+    assert "WORM TOO SHORT" in capsys.readouterr().out

@@ -5,7 +5,9 @@ Frames: the wheel on its own has axis z and mid-plane z = 0 (tooth 0 on +x); the
 its own has axis z and is centred at z = 0; ``--part pair`` places the wheel (turned so
 that a tooth faces the worm) and the worm with its axis parallel to x through (0, a, 0),
 in mesh. ``-o`` STL or 3MF (the pair as two named objects), ``--json`` the report,
-``--png`` the figure of the wheel's mid-plane section.
+``--png`` the figure of the wheel's mid-plane section; ``--check`` rolls the pair through one
+wheel pitch on the exact surfaces (one summary line, ``rolling`` in the JSON; exit 1 on
+interference, lost contact or a worm too short) and ``--contact-png`` draws its contact pattern.
 Example::
 
     gear3d worm --module 2 --starts 1 --wheel-teeth 30 --diameter-quotient 10 \\
@@ -54,6 +56,13 @@ def add_parser(sub):
     p.add_argument("-o", "--output", default=None, help="mesh file: .stl or .3mf (pair: two named objects)")
     p.add_argument("--json", default=None, help="write the report (strict JSON)")
     p.add_argument("--png", default=None, help="figure of the wheel's mid-plane section")
+    p.add_argument("--check", action="store_true",
+                   help="roll the pair through one wheel pitch on the exact surfaces: one summary line "
+                        "(interference, backlash, transmission error, contact lines and pattern), the numbers "
+                        "under 'rolling' in --json; exit 1 on interference, lost contact or a worm too short")
+    p.add_argument("--contact-png", default=None,
+                   help="figure of the contact pattern (implies --check): the contact lines on both wheel "
+                        "flanks unrolled, face width against radius")
     return p
 
 
@@ -71,11 +80,12 @@ def _params(args) -> dict:
 
 
 def _check_outputs(args):
-    if args.output is None and args.json is None and args.png is None:
-        raise GearError("output", None, "at least one of -o FILE.stl|.3mf, --json, --png")
+    if args.output is None and args.json is None and args.png is None and not args.check \
+            and args.contact_png is None:
+        raise GearError("output", None, "at least one of -o FILE.stl|.3mf, --json, --png, --check, --contact-png")
     if args.output is not None:
         check_path(args.output, "output", exts=(".stl", ".3mf"))
-    for name, ext in (("json", ".json"), ("png", ".png")):
+    for name, ext in (("json", ".json"), ("png", ".png"), ("contact_png", ".png")):
         if getattr(args, name) is not None:
             check_path(getattr(args, name), name, exts=(ext,))
 
@@ -87,7 +97,8 @@ def run(args) -> int:
     kw = _params(args)
     d = design(**{k: v for k, v in kw.items() if k not in ("worm_bore", "wheel_bore", "hub_diameter",
                                                             "hub_length")})
-    s = worm(part=args.part, **kw)
+    check = bool(args.check or args.contact_png)
+    s = worm(part=args.part, check=check, **kw)
     lines = []
     if args.output is not None:
         info = write(s.parts(), args.output)
@@ -99,6 +110,16 @@ def run(args) -> int:
         mid = section(d, 0.0, d.tolerance)
         figure(mid, args.png, title=f"worm wheel z2={d.wheel_teeth}, mid-plane section ({d.worm_type})")
         lines.append(f"wrote {args.png}: mid-plane section figure")
+    rc = 0
+    if check:
+        from ..wormgear.rolling import pattern_figure, summary
+        r = s.report.rolling
+        lines.append(summary(r))
+        if args.contact_png is not None:
+            pattern_figure(d, s.rolling, args.contact_png)
+            lines.append(f"wrote {args.contact_png}: contact pattern figure")
+        lost = min(r["flank_a"]["lines_in_contact"][0], r["flank_b"]["lines_in_contact"][0]) == 0
+        rc = 1 if (r["interference"] or lost or not r["worm_length_ok"]) else 0
     if args.json is not None:
         from ..export.json_format import dumps
         with atomic_path(args.json, "json") as tmp:
@@ -106,4 +127,4 @@ def run(args) -> int:
                 fh.write(dumps(s.report.to_dict()) + "\n")
         lines.append(f"wrote {args.json}: report")
     sys.stdout.write("\n".join(lines) + "\n")
-    return 0
+    return rc

@@ -22,7 +22,7 @@ from dataclasses import asdict, dataclass, fields
 
 import numpy as np
 
-from ..errors import check_choice
+from ..errors import check_bool, check_choice
 from .design import WormDesign, design
 
 PARTS = ("worm", "wheel", "pair")
@@ -72,6 +72,8 @@ class WormReport:
     wheel_sections: int | None
     worm_triangles: int | None
     wheel_triangles: int | None
+    #: the rolling check of the pair (:func:`gear3d.wormgear.rolling.rolling_check`), when asked
+    rolling: dict | None = None
 
     def to_dict(self) -> dict:
         return {f.name: _clean(getattr(self, f.name)) for f in fields(self)}
@@ -97,6 +99,8 @@ class WormSet:
     worm: object
     wheel: object
     report: WormReport
+    #: the rolling check with its contact lines' arrays (for :func:`gear3d.wormgear.rolling.pattern_figure`)
+    rolling: dict | None = None
 
     def parts(self) -> list:
         """The bodies to write for the report's ``part``: one body, or the pair placed."""
@@ -125,13 +129,16 @@ def place(s: WormSet) -> list:
 
 
 def worm(part="pair", tolerance=None, worm_bore=None, wheel_bore=None, hub_diameter=None, hub_length=None,
-         **params) -> WormSet:
+         check=False, **params) -> WormSet:
     """Worm and worm wheel (mm, degrees): ``part`` = worm | wheel | pair; the design keywords
     of :func:`gear3d.wormgear.design.design` (module, starts, wheel_teeth, diameter_quotient or
     worm_pitch_diameter, axial_ or normal_pressure_angle_deg, worm_type, addendum_coeff,
     dedendum_coeff, hand, shift_coeff, worm_length, face_width, throat, friction);
     ``tolerance`` (mm, default 0.01); ``worm_bore`` (mm), ``wheel_bore``, ``hub_diameter``
-    and ``hub_length`` (the wheel's hub, centred on its mid-plane).
+    and ``hub_length`` (the wheel's hub, centred on its mid-plane); ``check`` rolls the pair
+    through one wheel pitch on the exact surfaces (``report.rolling``: interference,
+    backlash, transmission error, contact lines and pattern; see
+    :mod:`gear3d.wormgear.rolling`).
 
     The wheel is the exact envelope of the worm, section by section; both bodies are
     measured (``report.max_error``) against the closed forms. Bad input raises one
@@ -152,7 +159,16 @@ def worm(part="pair", tolerance=None, worm_bore=None, wheel_bore=None, hub_diame
         from ..errors import GearError
         raise GearError("wheel_bore" if wheel_bore is not None else "hub_diameter",
                         wheel_bore if wheel_bore is not None else hub_diameter, "None unless the wheel is built")
-    return WormSet(d, w, wh, _report(d, part, w, wh))
+    roll = None
+    if check_bool("check", check):
+        from .rolling import rolling_check
+        roll = rolling_check(d)
+    rep = _report(d, part, w, wh)
+    if roll is not None:
+        from dataclasses import replace
+        from .rolling import public
+        rep = replace(rep, rolling=public(roll))
+    return WormSet(d, w, wh, rep, roll)
 
 
 def _check_budget(d, part):
