@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .envelope import PRUNE_SHARE, RIM_SHARE, circle_loop, pattern, signed_area, trim
-from .errors import GearError, check_number
+from .errors import GearError, ToleranceError, check_number
 from .corners import chords_near, corner_angle, exact_crossing, new_vertices, refine
 from .geometry import check_points, circle_crossings, point_segment_distance, rotate, segment_foot, unique_sorted
 from .reports import ProfileReport
@@ -123,7 +123,6 @@ class Profile:
         standing in for the exact curve in measurements; ``reference().tolerance`` bounds the
         measurement's own uncertainty."""
         if self._ref is None:
-            from .errors import ToleranceError
             for f in (50, 20, 10):
                 try:
                     self._ref = self.at_tolerance(max(self.tolerance / f, 2e-7))
@@ -276,7 +275,6 @@ class _Samples:
         self.ts[i], self.pts[i], self.devs[i], ok = refine(self.fs[i], self.ts[i], self.pts[i], self.devs[i],
                                                            chords, target)
         if not ok:
-            from .errors import ToleranceError
             raise ToleranceError("tolerance", tol, "a tolerance at which every trimmed corner can be certified",
                                  f"near a trimmed corner the chords stop converging to the exact curve "
                                  f"at {target:.2g} mm: its evaluator is not smooth at that scale")
@@ -352,7 +350,6 @@ def build_profile(family: str, params: dict, pieces, teeth: int, pitch_radius: f
                                                                 teeth, tol):
             break
     else:
-        from .errors import ToleranceError
         raise ToleranceError("tolerance", tol, "a finer tolerance",
                              "a swallowtail narrower than the chords survived trimming: the trimmed "
                              "outline still runs along a branch past a singular point")
@@ -362,7 +359,6 @@ def build_profile(family: str, params: dict, pieces, teeth: int, pitch_radius: f
     arc_t = samples.ts[nraw] if clip_binding else None
     fs, ts = fs[:nraw], samples.ts[:nraw]
     if max_err > tol * (1 + 1e-9):
-        from .errors import ToleranceError
         raise ToleranceError("tolerance", tol, "a coarser value",
                              f"the measured error is {max_err:.3g} mm at a trimmed corner or rim")
     expected = 2 if internal else 1

@@ -40,7 +40,7 @@ import numpy as np
 from dataclasses import dataclass, field
 
 from .errors import GearError, check_bool, check_choice, check_number
-from .params import BODY, TOLERANCE, Param
+from .params import BODY, TOLERANCE, Param, check_family
 from .reports import Report
 from . import profile
 from .budget import check_body
@@ -338,7 +338,6 @@ def _required(name):
 def _family_params(family, module, given) -> dict:
     """The family keywords every wheel shares: reserved names refused, the rest checked
     against the family's table; ``module`` resolved (default 1 mm, or a diametral pitch)."""
-    from .params import check_family
     fp = dict(given)
     for k in RESERVED:
         if k in fp and fp[k] is not None and not (k == "internal" and fp[k] is False):

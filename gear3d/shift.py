@@ -18,7 +18,7 @@ from __future__ import annotations
 import math
 
 from .errors import GearError, check_bool, check_number
-from .placement import (involute_function, operating_center_distance,
+from .placement import (involute_function, operating_center_distance, pressure_angle_at,
                         standard_center_distance, working_pressure_angle_deg)
 
 #: shifts are rounded up to this step by :func:`min_shift` (a number a drawing can carry)
@@ -193,7 +193,6 @@ def design_pair(teeth1: int, teeth2: int, module: float = 1.0, shift1=0.0, shift
                     raise GearError("center_distance", aw, "a centre distance the shift range "
                                     f"[{SHIFT_RANGE[0]:g}, {SHIFT_RANGE[1]:g}] can reach",
                                     f"{n} would be {xs[i]:.4g}")
-    from .placement import pressure_angle_at
     alw = pressure_angle_at(aw, teeth1, teeth2, m, pressure_angle_deg, internal)
     y, k = tip_shortening(teeth1, teeth2, m, xs[0], xs[1], aw, internal)
     tips = [None, None]

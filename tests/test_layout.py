@@ -398,7 +398,7 @@ def _lazy_light_imports():
     startup = _startup(top)
     for m in MODULES:
         for target, _, where, line in _edges(m):
-            if where != "function" or target not in LIGHT or target == m or target in top[m]:
+            if where != "function" or target not in LIGHT or target == m:
                 continue
             why = None
             if _reworked(m):

@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..errors import GearError
+from ..errors import GearError, check_choice
 from .. import __version__
 from . import as_bodies, body_mesh, body_name
 
@@ -262,7 +262,6 @@ def write(obj, path, step: str = "faceted", **opts):
     """Write ``obj`` as STEP: ``step="faceted"`` (default, planar facets) or ``step="brep"``
     (exact B-spline flanks; needs ``pip install 'gear3d[cad]'``, else GearError naming
     ``step``)."""
-    from ..errors import check_choice
     check_choice("step", step, STEP_KINDS)
     if step == "brep":
         from . import step_brep

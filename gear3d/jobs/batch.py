@@ -38,7 +38,7 @@ import os
 import sys
 import time
 
-from ..errors import GearError
+from ..errors import GearError, check_choice, check_number
 from .graph import Graph, canonical
 from .scene import part_targets, profile_stage, body_stage, sha256, write_json
 from .specs import Job, Library, LibraryPart
@@ -257,7 +257,6 @@ def run_library(lib: Library, out_dir, workers: int = 2, engine: str = "local", 
     Bad input, an unwritable ``out_dir``, Dask missing or an unreachable scheduler raise
     GearError before anything is written.
     """
-    from ..errors import check_choice, check_number
     engine = check_choice("engine", engine, ("local", "dask"))
     workers = check_number("workers", workers, 0, 1024, integer=True)
     if scheduler is not None and engine != "dask":

@@ -81,7 +81,7 @@ import os
 import re
 import string
 
-from ..errors import GearError
+from ..errors import GearError, allowed_range, check_number
 from .specs import AssemblySpec, Job, Library, LibraryPart, PairSpec, PartSpec, Scene
 from ..budget import HARD_MAX_TRIANGLES
 from ..conventions import to_transverse
@@ -207,13 +207,11 @@ def safe_name(file, key, name) -> str:
 
 
 def _number(file, key, v, lo=None, hi=None, lo_open=False, hi_open=False, integer=False, unit=""):
-    from ..errors import check_number
     try:
         if (integer and isinstance(v, float)) or isinstance(v, (str, bool)) or v is None:
             raise GearError(key, v, "")
         return check_number(key, v, lo, hi, lo_open=lo_open, hi_open=hi_open, integer=integer, unit=unit)
     except GearError:
-        from ..errors import allowed_range
         fail(file, key, v, allowed_range(lo, hi, lo_open=lo_open, hi_open=hi_open, integer=integer, unit=unit))
 
 

@@ -5,7 +5,7 @@ closed forms (sine-circular, ...) hand their exact evaluators to the same builde
 """
 from __future__ import annotations
 
-from ..errors import GearError, check_bool, check_number
+from ..errors import GearError, ToleranceError, check_bool, check_number
 from .. import budget
 from ..conventions import to_transverse, uses_conventions
 from ..params import MODULE, TEETH, by_name, check_excludes, family_table
@@ -81,7 +81,6 @@ def _load():
 
 def common(teeth, module, tolerance, *, max_teeth=100_000):
     """Validate the parameters every family shares; return (teeth, module, tolerance)."""
-    from ..errors import ToleranceError
     from ..tessellate import MIN_TOLERANCE
     z = TEETH.check(teeth) if max_teeth == TEETH.hi else check_number("teeth", teeth, 1, max_teeth, integer=True)
     m = MODULE.check(module)

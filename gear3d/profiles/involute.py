@@ -4,7 +4,7 @@ from __future__ import annotations
 import math
 
 from ..envelope import rack_envelope
-from ..errors import check_number
+from ..errors import GearError, check_number
 from ..model import build_profile
 from ..racks import involute_rack
 from . import blank_and_rim, common, register, reject_unknown, table
@@ -32,7 +32,6 @@ def involute(teeth=20, module=1.0, pressure_angle_deg=20.0, addendum_coeff=1.0,
     rho = P["tip_radius_coeff"].check(tip_radius_coeff)
     if isinstance(shift_coeff, str) and shift_coeff == "auto":
         if internal:
-            from ..errors import GearError
             raise GearError("shift_coeff", shift_coeff, "a number in [-3, 3] for a ring (auto: external gears)")
         from ..shift import min_shift
         shift_coeff = min_shift(z, a, hf, rho)     # the smallest shift free of undercut
@@ -85,6 +84,5 @@ def nominal_tip(tip_gen, clip, internal):
 
 
 def _no_root(name, val, r, x, m):
-    from ..errors import GearError
     return GearError(name, val, "a value that keeps the root circle outside the centre",
                      f"root radius would be <= 0 for pitch radius {r:g} mm and shift {x * m:g} mm")

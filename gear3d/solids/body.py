@@ -45,6 +45,7 @@ from ..params import BODY          # the one table (ranges stated once)
 from ..placement import mesh_placement, standard_center_distance
 from ..profiles import profile as make
 from ..progress import stage
+from .. import budget
 
 #: the steepest helix angle (deg) of a body: at 85 deg a tooth wraps tan 85 = 11.4 face
 #: widths around the pitch cylinder; steeper helices are worms (gear3d worm), and near 90
@@ -200,7 +201,6 @@ def body(profile, kind="spur", width=10.0, helix_angle_deg=0.0, hand="right", ga
         rr = float(prof.report["root_radius"])
         check_number("rim_diameter", rim_diameter, 2 * rr, None, lo_open=True,
                      unit=f"mm (beyond the root diameter {2 * rr:.6g})")
-        from .. import budget
         budget.check_rim(rim_diameter / 2, prof.pitch_radius, tol, "rim_diameter", scale=2)
         prof = _rebuild(prof, rim_radius=rim_diameter / 2)
     delta = check_number("xy_offset", xy_offset, -m / 2, m / 2, unit="mm (|offset| <= module/2)")
@@ -353,7 +353,6 @@ def _build(prof, law, W, tol, delta, e_off, cb, ct, ef_bottom, skip, share=1.0, 
     loops = offset_loops(prof.loops, delta, e_off)
     rho = max(float(np.hypot(l[:, 0], l[:, 1]).max()) for l in loops)
     e_z = max(tol - e_p - e_off, 0.0) * share
-    from .. import budget
 
     def charge(nv, layers):      # before the layers and the subdivided loops are made
         budget.check_body(2 * nv * layers + 2 * nv, "tolerance", tol, manifold=direct is None,
