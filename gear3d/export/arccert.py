@@ -307,10 +307,56 @@ def _vertex(t, e):
     return np.stack([ts - h, ts, ts + h], axis=1)
 
 
-def certify(R: Runs, u0, u1, P0, P1, T0, T1, j0=None, j1=None) -> Spans:
+def _split_guess(R: Runs, u0, u1, P0, P1, J, Tm, known):
+    """First estimates of uJ, where the normal line at J meets the curve, and a bracket
+    [lo, hi] (chain parameters): the sign change of g = (G - J).Tm along the curve points
+    already known inside each span (``known`` = (u, P) sorted), interpolated; spans with
+    none inside sample the curve (one round of evaluations for those only). Also whether
+    g rises along those points."""
+    n = len(u0)
+    ku, kP = known if known is not None else (np.zeros(0), np.zeros((0, 2)))
+    first = np.searchsorted(ku, u0, side="right")
+    count = np.searchsorted(ku, u1, side="left") - first
+    bare = count < 1
+    width = int(count.max(initial=0)) + 2
+    # each span's points: its start, the known ones inside, its end (padded with the end)
+    col = np.arange(width)[None, :]
+    inside = (col >= 1) & (col <= count[:, None])
+    ki = np.clip(first[:, None] + col - 1, 0, max(len(ku) - 1, 0))
+    us = np.where(inside, ku[ki] if len(ku) else 0.0, u1[:, None])
+    us[:, 0] = u0
+    Ps = np.where(inside[..., None], kP[ki] if len(ku) else 0.0, P1[:, None, :])
+    Ps[:, 0] = P0
+    if bare.any():
+        b = np.nonzero(bare)[0]
+        U = u0[b, None] + (u1 - u0)[b, None] * np.linspace(0.0, 1.0, SPLIT_SAMPLES + 1)
+        w = max(width, SPLIT_SAMPLES + 1)
+        if w > width:
+            us = np.concatenate([us, np.repeat(us[:, -1:], w - width, axis=1)], axis=1)
+            Ps = np.concatenate([Ps, np.repeat(Ps[:, -1:], w - width, axis=1)], axis=1)
+        Q = R.eval_u(U.ravel()).reshape(len(b), -1, 2)
+        Q[:, 0], Q[:, -1] = P0[b], P1[b]
+        if w > U.shape[1]:
+            U = np.concatenate([U, np.repeat(U[:, -1:], w - U.shape[1], axis=1)], axis=1)
+            Q = np.concatenate([Q, np.repeat(Q[:, -1:], w - Q.shape[1], axis=1)], axis=1)
+        us[b], Ps[b] = U, Q
+    g = np.einsum("nkj,nj->nk", Ps - J[:, None, :], Tm)
+    dg = np.diff(g, axis=1)
+    pad = np.diff(us, axis=1) == 0                      # the padding repeats the end
+    mono = np.isfinite(g).all(axis=1) & ((dg > 0) | pad).all(axis=1)
+    rows = np.arange(n)
+    i = np.clip(np.argmax(g >= 0, axis=1), 1, g.shape[1] - 1)
+    ga, gb = g[rows, i - 1], g[rows, i]
+    lo, hi = us[rows, i - 1], us[rows, i]
+    uJ = lo + (hi - lo) * np.where(gb > ga, -ga / np.where(gb > ga, gb - ga, 1.0), 0.5)
+    return uJ, lo, hi, mono
+
+
+def certify(R: Runs, u0, u1, P0, P1, T0, T1, j0=None, j1=None, known=None) -> Spans:
     """Biarcs between (P0, T0) and (P1, T1) over the chain parameters [u0, u1] with their
     certified two-sided error (mm, see the module doc; inf where no valid biarc exists).
-    Three rounds of exact evaluations for all spans at once."""
+    Two rounds of exact evaluations for all spans at once (``known`` = (u, P): curve
+    points already evaluated, which locate the biarcs' joints on the curve)."""
     u0, u1 = np.asarray(u0, float), np.asarray(u1, float)
     n = len(u0)
     j0 = np.full(n, -1) if j0 is None else np.asarray(j0, int)
@@ -318,18 +364,11 @@ def certify(R: Runs, u0, u1, P0, P1, T0, T1, j0=None, j1=None) -> Spans:
     J, Tm, b1, b2, ok = biarcs(P0, T0, P1, T1)
     if n == 0:
         return Spans(u0, u1, P0, P1, T0, T1, J, b1, b2, np.zeros(0), j0, j1)
-    rows = np.arange(n)
-    # 1: where the normal at J meets the curve, first from a few samples (g rises along the span)
-    Us = u0[:, None] + (u1 - u0)[:, None] * np.linspace(0.0, 1.0, SPLIT_SAMPLES + 1)
-    Q = R.eval_u(Us.ravel()).reshape(n, -1, 2)
-    Q[:, 0], Q[:, -1] = P0, P1
-    g = np.einsum("nkj,nj->nk", Q - J[:, None, :], Tm)
-    ok &= np.isfinite(g).all(axis=1) & (np.diff(g, axis=1) > 0).all(axis=1) & (g[:, 0] < 0) & (g[:, -1] > 0)
-    k = np.clip(np.argmax(g >= 0, axis=1), 1, SPLIT_SAMPLES)
-    ga, gb = g[rows, k - 1], g[rows, k]
-    lo, hi = Us[rows, k - 1], Us[rows, k]
-    uJ = lo + (hi - lo) * np.where(gb > ga, -ga / np.where(gb > ga, gb - ga, 1.0), 0.5)
-    # 2: a Newton step on uJ; each arc's samples, uniform over its stretch [u0, uJ], [uJ, u1]
+    g0, g1 = np.einsum("nj,nj->n", P0 - J, Tm), np.einsum("nj,nj->n", P1 - J, Tm)
+    ok &= (g0 < 0) & (g1 > 0)
+    uJ, lo, hi, mono = _split_guess(R, u0, u1, P0, P1, J, Tm, known)
+    ok &= mono
+    # 1: a Newton step on uJ; each arc's samples, uniform over its stretch [u0, uJ], [uJ, u1]
     hJ = (u1 - u0) * 1e-6
     v = np.linspace(0.0, 1.0, SAMPLES + 1)
     A1 = u0[:, None] + (uJ - u0)[:, None] * v
@@ -341,11 +380,13 @@ def certify(R: Runs, u0, u1, P0, P1, T0, T1, j0=None, j1=None) -> Spans:
     Q1, Q2 = pts[:, 2:2 + len(v)], pts[:, 2 + len(v):]
     Q1[:, 0], Q2[:, -1] = P0, P1
     e1, e2 = circle_distance(Q1, P0, J, b1), circle_distance(Q2, J, P1, b2)
-    # 3: the curve at the refined uJ, and around each arc's largest sample
+    # 2: the curve at the refined uJ, and around each arc's largest sample
     V1, V2 = _vertex(A1, e1), _vertex(A2, e2)
     last = R.eval_u(np.concatenate([uJ1[:, None], V1, V2], axis=1).ravel()).reshape(n, 7, 2)
     GJ = last[:, :1]
     eJ = np.maximum(np.abs(circle_distance(GJ, P0, J, b1)[:, 0]), np.abs(circle_distance(GJ, J, P1, b2)[:, 0]))
+    # how far G(uJ) lies off the normal line at J: curve points that far past J's ray are
+    # that much farther from J than from the circle (see the module doc)
     res = np.abs(np.einsum("nj,nj->n", GJ[:, 0] - J, Tm))
     h1 = _half_error(e1, A1, V1, circle_distance(last[:, 1:4], P0, J, b1))
     h2 = _half_error(e2, A2, V2, circle_distance(last[:, 4:7], J, P1, b2))
@@ -358,7 +399,7 @@ def certify(R: Runs, u0, u1, P0, P1, T0, T1, j0=None, j1=None) -> Spans:
 
 
 #: exact evaluations per span of one :func:`certify` call
-EVALS_PER_SPAN = SPLIT_SAMPLES + 1 + 2 + 2 * (SAMPLES + 1) + 7
+EVALS_PER_SPAN = 2 + 2 * (SAMPLES + 1) + 7
 
 
 # ------------------------------------------------------------------ the fit
@@ -470,11 +511,14 @@ def _partition(jt: Joints, w, forced, share: float) -> np.ndarray:
 
 def _calibrated(jt: Joints, w, sp: "Spans", budget: float) -> np.ndarray:
     """The chord weights rescaled so that along every certified span they add up to the
-    cube root of its measured error (a span that failed counts as 8 x budget)."""
+    cube root of its measured error (a span with no valid biarc counts as 1.5 x budget:
+    about two parts). Chords the model saw as exact arcs (weight 0) share by length."""
+    c = np.hypot(*(jt.P[1:] - jt.P[:-1]).T)
+    w = w + 1e-6 * c
     cum = np.concatenate([[0.0], np.cumsum(w)])
     span_w = np.interp(sp.u1, jt.u, cum) - np.interp(sp.u0, jt.u, cum)
-    e = np.where(np.isfinite(sp.error), np.minimum(sp.error, 8 * budget), 8 * budget)
-    f = np.cbrt(np.maximum(e, 1e-18)) / np.maximum(span_w, 1e-12)
+    e = np.where(np.isfinite(sp.error), sp.error, 1.5 * budget)
+    f = np.cbrt(np.maximum(e, 1e-18)) / np.maximum(span_w, 1e-300)
     mid = 0.5 * (jt.u[:-1] + jt.u[1:])
     k = np.clip(np.searchsorted(sp.u0, mid, side="right") - 1, 0, len(sp.u0) - 1)
     return w * f[k]
@@ -488,11 +532,14 @@ def _too_wide(b, max_arc_deg):
 class Fit:
     """A certified biarc chain: ``spans`` in travel order, ``corner`` (per span: its start
     is a corner), ``gap`` (mm: the largest distance between two runs' ends that meet at a
-    joint), ``evaluations`` (exact curve points evaluated)."""
+    joint), ``evaluations`` (exact curve points evaluated) and ``split``: the span that
+    holds the chain parameter asked for in :func:`fit` cut in two there, certified (None
+    when not asked for, or when that span was split further)."""
     spans: Spans
     corner: np.ndarray
     gap: float
     evaluations: int
+    split: Spans | None = None
 
     @property
     def error(self) -> float:
@@ -500,47 +547,67 @@ class Fit:
         return float(self.spans.error.max(initial=0.0)) + self.gap
 
 
-def fit(R: Runs, budget: float, max_arc_deg: float = 90.0) -> Fit:
+def fit(R: Runs, budget: float, max_arc_deg: float = 90.0, split_at: float | None = None) -> Fit:
     """Certified G1 biarcs along the chain, each within ``budget`` (mm), with arcs of at
     most ``max_arc_deg``; a span that cannot meet them keeps its error (inf when no biarc
-    is valid): the caller checks :attr:`Fit.error`.
+    is valid): the caller checks :attr:`Fit.error`. ``split_at``: a chain parameter where
+    one copy of the chain must have a joint (the start point of a contour whose period
+    starts elsewhere): the span holding it is also certified cut in two there
+    (:attr:`Fit.split`).
 
     Rounds: the modelled partition, certified; the partition again with every span's
-    weights calibrated by its measured error (spans aimed at AIM x budget); then failing
-    spans are split and neighbours merged where one biarc passes."""
+    weights calibrated by its measured error (spans aimed at AIM x budget), certified
+    together with the split; then failing spans are split until all pass."""
     jt = joints(R)
     w, forced = _chord_weights(jt)
-    sp, evals = _certify_partition(R, jt, forced, _partition(jt, w, forced, np.cbrt(AIM * budget)))
+    sp, evals = _certify_partition(R, jt, forced, _partition(jt, w, forced, np.cbrt(AIM * budget)), split_at)
     evals += 5 * sum(len(b) for b in R.breaks)
     for _ in range(CALIBRATE):
-        w = _calibrated(jt, w, sp, budget)
-        sp2, ev = _certify_partition(R, jt, forced, _partition(jt, w, forced, np.cbrt(AIM * budget)))
+        w = _calibrated(jt, w, sp[0], budget)
+        sp, ev = _certify_partition(R, jt, forced, _partition(jt, w, forced, np.cbrt(AIM * budget)), split_at)
         evals += ev
-        if np.count_nonzero(sp2.error > budget) + len(sp2.u0) <= np.count_nonzero(sp.error > budget) + len(sp.u0):
-            sp = sp2
+    sp, split = sp
     sp, evals = _refine(R, sp, budget, max_arc_deg, jt, evals)
-    fixed = np.zeros(len(jt.u), bool)
-    fixed[forced] = True
-    for parity in (0, 1):
-        sp, evals = _merge(R, sp, budget, max_arc_deg, fixed, parity, evals)
+    if split is not None and not ((sp.u0 == split.u0[0]) & (sp.u1 == split.u1[-1])).any():
+        split = None                          # its span was split further: the caller cuts again
     corner = (sp.j0 >= 0) & jt.corner[np.maximum(sp.j0, 0)]
-    return Fit(sp, corner, jt.gap, evals)
+    return Fit(sp, corner, jt.gap, evals, split)
 
 
-def _certify_partition(R: Runs, jt: Joints, forced, ut):
+def _certify_partition(R: Runs, jt: Joints, forced, ut, split_at=None):
     """Certified biarcs between the forced joints and the joints at chain parameters
-    ``ut``; (spans, exact evaluations)."""
-    k, t = R.locate(ut)
+    ``ut``, and the span holding ``split_at`` cut in two there; ((spans, split or None),
+    exact evaluations)."""
+    extra = [] if split_at is None else [split_at]
+    k, t = R.locate(np.concatenate([ut, extra]))
     Pt, Tt = point_tangents(R, k, t, _inner_mode(R, k, t))
     idx = np.concatenate([forced, np.full(len(ut), -1)])
     u = np.concatenate([jt.u[forced], ut])
     o = np.argsort(u, kind="stable")
     idx, u = idx[o], u[o]
-    P = np.concatenate([jt.P[forced], Pt])[o]
-    Tin = np.concatenate([jt.Tin[forced], Tt])[o]
-    Tout = np.concatenate([jt.Tout[forced], Tt])[o]
-    sp = certify(R, u[:-1], u[1:], P[:-1], P[1:], Tout[:-1], Tin[1:], idx[:-1], idx[1:])
-    return sp, 5 * len(ut) + EVALS_PER_SPAN * (len(u) - 1)
+    P = np.concatenate([jt.P[forced], Pt[:len(ut)]])[o]
+    Tin = np.concatenate([jt.Tin[forced], Tt[:len(ut)]])[o]
+    Tout = np.concatenate([jt.Tout[forced], Tt[:len(ut)]])[o]
+    a, b = np.arange(len(u) - 1), np.arange(1, len(u))
+    u0, u1, P0, P1, T0, T1 = u[a], u[b], P[a], P[b], Tout[a], Tin[b]
+    n = len(a)
+    cut = None
+    if split_at is not None:
+        j = int(np.clip(np.searchsorted(u, split_at, side="right") - 1, 0, n - 1))
+        if u[j] < split_at < u[j + 1]:
+            cut = j
+            Ps, Ts = Pt[-1:], Tt[-1:]
+            cat = np.concatenate
+            u0, u1 = cat([u0, [u[j], split_at]]), cat([u1, [split_at, u[j + 1]]])
+            P0, P1 = cat([P0, P[j:j + 1], Ps]), cat([P1, Ps, P[j + 1:j + 2]])
+            T0, T1 = cat([T0, Tout[j:j + 1], Ts]), cat([T1, Ts, Tin[j + 1:j + 2]])
+    j0 = np.concatenate([idx[a], np.full(len(u0) - n, -1)])
+    j1 = np.concatenate([idx[b], np.full(len(u0) - n, -1)])
+    sp = certify(R, u0, u1, P0, P1, T0, T1, j0, j1, known=(jt.u, jt.P))
+    ev = 5 * len(k) + EVALS_PER_SPAN * len(u0)
+    if cut is None:
+        return (sp, None), ev
+    return (sp.take(np.arange(n)), sp.take(np.arange(n, n + 2))), ev
 
 
 def _refine(R: Runs, sp: Spans, budget: float, max_arc_deg: float, jt: Joints, evals):
@@ -554,10 +621,15 @@ def _refine(R: Runs, sp: Spans, budget: float, max_arc_deg: float, jt: Joints, e
         if not bad.any() or len(sp.u0) > limit:
             break
         idx = np.nonzero(bad)[0]
-        at = (sp.j0[idx] >= 0) & (sp.j1[idx] - sp.j0[idx] >= 2)
-        jm = np.where(at, (sp.j0[idx] + sp.j1[idx]) // 2, -1)
-        um = np.where(at, jt.u[np.maximum(jm, 0)], 0.5 * (sp.u0[idx] + sp.u1[idx]))
-        Pm, Tm = jt.P[np.maximum(jm, 0)].copy(), jt.Tin[np.maximum(jm, 0)].copy()
+        # the known joint nearest the middle inside the span, else its parameter midpoint
+        first = np.searchsorted(jt.u, sp.u0[idx], side="right")
+        last = np.searchsorted(jt.u, sp.u1[idx], side="left")
+        at = last > first
+        jm = np.where(at, (first + last - 1) // 2, -1)
+        um = np.where(at, jt.u[np.clip(jm, 0, max(len(jt.u) - 1, 0))] if len(jt.u) else 0.0,
+                      0.5 * (sp.u0[idx] + sp.u1[idx]))
+        Pm, Tm = np.empty((len(idx), 2)), np.empty((len(idx), 2))
+        Pm[at], Tm[at] = jt.P[jm[at]], jt.Tin[jm[at]]
         mid = ~at
         if mid.any():
             k, t = R.locate(um[mid])
@@ -566,33 +638,11 @@ def _refine(R: Runs, sp: Spans, budget: float, max_arc_deg: float, jt: Joints, e
         cat = np.concatenate
         new = certify(R, cat([sp.u0[idx], um]), cat([um, sp.u1[idx]]), cat([sp.P0[idx], Pm]),
                       cat([Pm, sp.P1[idx]]), cat([sp.T0[idx], Tm]), cat([Tm, sp.T1[idx]]),
-                      cat([sp.j0[idx], jm]), cat([jm, sp.j1[idx]]))
+                      cat([sp.j0[idx], jm]), cat([jm, sp.j1[idx]]), known=(jt.u, jt.P))
         evals += EVALS_PER_SPAN * len(new.u0)
         both = Spans.cat(sp.take(np.nonzero(~bad)[0]), new)
         sp = both.take(np.argsort(both.u0, kind="stable"))
     return sp, evals
-
-
-def _merge(R: Runs, sp: Spans, budget: float, max_arc_deg: float, fixed, parity: int, evals):
-    """Join neighbouring spans k, k + 1 (k of the given parity) whose joint is not
-    forced, where the one biarc over both passes (the split left room)."""
-    n = len(sp.u0)
-    k = np.arange(parity, n - 1, 2)
-    free = ~((sp.j1[k] >= 0) & fixed[np.maximum(sp.j1[k], 0)])
-    guess = (np.cbrt(sp.error[k]) + np.cbrt(sp.error[k + 1])) ** 3 <= 1.5 * budget
-    k = k[free & guess]
-    if not len(k):
-        return sp, evals
-    new = certify(R, sp.u0[k], sp.u1[k + 1], sp.P0[k], sp.P1[k + 1], sp.T0[k], sp.T1[k + 1], sp.j0[k], sp.j1[k + 1])
-    evals += EVALS_PER_SPAN * len(k)
-    good = (new.error <= budget) & ~_too_wide(new.b1, max_arc_deg) & ~_too_wide(new.b2, max_arc_deg)
-    if not good.any():
-        return sp, evals
-    k = k[good]
-    drop = np.zeros(n, bool)
-    drop[k], drop[k + 1] = True, True
-    both = Spans.cat(sp.take(np.nonzero(~drop)[0]), new.take(np.nonzero(good)[0]))
-    return both.take(np.argsort(both.u0, kind="stable")), evals
 
 
 def split_span(R: Runs, sp: Spans, u: float, budget: float, max_arc_deg: float) -> Spans:

@@ -206,7 +206,7 @@ def _exact_fits(profile, tol: float, start: float, max_arc_deg: float):
         return None
     fits, errs, gaps, evals, known = [], [], [], 0, 0
     for c in contours:
-        F = arccert.fit(c.runs, BUDGET * tol, max_arc_deg)
+        F = arccert.fit(c.runs, BUDGET * tol, max_arc_deg, split_at=c.start_u)
         if not F.error <= tol or not _passes_check(F, c):
             return None
         spline, err = _replicate(F, c, BUDGET * tol, max_arc_deg)
@@ -268,7 +268,10 @@ def _replicate(F: arccert.Fit, contour, budget: float, max_arc_deg: float):
     j = int(np.clip(np.searchsorted(sp.u0, us, side="right") - 1, 0, len(sp.u0) - 1))
     err = F.error
     if us > sp.u0[j]:
-        parts = arccert.split_span(contour.runs, sp.take(np.array([j])), us, budget, max_arc_deg)
+        parts = F.split if F.split is not None and F.split.u0[0] == sp.u0[j] else \
+            arccert.split_span(contour.runs, sp.take(np.array([j])), us, budget, max_arc_deg)
+        if not (parts.error <= budget).all():
+            parts = arccert.split_span(contour.runs, sp.take(np.array([j])), us, budget, max_arc_deg)
         err = max(err, float(parts.error.max()) + F.gap)
         first = parts.u0 < us
         pc = np.zeros(len(parts.u0), bool)

@@ -102,20 +102,31 @@ def circle_contour(radius: float, start_angle: float, ccw: bool = True) -> Conto
 # ------------------------------------------------------------------ labelling
 
 def _samples(prof):
+    """Tooth 0's raw samples: the pieces (with the turned tip arc, if any), their sample
+    parameters, and the sample points (M, 2), piece (M,) and index (M,) of each. The
+    points come from the raw chain the builder kept (no new evaluations): its pieces'
+    samples end to end, each piece after the first without its first (shared) point."""
     pieces = list(prof.pieces)
     tps = [np.asarray(t, float) for t in prof.piece_params]
+    chain = np.asarray(prof.raw_chain, float) if prof.raw_chain is not None else None
+    sizes = [len(t) for t in tps]
+    if chain is None or len(chain) != sum(sizes) - len(sizes) + 1:
+        with np.errstate(invalid="ignore", over="ignore"):
+            pts = [np.asarray(G(t), float) for G, t in zip(pieces, tps)]
+    else:
+        starts = [0]
+        for n in sizes[:-1]:
+            starts.append(starts[-1] + n - 1)
+        pts = [chain[a:a + n] for a, n in zip(starts, sizes)]
     if prof.tip_arc is not None:
         pieces.append(prof.tip_arc[0])
         tps.append(np.asarray(prof.tip_arc[1], float))
-    P, I, J = [], [], []
-    for i, (G, t) in enumerate(zip(pieces, tps)):
-        with np.errstate(invalid="ignore", over="ignore"):
-            P.append(np.asarray(G(t), float))
-        I.append(np.full(len(t), i))
-        J.append(np.arange(len(t)))
-    P, I, J = np.concatenate(P), np.concatenate(I), np.concatenate(J)
+        pts.append(np.asarray(prof.tip_arc[0](tps[-1]), float))
+    P = np.concatenate(pts)
+    I = np.concatenate([np.full(len(t), i) for i, t in enumerate(tps)])
+    J = np.concatenate([np.arange(len(t)) for t in tps])
     ok = np.isfinite(P).all(axis=1)
-    return pieces, tps, P[ok], I[ok], J[ok]
+    return pieces, tps, P[ok], I[ok], J[ok], pts
 
 
 def _labels(L, S, I, J, teeth):
@@ -199,16 +210,18 @@ def _chord_candidates(lab, exclude, tps, pieces, pitch):
     return out
 
 
-def _corner(V, la, prev_a, lb, next_b, pieces, tps, pitch):
+def _corner(V, la, prev_a, lb, next_b, pieces, tps, pitch, pts, pairs):
     """The exact corner at the unlabelled vertex V between labelled vertices a and b:
-    (span a -> corner, span corner -> b) as (piece, copy, t_from, t_to), or None."""
+    (span a -> corner, span corner -> b) as (piece, copy, t_from, t_to), or None. The two
+    chords through V (within :data:`THROUGH`) name the pieces; their exact crossing is the
+    builder's (``pairs``: :attr:`Profile.corner_pairs`) when one matches, else Newton's."""
     def through(cands):
         good = []
         for p, k, j0, j1 in cands:
-            ends = rotate(pieces[p](np.array([tps[p][j0], tps[p][j1]])), k * pitch)
+            ends = rotate(pts[p][[j0, j1]], k * pitch)
             d = ends[1] - ends[0]
             L2 = float(d @ d)
-            if L2 == 0:
+            if L2 == 0 or not np.isfinite(L2):
                 continue
             f = float((V - ends[0]) @ d) / L2
             if -1e-9 <= f <= 1 + 1e-9 and math.hypot(*(ends[0] + f * d - V)) <= THROUGH:
@@ -221,16 +234,19 @@ def _corner(V, la, prev_a, lb, next_b, pieces, tps, pitch):
         for q, m, i0, i1, g in B:
             if (p, k) == (q, m):
                 continue
-            sa = tps[p][j0] + f * (tps[p][j1] - tps[p][j0])
-            # B's chord runs from b toward the corner: i0 is b's sample
-            sb = tps[q][i0] + g * (tps[q][i1] - tps[q][i0])
-            r = _crossing(pieces, p, k, sa, q, m, sb, pitch)
-            if r is None or r[2] > 1e-9:
-                continue
-            s, u, res = r
             w_a, w_b = abs(tps[p][j1] - tps[p][j0]), abs(tps[q][i1] - tps[q][i0])
             lo_a, hi_a = sorted((tps[p][j0], tps[p][j1]))
             lo_b, hi_b = sorted((tps[q][i0], tps[q][i1]))
+            r = _known_crossing(pairs, p, q, m - k, len_copies(pitch), (lo_a - w_a, hi_a + w_a),
+                                (lo_b - w_b, hi_b + w_b))
+            if r is None:
+                sa = tps[p][j0] + f * (tps[p][j1] - tps[p][j0])
+                # B's chord runs from b toward the corner: i0 is b's sample
+                sb = tps[q][i0] + g * (tps[q][i1] - tps[q][i0])
+                r = _crossing(pieces, p, k, sa, q, m, sb, pitch)
+            if r is None or r[2] > 1e-9:
+                continue
+            s, u, res = r
             if not (lo_a - w_a <= s <= hi_a + w_a and lo_b - w_b <= u <= hi_b + w_b):
                 continue
             if best is None or res < best[0]:
@@ -238,9 +254,25 @@ def _corner(V, la, prev_a, lb, next_b, pieces, tps, pitch):
     return None if best is None else best[1:]
 
 
+def len_copies(pitch: float) -> int:
+    return max(1, int(round(2 * math.pi / pitch)))
+
+
+def _known_crossing(pairs, p, q, dk, z, range_p, range_q):
+    """(s, u, 0.0): the builder's exact crossing of piece p (parameter s) with piece q
+    turned dk teeth further (of z; parameter u) within the given parameter ranges, or
+    None. (Its residual is measured again where the runs meet: the fit's gap.)"""
+    for a, b in pairs or ():
+        for (pa, sa, ka), (pb, ub, kb) in ((a, b), (b, a)):
+            if pa == p and pb == q and (kb - ka - dk) % z == 0 \
+                    and range_p[0] <= sa <= range_p[1] and range_q[0] <= ub <= range_q[1]:
+                return float(sa), float(ub), 0.0
+    return None
+
+
 # ------------------------------------------------------------------ spans and runs
 
-def _spans(L, labs, edges_wanted, pieces, tps, pitch):
+def _spans(L, labs, edges_wanted, pieces, tps, pitch, pts=None, pairs=None):
     """Exact spans (piece, copy, t0, t1, corner_before) of the polygon edges
     ``edges_wanted`` (edge v runs from vertex v to v + 1; ``labs``: vertex -> labels, for
     those vertices and two more on each side). A corner vertex splits its two edges at the
@@ -267,7 +299,7 @@ def _spans(L, labs, edges_wanted, pieces, tps, pitch):
         ea, eb = edges.get((a - 1) % n), edges.get(b)
         if not lab(a) or not lab(b) or ea is None or eb is None:
             return None
-        got = _corner(L[v % n], lab(a), ea, lab(b), eb, pieces, tps, pitch)
+        got = _corner(L[v % n], lab(a), ea, lab(b), eb, pieces, tps, pitch, pts, pairs)
         if got is None:
             return None
         (p, k, t0, s), (q, m, u, t1) = got
@@ -315,30 +347,39 @@ def _to_runs(seq, pieces, pitch, close, sharp_before):
 
 def _start_param(span, pieces, pitch, d):
     """Parameter in span (piece, copy, t0, t1) where the exact curve crosses the line
-    through the origin along ``d`` (bisection + secant on the cross product; the nearer
-    end when the span does not straddle it)."""
+    through the origin along ``d``: the sign change of the cross product among 17 exact
+    points, then secant steps kept inside it; the nearer end when the span does not
+    straddle the line."""
     p, k, t0, t1 = span[:4]
     G = pieces[p]
 
     def f(t):
         q = rotate(G(np.atleast_1d(np.asarray(t, float))), k * pitch)
         return q[:, 0] * d[1] - q[:, 1] * d[0]
-    a, b = f(t0)[0], f(t1)[0]
-    if a == 0:
+    ts = np.linspace(t0, t1, 17)
+    v = f(ts)
+    if not np.isfinite(v).all():
         return t0
-    if b == 0 or a * b > 0:
-        return t1 if abs(b) < abs(a) else t0
-    lo, hi = t0, t1
-    for _ in range(60):
-        m = 0.5 * (lo + hi)
+    s = np.nonzero(np.sign(v[:-1]) != np.sign(v[1:]))[0]
+    if not len(s):
+        return t1 if abs(v[-1]) < abs(v[0]) else t0
+    i = int(s[0])
+    a, b, fa, fb = ts[i], ts[i + 1], v[i], v[i + 1]
+    for _ in range(6):                                  # regula falsi (Illinois)
+        if fa == 0:
+            return a
+        if fb == 0 or a == b:
+            return b
+        m = b - fb * (b - a) / (fb - fa)
         fm = f(m)[0]
-        if fm == 0:
+        if fm == 0 or not np.isfinite(fm):
             return m
-        if (fm > 0) == (a > 0):
-            lo = m
+        if np.sign(fm) == np.sign(fb):
+            fa /= 2
         else:
-            hi = m
-    t = 0.5 * (lo + hi)
+            a, fa = b, fb
+        b, fb = m, fm
+    t = b
     return t0 if abs(t - t0) <= 1e-12 else (t1 if abs(t - t1) <= 1e-12 else t)
 
 
@@ -377,10 +418,10 @@ def _tooth_contour(prof, L, z, pitch, start_angle, outer):
         return None
     m = n // z
     i, _p, _ins = start_point(L, start_angle)
-    pieces, tps, S, I, J = _samples(prof)
+    pieces, tps, S, I, J, pts = _samples(prof)
     window = np.arange(i - 3, i + m + 5) % n
     labs = dict(zip(window.tolist(), _labels(L[window], S, I, J, z)))
-    spans = _spans(L, labs, list(range(i, i + m + 1)), pieces, tps, pitch)
+    spans = _spans(L, labs, list(range(i, i + m + 1)), pieces, tps, pitch, pts, prof.corner_pairs)
     if spans is None:
         return None
     # the edge one period on must be the same edge, one copy on

@@ -371,16 +371,22 @@ def check_tolerances(file, key, top):
     return tol, tols
 
 
+@functools.lru_cache(maxsize=1)
+def _dxf_keys() -> tuple:
+    """The DXF writer's options (read once: every part of a scene asks)."""
+    from ..export.dxf import write_dxf
+    return tuple(n for n in inspect.signature(write_dxf).parameters
+                 if n not in ("profile", "path", "tolerance", "extra"))
+
+
 def check_options(file, key, table):
     """Exporter options per kind: ``dxf`` (kerf, lead_in, ...), ``step`` (``kind`` =
     faceted | brep: planar facets, or exact B-rep surfaces through OpenCascade, which needs
     ``pip install 'gear3d[cad]'``) and ``3mf`` (``arrange`` = true: the parts laid flat and
     side by side on the bed, ``gap`` mm apart). Returns the writers' keyword arguments per kind."""
-    from ..export.dxf import write_dxf
     _table(file, key, table)
     out = {}
-    dxf_keys = [n for n in inspect.signature(write_dxf).parameters
-                if n not in ("profile", "path", "tolerance", "extra")]
+    dxf_keys = _dxf_keys()
     for kind, opts in table.items():
         if kind not in ("dxf", "step", "3mf"):
             fail(file, f"{key}.{kind}", opts, "dxf, step or 3mf (the exporters with options)")
