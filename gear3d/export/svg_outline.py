@@ -83,28 +83,34 @@ def _num(v: float) -> str:
     return "0" if s in ("-0", "") else s
 
 
+def _nums(a) -> list:
+    """:func:`_num` of every value of an array."""
+    return [_num(v) for v in np.asarray(a, float).ravel().tolist()]
+
+
 def _path_data(fit, worst: list) -> str:
     """``d`` of one closed contour; y negated (SVG's y points down), so a counter-clockwise
     arc of the part (bulge > 0) is written with sweep-flag 0. ``worst`` collects the
     rounding bound (mm) of the numbers written (see the module doc)."""
-    V = fit.vertices
-    parts = [f"M{_num(V[0, 0])},{_num(-V[0, 1])}"]
-    d, cmin = 0.0, 1.0
-    for A, B, b in fit.segments():
-        x, y = _num(B[0]), _num(-B[1])
-        d = max(d, abs(float(x) - B[0]), abs(float(y) + B[1]))
-        if b == 0.0:
-            parts.append(f"L{x},{y}")
-            continue
-        c = math.hypot(*(B - A))
-        r = c * (1 + b * b) / (4 * abs(b))
-        rs = _num(r)
-        d = max(d, abs(float(rs) - r))
-        cmin = min(cmin, math.cos(2 * math.atan(abs(b))))
-        large = 1 if abs(b) > 1 else 0
-        sweep = 0 if b > 0 else 1
-        parts.append(f"A{rs},{rs} 0 {large} {sweep} {x},{y}")
+    V = np.asarray(fit.vertices, float)
+    b = np.asarray(fit.bulges, float)
+    W = np.roll(V, -1, axis=0)
+    c = np.hypot(*(W - V).T)
+    arc = b != 0
+    r = np.where(arc, c * (1 + b * b) / (4 * np.where(arc, np.abs(b), 1.0)), 0.0)
+    xy = np.stack([W[:, 0], -W[:, 1]], axis=1)
+    sx = _nums(xy)
+    sr = _nums(r)
+    d = max(float(np.abs(np.array(sx, float) - xy.ravel()).max(initial=0.0)),
+            float(np.abs(np.array(sr, float) - r)[arc].max(initial=0.0)))
+    cmin = float(np.cos(2 * np.arctan(np.abs(b[arc]))).min(initial=1.0))
     worst.append(float(d * (2 + 1 / max(cmin, 1e-3))))
+    flags = np.where(np.abs(b) > 1, "1", "0").tolist()
+    sweep = np.where(b > 0, "0", "1").tolist()
+    parts = [f"M{_num(V[0, 0])},{_num(-V[0, 1])}"]
+    for k, a in enumerate(arc.tolist()):
+        x, y = sx[2 * k], sx[2 * k + 1]
+        parts.append(f"A{sr[k]},{sr[k]} 0 {flags[k]} {sweep[k]} {x},{y}" if a else f"L{x},{y}")
     return " ".join(parts) + " Z"
 
 
