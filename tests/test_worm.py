@@ -485,3 +485,71 @@ def test_cli_check_and_contact_png(tmp_path, capsys):
     # a worm shorter than the contact zone: exit 1, said in the summary, files still written
     assert main(args[:-4] + ["--worm-length", "7"]) == 1
     assert "WORM TOO SHORT" in capsys.readouterr().out
+
+
+# ------------------------------------------------------------------ the wheel's mid-plane DXF
+
+def _dxf_points(path, per_segment=8):
+    """Points (N, 2) in order along every LWPOLYLINE of the file, arcs from their bulges
+    (ezdxf), and the largest sag of those samples' chords under their arcs (mm)."""
+    import ezdxf
+    from ezdxf.math import bulge_to_arc
+    doc = ezdxf.readfile(str(path))
+    assert doc.header.get("$INSUNITS") == 4                      # millimetres
+    pts, sag = [], 0.0
+    polys = list(doc.modelspace().query("LWPOLYLINE"))
+    assert polys
+    for e in polys:
+        v = list(e.get_points("xyb"))
+        assert e.closed
+        for (x0, y0, b), (x1, y1, _) in zip(v, v[1:] + v[:1]):
+            s = np.linspace(0.0, 1.0, per_segment, endpoint=False)
+            if abs(b) < 1e-15:
+                pts.append(np.stack([x0 + s * (x1 - x0), y0 + s * (y1 - y0)], axis=1))
+                continue
+            c, a0, a1, r = bulge_to_arc((x0, y0), (x1, y1), b)
+            span = (a1 - a0) % (2 * math.pi)
+            a = a0 + s * span if b > 0 else a1 - s * span
+            pts.append(np.stack([c[0] + r * np.cos(a), c[1] + r * np.sin(a)], axis=1))
+            sag = max(sag, r * (1 - math.cos(span / per_segment / 2)))
+    return np.concatenate(pts), sag
+
+
+@pytest.mark.parametrize("wt,x", [("ZA", 0.0), ("ZA", 0.3), ("ZI", 0.0)])
+def test_wheel_midplane_dxf_read_back(tmp_path, capsys, wt, x):
+    """``gear3d worm --part wheel -o mid.dxf`` writes the mid-plane section through the DXF
+    exporter; read back with ezdxf (arcs from bulges), the file lies within the tolerance
+    of the section's exact envelope both ways (file -> curve, and the curve's fine outline
+    -> file). For ZA that envelope is the involute gear (z2, m, αx, x), taken from gear3d's
+    involute family (its own builder); for ZI the per-section builder's exact pieces."""
+    from gear3d.cli import main
+    from gear3d.geometry import polyline_distance
+    tol = 0.01
+    out = tmp_path / "mid.dxf"
+    assert main(["worm", "--module", "2", "--starts", "1", "--wheel-teeth", "30", "--axial-pressure-angle-deg",
+                 "20", "--worm-type", wt, "--shift-coeff", str(x), "--tolerance", str(tol), "--part", "wheel",
+                 "-o", str(out)]) == 0
+    assert "mid-plane section" in capsys.readouterr().out
+    if wt == "ZA":
+        exact = gear3d.profile("involute", teeth=30, module=2, pressure_angle_deg=20, addendum_coeff=1.0,
+                               dedendum_coeff=1.2, tip_radius_coeff=0, shift_coeff=x, tolerance=tol / 20)
+    else:
+        exact = section(design(module=2, starts=1, wheel_teeth=30, axial_pressure_angle_deg=20, worm_type=wt),
+                        0.0, tol / 20)
+    P, sag = _dxf_points(out)
+    assert exact.exact_distance(P).max() <= tol + exact.report["max_error"] + 1e-9
+    # the other way: tooth 0 of the fine outline to the file's contour (sampled in its own
+    # order, + the samples' sag under their arcs)
+    tl = exact.tooth_loop
+    t0 = tl[np.abs(np.arctan2(tl[:, 1], tl[:, 0])) <= math.pi / 30]
+    assert polyline_distance([P], t0).max() <= tol + exact.report["max_error"] + sag + 1e-9
+    assert np.hypot(P[:, 0], P[:, 1]).max() == pytest.approx(30 + (1 + x) * 2, abs=tol)
+
+
+def test_dxf_refused_for_worm_and_pair(tmp_path, capsys):
+    from gear3d.cli import main
+    assert main(["worm", "--module", "2", "--starts", "1", "--wheel-teeth", "30", "--part", "pair",
+                 "-o", str(tmp_path / "x.dxf")]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "--part wheel" in err
+    assert list(tmp_path.iterdir()) == []

@@ -4,7 +4,9 @@ a cylindrical worm (ZA, ZN, ZI) and its throated wheel, the exact envelope of th
 Frames: the wheel on its own has axis z and mid-plane z = 0 (tooth 0 on +x); the worm on
 its own has axis z and is centred at z = 0; ``--part pair`` places the wheel (turned so
 that a tooth faces the worm) and the worm with its axis parallel to x through (0, a, 0),
-in mesh. ``-o`` STL or 3MF (the pair as two named objects), ``--json`` the report,
+in mesh. ``-o`` STL or 3MF (the pair as two named objects), or DXF with ``--part wheel``
+(the wheel's mid-plane section, lines and arcs certified within the tolerance by the DXF
+exporter), ``--json`` the report,
 ``--png`` the figure of the wheel's mid-plane section; ``--check`` rolls the pair through one
 wheel pitch on the exact surfaces (one summary line, ``rolling`` in the JSON; exit 1 on
 interference, lost contact or a worm too short) and ``--contact-png`` draws its contact pattern.
@@ -22,7 +24,7 @@ from ..export import atomic_path, check_path, write
 
 
 def add_parser(sub):
-    p = sub.add_parser("worm", help="a worm and its throated wheel (exact envelope) -> .stl .3mf .json .png")
+    p = sub.add_parser("worm", help="a worm and its throated wheel (exact envelope) -> .stl .3mf .dxf .json .png")
     p.add_argument("--module", type=float, required=True, help="axial module m_x (= the wheel's transverse module), mm")
     p.add_argument("--starts", type=int, required=True, help="worm starts z1, 1..8")
     p.add_argument("--wheel-teeth", type=int, required=True, help="wheel teeth z2, 8..1000")
@@ -53,7 +55,9 @@ def add_parser(sub):
     p.add_argument("--hub-diameter", type=float, default=None, help="wheel hub diameter, mm (with --hub-length)")
     p.add_argument("--hub-length", type=float, default=None, help="wheel hub length, mm, centred on the mid-plane")
     p.add_argument("--part", required=True, choices=["worm", "wheel", "pair"], help="what to build")
-    p.add_argument("-o", "--output", default=None, help="mesh file: .stl or .3mf (pair: two named objects)")
+    p.add_argument("-o", "--output", default=None,
+                   help="mesh file: .stl or .3mf (pair: two named objects); or, with --part wheel, .dxf: the "
+                        "wheel's mid-plane section (lines and arcs, certified within --tolerance)")
     p.add_argument("--json", default=None, help="write the report (strict JSON)")
     p.add_argument("--png", default=None, help="figure of the wheel's mid-plane section")
     p.add_argument("--check", action="store_true",
@@ -82,9 +86,12 @@ def _params(args) -> dict:
 def _check_outputs(args):
     if args.output is None and args.json is None and args.png is None and not args.check \
             and args.contact_png is None:
-        raise GearError("output", None, "at least one of -o FILE.stl|.3mf, --json, --png, --check, --contact-png")
+        raise GearError("output", None, "at least one of -o FILE.stl|.3mf|.dxf, --json, --png, --check, --contact-png")
     if args.output is not None:
-        check_path(args.output, "output", exts=(".stl", ".3mf"))
+        check_path(args.output, "output", exts=(".stl", ".3mf", ".dxf"))
+        if args.output.lower().endswith(".dxf") and args.part != "wheel":
+            raise GearError("output", args.output, "a .stl or .3mf file for --part " + args.part,
+                            "the DXF is the wheel's mid-plane section: --part wheel")
     for name, ext in (("json", ".json"), ("png", ".png"), ("contact_png", ".png")):
         if getattr(args, name) is not None:
             check_path(getattr(args, name), name, exts=(ext,))
@@ -100,14 +107,16 @@ def run(args) -> int:
     check = bool(args.check or args.contact_png)
     s = worm(part=args.part, check=check, **kw)
     lines = []
-    if args.output is not None:
+    if args.output is not None and args.output.lower().endswith(".dxf"):
+        info = write(s.midplane_section(), args.output)
+        lines.append(f"wrote {args.output}: wheel mid-plane section, {info}")
+    elif args.output is not None:
         info = write(s.parts(), args.output)
         lines.append(f"wrote {args.output}: {args.part}, max_error={s.report.max_error:.3g} mm "
                      f"(tolerance {s.report.tolerance:g} mm)" + (f" {info}" if info else ""))
     if args.png is not None:
         from ..figures import figure
-        from ..wormgear.wheel import section
-        mid = section(d, 0.0, d.tolerance)
+        mid = s.midplane_section()
         figure(mid, args.png, title=f"worm wheel z2={d.wheel_teeth}, mid-plane section ({d.worm_type})")
         lines.append(f"wrote {args.png}: mid-plane section figure")
     rc = 0

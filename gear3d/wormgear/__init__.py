@@ -102,6 +102,13 @@ class WormSet:
     #: the rolling check with its contact lines' arrays (for :func:`gear3d.wormgear.rolling.pattern_figure`)
     rolling: dict | None = None
 
+    def midplane_section(self, tolerance=None):
+        """The wheel's section in its mid-plane z = 0 (a :class:`gear3d.model.Profile` in the
+        wheel's own frame, tooth 0 on +x), built within ``tolerance`` (mm, default the set's):
+        ``gear3d.write(s.midplane_section(), "mid.dxf")`` writes its DXF."""
+        from .wheel import section
+        return section(self.design, 0.0, self.design.tolerance if tolerance is None else tolerance)
+
     def parts(self) -> list:
         """The bodies to write for the report's ``part``: one body, or the pair placed."""
         if self.report.part == "worm":

@@ -25,12 +25,13 @@ is split at that plane, whose section becomes a layer.
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass, field, fields
 
 import numpy as np
 
 from ..envelope import rack_envelope
 from ..errors import ToleranceError
-from ..model import build_profile
+from ..model import Profile, build_profile
 from .thread import section_rack, section_shift
 
 #: share of the wheel's tolerance given to each section's polygon (the rest: between layers)
@@ -46,8 +47,19 @@ def section_turn(d, h) -> float:
     return section_shift(d, h) / d.r2
 
 
+@dataclass(eq=False)
+class WheelSection(Profile):
+    """A worm wheel's section (a :class:`gear3d.model.Profile`) that knows its worm set:
+    :meth:`at_tolerance` rebuilds the same section (the DXF and SVG exporters' reference
+    and finer builds), where a family profile is rebuilt by its family name."""
+    design: object = field(repr=False, default=None)
+
+    def at_tolerance(self, tolerance: float) -> "WheelSection":
+        return section(self.design, self.params["h"], tolerance)
+
+
 def section(d, h: float, tolerance: float):
-    """The wheel's exact section at height ``h`` (mm) as a centred :class:`Profile`
+    """The wheel's exact section at height ``h`` (mm) as a centred :class:`WheelSection`
     (tooth 0 about angle 0; the real section is it turned by :func:`section_turn`).
     ``tolerance`` (mm) bounds its polygon's measured error."""
     rack = section_rack(d, float(h))
@@ -58,7 +70,7 @@ def section(d, h: float, tolerance: float):
                          tolerance=tolerance, clip_radius=(None, tip), names=[n for _, n in pieces],
                          flank_pieces=[i for i, (_, n) in enumerate(pieces) if n == "rack-flank"],
                          nominal_tip_radius=tip)
-    return prof
+    return WheelSection(**{f.name: getattr(prof, f.name) for f in fields(Profile)}, design=d)
 
 
 # ------------------------------------------------------------------ layer chains
