@@ -121,7 +121,7 @@ def _zone(d, f, S, rows, side):
 def _contact_points(d, f, S, i, t, side):
     """Instant-frame contact points (X toward the worm, Y along its axis) and rolls (mm) of
     the rack flank points at parameters ``t`` of the sections ``i``."""
-    u, v, du, dv = sheet._flank_uv(d, f, t, i, S, side)
+    u, v, du, dv = sheet.flank_uv(d, f, t, i, S, side)
     hv = v - d.shift_coeff * d.module
     ycon = -hv * dv / du
     return d.r2 - hv, ycon, ycon - u
@@ -387,9 +387,11 @@ def pattern_figure(d, rep: dict, path) -> str:
     """The contact pattern: both flanks of a wheel tooth unrolled (face width h against
     wheel radius R), the active zone's edges, the blank's tip and the contact lines of
     :data:`SHOWN` positions over one pitch. Written atomically to ``path`` (.png/.svg/.pdf)."""
+    import matplotlib
+    matplotlib.use("Agg", force=False)
+    import matplotlib.pyplot as plt
     from ..export import atomic_path
-    from ..figures import _plt, _save
-    plt = _plt()
+    matplotlib.rcParams["svg.hashsalt"] = "gear3d"
     fig, axes = plt.subplots(1, 2, figsize=(11, 4.6), sharey=True)
     n = rep["positions"]
     step = max(1, n // SHOWN)
@@ -416,6 +418,8 @@ def pattern_figure(d, rep: dict, path) -> str:
     fig.suptitle(f"worm wheel z2={d.wheel_teeth} ({d.worm_type}, z1={d.starts}): contact lines over one pitch",
                  fontsize=10)
     fig.tight_layout()
+    ext = str(path).rsplit(".", 1)[-1].lower()
     with atomic_path(path, "contact_png") as tmp:
-        _save(fig, tmp)
+        fig.savefig(tmp, format=ext, dpi=150, metadata={"svg": {"Date": None}, "pdf": {"CreationDate": None}}.get(ext))
+    plt.close(fig)
     return str(path)

@@ -92,7 +92,7 @@ class Sections:
 
 # ------------------------------------------------------------------ exact pieces
 
-def _flank_uv(d, f, t, i, S, side):
+def flank_uv(d, f, t, i, S, side):
     """Rack flank of side -1 (A) or +1 (B): u, v, du/dρ, dv/dρ at parameters ``t`` of
     the sections ``i`` (arrays of one shape)."""
     h, rr = S.h[i], S.rr[i]
@@ -128,7 +128,7 @@ def points(d, f, S, k, s, i):
         return _envelope(d, S.uA[i] if k == 1 else S.uB[i], S.vt[i], -np.sin(psi), np.cos(psi))
     if k in (2, 4):
         t = S.tA0[i] + s * (S.tA[i] - S.tA0[i]) if k == 2 else S.tB[i] + s * (S.tB0[i] - S.tB[i])
-        return _envelope(d, *_flank_uv(d, f, t, i, S, -1.0 if k == 2 else 1.0))
+        return _envelope(d, *flank_uv(d, f, t, i, S, -1.0 if k == 2 else 1.0))
     th = S.thA[i] + s * (S.thB[i] - S.thA[i])
     return S.rtip[i][..., None] * np.stack([np.cos(th), np.sin(th)], axis=-1)
 
@@ -146,10 +146,10 @@ def sections(d, H) -> Sections:
     S = Sections(H, d.sign * d.p * np.arctan(H / d.r1), d.blank_tip_radius(H), rr, z, z, z, z, z, z, z, z, z, z, z,
                  z, np.ones(n, bool))
     i = np.arange(n)
-    uA, vt, duA, dvA = _flank_uv(d, f, z, i, S, -1.0)
-    uB, _, duB, dvB = _flank_uv(d, f, z, i, S, 1.0)
-    uA1 = _flank_uv(d, f, z + 1, i, S, -1.0)[0]
-    uB1 = _flank_uv(d, f, z + 1, i, S, 1.0)[0]
+    uA, vt, duA, dvA = flank_uv(d, f, z, i, S, -1.0)
+    uB, _, duB, dvB = flank_uv(d, f, z, i, S, 1.0)
+    uA1 = flank_uv(d, f, z + 1, i, S, -1.0)[0]
+    uB1 = flank_uv(d, f, z + 1, i, S, 1.0)[0]
     u0 = 0.5 * (uA + uB - px)
     ok = (np.abs(H) < rr) & (rr < rt) & (u0 < uA) & (uB < u0 + px) & (uA1 < uB1)
     S = replace(S, vt=vt, uA=uA, uB=uB, u0=u0, psiA=np.arctan2(-duA, dvA), psiB=np.arctan2(duB, -dvB),
@@ -166,7 +166,7 @@ def sections(d, H) -> Sections:
 
 def _radius_along(d, f, S, side, t):
     i = np.arange(len(S.h))[:, None]
-    G = _envelope(d, *_flank_uv(d, f, t, i, S, side))
+    G = _envelope(d, *flank_uv(d, f, t, i, S, side))
     return np.hypot(G[..., 0], G[..., 1]), G
 
 
@@ -204,10 +204,10 @@ def _regular(d, f, S, side, t):
     """dG/dρ · tool tangent (> 0 on the regular branch) at flank parameters ``t`` (n, k)."""
     i = np.arange(len(S.h))[:, None]
     eps = 1e-7
-    u, v, du, dv = _flank_uv(d, f, t, i, S, side)
+    u, v, du, dv = flank_uv(d, f, t, i, S, side)
     G, T = _envelope(d, u, v, du, dv, tangent=True)
-    Gp = _envelope(d, *_flank_uv(d, f, t + eps, i, S, side))
-    Gm = _envelope(d, *_flank_uv(d, f, t - eps, i, S, side))
+    Gp = _envelope(d, *flank_uv(d, f, t + eps, i, S, side))
+    Gm = _envelope(d, *flank_uv(d, f, t - eps, i, S, side))
     dG = -(Gp - Gm) / (2 * eps)              # t grows as ρ falls: dG/dρ has the sign of -dG/dt
     return np.einsum("...j,...j->...", dG, T)
 
@@ -216,7 +216,7 @@ def _regular_samples(d, f, S, side, t):
     """dG/dρ · tool tangent on samples ``t`` (n, k): the chord to the next sample against
     the tangent between them (the last sample repeats its neighbour's value)."""
     i = np.arange(len(S.h))[:, None]
-    G, T = _envelope(d, *_flank_uv(d, f, t, i, S, side), tangent=True)
+    G, T = _envelope(d, *flank_uv(d, f, t, i, S, side), tangent=True)
     dot = -np.einsum("...j,...j->...", G[:, 1:] - G[:, :-1], T[:, 1:] + T[:, :-1])
     return np.concatenate([dot, dot[:, -1:]], axis=1)
 
