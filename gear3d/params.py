@@ -137,6 +137,44 @@ def _flag_of(name: str) -> str:
     return "--" + name.replace("_", "-")
 
 
+# ---------------------------------------------------------------- tolerances: each fact once
+
+#: the default tolerance (mm): 1 um, what CNC and wire EDM need; DXF, SVG, figures, JSON and
+#: pair checks default to it
+DEFAULT_TOLERANCE = 1e-3
+#: the print tolerance (mm): 10 um, the default of mesh outputs (STL, 3MF, STEP, OBJ, PLY, VTU)
+MESH_TOLERANCE = 0.01
+#: the floor (mm): below it double precision on a 1 m part cannot certify the result
+MIN_TOLERANCE = 1e-7
+#: the largest tolerance, as a share of the module (or of a family's size scale)
+MAX_TOLERANCE_SHARE = 0.25
+#: the same limit in words, for messages and the docs
+MAX_TOLERANCE_TEXT = f"at most module/{1 / MAX_TOLERANCE_SHARE:g}"
+
+
+def max_tolerance(module: float) -> float:
+    """The largest tolerance (mm) of a gear of ``module`` mm (or of a family's size scale).
+
+    Parameters
+    ----------
+    module : float
+        The module, or the size a family's shape scales with (mm).
+
+    Returns
+    -------
+    float
+        ``module`` times :data:`MAX_TOLERANCE_SHARE` (mm).
+
+    Examples
+    --------
+    >>> max_tolerance(2.0)
+    0.5
+    >>> MAX_TOLERANCE_TEXT
+    'at most module/4'
+    """
+    return module * MAX_TOLERANCE_SHARE
+
+
 # ---------------------------------------------------------------- the tables
 
 def _p(name, kind=float, unit="", lo=None, hi=None, **kw) -> Param:
@@ -149,9 +187,10 @@ MODULE = _p("module", float, "mm", 0, 1000, lo_open=True, default=1.0,
             excludes=("normal_module", "diametral_pitch"))
 PRESSURE = _p("pressure_angle_deg", float, "deg", 5, 45, default=20.0, help="transverse pressure angle",
               aliases=("--pressure-angle",), excludes=("normal_pressure_angle_deg",))
-TOLERANCE = _p("tolerance", float, "mm", 0, 1, lo_open=True, default=1e-3,
-               help="max deviation from the exact curve; the CLI's default is 0.001 mm, 0.01 mm for mesh outputs",
-               limits="at least 1e-07 mm and at most module/4")
+TOLERANCE = _p("tolerance", float, "mm", 0, 1, lo_open=True, default=DEFAULT_TOLERANCE,
+               help=f"max deviation from the exact curve; the CLI's default is {DEFAULT_TOLERANCE:g} mm, "
+                    f"{MESH_TOLERANCE:g} mm for mesh outputs",
+               limits=f"at least {MIN_TOLERANCE:g} mm and {MAX_TOLERANCE_TEXT}")
 INTERNAL = _p("internal", bool, default=False, help="ring (internal) gear")
 RIM = _p("rim_radius", float, "mm", 0, None, lo_open=True,
          help="ring gear rim radius (default: root radius + 2 module)", limits="beyond the root circle; rings only")
@@ -355,7 +394,7 @@ BODY_PARAMS: tuple = (
     _p("arch_radius", float, "mm", 0, None, lo_open=True,
        help="chevron-arch: arch radius R in the unrolled pitch cylinder", limits="module .. W / (2 sin beta)"),
     _p("tolerance", float, "mm", 0, 1, lo_open=True, help="body tolerance (default the profile's)",
-       limits="at most module/4", flag_name="--body-tolerance"),
+       limits=MAX_TOLERANCE_TEXT, flag_name="--body-tolerance"),
     _p("bore", float, "mm", 0, None, lo_open=True, help="bore diameter"),
     _p("hub_diameter", float, "mm", 0, None, lo_open=True, help="hub boss diameter"),
     _p("hub_length", float, "mm", 0, None, default=0.0, help="hub boss length above the top face"),

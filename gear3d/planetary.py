@@ -40,7 +40,7 @@ import numpy as np
 from dataclasses import dataclass, field
 
 from .errors import GearError, check_bool, check_choice, check_number
-from .params import BODY, TOLERANCE, Param, check_family
+from .params import BODY, MESH_TOLERANCE, TOLERANCE, Param, check_family
 from .reports import Report
 from . import profile
 from .budget import check_body
@@ -210,7 +210,7 @@ def _list(ns) -> str:
 # ---------------------------------------------------------------------- the set
 
 def planetary_set(family: str, sun: int, planet: int, ring: int, planets: int = 3, module=None,
-                  width: float = 10.0, tolerance: float = 0.01, carrier: bool = False, *,
+                  width: float = 10.0, tolerance: float = MESH_TOLERANCE, carrier: bool = False, *,
                   spacing: str = "equal", check: bool = True, bodies: bool = True,
                   **family_params) -> PlanetarySet:
     """Build and check a standard planetary set of ``family`` (see the module doc).

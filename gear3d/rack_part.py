@@ -39,8 +39,9 @@ from . import budget as _budget
 from .errors import GearError, ToleranceError, check_choice, check_number
 from .export import atomic_path, write
 from .geometry import check_points, rotate, segment_foot, signed_area
+from .params import DEFAULT_TOLERANCE, MAX_TOLERANCE_TEXT, MIN_TOLERANCE, max_tolerance
 from .profiles import profile, reject_unknown
-from .tessellate import MIN_TOLERANCE, tessellate
+from .tessellate import tessellate
 
 #: families that have a rack part
 RACK_FAMILIES = ("involute", "sine", "cycloidal", "triangular")
@@ -279,7 +280,7 @@ def rack_params(family, kw):
     fam = check_choice("family", family, RACK_FAMILIES)
     kw = dict(kw)
     z = check_number("teeth", kw.pop("teeth", 10), 1, 10_000, integer=True)
-    tol = kw.pop("tolerance", 1e-3)
+    tol = kw.pop("tolerance", DEFAULT_TOLERANCE)
     back = kw.pop("back_height", None)
     out = {"teeth": z}
     if fam == "sine":
@@ -303,7 +304,7 @@ def rack_params(family, kw):
     m = check_number("module", 1.0 if kw.get("module") is None else kw.pop("module"), 0, 1000,
                      lo_open=True, unit="mm")
     kw.pop("module", None)
-    tol = check_number("tolerance", tol, MIN_TOLERANCE, m / 4, unit="mm (at most module/4)")
+    tol = check_number("tolerance", tol, MIN_TOLERANCE, max_tolerance(m), unit=f"mm ({MAX_TOLERANCE_TEXT})")
     out.update(module=m, tolerance=tol)
     if fam == "involute":
         out["pressure_angle_deg"] = check_number("pressure_angle_deg", kw.pop("pressure_angle_deg", 20.0), 5, 45, unit="deg")
@@ -342,7 +343,7 @@ def rack_params(family, kw):
     return fam, out
 
 
-def rack(family: str, teeth: int = 10, module: float = 1.0, tolerance: float = 1e-3,
+def rack(family: str, teeth: int = 10, module: float = 1.0, tolerance: float = DEFAULT_TOLERANCE,
          back_height: float | None = None, **params) -> RackPart:
     """The rack part of ``family`` (one of :data:`RACK_FAMILIES`) with ``teeth`` teeth (mm, deg).
 

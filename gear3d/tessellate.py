@@ -14,11 +14,11 @@ import numpy as np
 
 from .errors import ToleranceError
 from .geometry import point_segment_distance, unique_sorted
+from .params import MIN_TOLERANCE
 
 #: interior parameters (fractions of a chord's t-interval) used to measure a chord
 _PROBE = np.array([0.0625, 0.1875, 0.3125, 0.4375, 0.5, 0.5625, 0.6875, 0.8125, 0.9375])
 MAX_VERTICES = 400_000  # per piece; beyond it the curve jumps or the tolerance is unreasonable
-MIN_TOLERANCE = 1e-7  # mm; below this double precision on a 1 m part cannot certify the result
 
 
 def chord_deviation(f, t: np.ndarray, pts: np.ndarray | None = None) -> np.ndarray:

@@ -173,3 +173,58 @@ def test_web_form_is_the_table():
         assert f["range"] == (p.allowed() if p.kind in (int, float) else None)
     helix = {f["name"]: f for f in sch["body"]}["helix_angle_deg"]
     assert helix["flag"] == "--helix-angle-deg" and helix["range"] == BODY["helix_angle_deg"].allowed()
+
+
+#: the tolerance facts, each stated once in gear3d.params (#25 item 3)
+TOLERANCE_FACTS = {1e-3: "DEFAULT_TOLERANCE", 0.01: "MESH_TOLERANCE", 1e-7: "MIN_TOLERANCE"}
+
+
+def _tolerance_sites(tree):
+    """(node, where) of the places a tolerance is stated: defaults of ``tolerance``/``tol``
+    parameters, the arguments of ``check_number("tolerance", ...)``-like calls, module-level
+    ``*TOLERANCE*`` / ``TOL_*`` assignments (not ``*TOLERANCES``: the benchmark's sweeps)."""
+    import ast
+    for node in ast.walk(tree):
+        if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):
+            a = node.args
+            pos = a.posonlyargs + a.args
+            pairs = list(zip(pos[len(pos) - len(a.defaults):], a.defaults)) + list(zip(a.kwonlyargs, a.kw_defaults))
+            for arg, d in pairs:
+                if d is not None and arg.arg in ("tolerance", "tol"):
+                    yield d, f"default of {node.name}({arg.arg})"
+        elif isinstance(node, ast.Call) and node.args and isinstance(node.args[0], ast.Constant) \
+                and node.args[0].value == "tolerance":
+            for x in node.args[1:] + [k.value for k in node.keywords]:
+                yield x, "a tolerance check"
+    for node in tree.body:
+        if isinstance(node, ast.Assign) and any(
+                isinstance(t, ast.Name) and ("TOLERANCE" in t.id or t.id.startswith("TOL_"))
+                and not t.id.endswith("TOLERANCES") for t in node.targets):      # ...TOLERANCES: a sweep
+            yield node.value, "a module constant"
+
+
+def test_tolerance_facts_are_stated_once():
+    # the default 1e-3, the print tolerance 0.01, the floor 1e-7 and "at most module/4" are
+    # written in gear3d/params.py only; every other site names the constant (files being
+    # reworked this session are not checked yet: tests/test_layout.py REWORKED)
+    import ast
+    from gear3d import params
+    from test_layout import MODULES, _reworked, _tree
+    assert (params.DEFAULT_TOLERANCE, params.MESH_TOLERANCE, params.MIN_TOLERANCE) == (1e-3, 0.01, 1e-7)
+    assert params.max_tolerance(1.0) == 0.25 and params.MAX_TOLERANCE_TEXT == "at most module/4"
+    bad = []
+    for mod, (path, _) in MODULES.items():
+        if mod == "gear3d.params" or _reworked(mod):
+            continue
+        tree = _tree(path)
+        for node, where in _tolerance_sites(tree):
+            for x in ast.walk(node):
+                if isinstance(x, ast.Constant) and type(x.value) is float and x.value in TOLERANCE_FACTS:
+                    bad.append(f"{mod}:{x.lineno}: {x.value:g} in {where} (params.{TOLERANCE_FACTS[x.value]})")
+                if isinstance(x, ast.BinOp) and isinstance(x.op, ast.Div) and isinstance(x.right, ast.Constant) \
+                        and x.right.value == 4:
+                    bad.append(f"{mod}:{x.lineno}: '/ 4' in {where} (params.max_tolerance)")
+        for x in ast.walk(tree):
+            if isinstance(x, ast.Constant) and isinstance(x.value, str) and "module/4" in x.value:
+                bad.append(f"{mod}:{x.lineno}: 'module/4' in a string (params.MAX_TOLERANCE_TEXT)")
+    assert not bad, "\n".join(bad)

@@ -23,6 +23,7 @@ import numpy as np
 
 from ..errors import GearError, check_choice, check_number
 from ..geometry import bisect_edge, rotate
+from ..params import MIN_TOLERANCE
 
 #: steps per pitch of roll (at least; finer when the tolerance asks)
 STEPS_PER_PITCH = 24
@@ -126,7 +127,7 @@ def check_rack_pair(pinion, rack, shift: float | None = None, x0: float | None =
     shift = check_number("shift", shift, -10 * m1, 10 * m1, unit="mm")
     x0 = rack.phase_x if x0 is None else check_number("x0", x0, None, None, unit="mm")
     tol = max(pinion.tolerance, rack.tolerance) if tolerance is None else check_number(
-        "tolerance", tolerance, 1e-7, None, lo_open=True, unit="mm")
+        "tolerance", tolerance, MIN_TOLERANCE, None, lo_open=True, unit="mm")
     r = pinion.pitch_radius
     M = Mesh(pinion, rack, r + shift, x0, tol)
     pitch_ang = 2 * math.pi / pinion.teeth

@@ -17,6 +17,7 @@ import sys
 
 from ..cliargs import number
 from ..export import atomic_path, check_output, check_path, write
+from ..params import MESH_TOLERANCE
 
 
 def add_parser(sub):
@@ -38,8 +39,8 @@ def add_parser(sub):
                    help="the mate's tooth form (default --form; an octoid is not conjugate to a spherical involute)")
     p.add_argument("--shift-coeff", type=number("float", -2, 2), default=0.0,
                    help="profile shift x of the gear (the mate gets -x), default 0")
-    p.add_argument("--tolerance", type=number("float", 0, 1, lo_open=True, unit="mm"), default=0.01,
-                   help="max deviation of the mesh from the exact surfaces (mm), default 0.01")
+    p.add_argument("--tolerance", type=number("float", 0, 1, lo_open=True, unit="mm"), default=MESH_TOLERANCE,
+                   help=f"max deviation of the mesh from the exact surfaces (mm), default {MESH_TOLERANCE:g}")
     p.add_argument("--part", default="gear", choices=["gear", "mate", "pair"],
                    help="gear (z1), mate (z2, own frame) or pair (the mate placed in mesh)")
     p.add_argument("-o", "--output", required=True, help="output file; extension picks the format")

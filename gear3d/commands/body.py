@@ -11,7 +11,7 @@ from .profile import add_param_flag, add_profile_flags, family_params, print_not
 from .. import profile
 from ..conventions import uses_conventions
 from ..export import check_output, write
-from ..params import BODY, BODY_PARAMS
+from ..params import BODY, BODY_PARAMS, MESH_TOLERANCE
 
 def body_flags() -> list:
     """``[(flag, argparse type, help, dest, Param)]``: the ``body()`` keywords of the one
@@ -27,7 +27,7 @@ def add_parser(sub):
     add_profile_flags(p)
     for a in p._actions:        # a body is a mesh: its default is the printing tolerance
         if a.dest == "tolerance":
-            a.help = "max deviation from the exact curve (mm); default 0.01 mm for mesh outputs (a body)"
+            a.help = f"max deviation from the exact curve (mm); default {MESH_TOLERANCE:g} mm for mesh outputs (a body)"
     for name in ("kind", "hand"):
         prm = BODY[name]
         p.add_argument("--" + name, default=prm.default, choices=list(prm.choices), help=prm.help_text())

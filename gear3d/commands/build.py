@@ -22,6 +22,7 @@ import time
 from ..cliargs import number
 from ..errors import GearError
 from ..export import check_out_dir
+from ..params import DEFAULT_TOLERANCE, MESH_TOLERANCE
 
 
 def add_parser(sub):
@@ -32,7 +33,8 @@ def add_parser(sub):
                    help="build only this part / pair / assembly (repeatable)")
     p.add_argument("--set", action="append", default=[], metavar="KEY=VALUE", dest="sets",
                    help="override a template value: scene.tolerance=0.01, part.pinion.teeth=24 (repeatable). "
-                        "Default tolerances: 0.01 mm for mesh outputs, 0.001 mm for DXF and the rest")
+                        f"Default tolerances: {MESH_TOLERANCE:g} mm for mesh outputs, {DEFAULT_TOLERANCE:g} mm for DXF "
+                        "and the rest")
     add_arrange_flags(p, "the 3MF files (pairs, assemblies, parts)")
     p.add_argument("--dry-run", action="store_true", help="print the stages it would run; write nothing")
     p.add_argument("-q", "--quiet", action="store_true", help="no per-stage log")

@@ -18,9 +18,10 @@ import sys
 from ..cliargs import number
 from ..errors import GearError
 from ..export import atomic_path, check_out_dir, check_path, make_out_dir, remove_dirs, write
+from ..params import MESH_TOLERANCE
 
 #: mm: default tolerance of ``build`` (mesh outputs, printing) and of ``check``
-BUILD_TOLERANCE = 0.01
+BUILD_TOLERANCE = MESH_TOLERANCE
 CHECK_TOLERANCE = 1e-4
 TOOTH_CHOICES = ("triangular", "sine", "involute")
 

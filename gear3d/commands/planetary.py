@@ -27,7 +27,7 @@ import sys
 
 from ..errors import GearError
 from ..export import check_out_dir, check_path, make_out_dir, remove_dirs, write
-from ..params import BODY, TOLERANCE, check_family
+from ..params import BODY, DEFAULT_TOLERANCE, MESH_TOLERANCE, TOLERANCE, check_family
 
 #: family flags a set does not take (hidden from --help, refused by the library)
 HIDDEN = ("teeth", "internal", "mate_teeth", "center_distance", "shift_coeff", "tip_radius", "rim_radius",
@@ -47,7 +47,7 @@ def add_parser(sub):
             a.help = argparse.SUPPRESS
         elif a.dest == "tolerance":
             a.help = ("max deviation from the exact curve (mm), profiles, bodies and the rolling checks; "
-                      f"default 0.01 mm with a mesh output (-o), else 0.001 mm")
+                      f"default {MESH_TOLERANCE:g} mm with a mesh output (-o), else {DEFAULT_TOLERANCE:g} mm")
     for prm in PLANETARY_PARAMS:      # the set's own flags: shown for every family (gear3d_param None)
         if prm.kind is str:
             p.add_argument("--" + prm.name, dest="pl_" + prm.name, default=None,

@@ -9,12 +9,9 @@ from .mateflags import add_mate_flags, build_mate, tool_flags_given
 from .. import profile
 from ..errors import GearError, ToleranceError, check_choice
 from ..export import check_output, write
-from ..params import (CONV_HELIX, FAMILY_PARAMS, INTERNAL, TOLERANCE, Param, all_params, by_name,
-                      check_excludes, union)
+from ..params import (CONV_HELIX, DEFAULT_TOLERANCE, FAMILY_PARAMS, INTERNAL, MESH_TOLERANCE, TOLERANCE, Param,
+                      all_params, by_name, check_excludes, union)
 
-#: mm: the default tolerance of mesh outputs (printing), and of everything else (DXF, EDM)
-MESH_TOLERANCE = 0.01
-DEFAULT_TOLERANCE = 0.001
 #: extensions of mesh outputs (they default to :data:`MESH_TOLERANCE`)
 MESH_EXTS = (".stl", ".3mf", ".step", ".stp", ".obj", ".ply", ".vtu")
 TOLERANCE_HELP = (f"max deviation from the exact curve (mm); default {DEFAULT_TOLERANCE:g} mm, "

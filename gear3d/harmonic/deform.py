@@ -27,6 +27,7 @@ import math
 import numpy as np
 
 from ..errors import GearError, check_number
+from ..params import MIN_TOLERANCE
 from .deflection import neutral_line
 from .synthesis import HarmonicDesign
 
@@ -114,7 +115,7 @@ def mesh_check(design: HarmonicDesign, stage=0, *, tooth="triangular", tolerance
     """
     import shapely
     stage = check_number("stage", stage, 0, len(design.stages) - 1, integer=True)
-    tol = check_number("tolerance", tolerance, 1e-7, 0.05, unit="mm")
+    tol = check_number("tolerance", tolerance, MIN_TOLERANCE, 0.05, unit="mm")
     npos = check_number("positions", positions, 1, 10_000, integer=True)
     st, pf, pr, r_n = _stage_geometry(design, stage, tooth, tol, tooth_params)
     w = st.w0 if w0 is None else check_number("w0", w0, 0, r_n / 4, unit="mm")

@@ -20,6 +20,7 @@ from ..envelope import circle_loop
 from ..errors import GearError, check_choice, check_number
 from .synthesis import HarmonicDesign
 from .. import profile
+from ..params import DEFAULT_TOLERANCE, MIN_TOLERANCE
 from ..tessellate import tessellate
 
 TOOTH_FAMILIES = ("triangular", "sine", "involute")
@@ -94,7 +95,7 @@ def _bolt_holes(n, bolt_d, circle_d, tol, phase=0.0):
     return CrossSection.batch_boolean(holes, OpType.Add)
 
 
-def tooth_profile(design: HarmonicDesign, role: str, tooth="triangular", tolerance=1e-3,
+def tooth_profile(design: HarmonicDesign, role: str, tooth="triangular", tolerance=DEFAULT_TOLERANCE,
                   rim_radius=None, **tooth_params):
     """The profile of one wheel of ``design`` (role: flexspline, flexspline-inner, fixed,
     mobile, circular) in the chosen tooth family, with Table 1's h_a/h_f.
@@ -124,12 +125,12 @@ def tooth_profile(design: HarmonicDesign, role: str, tooth="triangular", toleran
 
 
 def _check_tol(tolerance):
-    return check_number("tolerance", tolerance, 1e-7, 0.05, unit="mm")
+    return check_number("tolerance", tolerance, MIN_TOLERANCE, 0.05, unit="mm")
 
 
 # ----------------------------------------------------------------------------- parts
 
-def flexspline_tube(design: HarmonicDesign, *, tooth="triangular", tolerance=1e-3, **tooth_params) -> Part:
+def flexspline_tube(design: HarmonicDesign, *, tooth="triangular", tolerance=DEFAULT_TOLERANCE, **tooth_params) -> Part:
     """Double-harmonic flexspline (seed 002 Fig. 5): tube OD d_f2, bore d_i, length l;
     outer teeth z2 on z in [0, b], inner teeth z'2 on z in [l - b, l] (mm)."""
     if design.kind != "double":
@@ -155,7 +156,7 @@ def flexspline_tube(design: HarmonicDesign, *, tooth="triangular", tolerance=1e-
     return Part("flexspline", solid, rep)
 
 
-def flexspline_cup(design: HarmonicDesign, *, tooth="triangular", tolerance=1e-3,
+def flexspline_cup(design: HarmonicDesign, *, tooth="triangular", tolerance=DEFAULT_TOLERANCE,
                    diaphragm_thickness=None, hub_diameter=None, bolt_count=6, bolt_diameter=None,
                    bolt_circle_diameter=None, **tooth_params) -> Part:
     """Cup-type flexspline of a single drive: tube (OD d_f, bore d_i, length l) whose open
@@ -196,7 +197,7 @@ def flexspline_cup(design: HarmonicDesign, *, tooth="triangular", tolerance=1e-3
     return Part("flexspline", solid, rep)
 
 
-def circular_spline(design: HarmonicDesign, role=None, *, tooth="triangular", tolerance=1e-3,
+def circular_spline(design: HarmonicDesign, role=None, *, tooth="triangular", tolerance=DEFAULT_TOLERANCE,
                     rim_thickness=None, bolt_count=8, bolt_diameter=None, **tooth_params) -> Part:
     """The fixed rigid ring (internal teeth): teeth over the face width b on z in [0, b],
     a plain flange (bore = the teeth's root circle) on z in [b, length] when the wheel is
@@ -230,7 +231,7 @@ def circular_spline(design: HarmonicDesign, role=None, *, tooth="triangular", to
     return Part(role, _union(bodies), rep)
 
 
-def mobile_wheel(design: HarmonicDesign, *, tooth="triangular", tolerance=1e-3, bore_diameter=None,
+def mobile_wheel(design: HarmonicDesign, *, tooth="triangular", tolerance=DEFAULT_TOLERANCE, bore_diameter=None,
                  bolt_count=6, bolt_diameter=None, **tooth_params) -> Part:
     """The mobile rigid wheel z4 (external teeth, meshing inside the flexspline's inner
     teeth): toothed disc of length l4 with a central bore and bolt holes (mm).
@@ -276,7 +277,7 @@ def _ellipse_b(a, perimeter):
     return 0.5 * (lo + hi)
 
 
-def wave_generator(design: HarmonicDesign, *, tolerance=1e-3, w0=None, bearing_thickness=0.0,
+def wave_generator(design: HarmonicDesign, *, tolerance=DEFAULT_TOLERANCE, w0=None, bearing_thickness=0.0,
                    length=None, bore_diameter=None, shape="ellipse"):
     """Elliptical cam (and optional flexible bearing ring) that deflects the flexspline.
 
@@ -332,7 +333,7 @@ def wave_generator(design: HarmonicDesign, *, tolerance=1e-3, w0=None, bearing_t
     return cam, ring
 
 
-def build_parts(design: HarmonicDesign, *, tooth="triangular", tolerance=1e-3, bearing_thickness=0.0,
+def build_parts(design: HarmonicDesign, *, tooth="triangular", tolerance=DEFAULT_TOLERANCE, bearing_thickness=0.0,
                 **tooth_params) -> list:
     """Every part of the drive, undeformed, in local frames."""
     if design.kind == "double":
@@ -367,7 +368,7 @@ def space_phase(z_rigid, axis, flex_tooth_angle, z_flex):
     return target - (pitch / 2 + k * pitch)
 
 
-def assembly(design: HarmonicDesign, *, tooth="triangular", tolerance=1e-3, bearing_thickness=0.0,
+def assembly(design: HarmonicDesign, *, tooth="triangular", tolerance=DEFAULT_TOLERANCE, bearing_thickness=0.0,
              wg_angle_deg=0.0, deformed=True, parts=None, **tooth_params) -> list:
     """All parts placed around the z axis with the wave generator's major axis at
     ``wg_angle_deg``. The flexspline (and bearing ring) are deflected by the wave

@@ -85,8 +85,8 @@ from ..errors import GearError, allowed_range, check_number
 from .specs import AssemblySpec, Job, Library, LibraryPart, PairSpec, PartSpec, Scene
 from ..budget import HARD_MAX_TRIANGLES
 from ..conventions import to_transverse
-from ..params import (BODY, BODY_PARAMS, CONVENTIONS, FAMILY_PARAMS, by_name, check_excludes, family_table,
-                      md_rows)
+from ..params import (BODY, BODY_PARAMS, CONVENTIONS, DEFAULT_TOLERANCE, FAMILY_PARAMS, MESH_TOLERANCE, MIN_TOLERANCE,
+                      TOLERANCE, by_name, check_excludes, family_table, md_rows)
 from ..profiles import FAMILIES, families
 
 MESH_KINDS = ("stl", "3mf", "step", "obj", "ply", "vtu")
@@ -94,10 +94,9 @@ PROFILE_KINDS = ("dxf", "svg", "png", "json")
 OUTPUT_KINDS = PROFILE_KINDS + MESH_KINDS
 #: tolerance keys: every output kind plus the pair check
 TOLERANCE_KEYS = OUTPUT_KINDS + ("check",)
-TOL_RANGE = (1e-7, 1.0)
-DEFAULT_TOLERANCE = 1e-3
-#: mm: default tolerance of mesh kinds when the template gives no ``tolerance``
-MESH_TOLERANCE = 0.01
+#: mm: the range of a tolerance (the floor, and the table's upper bound); mesh kinds default to
+#: MESH_TOLERANCE when the template gives no ``tolerance``, the rest to DEFAULT_TOLERANCE
+TOL_RANGE = (MIN_TOLERANCE, TOLERANCE.hi)
 MAX_LIBRARY_PARTS = 1_000_000
 #: files a library run writes next to its parts (a part's file may not take these names)
 LIBRARY_RESERVED = ("manifest.json", "manifest.csv", "timings.json")

@@ -8,7 +8,8 @@ from __future__ import annotations
 from ..errors import GearError, ToleranceError, check_bool, check_number
 from .. import budget
 from ..conventions import to_transverse, uses_conventions
-from ..params import MODULE, TEETH, by_name, check_excludes, family_table
+from ..params import (MAX_TOLERANCE_TEXT, MIN_TOLERANCE, MODULE, TEETH, by_name, check_excludes, family_table,
+                      max_tolerance)
 
 FAMILIES: dict = {}
 
@@ -81,12 +82,11 @@ def _load():
 
 def common(teeth, module, tolerance, *, max_teeth=100_000):
     """Validate the parameters every family shares; return (teeth, module, tolerance)."""
-    from ..tessellate import MIN_TOLERANCE
     z = TEETH.check(teeth) if max_teeth == TEETH.hi else check_number("teeth", teeth, 1, max_teeth, integer=True)
     m = MODULE.check(module)
-    t = check_number("tolerance", tolerance, 0, m / 4, lo_open=True, unit="mm (at most module/4)")
+    t = check_number("tolerance", tolerance, 0, max_tolerance(m), lo_open=True, unit=f"mm ({MAX_TOLERANCE_TEXT})")
     if t < MIN_TOLERANCE:
-        raise ToleranceError("tolerance", tolerance, f"a number in [{MIN_TOLERANCE:g}, {m / 4:g}] mm",
+        raise ToleranceError("tolerance", tolerance, f"a number in [{MIN_TOLERANCE:g}, {max_tolerance(m):g}] mm",
                              "finer than double precision can certify")
     tol = t
     return z, m, tol

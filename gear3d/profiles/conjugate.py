@@ -9,6 +9,7 @@ from __future__ import annotations
 from pathlib import PurePath
 
 from ..errors import GearError
+from ..params import DEFAULT_TOLERANCE
 from . import register
 
 
@@ -26,7 +27,7 @@ def conjugate(tool=None, teeth=None, internal=False, tolerance=None, tip_radius=
         if tool_teeth is None or tool_pitch_radius is None:
             raise GearError("tool_teeth" if tool_teeth is None else "tool_pitch_radius", None,
                             "given with a drawn cutter (its teeth and pitch radius)")
-        tol = 1e-3 if tolerance is None else tolerance
+        tol = DEFAULT_TOLERANCE if tolerance is None else tolerance
         cutter = drawn_cutter(tool, tool_teeth, tool_pitch_radius, tool_center, tol)
         return roll(cutter, teeth, internal=internal, tolerance=tol, tip_radius=tip_radius, rim_radius=rim_radius,
                     source=str(tool), source_params=dict(tool_teeth=tool_teeth, tool_pitch_radius=tool_pitch_radius,

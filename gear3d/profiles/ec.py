@@ -24,6 +24,7 @@ import numpy as np
 
 from ..geometry import rotate as _rot
 from ..errors import GearError, check_number
+from ..params import DEFAULT_TOLERANCE
 from ..model import build_profile
 from . import register, reject_unknown, table
 from .cycloid import size_tolerance, min_curvature_radius, trochoid_left_normal, trochoid_point
@@ -129,7 +130,7 @@ def wheel_pieces(d):
 
 @register("ec-pinion")
 def ec_pinion(teeth=1, mate_teeth=20, eccentricity=1.5, tooth_radius=5.0, center_distance=None,
-              internal=False, tolerance=1e-3, **extra):
+              internal=False, tolerance=DEFAULT_TOLERANCE, **extra):
     """EC pinion section (mm): ``teeth`` circles of radius ``tooth_radius`` centred at
     ``eccentricity`` from the axis, for a wheel of ``mate_teeth`` teeth."""
     reject_unknown("ec-pinion", extra)
@@ -145,7 +146,7 @@ def ec_pinion(teeth=1, mate_teeth=20, eccentricity=1.5, tooth_radius=5.0, center
 
 @register("ec-wheel")
 def ec_wheel(teeth=20, mate_teeth=1, eccentricity=1.5, tooth_radius=5.0, center_distance=None,
-             internal=False, tolerance=1e-3, **extra):
+             internal=False, tolerance=DEFAULT_TOLERANCE, **extra):
     """EC wheel section (mm) with ``teeth`` teeth for a pinion of ``mate_teeth`` circles:
     the equidistant of seed 003's epitrochoid Te (offset ``tooth_radius`` inward)."""
     reject_unknown("ec-wheel", extra)

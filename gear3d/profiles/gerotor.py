@@ -27,6 +27,7 @@ import numpy as np
 from ..envelope import pattern, wheel_envelope_piece
 from ..geometry import rotate as _rot
 from ..errors import GearError, check_number
+from ..params import DEFAULT_TOLERANCE
 from ..model import build_profile
 from . import register, reject_unknown, table
 from .cycloid import (lobe_angles, reducer_report, size_tolerance, min_curvature_radius, pin_ring_pieces,
@@ -122,7 +123,7 @@ def _charge_chambers(d, samples: int = 6000) -> None:
 
 @register("gerotor-inner")
 def gerotor_inner(lobes=6, pin_circle_radius=30.0, pin_radius=4.0, eccentricity=2.0, variant="epi",
-                  teeth=None, internal=False, tolerance=1e-3, **extra):
+                  teeth=None, internal=False, tolerance=DEFAULT_TOLERANCE, **extra):
     """Inner gerotor rotor with ``lobes`` n lobes (mm); see the module doc for the variants."""
     reject_unknown("gerotor-inner", extra)
     if internal:
@@ -135,7 +136,7 @@ def gerotor_inner(lobes=6, pin_circle_radius=30.0, pin_radius=4.0, eccentricity=
 
 @register("gerotor-outer")
 def gerotor_outer(lobes=6, pin_circle_radius=30.0, pin_radius=4.0, eccentricity=2.0, variant="epi",
-                  teeth=None, internal=True, rim_radius=None, tolerance=1e-3, **extra):
+                  teeth=None, internal=True, rim_radius=None, tolerance=DEFAULT_TOLERANCE, **extra):
     """Outer gerotor rotor (ring) with ``lobes`` + 1 lobes (mm)."""
     reject_unknown("gerotor-outer", extra)
     if internal is False:

@@ -5,6 +5,7 @@ import math
 
 from ..envelope import rack_envelope
 from ..errors import GearError, check_number
+from ..params import DEFAULT_TOLERANCE
 from ..model import build_profile
 from ..racks import involute_rack
 from . import blank_and_rim, common, register, reject_unknown, table
@@ -13,7 +14,7 @@ from . import blank_and_rim, common, register, reject_unknown, table
 @register("involute")
 def involute(teeth=20, module=1.0, pressure_angle_deg=20.0, addendum_coeff=1.0,
              dedendum_coeff=1.25, tip_radius_coeff=0.25, shift_coeff=0.0, backlash=0.0,
-             internal=False, tolerance=1e-3, tip_radius=None, rim_radius=None, **extra):
+             internal=False, tolerance=DEFAULT_TOLERANCE, tip_radius=None, rim_radius=None, **extra):
     """Involute profile (mm, degrees).
 
     ``addendum_coeff``/``dedendum_coeff``: gear addendum/dedendum in modules; the rack tool

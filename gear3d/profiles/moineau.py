@@ -20,6 +20,7 @@ import math
 import numpy as np
 
 from ..errors import GearError, check_number
+from ..params import DEFAULT_TOLERANCE
 from ..model import build_profile
 from . import register, reject_unknown, table
 from .cycloid import size_tolerance
@@ -45,7 +46,7 @@ def _design(eccentricity, tooth_radius, rotor_lead, tolerance, teeth, mate_teeth
 
 @register("moineau-rotor")
 def moineau_rotor(eccentricity=1.0, tooth_radius=2.5, rotor_lead=None, teeth=None, mate_teeth=None,
-                  internal=False, tolerance=1e-3, **extra):
+                  internal=False, tolerance=DEFAULT_TOLERANCE, **extra):
     """Moineau 1:2 rotor section (mm): circle of radius ``tooth_radius`` at ``eccentricity``."""
     reject_unknown("moineau-rotor", extra)
     if internal:
@@ -75,7 +76,7 @@ def stator_pieces(e, rho):
 
 @register("moineau-stator")
 def moineau_stator(eccentricity=1.0, tooth_radius=2.5, rotor_lead=None, teeth=None, mate_teeth=None,
-                   internal=True, rim_radius=None, tolerance=1e-3, **extra):
+                   internal=True, rim_radius=None, tolerance=DEFAULT_TOLERANCE, **extra):
     """Moineau 1:2 stator section (mm): stadium hole (semicircles ``tooth_radius`` at
     +-2 ``eccentricity`` on y, flats at x = +-rho) in a rim."""
     reject_unknown("moineau-stator", extra)

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 from ..envelope import rack_envelope
 from ..errors import GearError
+from ..params import DEFAULT_TOLERANCE
 from ..model import build_profile
 from .involute import nominal_tip
 from ..racks import sine_rack
@@ -16,7 +17,7 @@ from . import blank_and_rim, common, register, reject_unknown, table
 
 @register("sine")
 def sine(teeth=20, module=None, addendum_coeff=None, shift_coeff=0.0, internal=False,
-         tolerance=1e-3, tip_radius=None, rim_radius=None, form="epi",
+         tolerance=DEFAULT_TOLERANCE, tip_radius=None, rim_radius=None, form="epi",
          unit_radius=None, amplitude=None, displacement=None, **extra):
     """Sine gear (mm). Either seed 001's ``module``/``addendum_coeff``/``shift_coeff`` or seed
     000's ``unit_radius`` r, ``amplitude`` A, ``displacement`` dx (mm) and ``form`` epi|hypo.

@@ -11,12 +11,13 @@ import math
 import numpy as np
 
 from ..errors import GearError, check_number
+from ..params import DEFAULT_TOLERANCE
 from ..model import build_profile
 from . import common, profile, register, reject_unknown, table
 
 
 @register("sine-circular")
-def sine_circular(teeth=20, module=1.0, addendum_coeff=1.0, internal=False, tolerance=1e-3,
+def sine_circular(teeth=20, module=1.0, addendum_coeff=1.0, internal=False, tolerance=DEFAULT_TOLERANCE,
                   rim_radius=None, **extra):
     """Sine circular profile (mm): r = R_p + h_a cos(Z phi) (ring: R_p - h_a cos(Z phi))."""
     reject_unknown("sine-circular", extra)

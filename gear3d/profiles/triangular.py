@@ -27,6 +27,7 @@ import math
 import numpy as np
 
 from ..errors import GearError, check_number
+from ..params import DEFAULT_TOLERANCE
 from ..model import build_profile
 from . import common, register, reject_unknown, table
 
@@ -64,7 +65,7 @@ def _arc(radius, a0, a1):
 
 @register("triangular")
 def triangular(teeth=200, module=0.3, addendum_coeff=7 / 8, dedendum_coeff=9 / 8,
-               half_angle_deg=None, thickness_coeff=7 / 16, internal=False, tolerance=1e-3,
+               half_angle_deg=None, thickness_coeff=7 / 16, internal=False, tolerance=DEFAULT_TOLERANCE,
                rim_radius=None, **extra):
     """Straight-sided tooth (mm, degrees) of seed 002 Table 1.
 

@@ -41,7 +41,7 @@ from .features import (apply_features, chamfer_vectors, offset_loops,
 from ..reports import BodyReport
 from .twist import KINDS, TwistLaw, default_arch_radius, twist_law
 from ..budget import staged
-from ..params import BODY          # the one table (ranges stated once)
+from ..params import BODY, MAX_TOLERANCE_TEXT, MIN_TOLERANCE, max_tolerance   # the one table (ranges stated once)
 from ..placement import mesh_placement, standard_center_distance
 from ..profiles import profile as make
 from ..progress import stage
@@ -51,7 +51,8 @@ from .. import budget
 #: widths around the pitch cylinder; steeper helices are worms (gear3d worm), and near 90
 #: deg the layer count tan(beta) W / r grows without bound
 MAX_HELIX_DEG = 85.0
-#: smallest body tolerance with a twist (part of it goes to the profile, whose floor is 1e-7 mm)
+#: smallest body tolerance with a twist (part of it goes to the profile, whose floor is
+#: :data:`gear3d.params.MIN_TOLERANCE`)
 MIN_TWIST_TOLERANCE = 2e-7
 #: share of a twisted body's tolerance given to its profile polygon (the rest: twist terms)
 PROFILE_SHARE = 0.6
@@ -190,9 +191,9 @@ def body(profile, kind="spur", width=10.0, helix_angle_deg=0.0, hand="right", ga
     elif arch_radius is not None:
         raise GearError("arch_radius", arch_radius, "None unless kind='chevron-arch'")
     twisted = kind != "spur"
-    tol_lo = MIN_TWIST_TOLERANCE if twisted else 1e-7
-    tol = check_number("tolerance", prof.tolerance if tolerance is None else tolerance, tol_lo, m / 4,
-                       unit="mm (at most module/4)")
+    tol_lo = MIN_TWIST_TOLERANCE if twisted else MIN_TOLERANCE
+    tol = check_number("tolerance", prof.tolerance if tolerance is None else tolerance, tol_lo, max_tolerance(m),
+                       unit=f"mm ({MAX_TOLERANCE_TEXT})")
     if tolerance is None:
         tol = prof.tolerance
     if rim_diameter is not None:
@@ -220,7 +221,7 @@ def body(profile, kind="spur", width=10.0, helix_angle_deg=0.0, hand="right", ga
     tp = profile_tolerance(tol, kind, bool(delta))
     if prof.report["max_error"] > tp * (1 + 1e-9):
         # the profile leaves too little room for the twist and offset terms: one rebuild
-        if tp < 1e-7:
+        if tp < MIN_TOLERANCE:
             raise ToleranceError("tolerance", tol, f"a number >= {tol_lo:g} mm for this body")
         prof = prof.at_tolerance(tp)
     skip = [(0.0, cb), (W - ct, W)] + ([(W / 2 - gap / 2, W / 2 + gap / 2)] if gap else [])

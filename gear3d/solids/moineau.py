@@ -15,11 +15,12 @@ import math
 import numpy as np
 
 from ..errors import check_number
+from ..params import MESH_TOLERANCE
 from ..profiles import profile
 
 
 def moineau_pair(eccentricity: float = 1.0, tooth_radius: float = 2.5, rotor_lead: float = 30.0,
-                 length: float = 60.0, tolerance: float = 0.01, rim_radius: float | None = None,
+                 length: float = 60.0, tolerance: float = MESH_TOLERANCE, rim_radius: float | None = None,
                  hand: str = "right"):
     """Rotor and stator bodies (mm), placed in mesh. Returns (rotor, stator)."""
     from .body import body
