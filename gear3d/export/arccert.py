@@ -69,7 +69,7 @@ AIM = 0.7
 #: partitions re-made from the measured errors
 CALIBRATE = 1
 #: split rounds before the fit gives up on a span
-MAX_ROUNDS = 40
+MAX_ROUNDS = 24
 
 
 @dataclass
@@ -614,7 +614,7 @@ def _refine(R: Runs, sp: Spans, budget: float, max_arc_deg: float, jt: Joints, e
     """Split every span that misses the budget (or has too wide an arc) at its middle
     joint, or its parameter midpoint when it spans one chord, until all pass; gives up on
     a span narrower than 1e-9 of a run (the caller sees its error)."""
-    limit = 16 * len(jt.u) + 64                       # spans: far more than any fit needs
+    limit = 4 * len(jt.u) + 16                        # spans: far more than any fit needs
     for _ in range(MAX_ROUNDS):
         bad = ~(sp.error <= budget) | _too_wide(sp.b1, max_arc_deg) | _too_wide(sp.b2, max_arc_deg)
         bad &= (sp.u1 - sp.u0) > 1e-9

@@ -82,6 +82,28 @@ class ArcSpline:
         out = [arc_points(a, b, bu, sag)[:-1] for a, b, bu in self.segments()]
         return np.concatenate(out)
 
+    def points(self, per_segment: int = 8) -> np.ndarray:
+        """Closed polyline (N, 2) mm: every segment at ``per_segment`` equal steps of its
+        angle (lines: of its length), last point not repeated; all segments at once."""
+        A = self.vertices
+        B = np.roll(A, -1, axis=0)
+        b = self.bulges
+        s = np.arange(per_segment) / per_segment
+        d = B - A
+        c = np.hypot(d[:, 0], d[:, 1])
+        theta = 4 * np.arctan(b)
+        # a point at angle fraction s of the arc: its chord from A turned by -(1 - s) theta / 2
+        half = theta[:, None] * s[None, :] / 2
+        with np.errstate(invalid="ignore", divide="ignore"):
+            R = np.where(b != 0, c * (1 + b * b) / (4 * np.where(b != 0, b, 1.0)), 0.0)
+        L = np.where(b[:, None] != 0, 2 * R[:, None] * np.sin(half), c[:, None] * s[None, :])
+        u = d / np.maximum(c, 1e-300)[:, None]
+        phi = theta[:, None] / 2 - half                 # the chord to the point makes -phi with u
+        cx, sx = np.cos(phi), np.sin(phi)
+        dirx = u[:, None, 0] * cx + u[:, None, 1] * sx
+        diry = -u[:, None, 0] * sx + u[:, None, 1] * cx
+        return (A[:, None, :] + L[..., None] * np.stack([dirx, diry], axis=-1)).reshape(-1, 2)
+
 
 # ---------------------------------------------------------------------- geometry
 
@@ -136,7 +158,8 @@ def segments_distance(Q, A, B, b) -> np.ndarray:
     q = Q - 0.5 * (A + B)
     f = b * (np.einsum("...j,...j->...", q, q) - 0.25 * c * c) - 0.5 * c * (b * b - 1.0) * np.einsum("...j,...j->...", q, n)
     K = 0.5 * c * (1.0 + b * b)
-    dc = np.abs(2.0 * f / (K + np.sqrt(np.maximum(K * K + 4.0 * b * f, 0.0))))
+    with np.errstate(invalid="ignore", divide="ignore"):
+        dc = np.abs(2.0 * f / (K + np.sqrt(np.maximum(K * K + 4.0 * b * f, 0.0))))
     h = 2.0 * np.arctan(b)
     ch, sh = np.cos(h), np.sin(h)
     tA = np.stack([u[..., 0] * ch + u[..., 1] * sh, -u[..., 0] * sh + u[..., 1] * ch], axis=-1)

@@ -180,9 +180,10 @@ def certified_fits(exact, profile, tol: float, kerf: float, start: float, max_ar
     """(fits, lead-in polygons, report): the exact route (``exact``: the part at the
     tolerance), else the sampled fallback (from ``profile``). Nothing is accepted here:
     :func:`fit_profile` checks the report against the tolerance."""
-    got = _exact_fits(exact, tol, start, max_arc_deg) if kerf == 0.0 else None
+    got = _exact_fits(exact, tol, start, max_arc_deg, kerf)
     if got is not None:
-        return got[0], [np.asarray(l, float) for l in exact.loops], got[1]
+        # the lead-in must not cross the contours written: their arcs, 8 points each
+        return got[0], [f.points(8) for f in got[0]], got[1]
     return _sampled_fits(profile, tol, kerf, start, max_arc_deg)
 
 
@@ -198,16 +199,23 @@ def _joints_report(fits) -> dict:
 
 # ---------------------------------------------------------------- the exact route
 
-def _exact_fits(profile, tol: float, start: float, max_arc_deg: float):
-    """(fits, report) from the exact outline and its certificate, or None when the outline
-    cannot be walked or a span cannot be certified within the tolerance."""
+def _exact_fits(profile, tol: float, start: float, max_arc_deg: float, kerf: float = 0.0):
+    """(fits, report) from the exact outline (offset by ``kerf``) and its certificate, or
+    None when the outline cannot be walked or offset, a span cannot be certified within
+    the tolerance, or the checks against the polygon fail."""
     contours = rack_outline(profile, start) if _is_rack(profile) else profile_outline(profile, start)
     if contours is None:
         return None
+    if kerf != 0.0:
+        from .offset import offset_contour
+        contours = [offset_contour(c, kerf, start) for c in contours]
+        if any(c is None for c in contours):
+            return None
+    polys = [np.asarray(l, float) for l in profile.loops]
     fits, errs, gaps, evals, known = [], [], [], 0, 0
     for c in contours:
         F = arccert.fit(c.runs, BUDGET * tol, max_arc_deg, split_at=c.start_u)
-        if not F.error <= tol or not _passes_check(F, c):
+        if not F.error <= tol or not _passes_check(F, c, kerf, polys, profile.tolerance):
             return None
         spline, err = _replicate(F, c, BUDGET * tol, max_arc_deg)
         if not err <= tol:
@@ -223,17 +231,42 @@ def _exact_fits(profile, tol: float, start: float, max_arc_deg: float):
                   "max_error": err, "max_error_curve_to_dxf": err, "samples": int(evals)}
 
 
-def _passes_check(F: arccert.Fit, contour) -> bool:
-    """The outline walk's own check: every polygon vertex known to lie on the exact curve
-    in this period lies within the certified error (+ Clipper's rounding) of the fitted
-    arcs. A stretch of the outline the walk missed would show here."""
-    if contour.check is None or not len(contour.check):
-        return True
+def _passes_check(F: arccert.Fit, contour, kerf: float = 0.0, polys=(), poly_tol: float = 0.0) -> bool:
+    """The outline walk's own checks against the polygon. Every polygon vertex known to lie
+    on the exact curve in this period lies within the certified error (+ Clipper's
+    rounding) of the fitted arcs (a stretch of the outline the walk missed would show
+    here), or with a kerf at least |k| - error from them. With a kerf, also no point of
+    the fitted path (ends, joints, arc middles) comes nearer the polygon than |k| - error
+    - the polygon's tolerance: the offset of one stretch running into another's would
+    show there."""
     sp = F.spans
     A = np.concatenate([sp.P0, sp.J])
     B = np.concatenate([sp.J, sp.P1])
-    d = segments_distance(contour.check, A, B, np.concatenate([sp.b1, sp.b2]))
-    return bool(d.max() <= F.error + 1e-7)
+    b = np.concatenate([sp.b1, sp.b2])
+    slack = F.error + 1e-7
+    if contour.check is not None and len(contour.check):
+        d = segments_distance(contour.check, A, B, b)
+        # with a kerf a vertex at a cut corner lies farther than |k|: only the lower bound
+        if not (np.abs(d - abs(kerf)).max() <= slack if kerf == 0.0 else d.min() >= abs(kerf) - slack):
+            return False
+    if kerf != 0.0 and polys:
+        mid = _arc_mids(A, B, b)
+        Q = np.concatenate([A, mid])
+        E0 = np.concatenate([np.asarray(p, float) for p in polys])
+        E1 = np.concatenate([np.roll(np.asarray(p, float), -1, axis=0) for p in polys])
+        lo, hi = Q.min(axis=0) - 2 * abs(kerf), Q.max(axis=0) + 2 * abs(kerf)
+        box = ((np.minimum(E0, E1) <= hi) & (np.maximum(E0, E1) >= lo)).all(axis=1)   # edges near the period
+        near = segments_distance(Q, E0[box], E1[box], np.zeros(int(box.sum()))).min(initial=np.inf)
+        if not near >= abs(kerf) - slack - poly_tol:
+            return False
+    return True
+
+
+def _arc_mids(A, B, b):
+    """The middle point (N, 2) of each arc A -> B with bulge b."""
+    d = B - A
+    n = np.stack([d[:, 1], -d[:, 0]], axis=1)           # right normal times the chord
+    return 0.5 * (A + B) + 0.5 * b[:, None] * n          # sagitta = b c / 2 to the right for b > 0
 
 
 def _vertices(sp: arccert.Spans, corner):

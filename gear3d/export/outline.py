@@ -88,6 +88,7 @@ def _circle(radius: float):
     def f(t):
         t = np.asarray(t, float)
         return np.stack([radius * np.cos(t), radius * np.sin(t)], axis=-1)
+    f.circle_radius = radius
     return f
 
 
@@ -345,6 +346,22 @@ def _to_runs(seq, pieces, pitch, close, sharp_before):
                 close), where
 
 
+def _follows_polygon(runs: Runs, tol: float) -> bool:
+    """The walk's check: between every two consecutive breaks (polygon vertices) the exact
+    curve at the middle parameter lies within ``tol`` of their chord (the polygon's chords
+    are within the profile's tolerance of the curve). A run that went the wrong way round
+    or skipped a stretch would pass far from it."""
+    r = np.concatenate([np.full(len(b) - 1, k) for k, b in enumerate(runs.breaks)])
+    t0 = np.concatenate([np.asarray(b, float)[:-1] for b in runs.breaks])
+    t1 = np.concatenate([np.asarray(b, float)[1:] for b in runs.breaks])
+    P = runs.eval(np.concatenate([r, r, r]), np.concatenate([t0, t1, 0.5 * (t0 + t1)])).reshape(3, -1, 2)
+    d = P[1] - P[0]
+    L2 = np.maximum(np.einsum("ij,ij->i", d, d), 1e-300)
+    f = np.clip(np.einsum("ij,ij->i", P[2] - P[0], d) / L2, 0.0, 1.0)
+    dist = np.hypot(*(P[0] + f[:, None] * d - P[2]).T)
+    return bool(np.all(dist <= tol))
+
+
 def _start_param(span, pieces, pitch, d):
     """Parameter in span (piece, copy, t0, t1) where the exact curve crosses the line
     through the origin along ``d``: the sign change of the cross product among 17 exact
@@ -456,7 +473,7 @@ def _tooth_contour(prof, L, z, pitch, start_angle, outer):
         sh.append(bool(turn[i % n]) and not cb)
     runs, where = _to_runs(seq, pieces, pitch, (step * pitch, 0.0), sh)
     runs.rot = runs.rot + e0[1] * pitch
-    if len(runs.ta) == 0:
+    if len(runs.ta) == 0 or not _follows_polygon(runs, 1.5 * prof.tolerance + 1e-7):
         return None
     start_u = None
     if c != i:

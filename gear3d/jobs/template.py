@@ -293,11 +293,23 @@ def typed(file, key, param, value, ranged: bool = True):
         fail(file, key, value, param.allowed())
     try:
         if not ranged:
-            from dataclasses import replace
-            return replace(param, lo=None, hi=None).check(value)
+            return _unranged(param).check(value)
         return param.check(value)
     except GearError:
         fail(file, key, value, param.allowed())
+
+
+@functools.lru_cache(maxsize=None)
+def _unranged(param):
+    """``param`` without its static range (made once per parameter: a sweep asks per value)."""
+    from dataclasses import replace
+    return replace(param, lo=None, hi=None)
+
+
+@functools.lru_cache(maxsize=None)
+def _family_tab(family) -> dict:
+    """The family's table by name, read once (a sweep of 10^6 values asked 10^6 times)."""
+    return by_name(family)
 
 
 def check_param(file, key, family, name, value, sig, ranged: bool = True):
@@ -307,7 +319,7 @@ def check_param(file, key, family, name, value, sig, ranged: bool = True):
         fail(file, key, value, "not a part key: set [scene] tolerance / [scene.tolerances] "
              "([library] tolerance / [library.tolerances])")
     if family in FAMILY_PARAMS:
-        tab = by_name(family)
+        tab = _family_tab(family)
         if name not in tab:
             fail(file, key, value, f"a parameter of the {family} family: " + ", ".join(sorted(tab)) +
                  ", or name, family, outputs, body")
@@ -793,6 +805,7 @@ def load_library(path, sets=()) -> Library:
     fields = set(sig) | set(body_signature()) | {"family", "index", "name"} | set(base.params)
     pattern = check_pattern(file, "library.pattern", top.get("pattern", name + "_{index}"), fields)
     parts, seen = [], {}
+    bsig = body_signature()
     for i, combo in enumerate(combos):
         params = dict(base.params)
         body = dict(base.body) if base.body is not None else None
@@ -801,9 +814,9 @@ def load_library(path, sets=()) -> Library:
                 body[kp[1]] = x
             else:
                 params[kp[0]] = x
-        values = {k: d for k, d in body_signature().items()}
+        values = dict(bsig)
         values.update(body or {})
-        values.update({k: d for k, d in sig.items()})
+        values.update(sig)
         values.update(params)
         values.update(family=fam, index=i, name=name)
         try:
