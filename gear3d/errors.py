@@ -81,25 +81,27 @@ def check_number(name: str, value, lo=None, hi=None, *, lo_open=False, hi_open=F
 
     ``lo``/``hi`` are the bounds (None = unbounded); ``*_open`` makes a bound exclusive.
     """
-    allowed = allowed_range(lo, hi, lo_open=lo_open, hi_open=hi_open, integer=integer, unit=unit)
+    def bad():          # the words only for a refusal (a sweep checks millions of good values)
+        return GearError(name, value, allowed_range(lo, hi, lo_open=lo_open, hi_open=hi_open,
+                                                    integer=integer, unit=unit))
     if isinstance(value, bool):
-        raise GearError(name, value, allowed)
+        raise bad()
     if isinstance(value, str) or not _numeric(value):
-        raise GearError(name, value, allowed)
+        raise bad()
     try:
         v = float(value)
     except (TypeError, ValueError, OverflowError):
-        raise GearError(name, value, allowed) from None
+        raise bad() from None
     if not math.isfinite(v):
-        raise GearError(name, value, allowed)
+        raise bad()
     if integer:
         if v != int(v):
-            raise GearError(name, value, allowed)
+            raise bad()
         v = int(v)
     if lo is not None and (v < lo or (lo_open and v == lo)):
-        raise GearError(name, value, allowed)
+        raise bad()
     if hi is not None and (v > hi or (hi_open and v == hi)):
-        raise GearError(name, value, allowed)
+        raise bad()
     return v
 
 

@@ -306,7 +306,46 @@ class atomic_path:
 
 def write(obj, path, **opts):
     """Write ``obj`` to ``path``; the extension picks the exporter. Returns a short info
-    string (segment counts, measured error...) or None. Nothing is left on error."""
+    string (segment counts, measured error...) or None. Nothing is left on error.
+
+    The file is written to a temporary name and renamed when complete (atomic); the same
+    input gives the same bytes.
+
+    Parameters
+    ----------
+    obj : Profile, Body, list of Body, or a rack part
+        What to write: a profile (DXF, SVG, JSON, PNG; a mesh format extrudes it with
+        ``width=`` mm), a body or bodies (STL, 3MF, STEP, OBJ, PLY, VTU, JSON).
+    path : str or os.PathLike
+        The file; its extension (one of :data:`FORMATS`) picks the format.
+    **opts
+        The format's options (DXF: ``kerf``, ``lead_in``, ...; 3MF: ``arrange``; STEP:
+        ``step``); an option the format does not take is refused.
+
+    Returns
+    -------
+    str or None
+        A one-line summary of what was written (counts, measured error in mm).
+
+    Raises
+    ------
+    GearError
+        An unknown extension, a wrong object for the format, an unwritable path or a
+        bad option; no file (and no temporary file) is left.
+
+    Examples
+    --------
+    >>> import gear3d, os, tempfile
+    >>> tmp = tempfile.TemporaryDirectory()
+    >>> path = os.path.join(tmp.name, "gear.stl")
+    >>> b = gear3d.body(gear3d.profile("involute", teeth=20, tolerance=0.01), width=5.0)
+    >>> info = gear3d.write(b, path)
+    >>> info                                                     # doctest: +ELLIPSIS
+    'stl: ... triangles, 1 part(s)'
+    >>> os.path.getsize(path) == 84 + 50 * b.report["triangles"]   # binary STL: 84-byte head, 50 a triangle
+    True
+    >>> tmp.cleanup()
+    """
     import importlib
     stage("write")
     kind = _kind(obj)

@@ -58,8 +58,9 @@ SPLIT_SAMPLES = 8
 STEP = 1e-6
 #: rad: joints whose two one-sided tangents differ by more are corners
 CORNER_RAD = 1e-4
-#: |bulge| below this is a straight line (tangent change <= 4e-12 rad)
-LINE_BULGE = 1e-12
+#: |bulge| below this is a straight line (tangent change <= 4e-9 rad; the line is what
+#: gets certified)
+LINE_BULGE = 1e-9
 #: the error model: one chord's biarc error ~ c |a0 + a1| * MODEL (measured: 1/55 .. 1/42)
 MODEL = 1 / 40
 #: joints between runs whose chords' curvatures differ by more than this share are kept
@@ -89,6 +90,8 @@ class Runs:
     breaks: list
     corner: np.ndarray
     close: tuple | None = (0.0, 0.0)
+    #: per run: it is a straight line (its tangent is its chord's direction, exactly)
+    straight: np.ndarray | None = None
 
     @classmethod
     def single(cls, pieces, piece, ta, tb, rot=None, dx=None, breaks=None, corner=None, close=(0.0, 0.0)):
@@ -171,7 +174,12 @@ def point_tangents(R: Runs, r, t, mode):
     sec, _ = _unit(2 * s1 - s2)
     slow = ~central & (n / (2 * h) * (w * 1e-3) < 0.5 * l1)
     P = np.where(central[:, None], G[:, 1], G[:, 0])
-    return P, np.where(slow[:, None], sec, T)
+    T = np.where(slow[:, None], sec, T)
+    if R.straight is not None and R.straight[r].any():
+        line = R.straight[r]
+        ends = R.eval(np.concatenate([r[line], r[line]]), np.concatenate([R.ta[r[line]], R.tb[r[line]]]))
+        T[line], _ = _unit(ends[line.sum():] - ends[:line.sum()])
+    return P, T
 
 
 # ------------------------------------------------------------------ biarcs and circles

@@ -105,7 +105,8 @@ def offset_contour(c: Contour, k: float, start_angle: float):
             pieces.append(OffsetPiece(R.pieces[key[0]], key[1], k))
         piece.append(cache[key])
     O = Runs(pieces, np.asarray(piece, int), R.ta.copy(), R.tb.copy(), R.rot.copy(), R.dx.copy(),
-             [np.asarray(b, float).copy() for b in R.breaks], R.corner.copy(), R.close)
+             [np.asarray(b, float).copy() for b in R.breaks], R.corner.copy(), R.close,
+             None if R.straight is None else R.straight.copy())         # a line's offset is a line
     # one-sided tangents of the original runs at both ends of every run
     rr = np.concatenate([np.arange(n), np.arange(n)])
     P, T = point_tangents(R, rr, np.concatenate([R.ta, R.tb]), np.concatenate([np.ones(n, int), -np.ones(n, int)]))
@@ -189,8 +190,11 @@ def _with_arcs(O: Runs, arcs) -> Runs:
         brk.append(O.breaks[r])
         cor.append(bool(O.corner[r]) and r not in at)
         order.append(r)
+    straight = None
+    if O.straight is not None:
+        straight = np.array([False if r < 0 else bool(O.straight[r]) for r in order], bool)
     out = Runs(pieces, np.asarray(piece, int), np.asarray(ta, float), np.asarray(tb, float),
-               np.asarray(rot, float), np.asarray(dx, float), brk, np.asarray(cor, bool), O.close)
+               np.asarray(rot, float), np.asarray(dx, float), brk, np.asarray(cor, bool), O.close, straight)
     out.source = np.asarray(order, int)                # run index before the arcs (-1: an arc)
     return out
 

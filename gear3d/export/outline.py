@@ -537,6 +537,8 @@ def rack_outline(part, start_angle: float):
     brk.append(np.array([0.0, 1.0]))
     runs = Runs(allp, np.asarray(piece, int), np.asarray(ta), np.asarray(tb), np.zeros(len(ta)),
                 np.asarray(dx, float), brk, np.zeros(len(ta), bool), (0.0, 0.0))
+    flags = [True, True] + [bool(x) for x in (part.straight or [False] * np_)] + [True]
+    runs.straight = np.array([flags[i] for i in runs.piece], bool)
     runs = _rotate_start(runs, part.loops[0], start_angle)
     return None if runs is None else [Contour(runs, 1, True, np.asarray(part.loops[0], float))]
 
@@ -573,10 +575,12 @@ def _rotate_start(runs: Runs, loop, start_angle):
     brk[0] = np.concatenate([[ts], bs[(bs - ts) * np.sign(tb[0] - ta[0]) > 0]])
     be = np.asarray(brk[-1])
     brk[-1] = np.concatenate([be[(ts - be) * np.sign(ts - be[0]) > 0], [ts]])
-    out = Runs(runs.pieces, f(runs.piece), ta, tb, f(runs.rot), f(runs.dx), brk, f(runs.corner), (0.0, 0.0))
+    out = Runs(runs.pieces, f(runs.piece), ta, tb, f(runs.rot), f(runs.dx), brk, f(runs.corner), (0.0, 0.0),
+               None if runs.straight is None else f(runs.straight))
     keep = np.abs(out.tb - out.ta) > 0
     if not keep.all():
         idx = np.nonzero(keep)[0]
         out = Runs(out.pieces, out.piece[idx], out.ta[idx], out.tb[idx], out.rot[idx], out.dx[idx],
-                   [out.breaks[k] for k in idx], out.corner[idx], (0.0, 0.0))
+                   [out.breaks[k] for k in idx], out.corner[idx], (0.0, 0.0),
+                   None if out.straight is None else out.straight[idx])
     return out
