@@ -30,7 +30,30 @@ def show(value) -> str:
 class GearError(ValueError):
     """Bad input or an infeasible request; ``param``/``value``/``allowed`` say which.
 
-    The message is always one line (control characters escaped, see :func:`one_line`)."""
+    The message is always one line (control characters escaped, see :func:`one_line`):
+    ``"<param> = <value> is not allowed: <allowed> (<why>)"``. The CLI prints it on stderr
+    and exits with code 2, writing no file.
+
+    Parameters
+    ----------
+    param : str
+        The parameter's name (its Python keyword; the CLI flag is the same with ``-``).
+    value : object
+        The value given.
+    allowed : str
+        What would be allowed, with units ("a number in [1e-07, 0.25] mm").
+    why : str, optional
+        Why, when the range alone does not say it (default: nothing).
+
+    Examples
+    --------
+    >>> import gear3d
+    >>> try:
+    ...     gear3d.profile("involute", teeth=0)
+    ... except gear3d.GearError as e:
+    ...     print(e.param, e.value, "|", e)
+    teeth 0 | teeth = 0 is not allowed: an integer in [1, 100000]
+    """
 
     def __init__(self, param: str, value, allowed: str, why: str = ""):
         self.param, self.value, self.allowed, self.why = param, value, allowed, why
@@ -41,7 +64,20 @@ class GearError(ValueError):
 
 
 class ToleranceError(GearError):
-    """The requested tolerance cannot be met (too fine for double precision or the vertex budget)."""
+    """The requested tolerance cannot be met (too fine for double precision or the vertex budget).
+
+    A :class:`GearError`: ``param`` is ``"tolerance"`` (or what drives the vertex count),
+    ``allowed`` the tolerances that can be met, in mm.
+
+    Examples
+    --------
+    >>> import gear3d
+    >>> try:
+    ...     gear3d.profile("involute", teeth=20, tolerance=1e-9)
+    ... except gear3d.ToleranceError as e:
+    ...     print(isinstance(e, gear3d.GearError), "|", e)
+    True | tolerance = 1e-09 is not allowed: a number in [1e-07, 0.25] mm (finer than double precision can certify)
+    """
 
 
 def _fmt(x, down=None) -> str:

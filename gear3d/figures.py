@@ -52,7 +52,38 @@ def figure(obj, path, **opts) -> str:
     (circles, undercut and pointing marks, legend; ``inspection=``, ``view=``); a rack
     (:func:`gear3d.rack`): its outline and pitch line; a body or list of bodies:
     :func:`mesh_preview`. Not a cut outline: ``gear3d.write(profile, "x.svg")`` writes that
-    (1:1, mm, paths only)."""
+    (1:1, mm, paths only).
+
+    Parameters
+    ----------
+    obj : Profile, rack part, Body or list of Body
+        What to draw (mm).
+    path : str or os.PathLike
+        The figure file: .svg, .png or .pdf.
+    **opts
+        For a profile: ``inspection=`` (a report of :func:`gear3d.analysis.inspection`
+        to annotate), ``view=`` (the region drawn).
+
+    Returns
+    -------
+    str
+        ``path``, written.
+
+    Raises
+    ------
+    GearError
+        An extension that is not a figure's, or an object that has no figure.
+
+    Examples
+    --------
+    >>> import gear3d, os, tempfile
+    >>> tmp = tempfile.TemporaryDirectory()
+    >>> p = gear3d.profile("involute", teeth=12, module=1.0, tolerance=0.01)
+    >>> path = gear3d.figure(p, os.path.join(tmp.name, "gear.svg"))
+    >>> open(path, encoding="utf-8").read().startswith("<?xml")
+    True
+    >>> tmp.cleanup()
+    """
     from .model import Profile
     check_path(path, "figure", exts=tuple("." + e for e in FIGURE_EXTS))
     with atomic_path(path, "figure") as tmp:

@@ -60,6 +60,36 @@ class Profile:
 
     ``loops``: outer loop CCW, holes CW. ``report``: the measured quantities.
     ``pieces``: exact evaluators of one raw tooth period (``G(t) -> (N,2)`` mm).
+
+    Made by :func:`gear3d.profile`; a frozen value (geometry and its report).
+
+    Attributes
+    ----------
+    family : str
+        The family it was built by; ``params`` the keywords it was built with.
+    teeth : int
+        Number of teeth.
+    pitch_radius : float
+        Pitch radius, mm.
+    internal : bool
+        A ring gear (the material outside the teeth).
+    tolerance : float
+        The tolerance it was built to, mm.
+    loops : list of numpy.ndarray
+        (N, 2) closed polygons, mm: the outer loop counter-clockwise, holes clockwise.
+    report : ProfileReport
+        What was measured: radii, thickness, undercut, pointing, ``max_error`` (mm).
+
+    Examples
+    --------
+    >>> import gear3d, numpy as np
+    >>> p = gear3d.profile("involute", teeth=20, module=1.0, tolerance=0.01)
+    >>> isinstance(p, gear3d.Profile), p.teeth, p.internal, p.loops[0].shape[1]
+    (True, 20, False, 2)
+    >>> x, y = p.loops[0].T                            # the shoelace area of the outer loop
+    >>> area = 0.5 * float((x * (np.roll(y, -1) - np.roll(y, 1))).sum())
+    >>> area > 0, abs(area - p.report["area"]) < 1e-9 * area    # counter-clockwise, as reported
+    (True, True)
     """
     family: str
     params: dict

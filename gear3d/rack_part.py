@@ -358,6 +358,37 @@ def rack(family: str, teeth: int = 10, module: float = 1.0, tolerance: float = D
     :func:`gear3d.analysis.rack_mesh.rack_pair` to place the pinion at y = r + x m.
     Raises :class:`GearError` on bad input, :class:`ToleranceError` when the tolerance
     cannot be met.
+
+    Parameters
+    ----------
+    family : {"involute", "sine", "cycloidal", "triangular"}
+        The tooth family (:data:`RACK_FAMILIES`).
+    teeth : int, optional
+        Number of rack teeth (default 10).
+    module : float, optional
+        Module m in mm (default 1); the pitch is pi m.
+    tolerance : float, optional
+        mm (default :data:`gear3d.params.DEFAULT_TOLERANCE`, at most
+        :func:`gear3d.params.max_tolerance` of the module).
+    back_height : float, optional
+        Depth of the back below the root line, mm (default 2 m).
+    **params
+        The family's rack keywords (above).
+
+    Returns
+    -------
+    RackPart
+        The closed outline (mm; the pitch line is y = 0, the teeth point to +y) and its
+        report.
+
+    Examples
+    --------
+    >>> import gear3d, math
+    >>> r = gear3d.rack("involute", teeth=5, module=1.0, tolerance=0.01)
+    >>> math.isclose(r.report["pitch"], math.pi), math.isclose(r.report["tooth_thickness_at_pitch_line"], math.pi / 2)
+    (True, True)
+    >>> r.report["tip_y"], r.report["root_y"]                     # addendum m, dedendum 1.25 m
+    (1.0, -1.25)
     """
     fam, P = rack_params(family, dict(params, teeth=teeth, module=module, tolerance=tolerance,
                                   back_height=back_height))
@@ -581,7 +612,34 @@ def rack_body(part: RackPart, width: float = 10.0, helix_angle_deg: float = 0.0,
     shears it: the layer at height z is shifted by +z tan(beta) along x (``hand="right"``;
     it meshes with a right-hand gear3d pinion, whose section turns by +z tan(beta)/r) or
     -z tan(beta) (``"left"``). The body's error is measured: points of every side face,
-    sheared back, against the exact outline (:meth:`RackPart.exact_distance`)."""
+    sheared back, against the exact outline (:meth:`RackPart.exact_distance`).
+
+    Parameters
+    ----------
+    part : RackPart
+        The outline (:func:`rack`), mm.
+    width : float, optional
+        Face width along z, mm (default 10).
+    helix_angle_deg : float, optional
+        Helix angle, deg, in [0, 60] (default 0: a straight rack).
+    hand : {"right", "left"}, optional
+        Hand of the helix (default "right").
+    name : str, optional
+        The body's name in multi-body files (default "rack").
+
+    Returns
+    -------
+    RackBody
+        The solid and its report (volume, triangles, measured ``max_error`` in mm).
+
+    Examples
+    --------
+    >>> import gear3d
+    >>> r = gear3d.rack("involute", teeth=5, module=1.0, tolerance=0.01)
+    >>> b = gear3d.rack_body(r, width=5.0)
+    >>> round(b.report["volume"] / (r.report["area"] * 5.0), 9)      # a prism: area x width
+    1.0
+    """
     from .solids.body import mesh_properties, twisted_mesh
     if not isinstance(part, RackPart):
         raise GearError("part", type(part).__name__, "a gear3d RackPart (gear3d.rack(...))")

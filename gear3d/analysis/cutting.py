@@ -42,6 +42,50 @@ def simulate_cut(rack: Rack, teeth: int, module: float, shift_coeff: float = 0.0
     the neighbourhood of tooth 0. ``window`` (pitches) keeps only the rack part within
     that distance of the pitch point at each position: a straight rack inside a ring cuts
     through the far teeth, so rings are simulated with a local rack segment (default 0.75).
+
+    Seed 001's brute-force method, independent of the envelope engine: the tests and the
+    benchmark compare the engine's profiles against it.
+
+    Parameters
+    ----------
+    rack : Rack
+        The cutter (:func:`gear3d.racks.involute_rack` and the other basic racks), mm.
+    teeth : int
+        Teeth of the gear cut.
+    module : float
+        Module m, mm.
+    shift_coeff : float, optional
+        Profile shift x (the rack's datum sits x m out; default 0).
+    internal : bool, optional
+        Cut a ring gear (default False).
+    positions : int, optional
+        Rack positions (default 2000; fewer positions leave larger scallops).
+    rolls : float, optional
+        Travel, in pitches, each way (default: enough to finish tooth 0 and its neighbours).
+    samples : int, optional
+        Points per rack tooth outline (default 200).
+    window : float, optional
+        Pitches of rack kept around the pitch point (default: all; 0.75 for rings).
+
+    Returns
+    -------
+    region : shapely.Polygon
+        What is left of the blank, mm.
+    blank_radius : float
+        The blank's radius, mm.
+
+    Examples
+    --------
+    >>> import gear3d, math, shapely
+    >>> from gear3d.racks import involute_rack
+    >>> region, blank = gear3d.simulate_cut(involute_rack(1.0, 20.0), teeth=20, module=1.0,
+    ...                                     positions=80, samples=60)
+    >>> blank                                                        # r + 2 m: the uncut blank
+    12.0
+    >>> wedge = shapely.Polygon([(0, 0), (20, -3), (20, 3)])        # around tooth 0
+    >>> xy = shapely.get_coordinates(region.intersection(wedge))
+    >>> round(max(math.hypot(x, y) for x, y in xy), 2)              # the tip circle, r + m
+    11.0
     """
     import shapely
     r = module * teeth / 2

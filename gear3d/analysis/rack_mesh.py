@@ -110,6 +110,34 @@ def check_rack_pair(pinion, rack, shift: float | None = None, x0: float | None =
     play along the pitch line, min over ``backlash_phases`` roll positions; None when
     interfering), ``contact_ratio`` (tooth 0's leading flank in contact, in pitches),
     ``tip_root_clearance``, ``steps``.
+
+    Parameters
+    ----------
+    pinion : Profile
+        The pinion (:func:`gear3d.profile`), mm.
+    rack : RackPart
+        The rack (:func:`gear3d.rack`), mm.
+    shift : float, optional
+        The pinion's profile shift x m, mm (default: its own).
+    x0 : float, optional
+        x of the pinion centre at roll 0, mm (default: the rack's mesh phase).
+    tolerance : float, optional
+        Step and contact threshold, mm (default: the larger of the two tolerances).
+    backlash_phases : int, optional
+        Roll positions the backlash is measured at (default 4).
+
+    Returns
+    -------
+    dict
+        The keys above (mm, deg, pitches).
+
+    Examples
+    --------
+    >>> import gear3d
+    >>> pinion, rack, _ = gear3d.rack_pair("involute", teeth=20, tolerance=0.01)
+    >>> rep = gear3d.check_rack_pair(pinion, rack)
+    >>> rep["interference"], round(rep["tip_root_clearance"]["pinion_tip_rack_root"], 6)   # c = 0.25 m
+    (False, 0.25)
     """
     from ..model import Profile
     from ..rack_part import RackPart
@@ -242,6 +270,35 @@ def rack_pair(family: str, teeth: int = 20, rack_teeth: int | None = None, **par
     teeth to run under the pinion's tip circle with two to spare on each side. The pinion
     sits on the rack's middle space, centre (x0, r + x m), in phase.
     Returns (pinion Profile, RackPart, report of :func:`check_rack_pair` plus ``placement``).
+
+    Parameters
+    ----------
+    family : {"involute", "sine", "cycloidal", "triangular"}
+        The tooth family of both.
+    teeth : int, optional
+        Pinion teeth (default 20).
+    rack_teeth : int, optional
+        Rack teeth (default: enough to run under the pinion, above).
+    **params
+        The family's keywords (``module`` mm, ``pressure_angle_deg`` deg, ``tolerance``
+        mm, ...).
+
+    Returns
+    -------
+    tuple
+        (pinion Profile, RackPart, report dict).
+
+    Examples
+    --------
+    >>> import gear3d, math
+    >>> pinion, rack, rep = gear3d.rack_pair("involute", teeth=20, tolerance=0.01)
+    >>> rep["interference"]
+    False
+    >>> a, r, ra = math.radians(20.0), 10.0, 11.0       # the textbook contact ratio with a rack
+    >>> path = math.sqrt(ra ** 2 - (r * math.cos(a)) ** 2) - r * math.sin(a) + 1.0 / math.sin(a)
+    >>> eps = path / (math.pi * math.cos(a))                    # path of contact / base pitch
+    >>> round(eps, 4), abs(rep["contact_ratio"] - eps) < 1e-3
+    (1.7688, True)
     """
     from ..rack_part import PINION_ONLY, RACK_FAMILIES, rack, rack_pinion
     fam = check_choice("family", family, RACK_FAMILIES)

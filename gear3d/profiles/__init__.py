@@ -36,7 +36,44 @@ def profile(family: str, **params):
 
     Sizes are transverse (``module``, ``pressure_angle_deg``); ``normal_module``,
     ``normal_pressure_angle_deg`` (at ``helix_angle_deg``, default 0) and ``diametral_pitch``
-    (1/inch) are converted by :func:`gear3d.conventions.to_transverse`."""
+    (1/inch) are converted by :func:`gear3d.conventions.to_transverse`.
+
+    Parameters
+    ----------
+    family : str
+        One of :func:`families` ("involute", "sine", "cycloidal", "gerotor-inner", "mate", ...).
+    **params
+        The family's keywords, each with its unit, range and default in the family's table
+        (:mod:`gear3d.params`, ``docs/parameters.md``). Common to most families: ``teeth``
+        (default 20), ``module`` (mm, default 1), ``internal`` (a ring gear, default False)
+        and ``tolerance`` (mm, default :data:`gear3d.params.DEFAULT_TOLERANCE`, from
+        :data:`gear3d.params.MIN_TOLERANCE` to :func:`gear3d.params.max_tolerance` of the
+        module): the largest distance allowed between the polygon and the exact curve.
+
+    Returns
+    -------
+    Profile
+        The closed loops (mm, centre at the origin, tooth 0 on +x) and the report of what
+        was measured, ``report["max_error"] <= tolerance`` included.
+
+    Raises
+    ------
+    GearError
+        A parameter out of its range, named with its value and the allowed range.
+    ToleranceError
+        A tolerance that cannot be met (finer than double precision, or too many vertices).
+
+    Examples
+    --------
+    >>> import gear3d
+    >>> p = gear3d.profile("involute", teeth=20, module=1.0, tolerance=0.01)
+    >>> p.pitch_radius                                           # m z / 2
+    10.0
+    >>> round(p.report["tip_radius"], 6), round(p.report["root_radius"], 6)   # r + m, r - 1.25 m
+    (11.0, 8.75)
+    >>> p.report["max_error"] <= p.tolerance
+    True
+    """
     if isinstance(family, str) and family in FAMILY_MODULE and family not in FAMILIES:
         import importlib
         importlib.import_module(f"{__name__}.{FAMILY_MODULE[family]}")
@@ -65,6 +102,19 @@ def table(family: str) -> dict:
 
 
 def families() -> list:
+    """The names of every registered profile family, sorted.
+
+    Returns
+    -------
+    list of str
+        The ``family`` names :func:`profile` takes (each family module is imported once).
+
+    Examples
+    --------
+    >>> import gear3d
+    >>> {"involute", "cycloidal", "mate"} <= set(gear3d.families())
+    True
+    """
     _load()
     return sorted(FAMILIES)
 

@@ -75,7 +75,28 @@ class Body:
     A body is built either as a manifold3d ``Manifold`` (booleans for hubs, keyways,
     chamfers) or, for plain bodies, directly as a closed triangle mesh (float64 arrays;
     :func:`twisted_mesh`); then ``manifold`` is made from that mesh on first use, so that
-    writing an STL never pays for it."""
+    writing an STL never pays for it.
+
+    Made by :func:`body` (or :func:`mate_body`); not built directly.
+
+    Attributes
+    ----------
+    profile : Profile
+        The transverse section it was built from.
+    report : BodyReport
+        What was measured (mm, deg): volume, surface area, triangles, ``max_error``.
+    name : str
+        The body's name in multi-body files.
+    transform : numpy.ndarray
+        4 x 4 placement in an assembly (mm); identity unless placed.
+
+    Examples
+    --------
+    >>> import gear3d
+    >>> b = gear3d.body(gear3d.profile("involute", teeth=20, tolerance=0.01), width=5.0)
+    >>> isinstance(b, gear3d.Body), b.transform.shape, b.report["genus"]
+    (True, (4, 4), 0)
+    """
 
     def __init__(self, manifold, profile, twist: TwistLaw, report: dict, name: str,
                  transform=None, _mesh=None, arrays=None):
@@ -166,8 +187,56 @@ def body(profile, kind="spur", width=10.0, helix_angle_deg=0.0, hand="right", ga
     the larger of the two). ``rim_diameter``: ring gears only, rebuilds the profile with
     that rim. Backlash: use the family's ``backlash`` or a negative ``xy_offset``.
 
-    Raises :class:`GearError` naming the bad parameter; :class:`ToleranceError` when the
-    tolerance is out of reach (too fine or too many triangles).
+    Parameters
+    ----------
+    profile : Profile
+        The transverse section (:func:`gear3d.profile`), in mm.
+    kind : {"spur", "helical", "herringbone", "chevron-arch"}, optional
+        The twist law along the face (default "spur").
+    width : float, optional
+        Face width W in mm (default 10).
+    helix_angle_deg : float, optional
+        Helix angle β at the pitch circle, deg: 0 for spur, in (0, 85] otherwise (default 0).
+    hand : {"right", "left"}, optional
+        Helix hand (of the lower half for the V kinds; default "right").
+    tolerance : float, optional
+        Body tolerance in mm, at most :func:`gear3d.params.max_tolerance` of the module
+        (default: the profile's). Part of it goes to the profile, the rest to the twist
+        between layers.
+    bore, hub_diameter, hub_length, set_screw, web_thickness, xy_offset, elephant_foot, chamfer : float, optional
+        Hub features and print compensation, mm (see above; defaults: none, 0).
+    keyway : bool, optional
+        A DIN 6885 keyway in the bore (default False).
+    lightening_holes : int, optional
+        Holes in the web (default 0).
+    gap, arch_radius, rim_diameter : float, optional
+        Herringbone groove, chevron arch radius, ring rim diameter, mm (default: none).
+    name : str, optional
+        The body's name in multi-body files (default: the family's).
+
+    Returns
+    -------
+    Body
+        The solid (mm, gear axis = z, bottom face at z = 0) and its report: volume,
+        triangles, ``max_error`` (measured, mm) and ``tolerance``.
+
+    Raises
+    ------
+    GearError
+        A parameter out of its range, named with its value and the allowed range.
+    ToleranceError
+        A tolerance out of reach (too fine or too many triangles).
+
+    Examples
+    --------
+    >>> import gear3d
+    >>> p = gear3d.profile("involute", teeth=20, module=1.0, tolerance=0.01)
+    >>> b = gear3d.body(p, width=5.0)
+    >>> round(b.report["volume"] / (p.report["area"] * 5.0), 9)      # a prism: area x width
+    1.0
+    >>> h = gear3d.body(p, kind="helical", width=5.0, helix_angle_deg=20.0)
+    >>> h.report["max_error"] <= h.report["tolerance"], h.report["watertight"]
+    (True, True)
     """
     prof = _check_profile(profile)
     stage("body")
@@ -307,7 +376,35 @@ def place_pair(body1: Body, body2: Body, internal: bool = False, center_distance
     run at :func:`gear3d.placement.operating_center_distance`), in mesh phase: body1's tooth
     0 and a space of body2 face each other at the pitch point
     (:func:`gear3d.placement.mesh_placement`). Twisted pairs must carry mating laws
-    (:func:`mate_body`); then every transverse section meshes as the planar pair."""
+    (:func:`mate_body`); then every transverse section meshes as the planar pair.
+
+    Parameters
+    ----------
+    body1, body2 : Body
+        The two wheels (mm).
+    internal : bool, optional
+        True when body2 is a ring around body1 (default False).
+    center_distance : float, optional
+        Centre distance in mm (default: the standard or operating one, above).
+
+    Returns
+    -------
+    list of Body
+        ``[body1, body2]`` copies carrying their placement (``transform``, mm).
+
+    Raises
+    ------
+    GearError
+        Not bodies, twists that do not mate, or a centre distance out of range.
+
+    Examples
+    --------
+    >>> import gear3d
+    >>> b1 = gear3d.body(gear3d.profile("involute", teeth=20, tolerance=0.01), width=5.0)
+    >>> b2 = gear3d.body(gear3d.profile("involute", teeth=30, tolerance=0.01), width=5.0)
+    >>> [float(b.transform[0, 3]) for b in gear3d.place_pair(b1, b2)]    # m (z1 + z2) / 2
+    [0.0, 25.0]
+    """
     for nm, b in (("body1", body1), ("body2", body2)):
         if not isinstance(b, Body):
             raise GearError(nm, type(b).__name__, "a gear3d Body")
