@@ -4,8 +4,9 @@
 ``RecursionError``) and builds a table per part of a dotted key (a 20,000-part key took
 2.3 GB before its refusal). :func:`check_text` scans the text once, tracking strings,
 comments and brackets, and refuses (``GearError`` naming the file and line) a file larger
-than :data:`MAX_BYTES`, brackets nested deeper than :data:`MAX_DEPTH`, a key of more than
-:data:`MAX_KEY_PARTS` dotted parts or :data:`MAX_KEY_CHARS` characters. No template needs
+than :data:`MAX_BYTES`, more than :data:`MAX_TABLES` ``[[table]]`` headers, brackets nested
+deeper than :data:`MAX_DEPTH`, a key of more than :data:`MAX_KEY_PARTS` dotted parts or
+:data:`MAX_KEY_CHARS` characters. No template needs
 more: the deepest key of the schema is ``library.sweep.body.width`` (4 parts), the deepest
 value an array of inline tables (2 levels).
 """
@@ -17,10 +18,13 @@ from ..errors import GearError
 
 _SPECIAL = re.compile(r"[\n#\"'\[\]{}=,.]")
 
-#: a template's largest size (bytes): a 10,000-part scene is about 1 MB
-MAX_BYTES = 8 * 1024 ** 2
+#: a template's largest size (bytes): a 20,000-part scene is about 1 MB
+MAX_BYTES = 4 * 1024 ** 2
 #: deepest nesting of [ and { (table headers count one or two)
 MAX_DEPTH = 32
+#: most [[table]] headers (a scene's parts, pairs and assemblies): a scene lists its parts
+#: one by one; sweeps of many parts are libraries (gear3d batch), which need one table
+MAX_TABLES = 20_000
 #: most parts of a dotted key (a.b.c is 3) and longest key (characters)
 MAX_KEY_PARTS = 16
 MAX_KEY_CHARS = 256
@@ -34,6 +38,10 @@ def check_text(text: str, file="template") -> None:
     """Refuse ``text`` over the bounds of the module doc (one pass, no recursion)."""
     if len(text) > MAX_BYTES:
         _fail(file, 1, "the template is too large", f"{len(text):,} characters", f"at most {MAX_BYTES:,}")
+    tables = text.count("[[") - text.count("[[[")
+    if tables > MAX_TABLES:
+        _fail(file, 1, "too many [[tables]] (a scene lists its parts one by one; sweep many parts in a "
+              "library: gear3d batch)", f"{tables:,} tables", f"at most {MAX_TABLES:,}")
     stack = []                  # open brackets: "[" array / header, "{" inline table
     key_ctx = True              # reading a key (line start, after "{" or "," in an inline table)
     parts, klen, line = 1, 0, 1
