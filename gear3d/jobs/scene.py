@@ -118,6 +118,8 @@ def run_write(stage, obj):
     extra = {}
     if kind == "dxf":
         from ..export.dxf import write_dxf
+        from ..plan import charge_write
+        charge_write(obj, "profile", ".dxf", {"_path": path})     # the budget, before the fit
         with atomic_path(path) as tmp:
             r = write_dxf(obj, tmp, tolerance=i["tolerance"], **i.get("options", {}))
         extra = {"max_error": r["max_error"], "arcs": r.get("arcs"), "lines": r.get("lines")}
@@ -145,7 +147,7 @@ def run_write(stage, obj):
 
 
 def run_check(stage, p1, p2):
-    from ..analysis.pairs import check_pair
+    from ..plan import check_pair          # charged to the budget before it rolls
     try:
         return check_pair(p1, p2, internal=stage.inputs["internal"], tolerance=stage.inputs["tolerance"],
                           center_distance=_center_distance(stage, p1, p2))
@@ -382,6 +384,10 @@ def build_scene(scene: Scene, out_dir, only=None, dry_run=False, log=None) -> di
     if dry_run:
         return {"stages": g.plan(targets), "graph": g}
     made = make_out_dir(out_dir, "out")
+    # the files this run would create (not those it replaces): removed again if it fails
+    fresh = [p for p in (g.stages[k].ctx.get("path") for k in g.stages) if p and not os.path.lexists(p)]
+    fresh.append(out_path(out_dir, scene.name + ".report.json", scene.file, "scene.name"))
+    fresh = [p for p in fresh if not os.path.lexists(p)]
     try:
         with limits(scene.max_triangles):
             res = g.run(targets, on_stage=(lambda s: log(f"{s.kind:<9} {s.label}")) if log else None)
@@ -389,7 +395,12 @@ def build_scene(scene: Scene, out_dir, only=None, dry_run=False, log=None) -> di
         rpath = out_path(out_dir, scene.name + ".report.json", scene.file, "scene.name")
         write_json(rpath, report)
     except BaseException:
-        remove_dirs(made)      # a failed build leaves no empty folder behind
+        for p in fresh:        # a failed build leaves none of its own files ...
+            try:
+                os.remove(p)
+            except OSError:
+                pass
+        remove_dirs(made)      # ... and no empty folder behind
         raise
     report["graph"] = g
     report["owners"] = owners      # output kind -> stage key of each part/pair/assembly (report.html)
