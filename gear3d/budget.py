@@ -97,9 +97,12 @@ COSTS = {
                           "450-550 B a triangle"),
     # exporters, per profile vertex (2D) or per triangle (3D)
     "write.json": Cost(4e-6, 400.0, 0.05, 0.0, "triangular z=4000, 20,000 vertices: 0.25 s"),
-    "write.dxf": Cost(2.5e-4, 4000.0, 1.0, 30e6, "triangular z=4000, 20,000 vertices: 3.4 s, +68 MB "
-                      "(biarc fit + a reference profile 20x finer + read-back)"),
-    "write.svg": Cost(2.2e-4, 3000.0, 0.5, 20e6, "triangular z=4000, 20,000 vertices: 2.9 s, +48 MB"),
+    "write.dxf": Cost(5e-4, 4000.0, 1.0, 30e6, "triangular z=4000, 20,000 vertices: 3.4 s, +68 MB "
+                      "(biarc fit + a reference profile 20x finer + read-back); z=20,000: 18 s; the fit is "
+                      "retried up to 3 times at smaller budgets: cycloidal z=1000, rolling radius 100 m, "
+                      "30,000 vertices: 52 s for 3 tries (upper end: 5e-4 s a vertex)"),
+    "write.svg": Cost(4e-4, 3000.0, 0.5, 20e6, "triangular z=4000, 20,000 vertices: 2.9 s, +48 MB; the "
+                      "same biarc fit as the DXF (retries included)"),
     "write.png": Cost(5e-5, 3000.0, 1.0, 70e6, "profile figure, triangular z=4000 (20,000 vertices): 0.8 s "
                       "with matplotlib's import; body preview, 10,000-56,000 triangles: 0.65-0.82 s, +47-68 MB"),
     "write.stl": Cost(1.0e-6, 130.0, 0.05, 0.0, "binary STL, helical z=40..1000 (10,000-56,000 triangles): "
@@ -118,6 +121,8 @@ COSTS = {
     # gerotor chamber areas: per (crank position x polygon vertex), shapely buffer/difference
     "chambers": Cost(2.5e-7, 400.0, 0.0, 0.0, "gerotor 30 lobes R=300: 3.9 s for 62 positions x 366,000 "
                      "polygon vertices (1.7e-7 s an item), +113 MB (300 B a polygon vertex)"),
+    # gear3d.simulate_cut: per (rack position x outline point), shapely unions in chunks
+    "cut": Cost(6e-6, 200.0, 0.3, 30e6, "involute z=20, 2000 positions x 200 samples x 4: 7.8 s (4.9 us)"),
     # figures (matplotlib), per profile vertex drawn
     "figure": Cost(5e-5, 3000.0, 1.2, 60e6, "annotated involute figure, 20,000 vertices: 1.1 s"),
 }

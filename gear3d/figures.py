@@ -86,6 +86,11 @@ def figure(obj, path, **opts) -> str:
     """
     from .model import Profile
     check_path(path, "figure", exts=tuple("." + e for e in FIGURE_EXTS))
+    from .export import _is_body
+    bodies = list(obj) if isinstance(obj, (list, tuple)) else [obj]
+    if not (isinstance(obj, Profile) or type(obj).__name__ == "RackPart"
+            or (bodies and all(_is_body(b) for b in bodies))):
+        raise GearError("obj", type(obj).__name__, "a Profile, a rack, a body or a list of bodies")
     with atomic_path(path, "figure") as tmp:
         if isinstance(obj, Profile):
             profile_figure(obj, tmp, **opts)

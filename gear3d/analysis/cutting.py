@@ -88,6 +88,24 @@ def simulate_cut(rack: Rack, teeth: int, module: float, shift_coeff: float = 0.0
     11.0
     """
     import shapely
+
+    from ..errors import GearError, check_bool, check_number
+    from ..racks import Rack as _Rack
+    if not isinstance(rack, _Rack):
+        raise GearError("rack", type(rack).__name__, "a basic rack (gear3d.racks.involute_rack(...) and others)")
+    teeth = check_number("teeth", teeth, 1, 100_000, integer=True)
+    module = check_number("module", module, 0, 1000, lo_open=True, unit="mm")
+    shift_coeff = check_number("shift_coeff", shift_coeff, -3, 3, unit="x m")
+    internal = check_bool("internal", internal)
+    positions = check_number("positions", positions, 2, 200_000, integer=True)
+    samples = check_number("samples", samples, 4, 100_000, integer=True)
+    if rolls is not None:
+        rolls = check_number("rolls", rolls, 0, 1000, lo_open=True, unit="pitches")
+    if window is not None:
+        window = check_number("window", window, 0, 1000, lo_open=True, unit="pitches")
+    from .. import budget
+    budget.charge(budget.estimate("cut", float(positions) * samples * 4, 0.0,
+                                  f"{positions:,} rack positions x {samples:,} outline points"), "positions", positions)
     r = module * teeth / 2
     xm = shift_coeff * module
     sigma = -1.0 if internal else 1.0
