@@ -138,7 +138,9 @@ def test_bad_input_one_line():
         pair_geometry(20, 40, 2.0, form="spiral")
     import gear3d
     with pytest.raises(GearError, match="spiral_angle_deg"):
-        gear3d.bevel(teeth=20, mate_teeth=40, module=2.0, spiral_angle_deg=35)
+        gear3d.bevel(teeth=20, mate_teeth=40, module=2.0, spiral_angle_deg=75)
+    with pytest.raises(GearError, match="hand"):
+        gear3d.bevel(teeth=20, mate_teeth=40, module=2.0, hand="left")      # a straight bevel has no hand
 
 
 # ------------------------------------------------------------------ sections

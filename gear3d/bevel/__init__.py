@@ -12,8 +12,13 @@ returns a :class:`Bevel`: the bodies and a typed, frozen :class:`BevelReport` wh
 * :mod:`.section`: one certified section through :func:`gear3d.model.build_profile`;
 * :mod:`.body`: the cone over the section, capped by back and front cones; the mate's placement.
 
-Not built (refused with one line): spiral and Zerol bevels, internal bevels and crown or
-face gears (face cone >= 87°), uniform clearance.
+* :mod:`.spiral`: spiral and Zerol bevels (the crown's circular tooth line; the sections
+  turned by the cone distance);
+* :mod:`.rolling`: the pair's rolling check (interference, backlash, contact ratio,
+  transmission error).
+
+Not built (refused with one line): internal bevels and crown or face gears (face cone >=
+87°), uniform clearance.
 
 Example::
 
@@ -63,6 +68,8 @@ class MemberReport:
     volume: float
     triangles: int
     genus: int
+    warp_error: float | None = None
+    twist_deg: tuple | None = None
 
 
 @dataclass(frozen=True)
@@ -84,6 +91,7 @@ class BevelReport:
     conjugate: str
     mate_form: str | None = None
     check: dict | None = None
+    spiral: dict | None = None
 
     def to_dict(self) -> dict:
         """Plain, strict-JSON-ready keys (NaN/inf become null through
@@ -94,49 +102,42 @@ class BevelReport:
 
 @dataclass(frozen=True)
 class Bevel:
-    """The built bodies (``--part``'s order: gear, mate) and the report."""
+    """The built bodies (``--part``'s order: gear, mate), the report and the pair's
+    geometry (:class:`gear3d.bevel.geometry.PairGeometry`)."""
     bodies: tuple
     report: BevelReport
-
-
-#: keywords of the issue that are not built yet (spiral and Zerol bevels)
-UNBUILT = ("spiral_angle_deg", "cutter_radius", "hand")
-
-
-def _refuse_unbuilt(extra: dict):
-    for name, v in extra.items():
-        if name not in UNBUILT:
-            raise GearError(name, v, "not a parameter of gear3d.bevel")
-        if v is not None and not (name == "spiral_angle_deg" and v == 0):
-            raise GearError(name, v, "no value: spiral and Zerol bevels are not built (straight bevels only)")
+    geometry: object = None
 
 
 def build(teeth, mate_teeth, module, face_width=None, pressure_angle_deg=20.0, shaft_angle_deg=90.0,
           form="spherical-involute", shift_coeff=0.0, tolerance=DEFAULT_TOLERANCE, part="gear",
-          mate_form=None, check=False, **unbuilt) -> Bevel:
+          mate_form=None, check=False, spiral_angle_deg=None, cutter_radius=None, hand=None) -> Bevel:
     """Straight bevel member(s) (mm, degrees); see the package doc. ``part``: gear | mate |
     pair (the mate placed on its axis at the shaft angle, in mesh). ``mate_form``: the
     mate's tooth form (default ``form``; an octoid and a spherical involute are not
     conjugate). ``check`` (pair only): roll the pair (:func:`gear3d.bevel.rolling.check_pair`)
-    into ``report.check``. ``spiral_angle_deg``, ``cutter_radius`` and ``hand`` are refused
-    (spiral and Zerol bevels are not built). Raises :class:`GearError` naming a bad
-    parameter before any work."""
+    into ``report.check``. ``spiral_angle_deg`` (at mid-face), ``cutter_radius`` (mm) and
+    ``hand`` (of the gear: "left" | "right"; the mate gets the other) make a spiral bevel, a
+    Zerol one with a cutter radius and no spiral angle (:mod:`gear3d.bevel.spiral`). Raises
+    :class:`GearError` naming a bad parameter before any work."""
     from dataclasses import replace
     from .geometry import FORMS, pair_geometry
-    _refuse_unbuilt(unbuilt)
+    from .spiral import with_tooth_line
     part = check_choice("part", part, PARTS)
     tol = check_number("tolerance", tolerance, 1e-6, 1.0, unit="mm")
     if check and part != "pair":
         raise GearError("check", check, "only with part='pair' (the check rolls the pair)")
     geo = pair_geometry(teeth, mate_teeth, module, face_width, pressure_angle_deg, shaft_angle_deg,
                         shift_coeff, form)
+    geo = with_tooth_line(geo, spiral_angle_deg, cutter_radius, hand)
     mform = geo.form if mate_form is None else check_choice("mate_form", mate_form, FORMS)
     geo_m = geo if mform == geo.form else replace(geo, form=mform)
     if geo_m is not geo:
         pair_geometry(teeth, mate_teeth, module, face_width, pressure_angle_deg, shaft_angle_deg, shift_coeff, mform)
-    from .body import mate_transform, member_body
+    from .body import mate_transform
+    from .spiral import body
     which = ("gear", "mate") if part == "pair" else (part,)
-    bodies = [member_body(geo if w == "gear" else geo_m, w, tol) for w in which]
+    bodies = [body(geo if w == "gear" else geo_m, w, tol) for w in which]
     overlap = None
     if part == "pair":
         bodies[1].transform = mate_transform(geo)
@@ -152,8 +153,25 @@ def build(teeth, mate_teeth, module, face_width=None, pressure_angle_deg=20.0, s
     from .rolling import pairing
     rep = BevelReport(geo.form, part, geo.module, math.degrees(geo.pressure_angle), math.degrees(geo.shaft_angle),
                       geo.face_width, geo.cone_distance, geo.inner_cone_distance, geo.crown_teeth, tol,
-                      max(r.max_error for r in members), members, overlap, pairing(geo.form, mform), mform, checked)
-    return Bevel(tuple(bodies), rep)
+                      max(r.max_error for r in members), members, overlap, pairing(geo.form, mform), mform, checked,
+                      _spiral_report(geo))
+    return Bevel(tuple(bodies), rep, geo)
+
+
+def _spiral_report(geo) -> dict | None:
+    """The tooth line of a spiral or Zerol pair (mm, degrees), None for a straight one."""
+    line = geo.line
+    if line is None:
+        return None
+    deg = math.degrees
+    s, _ = line.centre
+    return {"kind": "zerol" if line.psi_m == 0 else "spiral", "spiral_angle_deg": deg(line.psi_m),
+            "cutter_radius": line.r_c, "hand": "right" if line.h > 0 else "left",
+            "mate_hand": "left" if line.h > 0 else "right", "mean_cone_distance": line.mean,
+            "cutter_centre_distance": s,
+            "spiral_angle_toe_deg": deg(line.spiral_angle(geo.inner_cone_distance)),
+            "spiral_angle_heel_deg": deg(line.spiral_angle(geo.cone_distance)),
+            "normal_pressure_angle_deg": deg(math.atan(math.tan(geo.pressure_angle) * math.cos(line.psi_m)))}
 
 
 def _params(geo, tol, w) -> dict:
@@ -172,11 +190,17 @@ def _member_report(geo, which, body) -> MemberReport:
     d, a, deg = c.pitch_angle, geo.pressure_angle, math.degrees
     base = deg(math.asin(math.sin(d) * math.cos(a))) if geo.form == "spherical-involute" else None
     r = body.report
+    twist = None
+    if geo.line is not None:
+        from .spiral import law
+        th = law(geo, which)
+        twist = (deg(float(th(geo.inner_cone_distance))), deg(float(th(geo.cone_distance))))
     return MemberReport(which, c.teeth, deg(d), deg(c.face_angle), deg(c.root_angle), deg(c.addendum_angle),
                         deg(c.dedendum_angle), c.addendum, c.dedendum, c.shift_coeff, geo.module * c.teeth,
                         geo.module * c.teeth + 2 * c.addendum * math.cos(d), c.teeth / math.cos(d), base,
                         float(thick), bool(sec.report["undercut"]), bool(sec.report["pointed"]),
-                        r["section_error"], r["cap_error"], r["max_error"], r["volume"], r["triangles"], r["genus"])
+                        r["section_error"], r["cap_error"], r["max_error"], r["volume"], r["triangles"], r["genus"],
+                        r.get("warp_error"), twist)
 
 
 class _CallableModule(types.ModuleType):

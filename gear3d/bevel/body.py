@@ -145,8 +145,9 @@ def _split_bands(outline: np.ndarray, parts: int) -> np.ndarray:
 
 
 def member_body(geo: PairGeometry, which: str, tolerance: float, name: str | None = None) -> BevelBody:
-    """The body of member ``which`` ("gear" or "mate") in its own frame, within
-    ``tolerance`` (mm, measured as the module doc says)."""
+    """The straight body of member ``which`` ("gear" or "mate") in its own frame, within
+    ``tolerance`` (mm, measured as the module doc says); a spiral or Zerol bevel's is
+    :func:`gear3d.bevel.spiral.spiral_body`."""
     from manifold3d import CrossSection, FillRule, Manifold
     from .. import budget
     from ..progress import stage

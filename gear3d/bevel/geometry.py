@@ -72,6 +72,9 @@ class PairGeometry:
     form: str
     gear: GearCone
     mate: GearCone
+    #: the crown's circular tooth line (:class:`gear3d.bevel.spiral.ToothLine`) of a spiral
+    #: or Zerol bevel; None: straight
+    line: object = None
 
     @property
     def inner_cone_distance(self) -> float:

@@ -421,6 +421,8 @@ def check_pair(geo, tolerance: float = CHECK_TOLERANCE, mate_form: str | None = 
     lash = (up + lo) * r2
     pen = float(depth.max() * R)
     ca = conjugate_action(t1, t2, place, R)
+    face = face_contact_ratio(geo)
+    eps = float(ca["contact_ratio"]) + face
     arcsec = 180 * 3600 / math.pi
     return {
         "form": geo.form, "mate_form": mate_form, "conjugate": ca["conjugate"],
@@ -429,11 +431,52 @@ def check_pair(geo, tolerance: float = CHECK_TOLERANCE, mate_form: str | None = 
         "transmission_error_drive": float(np.ptp(up) * r2), "transmission_error_coast": float(np.ptp(lo) * r2),
         "transmission_error_drive_arcsec": float(np.ptp(up) * arcsec),
         "transmission_error_coast_arcsec": float(np.ptp(lo) * arcsec),
-        "contact_ratio": float(ca["contact_ratio"]), "path_distance": ca["path_distance"],
-        "virtual_contact_ratio": virtual_contact_ratio(geo), "continuous": bool(ca["contact_ratio"] >= 1),
+        "contact_ratio": eps, "profile_contact_ratio": float(ca["contact_ratio"]), "face_contact_ratio": face,
+        "path_distance": ca["path_distance"],
+        "virtual_contact_ratio": virtual_contact_ratio(geo), "continuous": bool(eps >= 1),
         "positions": int(grid), "tolerance": tol, "band": BAND,
         "pairing": pairing(geo.form, mate_form),
     }
+
+
+def face_contact_ratio(geo, samples: int = 257) -> float:
+    """Spiral and Zerol pairs: the extra roll of gear 1 over which a tooth stays in contact
+    because its sections turn across the face, (max θ1 - min θ1 over R_e - b .. R_e) / (2π/z1);
+    0 for a straight pair. (On each sphere the pair is the straight pair turned by θ1(ρ), so
+    the contact of tooth 0 spans the straight interval shifted by every θ1 over the face.)"""
+    if geo.line is None:
+        return 0.0
+    from .spiral import law
+    th = law(geo, "gear")(np.linspace(geo.inner_cone_distance, geo.cone_distance, samples))
+    return float(np.ptp(th) * geo.gear.teeth / (2 * math.pi))
+
+
+def contact_lines(geo, lines: int = 11, spheres: int = 41, mate_form: str | None = None) -> dict:
+    """The contact pattern on gear 1's upper flank over the face (mm): for ``lines`` gear
+    angles spread over the whole contact of tooth 0, the line of contact as (cone distance ρ,
+    height above the pitch cone on that sphere, ρ (ϑ - δ1)) rows; also the active zone's
+    edges (its highest and lowest points on each sphere) and the contact ratios."""
+    from .spiral import law
+    mate_form = geo.form if mate_form is None else mate_form
+    t1 = tooth(geo, "gear")
+    t2 = tooth(replace(geo, form=mate_form), "mate")
+    place = Placement(geo)
+    ca = conjugate_action(t1, t2, place, geo.cone_distance)
+    G, T = flank_points(t1, 4001)
+    phi_w = willis(G, T, np.array([math.sin(t1.delta), 0.0, math.cos(t1.delta)]))
+    o = np.argsort(phi_w)
+    phi_w, height = phi_w[o], (np.arccos(np.clip(G[o, 2], -1, 1)) - t1.delta)
+    rho = np.linspace(geo.inner_cone_distance, geo.cone_distance, spheres)
+    theta = np.zeros_like(rho) if geo.line is None else law(geo, "gear")(rho)
+    lo, hi = ca["overlap"] if ca["overlap"] else (phi_w[0], phi_w[0])
+    out = []
+    for phi in np.linspace(lo - theta.max(), hi - theta.min(), lines):
+        w = phi + theta                                 # the straight flank's angle on each sphere
+        on = (w >= lo) & (w <= hi)
+        out.append(np.column_stack([rho[on], rho[on] * np.interp(w[on], phi_w, height)]))
+    edges = [np.column_stack([rho, rho * np.interp(np.full_like(rho, a), phi_w, height)]) for a in (lo, hi)]
+    return {"lines": out, "edges": edges, "profile_contact_ratio": float(ca["contact_ratio"]),
+            "face_contact_ratio": face_contact_ratio(geo), "conjugate": ca["conjugate"]}
 
 
 def virtual_contact_ratio(geo) -> float:

@@ -8,21 +8,22 @@ bodies' reports); ``--part pair`` places the mate on its own axis at the shaft a
 ``--json`` writes the typed report (strict JSON), ``--png`` a 3D preview; ``--check`` (pair)
 rolls the pair (:mod:`gear3d.bevel.rolling`): one summary line, exit 1 on interference or a
 contact ratio below 1 (the files are still written). Spiral and Zerol
-flags (``--spiral-angle-deg``, ``--cutter-radius``, ``--hand``) are refused with one line:
-only straight bevels are built. Bad input: one line on stderr, exit 2, no file.
+flags (``--spiral-angle-deg``, ``--cutter-radius``, ``--hand``) make spiral and Zerol
+bevels (:mod:`gear3d.bevel.spiral`). Bad input: one line on stderr, exit 2, no file.
 """
 from __future__ import annotations
 
 import sys
 
 from ..cliargs import number
+from ..errors import GearError
 from ..export import atomic_path, check_output, check_path, write
 from ..params import MESH_TOLERANCE
 
 
 def add_parser(sub):
     from ..bevel.geometry import FORMS
-    p = sub.add_parser("bevel", help="straight bevel gears (spherical-involute or octoid) -> .stl .3mf .step + .json")
+    p = sub.add_parser("bevel", help="bevel gears: straight, spiral, Zerol (spherical-involute or octoid) -> .stl .3mf .step + .json")
     p.add_argument("--teeth", type=number("int", 3, 1000), required=True, help="teeth of the gear (z1)")
     p.add_argument("--mate-teeth", type=number("int", 3, 1000), required=True, help="teeth of the mate (z2)")
     p.add_argument("--module", type=number("float", 0, 1000, lo_open=True, unit="mm"), required=True,
@@ -45,13 +46,23 @@ def add_parser(sub):
                    help="gear (z1), mate (z2, own frame) or pair (the mate placed in mesh)")
     p.add_argument("-o", "--output", required=True, help="output file; extension picks the format")
     p.add_argument("--json", default=None, help="write the report as strict JSON")
-    p.add_argument("--png", default=None, help="write a 3D preview (.png)")
+    p.add_argument("--png", default=None,
+                   help="figure (.png/.svg): each member's heel profile on its developed back cone (Tredgold) "
+                        "with the pitch, tip and root circles")
+    p.add_argument("--preview-png", default=None, help="write a 3D preview (.png)")
+    p.add_argument("--contact-png", default=None,
+                   help="--part pair: the contact pattern on the gear's flank over the face (.png/.svg)")
     p.add_argument("--check", action="store_true",
                    help="--part pair: roll the pair (interference, backlash, contact ratio, transmission error): "
                         "one summary line, the numbers under 'check' in --json; exit 1 on interference or a "
                         "contact ratio below 1")
-    for flag in ("--spiral-angle-deg", "--cutter-radius", "--hand"):
-        p.add_argument(flag, default=None, help="refused: spiral and Zerol bevels are not built")
+    p.add_argument("--spiral-angle-deg", type=number("float", 0, 60, hi_open=True, unit="deg"), default=None,
+                   help="spiral angle at mid-face (deg): a spiral bevel (0 with --cutter-radius: Zerol)")
+    p.add_argument("--cutter-radius", type=number("float", 0, None, lo_open=True, unit="mm"), default=None,
+                   help="radius of the crown's circular tooth line (the face-mill cutter, mm); default the mean "
+                        "cone distance")
+    p.add_argument("--hand", default=None, choices=["left", "right"],
+                   help="hand of the gear's spiral (the mate gets the other), default right")
     return p
 
 
@@ -61,21 +72,21 @@ def run(args) -> int:
     check_output(out, kinds="body")
     if args.json is not None:
         check_path(args.json, "json", (".json",))
-    if args.png is not None:
-        check_path(args.png, "png", (".png",))
-    unbuilt = {k: getattr(args, k) for k in ("spiral_angle_deg", "cutter_radius", "hand") if getattr(args, k) is not None}
+    for name in ("png", "preview_png", "contact_png"):
+        if getattr(args, name) is not None:
+            check_path(getattr(args, name), name, (".png", ".svg") if name != "preview_png" else (".png",))
+    if args.contact_png is not None and args.part != "pair":
+        raise GearError("contact_png", args.contact_png, "only with --part pair")
     b = build(args.teeth, args.mate_teeth, args.module, args.face_width, args.pressure_angle_deg,
               args.shaft_angle_deg, args.form, args.shift_coeff, args.tolerance, args.part,
-              mate_form=args.mate_form, check=args.check, **unbuilt)
+              mate_form=args.mate_form, check=args.check, spiral_angle_deg=args.spiral_angle_deg,
+              cutter_radius=args.cutter_radius, hand=args.hand)
     info = write(list(b.bodies), out)
     if args.json is not None:
         from ..export.json_format import dumps
         with atomic_path(args.json, "json") as tmp, open(tmp, "w", encoding="utf-8") as f:
             f.write(dumps(b.report.to_dict()) + "\n")
-    if args.png is not None:
-        from ..figures import mesh_preview
-        with atomic_path(args.png, "png") as tmp:
-            mesh_preview(list(b.bodies), tmp)
+    _figures(args, b)
     r = b.report
     sys.stdout.write(f"wrote {out}: bevel {r.form} {args.teeth}/{args.mate_teeth} {r.part}, "
                      f"{sum(m.triangles for m in r.members)} triangles, max_error={r.max_error:.3g} mm "
@@ -85,3 +96,21 @@ def run(args) -> int:
     from ..bevel.rolling import finding_code, summary
     sys.stdout.write(summary(r.check) + "\n")
     return finding_code(r.check)
+
+
+def _figures(args, b):
+    """--png (back cone), --preview-png (3D) and --contact-png (contact pattern)."""
+    todo = []
+    if args.png is not None:
+        from ..bevel.figures import back_cone_figure
+        todo.append((args.png, "png", lambda tmp: back_cone_figure(b, tmp)))
+    if args.preview_png is not None:
+        from ..figures import mesh_preview
+        todo.append((args.preview_png, "preview_png", lambda tmp: mesh_preview(list(b.bodies), tmp)))
+    if args.contact_png is not None:
+        from ..bevel.figures import contact_pattern_figure
+        todo.append((args.contact_png, "contact_png",
+                     lambda tmp: contact_pattern_figure(b.geometry, tmp, b.report.mate_form)))
+    for path, param, draw in todo:
+        with atomic_path(path, param) as tmp:        # the temporary file keeps the extension
+            draw(tmp)
