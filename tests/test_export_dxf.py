@@ -1,7 +1,15 @@
 """DXF export: read back with ezdxf (independent reader), sampled here, measured against
 the exact profile (Profile.exact_distance) and the exact circle for a kerf offset; tangent
 continuity computed here from the entities read back (arc centres), independent of the
-fitter; R12 entity chains, $EXTMIN/$EXTMAX against ezdxf's own bounding box."""
+fitter; R12 entity chains, $EXTMIN/$EXTMAX against ezdxf's own bounding box.
+
+The certificate (export/arccert.py, computed from the fitted arcs, nothing read back) is
+checked to bound the independently measured error on several families, rings, racks and
+kerf offsets: file -> curve by Newton's nearest points on the exact evaluators
+(exact_distance) for the arcs read back by ezdxf; curve -> file from dense points of the
+exact curve (the vertices of a build 50x finer, on the curve; for a kerf the boundary of
+shapely's round-joined offset of that build) to the arcs read back, measured here with
+the circle's own formula. The direct writer's bytes are ezdxf's own."""
 import math
 import os
 
@@ -29,8 +37,8 @@ def _arc(c, a0, a1, r, n=64):
     return np.stack([c[0] + r * np.cos(t), c[1] + r * np.sin(t)], axis=1)
 
 
-def sample(path, layers=("OUTER", "INNER")):
-    """All points of the contours, sampled by this test (64 per arc): LWPOLYLINE bulges,
+def sample(path, layers=("OUTER", "INNER"), n=64):
+    """All points of the contours, sampled by this test (``n`` per arc): LWPOLYLINE bulges,
     LINE, ARC and SPLINE (ezdxf's own NURBS evaluator)."""
     doc = ezdxf.readfile(path)
     out, counts = [], {"arcs": 0, "lines": 0}
@@ -44,7 +52,7 @@ def sample(path, layers=("OUTER", "INNER")):
             for k, (x, y, b) in enumerate(p):
                 x2, y2, _ = p[(k + 1) % len(p)]
                 if b:
-                    out.append(_arc(*bulge_to_arc((x, y), (x2, y2), b)))
+                    out.append(_arc(*bulge_to_arc((x, y), (x2, y2), b), n=n))
                     counts["arcs"] += 1
                 else:
                     out.append(np.linspace([x, y], [x2, y2], 16))
@@ -252,7 +260,7 @@ def test_kerf_offset_measured_against_exact_curve(prof, tmp_path):
     k = 0.1
     path = str(tmp_path / "k.dxf")
     gear3d.write(prof, path, kerf=k, lead_in=2.0)
-    pts, _, doc = sample(path, layers=("OUTER",))
+    pts, _, doc = sample(path, layers=("OUTER",), n=16)
     # points of an offset by k lie exactly k from the exact boundary, outside the material.
     # The oracle is a 20x finer build: its exact evaluators are the same, but a coarse
     # build's trimmed tip/undercut corners sit up to its own tolerance off, which the
@@ -308,3 +316,175 @@ def test_arc_distance_matches_dense_sampling():
         dense = _arc(c, a0, a1, r, 400001) if b else np.linspace(A, B, 400001)
         d = np.min(np.hypot(Q[:, None, 0] - dense[None, ::40, 0], Q[:, None, 1] - dense[None, ::40, 1]), axis=1)
         assert np.abs(arc_distance(Q, A, B, b) - d).max() < 1e-5
+
+
+# --------------------------------------------------------------- the certificate, checked
+
+def _arcs(path):
+    """Every contour entity read back by ezdxf as (centre (N,2), radius, start, sweep) for
+    arcs (a line: radius inf, its end points in centre/start), in one list."""
+    doc = ezdxf.readfile(path)
+    out = []
+    for e in doc.modelspace():
+        if e.dxf.layer not in ("OUTER", "INNER") or e.dxftype() != "LWPOLYLINE":
+            continue
+        p = list(e.get_points("xyb"))
+        for k, (x, y, b) in enumerate(p):
+            x2, y2, _ = p[(k + 1) % len(p)]
+            if b:
+                c, a0, a1, r = bulge_to_arc((x, y), (x2, y2), b)
+                out.append(("arc", (c.x, c.y), r, a0, (a1 - a0) % (2 * math.pi)))
+            else:
+                out.append(("line", (x, y), (x2, y2)))
+    return out
+
+
+def _distance_to(Q, ents):
+    """Distance (mm) from points Q (N,2) to the read-back entities, per the formulas of a
+    circle and a segment (written here, independent of the exporter)."""
+    best = np.full(len(Q), np.inf)
+    for e in ents:
+        if e[0] == "arc":
+            _, c, r, a0, sw = e
+            v = Q - np.asarray(c)
+            rel = (np.arctan2(v[:, 1], v[:, 0]) - a0) % (2 * math.pi)
+            ends = np.asarray(c) + r * np.array([[math.cos(a0), math.sin(a0)],
+                                                  [math.cos(a0 + sw), math.sin(a0 + sw)]])
+            de = np.minimum(np.hypot(*(Q - ends[0]).T), np.hypot(*(Q - ends[1]).T))
+            d = np.where(rel <= sw, np.abs(np.hypot(v[:, 0], v[:, 1]) - r), de)
+        else:
+            a, b = np.asarray(e[1]), np.asarray(e[2])
+            ab = b - a
+            f = np.clip(((Q - a) @ ab) / max(ab @ ab, 1e-300), 0, 1)
+            d = np.hypot(*(a + f[:, None] * ab - Q).T)
+        best = np.minimum(best, d)
+    return best
+
+
+CERT_CASES = [
+    ("involute", dict(teeth=20), 0.0),
+    ("involute", dict(teeth=30, internal=True), 0.0),
+    ("involute", dict(teeth=6, addendum_coeff=1.3), 0.0),        # pointed: a tip corner
+    ("sine", dict(teeth=20), 0.0),
+    ("cycloidal", dict(teeth=20), 0.0),                          # singular parametrisation at the pitch circle
+    ("cycloid-pins", dict(), 0.0),                               # ring with rim, pins and bore arcs
+    ("ec-pinion", dict(), 0.0),                                  # one tooth: the whole loop is the period
+    ("involute", dict(teeth=20), 0.0125),                        # the README's wire EDM example
+    ("involute", dict(teeth=30, internal=True), 0.05),
+    ("involute", dict(teeth=20), -0.05),                         # a negative kerf cuts the corners
+]
+
+
+@pytest.mark.parametrize("family,kw,kerf", CERT_CASES)
+def test_certificate_bounds_independent_measurement(family, kw, kerf, tmp_path):
+    prof = gear3d.profile(family, tolerance=TOL, **kw)
+    path = str(tmp_path / "c.dxf")
+    r = gear3d.export.dxf.write_dxf(prof, path, kerf=kerf)
+    assert r["certificate"] == "exact"
+    cert = max(r["max_error"], r["max_error_curve_to_dxf"])
+    assert cert <= TOL
+    pts, _counts, _doc = sample(path, n=9)
+    # file -> exact curve (Newton on the exact evaluators of a 50x finer build: a coarse
+    # build's trimmed corners sit up to its tolerance off, and a kerf's round join around
+    # a corner would inherit that; a kerf: the offset's distance)
+    fine = prof.at_tolerance(TOL / 50)
+    d = np.abs(fine.exact_distance(pts) - abs(kerf))
+    assert d.max() <= cert + fine.report["max_error"]
+    # exact curve -> file: the fine build's vertices lie on the exact curve (its trimmed
+    # corners within its own measured error)
+    ents = _arcs(path)
+    if kerf == 0.0:
+        Q = np.concatenate(fine.loops)
+    else:
+        import shapely
+        shells = [shapely.Polygon(l) for l in fine.loops if gear3d.export.dxf._signed_area(l) > 0]
+        holes = [shapely.Polygon(l) for l in fine.loops if gear3d.export.dxf._signed_area(l) < 0]
+        region = shapely.union_all(shells)
+        if holes:
+            region = region.difference(shapely.union_all(holes))
+        off = region.buffer(kerf, quad_segs=256, join_style="round")
+        Q = np.concatenate([np.asarray(x.coords) for x in shapely.get_rings(off)])
+    back = _distance_to(Q[::2], ents)
+    # the oracle's own error: the fine build's (and for a kerf the buffer's arc sag, 2e-8 mm)
+    assert back.max() <= cert + fine.report["max_error"] + (1e-7 if kerf else 0.0)
+
+
+@pytest.mark.parametrize("family,kw,kerf", [("involute", dict(tip_radius_coeff=0.2), 0.0), ("sine", {}, 0.0),
+                                            ("involute", {}, 0.05)])
+def test_rack_certificate_bounds_independent_measurement(family, kw, kerf, tmp_path):
+    part = gear3d.rack(family, teeth=5, module=1.5, tolerance=TOL, **kw)
+    path = str(tmp_path / "r.dxf")
+    r = gear3d.export.dxf.write_dxf(part, path, kerf=kerf)
+    assert r["certificate"] == "exact"
+    cert = max(r["max_error"], r["max_error_curve_to_dxf"])
+    pts, counts, _ = sample(path)
+    assert np.abs(part.exact_distance(pts) - abs(kerf)).max() <= cert + 1e-9
+    if kerf == 0.0:
+        fine = part.at_tolerance(TOL / 50)
+        assert _distance_to(fine.loops[0], _arcs(path)).max() <= cert + 1e-9
+    if family == "involute":                  # straight flanks, ends and back are LINEs
+        assert counts["lines"] >= 4 * 5
+
+
+def test_every_family_takes_the_exact_route(tmp_path):
+    """The outline walk follows every family's profile (no sampled fallback)."""
+    for fam in ("epicycloid", "hypocycloid", "ec-wheel", "sine-circular", "triangular", "moineau-rotor",
+                "moineau-stator"):
+        r = gear3d.export.dxf.write_dxf(gear3d.profile(fam, tolerance=TOL), str(tmp_path / "f.dxf"))
+        assert r["certificate"] == "exact" and r["max_error"] <= TOL, fam
+
+
+@pytest.mark.parametrize("version", ["R2000", "R12"])
+def test_direct_writer_matches_ezdxf(version, tmp_path):
+    """The template writer (no ezdxf import) against ezdxf writing the same fits: the same
+    bytes for R2000; for R12 the same entities (ezdxf's arc centres can differ in the last
+    bit: its compiled vector code fuses multiply-adds)."""
+    from gear3d.export import dxf
+    ring = gear3d.profile("involute", teeth=30, module=1.0, internal=True, tolerance=TOL)
+    fits, loops, _ = dxf.fit_profile(ring, start_angle_deg=10.0)
+    leads = [dxf._lead_in(f, 0.5, loops) for f in fits]
+    fast, slow = str(tmp_path / "a.dxf"), str(tmp_path / "b.dxf")
+    dxf._write(fast, fits, ring, version, False, None, False, leads)
+    allp = np.concatenate([dxf.spline_bbox(f) for f in fits] + [np.array([W, W]) for W, _ in leads])
+    box = (tuple(allp.min(axis=0)), tuple(allp.max(axis=0)))
+    dxf._write_doc(slow, fits, ring, version, False, None, False, leads, box)
+    if version == "R2000":
+        assert open(fast, "rb").read() == open(slow, "rb").read()
+    a, b = ezdxf.readfile(fast), ezdxf.readfile(slow)
+    assert not a.audit().has_errors
+    ea, eb = list(a.modelspace()), list(b.modelspace())
+    assert [(e.dxftype(), e.dxf.layer, e.dxf.handle) for e in ea] == [(e.dxftype(), e.dxf.layer, e.dxf.handle)
+                                                                      for e in eb]
+    for x, y in zip(ea, eb):
+        if x.dxftype() == "ARC":
+            assert np.allclose([*x.dxf.center, x.dxf.radius, x.dxf.start_angle, x.dxf.end_angle],
+                               [*y.dxf.center, y.dxf.radius, y.dxf.start_angle, y.dxf.end_angle], rtol=0, atol=1e-12)
+
+
+def test_default_dxf_imports_no_heavy_module(tmp_path):
+    """Writing the default DXF (and a kerf) needs numpy only: no ezdxf, shapely or scipy."""
+    import subprocess
+    import sys
+    code = ("import sys, gear3d; from gear3d.export.dxf import write_dxf; "
+            f"write_dxf(gear3d.profile('involute', teeth=20), {str(tmp_path / 'a.dxf')!r}, kerf=0.0125, lead_in=2); "
+            f"write_dxf(gear3d.profile('involute', teeth=20), {str(tmp_path / 'b.dxf')!r}, dxf_version='R12'); "
+            "print(sorted(m for m in ('ezdxf', 'shapely', 'scipy', 'trimesh') if m in sys.modules))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
+    assert out.strip() == "[]"
+
+
+def test_cycloid_pins_example_memory(tmp_path):
+    """The README's cycloid-pins DXF example stays far below 200 MB of peak memory (it
+    took 402 MB when the file was read back and sampled against the exact boundary)."""
+    import subprocess
+    import sys
+    # VmHWM: this process's own peak (ru_maxrss would carry the forking parent's over exec)
+    code = ("import sys; from gear3d.cli import main; "
+            "sys.argv = ['gear3d', 'profile', 'cycloid-pins', '--pins', '12', '--pin-circle-radius', '30', "
+            f"'--pin-radius', '3', '--eccentricity', '1.5', '-o', {str(tmp_path / 'pins.dxf')!r}]\n"
+            "try:\n    main()\nexcept SystemExit:\n    pass\n"
+            "print([l.split()[1] for l in open('/proc/self/status') if l.startswith('VmHWM')][0])")
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    peak_kb = int(r.stdout.strip().splitlines()[-1])
+    assert (tmp_path / "pins.dxf").exists()
+    assert peak_kb < 200 * 1024

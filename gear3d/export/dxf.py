@@ -480,14 +480,20 @@ def _write(path, fits, profile, version, spline, pitch_circle, construction, lea
 
 
 def _rounding(fits, version, spline) -> float:
-    """How far (mm) the arcs a reader rebuilds from the numbers the format stores can lie
-    from the fitted arcs: R12 (ARC centre, radius, angles in degrees) and SPLINE (control
-    points, weights) are recomputed from the bulges, in double precision; a bound of
-    64 ulps of the largest coordinate (LWPOLYLINE stores the fit's own numbers: 0)."""
-    if version != "R12" and not spline:
-        return 0.0
-    big = max(float(np.abs(f.vertices).max(initial=1.0)) for f in fits)
-    return 64 * np.spacing(max(big, 1.0))
+    """How far (mm) the arcs a reader rebuilds from the numbers in the file can lie from
+    the fitted arcs: any reader (and R12's ARC centres, radii and angles, and a SPLINE's
+    control points, which this writer computes from the bulges) works in double
+    precision from a centre up to one radius away, so: 64 ulps of the largest coordinate
+    or radius."""
+    big = 1.0
+    for f in fits:
+        V = f.vertices
+        c = np.hypot(*(np.roll(V, -1, axis=0) - V).T)
+        b = np.abs(f.bulges)
+        arc = b > 0
+        R = c[arc] * (1 + b[arc] ** 2) / (4 * b[arc])
+        big = max(big, float(np.abs(V).max(initial=0.0)), float(R.max(initial=0.0)))
+    return float(64 * np.spacing(big))
 
 
 def _rational_quadratic(fit: ArcSpline):

@@ -346,6 +346,25 @@ def _to_runs(seq, pieces, pitch, close, sharp_before):
                 close), where
 
 
+def _straight(pieces, tps, pts) -> np.ndarray:
+    """Per piece: it is a straight line (every sample on the chord of its ends within
+    1e-12 of their size; pieces of two samples are probed at three inner points)."""
+    out = np.zeros(len(pieces), bool)
+    for i, (G, t, P) in enumerate(zip(pieces, tps, pts)):
+        if len(P) == 2:
+            with np.errstate(invalid="ignore", over="ignore"):
+                P = np.concatenate([P[:1], np.asarray(G(t[0] + (t[1] - t[0]) * np.array([0.25, 0.5, 0.75])),
+                                                      float), P[1:]])
+        a, b = P[0], P[-1]
+        d = b - a
+        L = math.hypot(*d)
+        if not np.isfinite(P).all() or L == 0:
+            continue
+        off = np.abs((P[:, 0] - a[0]) * d[1] - (P[:, 1] - a[1]) * d[0]) / L
+        out[i] = off.max() <= 1e-12 * (1.0 + np.abs(P).max())
+    return out
+
+
 def _follows_polygon(runs: Runs, tol: float) -> bool:
     """The walk's check: between every two consecutive breaks (polygon vertices) the exact
     curve at the middle parameter lies within ``tol`` of their chord (the polygon's chords
@@ -473,6 +492,7 @@ def _tooth_contour(prof, L, z, pitch, start_angle, outer):
         sh.append(bool(turn[i % n]) and not cb)
     runs, where = _to_runs(seq, pieces, pitch, (step * pitch, 0.0), sh)
     runs.rot = runs.rot + e0[1] * pitch
+    runs.straight = _straight(pieces, tps, pts)[runs.piece]
     if len(runs.ta) == 0 or not _follows_polygon(runs, 1.5 * prof.tolerance + 1e-7):
         return None
     start_u = None
