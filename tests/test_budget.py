@@ -107,3 +107,135 @@ def test_scene_budget(tmp_path):
     scene.write_text(scene.read_text().replace("max_triangles = 5000", "max_triangles = 1.5"))
     rc, err = run(["build", str(scene), "--out", str(tmp_path / "o")], tmp_path)
     assert rc == 2 and "scene.max_triangles" in err
+
+
+# ------------------------------------------------------------------ issue #27: three resources
+
+def test_three_limits_validated_and_restored(tmp_path):
+    for flag, bad in (("--max-memory", "1KB"), ("--max-memory", "1_0GiB"), ("--max-seconds", "0.1"),
+                      ("--max-seconds", "1_0"), ("--max-triangles", "1_000_000")):
+        rc, err = run([flag, bad, "profile", "involute"], tmp_path)
+        assert rc == 2 and err.count("\n") == 1 and flag[2:].replace("-", "_") in err, (flag, bad, err)
+    rc, err = run(["--max-memory", "4GiB", "--max-seconds", "120", "profile", "involute", "--teeth", "12",
+                   "-o", "g.json"], tmp_path)
+    assert rc == 0 and (tmp_path / "g.json").exists()
+    b = budget.current()
+    assert (b.max_memory, b.max_seconds) == (budget.DEFAULT_MAX_MEMORY, budget.DEFAULT_MAX_SECONDS)
+    assert budget.parse_bytes("2GiB") == 2 * 1024 ** 3 and budget.parse_bytes("512MB") == 512e6
+    assert budget.parse_bytes("1_0GB") is None and budget.parse_bytes("x") is None
+
+
+@pytest.mark.parametrize("argv, resource, param", [
+    (["profile", "triangular", "--teeth", "100000", "--module", "0.3", "-o", "g.dxf"], "time", "teeth"),
+    (["check", "pair", "involute", "--teeth", "2000", "--mate-teeth", "2000"], "time", "teeth"),
+    (["body", "involute", "--teeth", "400", "--kind", "helical", "--helix-angle-deg", "45", "--width", "60",
+      "--tolerance", "0.002", "-o", "g.step"], "memory", "tolerance"),
+    (["profile", "gerotor-inner", "--lobes", "1000", "--pin-circle-radius", "100000", "--pin-radius", "4",
+      "--eccentricity", "2", "-o", "g.dxf"], "memory", "lobes"),
+])
+def test_refusal_names_resource_estimate_limit_and_flag(tmp_path, argv, resource, param):
+    """One line: the parameter, the resource, the estimate, the limit and the flag that raises it."""
+    rc, err = run(argv, tmp_path)
+    assert rc == 2 and err.count("\n") == 1, err
+    flag = {"time": "--max-seconds", "memory": "--max-memory", "triangles": "--max-triangles"}[resource]
+    limit = {"time": "60 s", "memory": "2 GiB", "triangles": "4,000,000 triangles"}[resource]
+    assert err.startswith(f"gear3d: error: {param} = ") and f"{resource} budget of {limit}" in err, err
+    assert "estimated" in err and flag in err
+    assert os.listdir(tmp_path) == []
+
+
+def test_estimates_add_over_stages_and_peaks_take_the_larger():
+    a = budget.Estimate(2.0, 100.0, 10.0, "a")
+    b = budget.Estimate(3.0, 50.0, 20.0, "b")
+    t = a.then(b)
+    assert (t.seconds, t.bytes, t.triangles) == (5.0, 100.0, 20.0)
+    assert t.said("memory") == "a" and t.said("triangles") == "b"
+    with budget.limits(max_seconds=4):
+        budget.charge(a, "x", 1)
+        with pytest.raises(budget.BudgetError) as e:
+            budget.charge(b, "y", 2)                 # 2 + 3 s > 4 s: the job's total counts
+        assert e.value.resource == "time" and e.value.param == "y"
+        with budget.stage():                          # tries of one stage: the largest counts
+            budget.charge(budget.Estimate(1.5), "z", 0, key="k")
+            budget.charge(budget.Estimate(1.0), "z", 0, key="k")
+        assert budget.ledger().seconds == pytest.approx(3.5)
+
+
+def test_ranges_that_say_why(tmp_path):
+    rc, err = run(["body", "involute", "--teeth", "20", "--kind", "helical", "--helix-angle-deg", "89.99",
+                   "--width", "10", "-o", "g.stl"], tmp_path)
+    assert rc == 2 and "[0, 85]" in err
+    with pytest.raises(GearError) as e:
+        gear3d.profile("involute", teeth=20, internal=True, rim_radius=1e12)
+    assert e.value.param == "rim_radius" and "100 x" in str(e.value) and "plate" in str(e.value)
+    p = gear3d.profile("involute", teeth=40, internal=True, tolerance=0.01)
+    with pytest.raises(GearError) as e:
+        gear3d.body(p, width=8, rim_diameter=1e9)
+    assert e.value.param == "rim_diameter" and "at most 4000 mm" in str(e.value)     # 100 x m z
+    assert os.listdir(tmp_path) == []
+
+
+# ------------------------------------------------------------------ the watchdog (real processes)
+
+def _gear3d_with(patch: str, argv, cwd, extra_env=None):
+    """``gear3d argv`` as a real process (supervised) after ``patch`` ran in it: the way to make
+    an estimate wrong on purpose. Returns (rc, stderr, CPU seconds of the process tree)."""
+    import resource
+    import subprocess
+    import sys
+    code = ("import sys\n" + patch + "\nfrom gear3d.cli import main\nsys.argv = ['gear3d'] + "
+            + repr(list(argv)) + "\nsys.exit(main())\n")
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    r = subprocess.run([sys.executable, "-c", code], cwd=cwd, capture_output=True, text=True, timeout=600,
+                       env=dict(os.environ, **(extra_env or {})))
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return r.returncode, r.stderr, (after.ru_utime + after.ru_stime) - (before.ru_utime + before.ru_stime)
+
+
+#: estimates made 10,000 times too small: the build runs past the CPU limit
+UNDERESTIMATE = ("import dataclasses, gear3d.budget as b\n"
+                 "b.COSTS = {k: dataclasses.replace(c, seconds=c.seconds * 1e-4, fixed_seconds=0.0) "
+                 "for k, c in b.COSTS.items()}")
+
+
+def test_watchdog_stops_work_past_the_cpu_limit(tmp_path):
+    rc, err, cpu = _gear3d_with(UNDERESTIMATE, ["--max-seconds", "2", "profile", "gerotor-inner", "--lobes", "30",
+                                                "--pin-circle-radius", "300", "-o", "g.dxf"], tmp_path)
+    assert rc == 2 and err.count("\n") == 1 and "max_seconds" in err and "--max-seconds" in err, err
+    assert os.listdir(tmp_path) == []
+
+
+#: a write stuck in C code holding the GIL (no Python signal handler can run) after its
+#: temporary file exists: only the supervisor can end it
+STUCK = ("import gear3d.export as ex\n"
+         "def stuck(obj, path, **opts):\n"
+         "    with ex.atomic_path(path) as tmp:\n"
+         "        open(tmp, 'w').write('partial')\n"
+         "        sum(range(10 ** 13))\n"
+         "ex.write = stuck\n"
+         "import gear3d.commands.profile as cp\n"
+         "orig = cp.run\n"
+         "def run(args):\n"
+         "    import gear3d.export\n"
+         "    return orig(args)\n"
+         "cp.run = run\n")
+
+
+def test_supervisor_ends_work_stuck_in_c_code(tmp_path):
+    rc, err, cpu = _gear3d_with(STUCK, ["--max-seconds", "2", "profile", "involute", "--teeth", "12",
+                                        "-o", "g.json"], tmp_path)
+    assert rc == 2 and err.count("\n") == 1 and "max_seconds" in err, err
+    assert os.listdir(tmp_path) == []                  # the temporary file was removed
+
+
+def test_watchdog_memory_limit(tmp_path):
+    grab = ("import gear3d.export as ex, numpy as np\n"
+            "def grab(obj, path, **opts):\n"
+            "    with ex.atomic_path(path) as tmp:\n"
+            "        open(tmp, 'w').write('partial')\n"
+            "        big = [np.ones(2 ** 27) for _ in range(64)]\n"
+            "ex.write = grab\n")
+    rc, err, cpu = _gear3d_with(grab, ["--max-memory", "512MiB", "profile", "involute", "--teeth", "12",
+                                       "-o", "g.json"], tmp_path)
+    assert rc == 2 and err.count("\n") == 1 and "max_memory" in err and "--max-memory" in err, err
+    assert os.listdir(tmp_path) == []
