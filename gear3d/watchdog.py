@@ -37,7 +37,7 @@ from .budget import RAISE, BudgetError, fmt_bytes, fmt_seconds
 AS_SLACK = 1024 ** 3
 #: seconds (of CPU, or of wall time after a SIGTERM) the supervisor gives a child past a
 #: limit before it kills it
-GRACE_S = 3.0
+GRACE_S = 2.0
 #: supervisor polling interval (s)
 POLL_S = 0.05
 
