@@ -1,0 +1,106 @@
+"""Run ``gear3d`` as a real process and measure it against its own estimate (issue #27).
+
+:func:`run` starts the console script (supervised, as a user runs it) in a folder, waits for
+it with ``os.wait4`` (the CPU time and peak resident memory of its whole process tree, from
+the kernel) and reads the budget's test hook (``GEAR3D_BUDGET_LOG``: every plan and charge
+with its estimate). :func:`verdict` states the property every input must have: refused in
+one line at once, or finished within twice its own estimate and under 2 GiB.
+
+Time is CPU time (user + system), not wall time: the machine is shared, and the estimates
+are CPU seconds.
+"""
+from __future__ import annotations
+
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+from dataclasses import dataclass
+
+#: the memory bound of every run (issue #27)
+MAX_RSS = 2 * 1024 ** 3
+#: CPU seconds a refusal may take (start-up, argument parsing, the plan)
+REFUSE_CPU = 1.0
+#: CPU seconds the estimates leave out: the interpreter, gear3d's and numpy's imports, the
+#: supervisor (measured: about 0.3 s; twice that for a busy machine's page faults)
+STARTUP_CPU = 0.6
+
+
+@dataclass
+class Result:
+    argv: list
+    rc: int
+    err: str
+    cpu: float            # s, the process tree
+    rss: int              # bytes, the largest resident set of one process in the tree
+    estimate: float       # s, the larger of the plan and the final ledger
+    estimate_bytes: float
+    new_files: list
+
+
+def _exe() -> list:
+    exe = shutil.which("gear3d")
+    return [exe] if exe else [sys.executable, "-m", "gear3d.cli"]
+
+
+def _listing(folder) -> set:
+    return {os.path.join(d, f) for d, _, fs in os.walk(folder) for f in fs}
+
+
+def run(argv, folder, timeout_cpu: float = 600.0) -> Result:
+    """``gear3d argv`` in ``folder`` (see the module doc). ``timeout_cpu``: a hang guard."""
+    fd, log = tempfile.mkstemp(prefix="budget-", suffix=".log")
+    os.close(fd)
+    before = _listing(folder)
+    env = dict(os.environ, GEAR3D_BUDGET_LOG=log, OMP_NUM_THREADS="1", OPENBLAS_NUM_THREADS="1",
+               MPLBACKEND="Agg")
+    with tempfile.TemporaryFile() as out, tempfile.TemporaryFile() as err:
+        p = subprocess.Popen(_exe() + [str(a) for a in argv], cwd=folder, stdout=out, stderr=err, env=env,
+                             stdin=subprocess.DEVNULL, preexec_fn=lambda: _cap(timeout_cpu))
+        _, status, ru = os.wait4(p.pid, 0)
+        p.returncode = os.waitstatus_to_exitcode(status)
+        err.seek(0)
+        text = err.read().decode("utf-8", "replace")
+    plan_s = ledger_s = plan_b = ledger_b = 0.0
+    with open(log, encoding="utf-8") as fh:
+        for line in fh:
+            f = line.split(" ", 7)
+            if f[0] == "plan":
+                plan_s, plan_b = max(plan_s, float(f[2])), max(plan_b, float(f[3]))
+            elif f[0] == "charge" and len(f) >= 7:
+                ledger_s, ledger_b = max(ledger_s, float(f[5])), max(ledger_b, float(f[6]))
+    os.remove(log)
+    new = sorted(_listing(folder) - before)
+    return Result(list(argv), p.returncode, text, ru.ru_utime + ru.ru_stime, ru.ru_maxrss * 1024,
+                  max(plan_s, ledger_s), max(plan_b, ledger_b), new)
+
+
+def _cap(seconds: float) -> None:
+    """The hang guard: a hard CPU limit far above any case (never a timing assertion)."""
+    import resource
+    resource.setrlimit(resource.RLIMIT_CPU, (int(seconds), int(seconds) + 5))
+
+
+def verdict(r: Result) -> str:
+    """'' when ``r`` keeps the promise, else what it broke."""
+    lines = r.err.strip().splitlines()
+    if r.rc == 2:
+        bad = []
+        if len(lines) != 1 or not lines[0].startswith("gear3d: error:"):
+            bad.append(f"{len(lines)} stderr lines")
+        if r.cpu > REFUSE_CPU and "exceeded" not in r.err:
+            bad.append(f"refused after {r.cpu:.2f} s of CPU")
+        if "exceeded" in r.err:
+            bad.append(f"stopped by the watchdog after {r.cpu:.2f} s (estimate {r.estimate:.3g} s)")
+        if r.new_files:
+            bad.append(f"left files {r.new_files}")
+        return "; ".join(bad)
+    if r.rc != 0:
+        return f"rc {r.rc}: {r.err.strip()[-300:]}"
+    bad = []
+    if r.cpu > 2 * r.estimate + STARTUP_CPU:
+        bad.append(f"{r.cpu:.2f} s of CPU > 2 x its estimate {r.estimate:.3g} s + {STARTUP_CPU:g} s")
+    if r.rss > MAX_RSS:
+        bad.append(f"peak RSS {r.rss / 2 ** 20:.0f} MiB > 2 GiB")
+    return "; ".join(bad)

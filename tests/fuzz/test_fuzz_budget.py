@@ -1,0 +1,184 @@
+"""The budget's promise, fuzzed (issue #27): every accepted input stays within the budget
+checked before the work.
+
+Each input runs as a real ``gear3d`` process (:mod:`tests.fuzz.budgetrun`); it must either be
+refused in one line within :data:`budgetrun.REFUSE_CPU` s of CPU, or finish within twice its
+own estimate (what the budget's log says it planned and charged) and under 2 GiB, with
+nothing left behind when refused. Oracles: the kernel's accounting of the process tree
+(``wait4``: CPU time and peak RSS), the folder listing, the exit code and stderr.
+
+* :data:`REGRESSIONS`: every runaway of issue #27, exactly as reported;
+* :func:`test_property_sample`: a few Hypothesis inputs per command near and beyond the
+  limits, in the quick suite; :func:`test_property_full`: many more, ``-m slow``
+  (``GEAR3D_FUZZ_EXAMPLES`` sets how many per command; default 300).
+"""
+from __future__ import annotations
+
+import os
+
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from .budgetrun import run, verdict
+
+#: the issue's reports, each refused at once now (the default budget: 60 s, 2 GiB, 4 M triangles)
+REGRESSIONS = [
+    "body involute --teeth 24 --kind chevron-arch --helix-angle-deg 89.99 --width 100000 --arch-radius 1 -o g.stl",
+    "body involute --teeth 20 --kind helical --helix-angle-deg 89.99 --width 100000 -o g.stl",
+    "body involute --teeth 20 --kind helical --helix-angle-deg 89.999999999 --width 10 -o g.stl",
+    "body involute --teeth 20 --kind helical --helix-angle-deg 85 --width 100000 -o g.stl",
+    "profile involute --teeth 20 --internal --rim-radius 1e12 -o g.dxf",
+    "profile gerotor-inner --lobes 1000 --pin-circle-radius 100000 --pin-radius 4 --eccentricity 2 -o g.dxf",
+    "profile gerotor-outer --lobes 1000 --pin-circle-radius 100000 --pin-radius 4 --eccentricity 2 -o g.dxf",
+    "body involute --teeth 400 --kind helical --helix-angle-deg 45 --width 60 --tolerance 0.002 -o g.step",
+    "body involute --teeth 400 --kind helical --helix-angle-deg 45 --width 60 --tolerance 0.002 -o g.3mf",
+    "body involute --teeth 500 --kind herringbone --helix-angle-deg 30 --width 20 --tolerance 0.0001 -o g.step "
+    "--step brep",
+    "profile triangular --teeth 100000 --module 0.3 -o g.dxf",
+    "profile triangular --teeth 100000 --module 0.3 -o g.svg",
+    "profile triangular --teeth 100000 --module 0.3 --width 1 -o g.stl",
+    "profile triangular --teeth 40000 --module 0.3 -o g.dxf",
+    "body involute --teeth 40 --internal --width 8 --rim-diameter 1e9 -o g.stl",
+    "check pair involute --teeth 2000 --mate-teeth 2000",
+    "check pair involute --teeth 10000 --mate-teeth 10000 --tolerance 0.01",
+    "check pair involute --teeth 20 --mate-teeth 20 --tolerance 1e-7",
+    "check pair sine --teeth 200 --mate-teeth 210 --internal --largest-addendum --precision 0.0001 --tolerance 0.001",
+    "profile cycloid-disc --pins 10000 --pin-circle-radius 100000 --pin-radius 4 --eccentricity 2 "
+    "--output-holes 64 -o g.dxf",
+    "profile teeth --teeth 1_0",
+    "profile involute --teeth 1_0 -o g.json",
+    "--max-seconds 1_0 profile involute",
+]
+#: reports that the budget now lets run (under the default limits) but that must still keep
+#: the promise: within twice their estimate (minutes of CPU each: -m slow)
+SLOW_REGRESSIONS = [
+    "profile moineau-stator --eccentricity 1 --tooth-radius 100000 -o g.json",
+    "profile triangular --teeth 20000 --module 0.3 -o g.dxf",
+    "profile cycloidal --teeth 1000 --rolling-radius-coeff 100 -o g.json",
+    "body involute --teeth 2000 --kind helical --helix-angle-deg 30 --width 20 --tolerance 0.001 -o g.step "
+    "--step brep",
+]
+
+
+def _case(line: str):
+    return [w for w in line.split(" ") if w]
+
+
+@pytest.mark.parametrize("line", REGRESSIONS)
+def test_issue_runaways_are_refused_at_once(line, tmp_path):
+    r = run(_case(line), tmp_path)
+    assert r.rc == 2, (line, r.rc, r.err[-300:])
+    assert not verdict(r), (line, verdict(r), r.err)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("line", SLOW_REGRESSIONS)
+def test_issue_cases_now_run_within_their_estimate(line, tmp_path):
+    r = run(_case(line), tmp_path)
+    assert not verdict(r), (line, verdict(r), r.err[-300:])
+
+
+# ------------------------------------------------------------------ the property
+
+def _num(lo, hi, log=False):
+    """Floats in [lo, hi] (log-spaced when ``log``), printed plainly, plus the bounds."""
+    import math
+    if log:
+        f = st.floats(math.log10(lo), math.log10(hi)).map(lambda e: 10.0 ** e)
+    else:
+        f = st.floats(lo, hi)
+    return st.one_of(st.sampled_from([lo, hi]), f).map(lambda v: f"{v:.6g}")
+
+
+def _ints(lo, hi):
+    return st.one_of(st.sampled_from([lo, hi]), st.integers(lo, hi),
+                     st.integers(1, 5).map(lambda k: 10 ** k).filter(lambda v: lo <= v <= hi)).map(str)
+
+
+PROFILE_FAMILIES = {
+    "involute": {"--teeth": _ints(1, 100_000), "--module": _num(0.05, 50, True), "--tolerance": _num(1e-6, 0.1, True)},
+    "triangular": {"--teeth": _ints(1, 100_000), "--module": _num(0.05, 5, True), "--tolerance": _num(1e-5, 0.05, True)},
+    "sine": {"--teeth": _ints(1, 20_000), "--tolerance": _num(1e-5, 0.05, True)},
+    "cycloidal": {"--teeth": _ints(3, 5000), "--rolling-radius-coeff": _num(0.1, 100, True),
+                  "--tolerance": _num(1e-5, 0.05, True)},
+    "gerotor-inner": {"--lobes": _ints(2, 1000), "--pin-circle-radius": _num(5, 1e5, True),
+                      "--pin-radius": _num(0.5, 50, True), "--eccentricity": _num(0.1, 20, True)},
+    "moineau-stator": {"--eccentricity": _num(0.1, 100, True), "--tooth-radius": _num(0.5, 1e5, True),
+                       "--tolerance": _num(1e-5, 0.05, True)},
+    "cycloid-disc": {"--pins": _ints(3, 10_000), "--pin-circle-radius": _num(5, 1e5, True),
+                     "--pin-radius": _num(0.5, 50, True), "--eccentricity": _num(0.1, 20, True)},
+}
+PROFILE_OUTPUTS = [[], ["-o", "g.json"], ["-o", "g.dxf"], ["-o", "g.svg"], ["-o", "g.png"],
+                   ["--width", "2", "-o", "g.stl"], ["--width", "2", "-o", "g.3mf"]]
+BODY_KINDS = ["spur", "helical", "herringbone", "chevron-arch"]
+BODY_OUTPUTS = [["-o", "g.stl"], ["-o", "g.3mf"], ["-o", "g.step"], ["-o", "g.png"], ["-o", "g.json"],
+                ["-o", "g.step", "--step", "brep"]]
+
+
+@st.composite
+def profile_case(draw):
+    fam = draw(st.sampled_from(sorted(PROFILE_FAMILIES)))
+    argv = ["profile", fam]
+    for flag, strat in PROFILE_FAMILIES[fam].items():
+        if draw(st.booleans()) or flag in ("--teeth", "--lobes", "--pins"):
+            argv += [flag, draw(strat)]
+    return argv + draw(st.sampled_from(PROFILE_OUTPUTS))
+
+
+@st.composite
+def body_case(draw):
+    kind = draw(st.sampled_from(BODY_KINDS))
+    argv = ["body", "involute", "--teeth", draw(_ints(6, 20_000)), "--kind", kind,
+            "--width", draw(_num(0.5, 1e5, True)), "--tolerance", draw(_num(1e-5, 0.1, True))]
+    if kind != "spur":
+        argv += ["--helix-angle-deg", draw(_num(1, 89.9))]
+    return argv + draw(st.sampled_from(BODY_OUTPUTS))
+
+
+@st.composite
+def pair_case(draw):
+    fam = draw(st.sampled_from(["involute", "sine"]))
+    z1 = int(draw(_ints(6, 10_000)))
+    z2 = int(draw(_ints(6, 10_000)))
+    argv = ["check", "pair", fam, "--teeth", str(z1), "--mate-teeth", str(z2),
+            "--tolerance", draw(_num(1e-7, 0.05, True))]
+    if draw(st.booleans()):
+        argv += ["--largest-addendum", "--precision", draw(_num(1e-4, 0.5, True))]
+    return argv
+
+
+CASES = {"profile": profile_case(), "body": body_case(), "pair": pair_case()}
+
+
+def _check(argv, folder, limits):
+    r = run(list(limits) + argv, folder)
+    problem = verdict(r)
+    for f in r.new_files:                 # a finished case's files: the next one starts clean
+        os.remove(f)
+    assert not problem, (argv, problem, r.err[-400:])
+
+
+def _property(kind: str, n: int, limits, tmp_path_factory):
+    folder = tmp_path_factory.mktemp(f"fuzz-{kind}")
+
+    @settings(max_examples=n, deadline=None, derandomize=True, database=None,
+              suppress_health_check=list(HealthCheck))
+    @given(CASES[kind])
+    def prop(argv):
+        _check(argv, folder, limits)
+    prop()
+
+
+@pytest.mark.parametrize("kind", sorted(CASES))
+def test_property_sample(kind, tmp_path_factory):
+    """A few inputs per command under a small budget (3 s of CPU): each refused at once or
+    within twice its estimate."""
+    _property(kind, 4, ("--max-seconds", "3"), tmp_path_factory)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("kind", sorted(CASES))
+def test_property_full(kind, tmp_path_factory):
+    n = int(os.environ.get("GEAR3D_FUZZ_EXAMPLES", "300"))
+    _property(kind, n, ("--max-seconds", "10"), tmp_path_factory)
