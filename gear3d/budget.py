@@ -212,6 +212,28 @@ def set_max_triangles(n) -> int:
     return _ACTIVE.max_triangles
 
 
+#: environment variable by which a run hands its limits to its worker processes (gear3d
+#: batch: each part is a job of its own under the limits the command was given)
+LIMITS_ENV = "GEAR3D_LIMITS"
+
+
+def export_limits() -> None:
+    """Put the limits in force into :data:`LIMITS_ENV` for worker processes started later."""
+    b = _ACTIVE
+    os.environ[LIMITS_ENV] = f"{b.max_triangles} {b.max_memory} {b.max_seconds!r}"
+
+
+def worker_limits() -> dict:
+    """The limits a worker was handed (:func:`export_limits`), as keywords of :func:`limits`
+    (empty when none were: the defaults)."""
+    text = os.environ.get(LIMITS_ENV, "")
+    try:
+        t, m, s = text.split()
+        return {"max_triangles": int(t), "max_memory": int(m), "max_seconds": float(s)}
+    except ValueError:
+        return {}
+
+
 @contextlib.contextmanager
 def limits(max_triangles=None, max_memory=None, max_seconds=None):
     """Use other limits inside a ``with`` block (None keeps one as it is); the block is

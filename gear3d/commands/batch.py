@@ -72,6 +72,8 @@ def run(args) -> int:
                              f"-> {', '.join(p.outputs)}\n")
         sys.stdout.write(f"# {len(lib.parts)} parts -> {out}\n")
         return 0
+    from ..budget import export_limits
+    export_limits()                 # the workers build each part under this run's limits
     from ..jobs.batch import run_library
     workers = args.workers if args.workers is not None else (os.cpu_count() or 1)
     from concurrent.futures.process import BrokenProcessPool

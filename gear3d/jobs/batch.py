@@ -72,7 +72,9 @@ def build_part(job: Job, part: LibraryPart, out_dir: str) -> dict:
            "params": part.params, "body": part.body, "spec": spec_of(job, part)}
     try:
         targets = part_targets(g, job, part, out_dir, prefix=f"part {part.name}")
-        res = g.run(list(targets.values()))
+        from ..budget import limits, worker_limits
+        with limits(**worker_limits()):       # each part is a job of its own, under the run's limits
+            res = g.run(list(targets.values()))
         files, errs = [], {}
         for kind, key in targets.items():
             info = res[key]
