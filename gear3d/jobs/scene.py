@@ -389,7 +389,7 @@ def build_scene(scene: Scene, out_dir, only=None, dry_run=False, log=None) -> di
     fresh.append(out_path(out_dir, scene.name + ".report.json", scene.file, "scene.name"))
     fresh = [p for p in fresh if not os.path.lexists(p)]
     try:
-        with limits(scene.max_triangles):
+        with limits(scene.max_triangles, scene.max_memory, scene.max_seconds):
             res = g.run(targets, on_stage=(lambda s: log(f"{s.kind:<9} {s.label}")) if log else None)
         report = _report(scene, g, owners, res)
         rpath = out_path(out_dir, scene.name + ".report.json", scene.file, "scene.name")

@@ -139,13 +139,20 @@ class Scene(Job):
     assemblies: tuple           # of AssemblySpec
     #: the resource budget's triangle limit (``gear3d.budget``); None: the default
     max_triangles: int | None = None
+    #: the budget's memory (bytes) and CPU-time (s) limits; None: the defaults
+    max_memory: int | None = None
+    max_seconds: float | None = None
 
     def to_dict(self) -> dict:
-        return {"file": self.file, "name": self.name, "description": self.description,
-                "outputs": list(self.outputs), "tolerance": self.tolerance, "tolerances": self.tolerances,
-                "options": self.options, "parts": [p.to_dict() for p in self.parts],
-                "pairs": [p.to_dict() for p in self.pairs],
-                "assemblies": [a.to_dict() for a in self.assemblies], "max_triangles": self.max_triangles}
+        d = {"file": self.file, "name": self.name, "description": self.description,
+             "outputs": list(self.outputs), "tolerance": self.tolerance, "tolerances": self.tolerances,
+             "options": self.options, "parts": [p.to_dict() for p in self.parts],
+             "pairs": [p.to_dict() for p in self.pairs],
+             "assemblies": [a.to_dict() for a in self.assemblies], "max_triangles": self.max_triangles}
+        for k in ("max_memory", "max_seconds"):       # only when given (older dicts stay as they were)
+            if getattr(self, k) is not None:
+                d[k] = getattr(self, k)
+        return d
 
 
 @dataclass(frozen=True, kw_only=True)

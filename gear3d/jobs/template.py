@@ -550,7 +550,8 @@ def _rack_part(file, key, fam, raw, body):
 
 # -------------------------------------------------------------------------- scene
 
-SCENE_KEYS = ("name", "description", "outputs", "tolerance", "tolerances", "options", "max_triangles")
+SCENE_KEYS = ("name", "description", "outputs", "tolerance", "tolerances", "options", "max_triangles",
+              "max_memory", "max_seconds")
 PAIR_KEYS = ("name", "parts", "internal", "center_distance", "check", "outputs")
 ASSEMBLY_KEYS = ("name", "kind", "design", "tooth", "bearing_thickness", "deformed", "outputs")
 
@@ -594,9 +595,19 @@ def load_scene(path, sets=()) -> Scene:
         if isinstance(v, bool) or not isinstance(v, int) or not 1000 <= v <= HARD_MAX_TRIANGLES:
             fail(file, "scene.max_triangles", v, f"an integer in [1000, {HARD_MAX_TRIANGLES}] (the resource budget)")
         max_tri = v
+    lim = {}
+    for k in ("max_memory", "max_seconds"):           # the budget's other two limits (gear3d.budget)
+        if k in top:
+            from ..budget import check_limit
+            try:
+                if isinstance(top[k], bool):
+                    raise GearError(k, top[k], "a number")
+                lim[k] = check_limit(k, top[k])
+            except GearError as e:
+                fail(file, f"scene.{k}", top[k], e.allowed + " (the resource budget)")
     return Scene(file=file, name=name, description=top.get("description", ""), outputs=outputs,
                  tolerance=tol, tolerances=tols, options=options, parts=tuple(parts),
-                 pairs=tuple(pairs), assemblies=tuple(assemblies), max_triangles=max_tri)
+                 pairs=tuple(pairs), assemblies=tuple(assemblies), max_triangles=max_tri, **lim)
 
 
 def _check_mates(file, by):
