@@ -241,8 +241,12 @@ def _check_body(b, tol) -> str:
 # ----------------------------------------------------------------------------- running
 
 def _worker(args):
+    """One case as one job: its own resource ledger (gear3d.budget.job), as a CLI run has."""
+    import contextlib
+    from gear3d import budget
     case, spot = args
-    return run_case(case, spot)
+    with getattr(budget, "job", contextlib.nullcontext)():
+        return run_case(case, spot)
 
 
 def run(n: int, seed: int, workers: int, spot: int, progress: bool = True, max_minutes: float | None = None,
@@ -289,7 +293,9 @@ def markdown(results, meta) -> str:
     cpu = [r["cpu_s"] for r in results]
     lines = [BEGIN, "## Stability (random valid inputs)", "",
              f"`python benchmarks/stability.py --n {meta['asked']} --seed {meta['seed']} --workers {meta['workers']}`"
-             + (f" (stopped after {meta['max_minutes']:g} min: the first {n:,} cases of the sequence)" if n < meta['asked'] else "")
+             + (f" --family {meta['family']} (the {n:,} {meta['family']} cases of the seed's {meta['asked']:,})"
+                if meta.get("family") else
+                f" (stopped after {meta['max_minutes']:g} min: the first {n:,} cases of the sequence)" if n < meta['asked'] else "")
              + f": {n:,} random "
              "parameter sets over every family (rings included) and body kind, drawn from the documented "
              "ranges at tolerances of 1-30 µm; each built in a worker with a "
@@ -364,7 +370,7 @@ def main(argv=None) -> int:
     a = ap.parse_args(argv)
     t = time.time()
     results = run(a.n, a.seed, a.workers, a.spot, max_minutes=a.max_minutes, family=a.family)
-    meta = {"seed": a.seed, "workers": a.workers, "asked": a.n, "max_minutes": a.max_minutes, "spot": a.spot, "wall_s": time.time() - t,
+    meta = {"seed": a.seed, "workers": a.workers, "asked": a.n, "family": a.family, "max_minutes": a.max_minutes, "spot": a.spot, "wall_s": time.time() - t,
             "load": " / ".join(f"{x:.2f}" for x in os.getloadavg()),
             "machine": f"{platform.machine()}, {os.cpu_count()} cores, Python {platform.python_version()}"}
     md = markdown(results, meta)
