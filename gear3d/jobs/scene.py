@@ -5,7 +5,9 @@ Stages per part (see :mod:`.graph`): ``profile`` at each tolerance an output nee
 output file. A pair adds a ``check`` (:func:`gear3d.analysis.pairs.check_pair` on the two
 profiles at the ``check`` tolerance) and a placed multi-body ``write`` per mesh kind
 (:func:`gear3d.solids.place_pair`; the second wheel of a twisted pair is a
-``[part.body] mate = "<first>"`` body). A harmonic assembly builds the seed 002 parts.
+``[part.body] mate = "<first>"`` body). A harmonic assembly builds the seed 002 parts. A
+``kind = "worm"`` part builds its worm set (:func:`gear3d.worm`) once per mesh tolerance,
+and the wheel's mid-plane section for dxf/png.
 ``[scene.options.3mf]`` (``arrange``, ``gap``) applies to the parts', pairs' and
 assemblies' 3MF files.
 The scene report ``<scene>.report.json`` lists every measured max error (profiles,
@@ -228,10 +230,55 @@ def body_stage(g: Graph, job: Job, part: PartSpec, tol, prefix, parts_by_name=No
                  file=job.file, prefix=prefix + ".body", keys=tuple(b))
 
 
+def run_worm(stage):
+    """A worm set (:func:`gear3d.worm`) at the stage's tolerance, or - for the wheel's
+    mid-plane outputs (``section``) - only that section."""
+    from ..wormgear import FEATURE_KEYS, worm
+    from ..wormgear.design import design
+    from ..wormgear.wheel import section
+    i = stage.inputs
+    try:
+        if i["section"]:
+            d = design(tolerance=i["tolerance"], **{k: v for k, v in i["params"].items() if k not in FEATURE_KEYS})
+            return section(d, 0.0, i["tolerance"])
+        return worm(tolerance=i["tolerance"], **i["params"])
+    except GearError as e:
+        raise _wrap(stage, e) from None
+
+
+def _worm_output(stage, s):
+    """What a worm part writes of its set: the bodies (mesh kinds) or the report (json)."""
+    return s.report.to_dict() if stage.inputs["kind"] == "json" else s.parts()
+
+
+def worm_targets(g: Graph, job: Job, part: PartSpec, out_dir, prefix) -> dict:
+    """A ``kind = "worm"`` part's stages: one worm set per mesh tolerance (json: the mesh
+    kinds' tolerance, the report is the bodies'), the mid-plane section for dxf/png."""
+    targets = {}
+    for kind in part.outputs:
+        sec = kind in ("dxf", "png")
+        tol = job.tolerance_for(kind if sec or kind != "json" else "stl")
+        fname = part.name + EXT[kind]
+        path = out_path(out_dir, fname, job.file, f"{prefix}.name")
+        # stage kinds as the report reads them: the section is a profile, the set a body
+        src = g.add("profile" if sec else "body", {"params": part.params, "tolerance": tol, "section": sec,
+                                                   "worm": True},
+                    fn=run_worm, label=f"worm {part.params.get('part', 'pair')} " +
+                    " ".join(f"{k}={v}" for k, v in sorted(part.params.items()) if k != "part") + f" @ {tol:g} mm",
+                    file=job.file, prefix=prefix, keys=tuple(part.params))
+        if not sec:
+            src = g.add("pick", {"kind": kind}, [src], fn=_worm_output, label=f"{part.name} {kind}")
+        targets[kind] = g.add("write", {"kind": kind, "file": fname, "tolerance": tol, "name": part.name}, [src],
+                              fn=run_write, label=fname, phase=1, path=path, out_dir=out_dir)
+    return targets
+
+
 def part_targets(g: Graph, job: Job, part: PartSpec, out_dir, parts_by_name=None, prefix=None) -> dict:
     """Add one part's stages; return {kind: write-stage key}. ``prefix``: how error messages
     name the part (default ``part[NAME]``)."""
     prefix = prefix or f"part[{part.name}]"
+    if part.family == "worm":
+        return worm_targets(g, job, part, out_dir, prefix)
     targets = {}
     for kind in part.outputs:
         tol = job.tolerance_for(kind)

@@ -45,6 +45,16 @@ Scene (``[scene]``, ``[[part]]``, ``[[pair]]``, ``[[assembly]]``)::
     outputs = ["dxf", "svg", "json", "stl"]
     body = { width = 10 }          # a rack body: width, helix_angle_deg, hand, kind
 
+    [[part]]                       # a worm set: gear3d.worm's keywords but tolerance
+    name = "drive"
+    kind = "worm"
+    part = "pair"                  # worm | wheel | pair
+    module = 2
+    starts = 1
+    wheel_teeth = 30
+    check = true                   # the rolling check in the json
+    outputs = ["3mf", "json", "dxf"]   # stl 3mf json; dxf png: the wheel's mid-plane
+
     [[pair]]                       # placed (place_pair) and checked (check_pair)
     name = "mesh"
     parts = ["pinion", "wheel"]
@@ -445,6 +455,8 @@ def check_part(file, key, raw, *, default_outputs, names=None, require_name=True
     """A part table -> :class:`~gear3d.jobs.specs.PartSpec`."""
     _table(file, key, raw)
     raw = dict(raw)
+    if "kind" in raw:
+        return _worm_part(file, key, raw, default_outputs, require_name)
     name = raw.pop("name", None)
     if require_name:
         if name is None:
@@ -494,6 +506,37 @@ def _outputs(file, key, outs, b, default_outputs):
                 fail(file, f"{key}.outputs", outs, "profile kinds (" + ", ".join(PROFILE_KINDS) +
                      ") for a part without a [part.body] table")
     return tuple(outs)
+
+
+#: the output kinds of a ``kind = "worm"`` part: its bodies, its report, the wheel's mid-plane
+WORM_KINDS = ("stl", "3mf", "json", "dxf", "png")
+
+
+def _worm_part(file, key, raw, default_outputs, require_name):
+    """A ``kind = "worm"`` part: a worm set, the keywords of :func:`gear3d.worm` (``part``
+    worm|wheel|pair, the design, bores, hub, ``check``) but ``tolerance`` (the scene's per
+    kind), checked by the builder's own rules before any work (:func:`gear3d.wormgear.validate`).
+    Outputs: stl/3mf (the bodies; the pair as two named objects in 3MF), json (the report),
+    dxf/png (the wheel's mid-plane section; wheel or pair)."""
+    from ..wormgear import FEATURE_KEYS, validate
+    from ..wormgear.design import design
+    _str(file, f"{key}.kind", raw.pop("kind"), ("worm",))
+    if not require_name:
+        fail(file, f"{key}.kind", "worm", "no kind in a library (a worm set is a scene's [[part]])")
+    name = safe_name(file, f"{key}.name", raw.pop("name", None) or fail(file, f"{key}.name", None, "required"))
+    outs = raw.pop("outputs", None)
+    if "tolerance" in raw:
+        fail(file, f"{key}.tolerance", raw["tolerance"], "not a part key: set [scene] tolerance / [scene.tolerances]")
+    keys = [k for k in inspect.signature(design).parameters if k != "tolerance"] + list(FEATURE_KEYS)
+    _unknown(file, key, raw, keys)
+    try:
+        validate(**raw)
+    except GearError as e:
+        fail(file, f"{key}.{e.param}", e.value, e.allowed, e.why)
+    part = raw.get("part", "pair")
+    kinds = WORM_KINDS if part != "worm" else ("stl", "3mf", "json")
+    outs = [k for k in default_outputs if k in kinds] if outs is None else _kinds(file, f"{key}.outputs", outs, kinds)
+    return PartSpec(name=name, family="worm", params=dict(raw), body=None, outputs=tuple(outs), options={})
 
 
 #: the keys of a rack part's body table (gear3d.rack_body)
@@ -656,6 +699,9 @@ def _pair(file, i, rp, by, seen):
     for j, n in enumerate(ps):
         if by[n].rack:
             fail(file, f"{label}.parts[{j}]", n, "a gear part (a pinion on a rack: gear3d pair FAMILY --rack)")
+        if by[n].family == "worm":
+            fail(file, f"{label}.parts[{j}]", n,
+                 "a gear part (a worm set is its own pair: part = \"pair\", check = true)")
     outs = _kinds(file, f"{label}.outputs", rp.get("outputs", ["json"]), ("json",) + MESH_KINDS)
     if any(k in MESH_KINDS for k in outs):
         for n in ps:
