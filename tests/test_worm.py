@@ -553,3 +553,65 @@ def test_dxf_refused_for_worm_and_pair(tmp_path, capsys):
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "--part wheel" in err
     assert list(tmp_path.iterdir()) == []
+
+
+# ------------------------------------------------------------------ templates
+
+_SCENE = """[scene]
+name = "worms"
+tolerance = 0.05
+[[part]]
+name = "set"
+kind = "worm"
+part = "pair"
+module = 1
+starts = 1
+wheel_teeth = 24
+check = true
+outputs = ["3mf", "json", "dxf"]
+"""
+
+
+def test_scene_worm_part_builds_and_reports(tmp_path):
+    """``[[part]] kind = "worm"``: the set's 3MF (two named objects), its report with the
+    rolling check, and the wheel's mid-plane DXF, each within the scene's tolerance."""
+    import trimesh
+    from gear3d.jobs.scene import build_scene
+    from gear3d.jobs.template import load_scene
+    src = tmp_path / "s.toml"
+    src.write_text(_SCENE)
+    rep = build_scene(load_scene(src), tmp_path / "out")
+    part = rep["parts"]["set"]
+    assert set(part["outputs"]) == {"3mf", "json", "dxf"}
+    assert part["outputs"]["dxf"]["max_error"] <= 0.05
+    assert part["bodies"]["0.05"]["max_error"] <= 0.05
+    scene = trimesh.load(str(tmp_path / "out" / "set.3mf"), force="scene")
+    assert sorted(scene.geometry) == ["worm", "worm-wheel"]
+    js = json.loads((tmp_path / "out" / "set.json").read_text(), parse_constant=lambda c: pytest.fail(c))
+    assert js["rolling"]["interference"] is False and js["wheel_teeth"] == 24
+
+
+@pytest.mark.parametrize("extra,key", [("colour = 3", "part[set].colour"), ("shift_coeff = 3", "part[set].shift_coeff"),
+                                       ("tolerance = 0.1", "part[set].tolerance"),
+                                       ("wheel_bore = 100", "part[set].wheel_bore"),
+                                       ('kind = "gear"', "part[set].kind")])
+def test_scene_worm_part_refusals_name_the_key(tmp_path, extra, key):
+    from gear3d.jobs.template import TemplateError, load_scene
+    text = _SCENE.replace('kind = "worm"\n', "" if extra.startswith("kind") else 'kind = "worm"\n') + extra + "\n"
+    src = tmp_path / "s.toml"
+    src.write_text(text)
+    with pytest.raises(TemplateError) as e:
+        load_scene(src)
+    assert key in str(e.value) and str(e.value).count("\n") == 0
+
+
+def test_scene_worm_part_not_in_a_pair_and_no_dxf_of_a_lone_worm(tmp_path):
+    from gear3d.jobs.template import TemplateError, load_scene
+    src = tmp_path / "s.toml"
+    src.write_text(_SCENE.replace('part = "pair"', 'part = "worm"'))
+    with pytest.raises(TemplateError, match=r"outputs\[2\]"):
+        load_scene(src)
+    src.write_text(_SCENE + '[[part]]\nname = "g"\nfamily = "involute"\nteeth = 20\nmodule = 1\n'
+                   '[[pair]]\nname = "p"\nparts = ["set", "g"]\n')
+    with pytest.raises(TemplateError, match=r"pair\[p\]\.parts\[0\]"):
+        load_scene(src)

@@ -22,7 +22,7 @@ from dataclasses import asdict, dataclass, fields
 
 import numpy as np
 
-from ..errors import check_bool, check_choice
+from ..errors import GearError, check_bool, check_choice
 from .design import WormDesign, design
 
 PARTS = ("worm", "wheel", "pair")
@@ -80,6 +80,10 @@ class WormReport:
 
     def __getitem__(self, key):
         return asdict(self)[key]
+
+    def get(self, key, default=None):
+        """Like ``dict.get`` (the scene report reads bodies' reports this way)."""
+        return getattr(self, key, default)
 
 
 def _clean(v):
@@ -153,7 +157,7 @@ def worm(part="pair", tolerance=None, worm_bore=None, wheel_bore=None, hub_diame
     part = check_choice("part", part, PARTS)
     if tolerance is not None:
         params["tolerance"] = tolerance
-    d = design(**params)
+    d = validate(part, worm_bore, wheel_bore, hub_diameter, hub_length, check, **params)
     _check_budget(d, part)
     w = wh = None
     if part in ("worm", "pair"):
@@ -162,10 +166,6 @@ def worm(part="pair", tolerance=None, worm_bore=None, wheel_bore=None, hub_diame
     if part in ("wheel", "pair"):
         from .wheel_body import wheel_body
         wh = wheel_body(d, bore=wheel_bore, hub_diameter=hub_diameter, hub_length=hub_length)
-    elif any(v is not None for v in (wheel_bore, hub_diameter, hub_length)):
-        from ..errors import GearError
-        raise GearError("wheel_bore" if wheel_bore is not None else "hub_diameter",
-                        wheel_bore if wheel_bore is not None else hub_diameter, "None unless the wheel is built")
     roll = None
     if check_bool("check", check):
         from .rolling import rolling_check
@@ -176,6 +176,30 @@ def worm(part="pair", tolerance=None, worm_bore=None, wheel_bore=None, hub_diame
         from .rolling import public
         rep = replace(rep, rolling=public(roll))
     return WormSet(d, w, wh, rep, roll)
+
+
+#: the keywords of :func:`worm` that are not the design's
+FEATURE_KEYS = ("part", "worm_bore", "wheel_bore", "hub_diameter", "hub_length", "check")
+
+
+def validate(part="pair", worm_bore=None, wheel_bore=None, hub_diameter=None, hub_length=None, check=False,
+             **params) -> WormDesign:
+    """Check every keyword of :func:`worm` without building anything (templates check a
+    scene this way before any work): the design (:func:`gear3d.wormgear.design.design`),
+    the part, the bores and hub. Returns the design; one GearError line for a bad value."""
+    from .wheel_body import check_features
+    from .worm_body import check_bore
+    part = check_choice("part", part, PARTS)
+    check_bool("check", check)
+    d = design(**params)
+    if worm_bore is not None and part == "wheel":
+        raise GearError("worm_bore", worm_bore, "None unless the worm is built")
+    check_bore(d, worm_bore)
+    if part == "worm" and any(v is not None for v in (wheel_bore, hub_diameter, hub_length)):
+        raise GearError("wheel_bore" if wheel_bore is not None else "hub_diameter",
+                        wheel_bore if wheel_bore is not None else hub_diameter, "None unless the wheel is built")
+    check_features(d, d.wheel_root_radius, wheel_bore, hub_diameter, hub_length, d.tolerance)
+    return d
 
 
 def _check_budget(d, part):

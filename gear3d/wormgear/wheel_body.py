@@ -219,7 +219,7 @@ def wheel_body(d, tolerance=None, bore=None, hub_diameter=None, hub_length=None,
     carries the measured errors."""
     tol = d.tolerance if tolerance is None else check_number("tolerance", tolerance, 1e-4, d.module / 10,
                                                              unit="mm")
-    feats = _check_features(d, d.wheel_root_radius, bore, hub_diameter, hub_length, tol)
+    feats = check_features(d, d.wheel_root_radius, bore, hub_diameter, hub_length, tol)
     V, F, info = _build(d, tol)
     sec_err, band_err = info["section_max_error"], info["band_max_error"]
     budget.check_body(len(F), "tolerance", tol)
@@ -255,7 +255,9 @@ def _build(d, tol):
                       "method": "sections"}
 
 
-def _check_features(d, root, bore, hub_diameter, hub_length, tol) -> dict:
+def check_features(d, root, bore, hub_diameter, hub_length, tol) -> dict:
+    """The wheel's bore and hub (mm) checked against its root radius ``root``: a dict of the
+    features given; one GearError line for a bad one."""
     feats = {}
     if hub_diameter is not None or hub_length is not None:
         if hub_diameter is None or hub_length is None:
@@ -267,7 +269,7 @@ def _check_features(d, root, bore, hub_diameter, hub_length, tol) -> dict:
                                            lo_open=True, unit="mm (longer than the face width)")
     if bore is not None:
         hi = min(2 * root, feats.get("hub_diameter", math.inf)) - 2 * d.module * 0.25
-        feats["bore"] = check_number("bore", bore, 0, hi, lo_open=True, hi_open=True,
+        feats["bore"] = check_number("wheel_bore", bore, 0, hi, lo_open=True, hi_open=True,
                                      unit=f"mm (below {hi:.6g}: a wall of a quarter module)")
     return feats
 
@@ -287,5 +289,5 @@ def _apply_features(V, F, d, feats, tol):
         hole = Manifold.extrude(CrossSection([circle_loop(feats["bore"] / 2, tol, ccw=True)], FillRule.Positive), Lb)
         man = Manifold.batch_boolean([man, hole.translate((0, 0, -Lb / 2))], OpType.Subtract)
     if man.is_empty() or man.status().name != "NoError":
-        raise GearError("bore", feats.get("bore"), "values that leave a solid wheel")
+        raise GearError("wheel_bore", feats.get("bore"), "values that leave a solid wheel")
     return man

@@ -56,6 +56,15 @@ def worm_section(d, tolerance: float):
                          names=names, nominal_tip_radius=d.worm_tip_radius, flank_pieces=[1, 3])
 
 
+def check_bore(d, bore) -> None:
+    """One GearError line unless the worm's ``bore`` (diameter, mm, or None) leaves a wall of
+    a quarter module under its root."""
+    if bore is not None:
+        hi = 2 * d.worm_root_radius - 0.5 * d.module
+        check_number("worm_bore", bore, 0, hi, lo_open=True, hi_open=True,
+                     unit=f"mm (below {hi:.6g}: a wall of a quarter module under the root)")
+
+
 def worm_body(d, tolerance=None, bore=None, name="worm"):
     """The worm body of design ``d`` (mm): axis z, centred at z = 0 (through ``transform``),
     length ``d.worm_length``, optional ``bore`` (diameter, mm). Returns a
@@ -63,10 +72,7 @@ def worm_body(d, tolerance=None, bore=None, name="worm"):
     from ..solids.body import body, profile_tolerance
     tol = d.tolerance if tolerance is None else check_number("tolerance", tolerance, 1e-4, d.module / 10,
                                                              unit="mm")
-    if bore is not None:
-        hi = 2 * d.worm_root_radius - 0.5 * d.module
-        check_number("worm_bore", bore, 0, hi, lo_open=True, hi_open=True,
-                     unit=f"mm (below {hi:.6g}: a wall of a quarter module under the root)")
+    check_bore(d, bore)
     prof = worm_section(d, profile_tolerance(tol, "helical"))
     L = d.worm_length
     beta = 90.0 - d.lead_angle_deg
