@@ -93,7 +93,7 @@ import string
 
 from ..errors import GearError, allowed_range, check_number
 from .specs import AssemblySpec, Job, Library, LibraryPart, PairSpec, PartSpec, Scene
-from ..budget import HARD_MAX_TRIANGLES
+from ..budget import HARD_MAX_TRIANGLES, check_limit
 from ..conventions import to_transverse
 from ..params import (BODY, BODY_PARAMS, CONVENTIONS, DEFAULT_TOLERANCE, FAMILY_PARAMS, MESH_TOLERANCE, MIN_TOLERANCE,
                       TOLERANCE, by_name, check_excludes, family_table, md_rows)
@@ -641,7 +641,6 @@ def load_scene(path, sets=()) -> Scene:
     lim = {}
     for k in ("max_memory", "max_seconds"):           # the budget's other two limits (gear3d.budget)
         if k in top:
-            from ..budget import check_limit
             try:
                 if isinstance(top[k], bool):
                     raise GearError(k, top[k], "a number")
