@@ -15,7 +15,7 @@ _LAZY = {
     "body": "gear3d.solids.body",
     "Body": "gear3d.solids",
     "place_pair": "gear3d.solids",
-    "check_pair": "gear3d.analysis.pairs",
+    "check_pair": "gear3d.plan",          # pairs.check_pair, charged to the budget first
     "mate": "gear3d.profiles.mate",
     "write": "gear3d.export",
     "figure": "gear3d.figures",

@@ -15,7 +15,7 @@ import numpy as np
 
 from .errors import GearError, check_choice
 from . import profile as make
-from .export import as_bodies, atomic_path, body_mesh, check_path
+from .export import as_bodies, is_body, atomic_path, body_mesh, check_path
 
 #: file types of the annotated figures (matplotlib's writers)
 FIGURE_EXTS = ("svg", "png", "pdf")
@@ -86,10 +86,9 @@ def figure(obj, path, **opts) -> str:
     """
     from .model import Profile
     check_path(path, "figure", exts=tuple("." + e for e in FIGURE_EXTS))
-    from .export import _is_body
     bodies = list(obj) if isinstance(obj, (list, tuple)) else [obj]
     if not (isinstance(obj, Profile) or type(obj).__name__ == "RackPart"
-            or (bodies and all(_is_body(b) for b in bodies))):
+            or (bodies and all(is_body(b) for b in bodies))):
         raise GearError("obj", type(obj).__name__, "a Profile, a rack, a body or a list of bodies")
     with atomic_path(path, "figure") as tmp:
         if isinstance(obj, Profile):

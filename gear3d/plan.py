@@ -170,19 +170,37 @@ def _profile_counts(p) -> tuple:
 
 def charge_pair(p1, p2, tolerance=None, checks: float = 1.0, span_pitches: float = 3.2, param="tolerance"):
     """Charge ``checks`` rolling checks of built profiles ``p1``/``p2`` (refused before)."""
+    from .model import Profile
+    if not (isinstance(p1, Profile) and isinstance(p2, Profile)):
+        return None                   # not profiles: the check itself refuses them by name
     z1, v1, r1 = _profile_counts(p1)
     _, v2, _ = _profile_counts(p2)
-    tol = float(tolerance if tolerance is not None else max(p1.tolerance, p2.tolerance))
+    try:
+        tol = float(tolerance if tolerance is not None else max(p1.tolerance, p2.tolerance))
+    except (TypeError, ValueError):
+        return None                   # a bad tolerance: the check refuses it by name
+    if not tol > 0:
+        return None
     est = pair_estimate(z1, r1, v1, v2, tol, checks, span_pitches)
     return budget.charge(est, param, tol)
 
 
-def check_pair(p1, p2, *args, **kwargs):
-    """:func:`gear3d.analysis.pairs.check_pair`, charged to the budget first."""
+def _charged_check_pair():
+    """``gear3d.check_pair``: :func:`gear3d.analysis.pairs.check_pair` (its signature and
+    documentation), charged to the budget before it rolls (positions x vertices)."""
+    import functools
+
     from .analysis import pairs
-    with budget.stage():
-        charge_pair(p1, p2, kwargs.get("tolerance"))
-        return pairs.check_pair(p1, p2, *args, **kwargs)
+
+    @functools.wraps(pairs.check_pair)
+    def check_pair(p1, p2, *args, **kwargs):
+        with budget.stage():
+            charge_pair(p1, p2, kwargs.get("tolerance"))
+            return pairs.check_pair(p1, p2, *args, **kwargs)
+    return check_pair
+
+
+check_pair = _charged_check_pair()
 
 
 def search_iterations(span: float, precision: float, extra: int = 2) -> int:
@@ -313,7 +331,7 @@ def body_layers(sk: Sketch, body_kw: dict, tol: float) -> tuple:
     def stop(nv, layers):
         raise _Layers(nv, layers)
     try:
-        B._plan(law, W, max(sk.r_max, 1e-9), [np.asarray(sk.period, float)], e_z, (cb, ch), stop)
+        B.plan_layers(law, W, max(sk.r_max, 1e-9), [np.asarray(sk.period, float)], e_z, (cb, ch), stop)
     except _Layers as s:
         return max(sk.vertices, s.nv * sk.vertices / per), s.layers
     return sk.vertices, 1

@@ -11,6 +11,8 @@ import math
 
 import numpy as np
 
+from .. import budget
+from ..errors import GearError, check_bool, check_number
 from ..racks import Corner, Rack
 
 #: rack positions united at a time (bounds the memory of the union)
@@ -88,10 +90,7 @@ def simulate_cut(rack: Rack, teeth: int, module: float, shift_coeff: float = 0.0
     11.0
     """
     import shapely
-
-    from ..errors import GearError, check_bool, check_number
-    from ..racks import Rack as _Rack
-    if not isinstance(rack, _Rack):
+    if not isinstance(rack, Rack):
         raise GearError("rack", type(rack).__name__, "a basic rack (gear3d.racks.involute_rack(...) and others)")
     teeth = check_number("teeth", teeth, 1, 100_000, integer=True)
     module = check_number("module", module, 0, 1000, lo_open=True, unit="mm")
@@ -103,7 +102,6 @@ def simulate_cut(rack: Rack, teeth: int, module: float, shift_coeff: float = 0.0
         rolls = check_number("rolls", rolls, 0, 1000, lo_open=True, unit="pitches")
     if window is not None:
         window = check_number("window", window, 0, 1000, lo_open=True, unit="pitches")
-    from .. import budget
     budget.charge(budget.estimate("cut", float(positions) * samples * 4, 0.0,
                                   f"{positions:,} rack positions x {samples:,} outline points"), "positions", positions)
     r = module * teeth / 2

@@ -16,6 +16,7 @@ from __future__ import annotations
 import os
 import sys
 
+from ..budget import export_limits
 from ..errors import GearError
 
 
@@ -72,7 +73,6 @@ def run(args) -> int:
                              f"-> {', '.join(p.outputs)}\n")
         sys.stdout.write(f"# {len(lib.parts)} parts -> {out}\n")
         return 0
-    from ..budget import export_limits
     export_limits()                 # the workers build each part under this run's limits
     from ..jobs.batch import run_library
     workers = args.workers if args.workers is not None else (os.cpu_count() or 1)

@@ -232,14 +232,14 @@ def _kind(obj) -> str:
     if isinstance(obj, Profile):
         return "profile"
     if isinstance(obj, (list, tuple)):
-        if obj and all(_is_body(b) for b in obj):
+        if obj and all(is_body(b) for b in obj):
             return "body"
-    elif _is_body(obj):
+    elif is_body(obj):
         return "body"
     raise GearError("obj", type(obj).__name__, "a Profile, a body (with .mesh) or a list of bodies")
 
 
-def _is_body(obj) -> bool:
+def is_body(obj) -> bool:
     """A body has a ``manifold``, ``mesh`` or ``arrays``; asked of the class and the instance
     dictionary, so that lazy properties (which would build a manifold or a trimesh) are not
     evaluated just to tell."""

@@ -38,6 +38,7 @@ import os
 import sys
 import time
 
+from ..budget import limits, worker_limits
 from ..errors import GearError, check_choice, check_number
 from .graph import Graph, canonical
 from .scene import part_targets, profile_stage, body_stage, sha256, write_json
@@ -72,7 +73,6 @@ def build_part(job: Job, part: LibraryPart, out_dir: str) -> dict:
            "params": part.params, "body": part.body, "spec": spec_of(job, part)}
     try:
         targets = part_targets(g, job, part, out_dir, prefix=f"part {part.name}")
-        from ..budget import limits, worker_limits
         with limits(**worker_limits()):       # each part is a job of its own, under the run's limits
             res = g.run(list(targets.values()))
         files, errs = [], {}

@@ -455,7 +455,7 @@ def _build(prof, law, W, tol, delta, e_off, cb, ct, ef_bottom, skip, share=1.0, 
     def charge(nv, layers):      # before the layers and the subdivided loops are made
         budget.check_body(2 * nv * layers + 2 * nv, "tolerance", tol, manifold=direct is None,
                           what=f"a body of {nv:,} vertices a layer x {layers:,} layers", layer_vertices=nv)
-    knots, max_len, bound = _plan(law, W, rho, loops, e_z, (cb, ct), charge)
+    knots, max_len, bound = plan_layers(law, W, rho, loops, e_z, (cb, ct), charge)
     loops = subdivide(loops, max_len)
     cs = CrossSection(loops, FillRule.Positive)
     polys = [np.asarray(p, float) for p in cs.to_polygons()]
@@ -589,7 +589,7 @@ def _rigid(angle: float, x: float) -> np.ndarray:
     return t
 
 
-def _plan(law: TwistLaw, W: float, rho: float, loops, e_z: float, chamfers, charge=None):
+def plan_layers(law: TwistLaw, W: float, rho: float, loops, e_z: float, chamfers, charge=None):
     """Layer heights (mm), edge-length cap (mm) and the predicted error bound (mm).
     ``charge(vertices per layer, layers)`` is called before anything of that size is made
     (the resource budget).
