@@ -337,6 +337,9 @@ class _Local(threading.local):
     def __init__(self):
         self.frames = [_Frame()]
         self.probe = None
+        #: inside :func:`job` (a command, a batch part, a web request): the ledger adds up
+        #: every stage; outside it (a Python session) each outermost stage is a job of its own
+        self.in_job = False
 
 
 _LOCAL = _Local()
@@ -344,13 +347,20 @@ _LOCAL = _Local()
 
 @contextlib.contextmanager
 def job():
-    """A fresh ledger (one job: a command, one batch part)."""
-    saved = _LOCAL.frames
-    _LOCAL.frames = [_Frame()]
+    """A fresh ledger (one job: a command, one batch part). Outside any job, each outermost
+    :func:`stage` and each charge made outside a stage is a job of its own: a Python session
+    that builds a thousand gears is not refused for their sum."""
+    saved, saved_in = _LOCAL.frames, _LOCAL.in_job
+    _LOCAL.frames, _LOCAL.in_job = [_Frame()], True
     try:
         yield
     finally:
-        _LOCAL.frames = saved
+        _LOCAL.frames, _LOCAL.in_job = saved, saved_in
+
+
+def _outside_job() -> bool:
+    """At the root of the ledger with no job open (the Python API called directly)."""
+    return len(_LOCAL.frames) == 1 and not _LOCAL.in_job
 
 
 @contextlib.contextmanager
@@ -364,6 +374,8 @@ def stage():
         f = _LOCAL.frames.pop()
         parent = _LOCAL.frames[-1]
         parent.children = parent.children.then(f.total())
+        if _outside_job():
+            _LOCAL.frames[0] = _Frame()          # that stage was the whole job
 
 
 def staged(fn):
@@ -465,6 +477,8 @@ def charge(est: Estimate, param: str, value, info: dict | None = None, key: str 
             top.own[k] = old
         raise
     _log("charge", est, tot)
+    if _outside_job():
+        del top.own[k]                           # a charge outside any stage or job: alone
     return est
 
 

@@ -20,7 +20,7 @@ import sys
 from . import __version__
 from .budget import (DEFAULT_MAX_MEMORY, DEFAULT_MAX_SECONDS, HARD_MAX_MEMORY, HARD_MAX_SECONDS,
                      HARD_MAX_TRIANGLES, MIN_MEMORY, MIN_SECONDS, MIN_TRIANGLES, check_limit, current,
-                     fmt_bytes, limits, parse_bytes)
+                     fmt_bytes, job, limits, parse_bytes)
 from .cliargs import plain_int, plain_number
 from .errors import GearError, one_line, show
 from .export import remove_live_temps
@@ -242,7 +242,7 @@ def _main(words, lim) -> int:
                              + ", ".join(c for c in COMMANDS) + "\n")
             return 2
         try:
-            with limits(**lim), Reporter():
+            with limits(**lim), job(), Reporter():        # the command is one job: one ledger
                 if args.command in UNSUPERVISED:
                     rc = args._run(args)
                 else:
