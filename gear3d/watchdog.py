@@ -16,8 +16,8 @@ Two layers, both used by the command line:
   a second). A child stuck in C code, which no Python signal handler can interrupt, is
   killed :data:`GRACE_S` seconds after it passed a limit; the supervisor then removes the
   temporary files the child announced (``tmp PATH`` lines on a pipe, see
-  :func:`gear3d.export.file_event`), prints the one line and exits with code 2. SIGTERM
-  and SIGHUP are passed on to the child (and end it the same way if it does not stop).
+  :func:`gear3d.export.file_event`), prints the one line and exits with code 2. SIGINT,
+  SIGTERM and SIGHUP are passed on to the child (and end it the same way if it does not stop).
 
 Time is CPU time (user + system, all threads): the estimates are CPU seconds measured on
 the reference machine, and CPU time does not grow when the machine is busy.
@@ -187,11 +187,9 @@ def _watch(pid, rfd, max_seconds, max_memory, select) -> int:
         with contextlib.suppress(OSError):
             os.kill(pid, signum)
     old = {}
-    for s in (signal.SIGTERM, signal.SIGHUP):
-        with contextlib.suppress(ValueError, OSError):
+    for s in (signal.SIGTERM, signal.SIGHUP, signal.SIGINT):    # a Ctrl-C reaches both: the child
+        with contextlib.suppress(ValueError, OSError):           # ignores the second one
             old[s] = signal.signal(s, forward)
-    with contextlib.suppress(ValueError, OSError):
-        old[signal.SIGINT] = signal.signal(signal.SIGINT, signal.SIG_IGN)   # the child gets it too
     import time
     over, since = None, None
     try:
@@ -259,7 +257,8 @@ def _remove(temps) -> None:
 def _report(over) -> int:
     kind, used, limit = over
     if kind == "signal":
-        sys.stderr.write(f"gear3d: terminated (signal {int(used)}); temporary files removed\n")
+        name = "interrupted" if int(used) == signal.SIGINT else "terminated"
+        sys.stderr.write(f"gear3d: {name} (signal {int(used)}); temporary files removed\n")
         return 128 + int(used)
     sys.stderr.write(f"gear3d: error: {LimitError(kind, used, limit)}\n")
     return 2
