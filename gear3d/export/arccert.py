@@ -495,6 +495,7 @@ def _chord_weights(jt: Joints):
     runs_end = np.nonzero(np.abs(jt.u[1:-1] - np.round(jt.u[1:-1])) == 0)[0] + 1
     ka, kb = kappa[runs_end - 1], kappa[runs_end]
     jump = np.abs(kb - ka) > JUMP * np.maximum(np.abs(ka), np.abs(kb))
+
     forced = np.union1d(np.nonzero(jt.corner)[0], runs_end[jump])
     if forced[0] != 0:
         forced = np.concatenate([[0], forced])
@@ -577,6 +578,8 @@ def fit(R: Runs, budget: float, max_arc_deg: float = 90.0, split_at: float | Non
         evals += ev
     sp, split = sp
     sp, evals = _refine(R, sp, budget, max_arc_deg, jt, evals)
+    for parity in (0, 1):                     # a coarse polygon sees jumps that are not there
+        sp, evals = _merge_jumps(R, sp, budget, max_arc_deg, jt, parity, evals)
     if split is not None and not ((sp.u0 == split.u0[0]) & (sp.u1 == split.u1[-1])).any():
         split = None                          # its span was split further: the caller cuts again
     corner = (sp.j0 >= 0) & jt.corner[np.maximum(sp.j0, 0)]
@@ -667,6 +670,32 @@ def split_span(R: Runs, sp: Spans, u: float, budget: float, max_arc_deg: float) 
         return two
     none = Joints(np.zeros(0), np.zeros((0, 2)), np.zeros((0, 2)), np.zeros((0, 2)), np.zeros(0, bool), 0.0)
     return _refine(R, two, budget, max_arc_deg, none, 0)[0]
+
+
+def _merge_jumps(R: Runs, sp: Spans, budget: float, max_arc_deg: float, jt: Joints, parity: int, evals):
+    """Join neighbouring spans k, k + 1 (k of the given parity) that meet at a joint between
+    runs which is no corner, where one biarc over both passes: a curvature jump between
+    runs forced a joint that the budget did not need."""
+    n = len(sp.u0)
+    k = np.arange(parity, n - 1, 2)
+    j = sp.j1[k]
+    ok = (j >= 0) & (np.abs(sp.u1[k] - np.round(sp.u1[k])) == 0)
+    ok &= ~jt.corner[np.clip(j, 0, len(jt.corner) - 1)]
+    ok &= (np.cbrt(np.nan_to_num(sp.error[k], posinf=1e300)) + np.cbrt(np.nan_to_num(sp.error[k + 1], posinf=1e300))) \
+        ** 3 <= budget
+    k = k[ok]
+    if not len(k):
+        return sp, evals
+    new = certify(R, sp.u0[k], sp.u1[k + 1], sp.P0[k], sp.P1[k + 1], sp.T0[k], sp.T1[k + 1], sp.j0[k],
+                  sp.j1[k + 1], known=(jt.u, jt.P))
+    evals += EVALS_PER_SPAN * len(k)
+    good = (new.error <= budget) & ~_too_wide(new.b1, max_arc_deg) & ~_too_wide(new.b2, max_arc_deg)
+    if not good.any():
+        return sp, evals
+    drop = np.zeros(n, bool)
+    drop[k[good]] = drop[k[good] + 1] = True
+    both = Spans.cat(sp.take(np.nonzero(~drop)[0]), new.take(np.nonzero(good)[0]))
+    return both.take(np.argsort(both.u0, kind="stable")), evals
 
 
 def _inner_mode(R: Runs, k, t):

@@ -39,8 +39,9 @@ from .arccert import Runs
 MATCH = 5e-8
 #: mm: a trimmed corner lies on the two chords whose crossing it is (Clipper's rounding)
 THROUGH = 1e-6
-#: rad: a polygon turn above this at a labelled vertex is kept as a corner (a cusp)
-SHARP = math.radians(20.0)
+#: rad: a polygon turn above this at a labelled vertex is kept as a corner: a cusp (the
+#: curve turns back; a coarse polygon turns by tens of degrees at smooth vertices)
+SHARP = math.radians(150.0)
 
 
 def start_point(loop, angle):
@@ -297,8 +298,10 @@ def _spans(L, labs, edges_wanted, pieces, tps, pitch, pts=None, pairs=None):
         if lab(v):
             continue
         a, b = (v - 1) % n, (v + 1) % n
+        # the edges beyond a and b (None when another corner is there: any chord through
+        # a or b that passes through V will do)
         ea, eb = edges.get((a - 1) % n), edges.get(b)
-        if not lab(a) or not lab(b) or ea is None or eb is None:
+        if not lab(a) or not lab(b):
             return None
         got = _corner(L[v % n], lab(a), ea, lab(b), eb, pieces, tps, pitch, pts, pairs)
         if got is None:
