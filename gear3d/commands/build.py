@@ -133,7 +133,7 @@ def _tolerances(scene, only=None) -> str:
     kinds = []
     built = [d for d in scene.parts + scene.pairs + scene.assemblies if not only or d.name in only]
     for d in built:
-        kinds += [k for k in d.outputs if k not in kinds and k != "json"]
+        kinds += [k for k in d.outputs if k not in kinds]
     if any(d in scene.pairs for d in built):
         kinds.append("check")
     return ", ".join(f"{k} {scene.tolerance_for(k):g} mm" for k in kinds)

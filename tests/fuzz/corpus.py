@@ -90,8 +90,7 @@ def cli_cases(n: int = 520) -> list:
             cases.append(base + [flag, v])
     for o in BAD_OUTPUTS:
         cases.append(["body", "involute", "--teeth", "20", "--width", "5", "-o", o.format(ext="stl")])
-    cases += [["body", "involute", "--teeth", "20"],                      # no width
-              ["body", "involute", "--teeth", "0", "--width", "5"],
+    cases += [["body", "involute", "--teeth", "0", "--width", "5"],
               ["body", "involute", "--width", "5", "-o", "g.dxf"]]        # a body as DXF
     # 6. check pair / pair
     for cmd in (["check", "pair"], ["pair"]):
