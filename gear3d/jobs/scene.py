@@ -36,7 +36,7 @@ EXT = {k: "." + k for k in ("dxf", "svg", "png", "json", "stl", "3mf", "step", "
 
 def out_path(out_dir, fname, file="", key="name") -> str:
     """``out_dir/fname``, refused unless it stays inside ``out_dir``."""
-    base = _realpath(out_dir)
+    base = _realpath(os.path.abspath(out_dir))        # keyed by the absolute path: cwd may change
     p = os.path.realpath(os.path.join(base, fname))
     if os.path.dirname(p) != base or os.path.isabs(fname) or os.sep in fname or ".." in fname:
         raise TemplateError(file, key, fname, f"a file name inside the output folder {out_dir}")
