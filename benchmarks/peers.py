@@ -16,6 +16,7 @@ fitted for each mesh; the tooth thickness is the theoretical one, not fitted.
 gear3d's sources are byte-compiled first (``compileall``), as an installed package is.
 
 Run:  python benchmarks/peers.py [--runs 5] [--publish]
+``--dxf``: gear3d's 2D DXF against BOSL2's spur20_2d.scad (benchmarks/peers_dxf.py).
 ``--publish`` writes the table into BENCHMARKS.md (between the peers markers) and the plot
 benchmarks/peers.png. Needs ``openscad`` (apt-get install -y openscad).
 """
@@ -115,7 +116,13 @@ def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--runs", type=int, default=5)
     ap.add_argument("--publish", action="store_true")
+    ap.add_argument("--dxf", action="store_true",
+                    help="the 2D DXF against BOSL2's spur20_2d.scad instead (benchmarks/peers_dxf.py)")
     args = ap.parse_args(argv)
+    if args.dxf:                                   # the DXF rows live in peers_dxf.py
+        sys.path.insert(0, str(Path(__file__).resolve().parent))
+        from peers_dxf import main as dxf_main
+        return dxf_main(["--runs", str(args.runs)] + (["--publish"] if args.publish else []))
     openscad = shutil.which("openscad")
     if openscad is None:
         print("openscad not found: apt-get install -y openscad", file=sys.stderr)
