@@ -239,3 +239,18 @@ def test_watchdog_memory_limit(tmp_path):
                                        "-o", "g.json"], tmp_path)
     assert rc == 2 and err.count("\n") == 1 and "max_memory" in err and "--max-memory" in err, err
     assert os.listdir(tmp_path) == []
+
+
+def test_failed_scene_leaves_its_nested_out_as_it_was(tmp_path):
+    """Two parts written, the third refused at its DXF (the budget): none of the run's files
+    and none of the folders it made are left (issue #27: 3 files were)."""
+    scene = tmp_path / "s.toml"
+    scene.write_text('[scene]\nname = "s"\noutputs = ["json", "dxf"]\n'
+                     '[[part]]\nname = "a"\nfamily = "involute"\nteeth = 12\n'
+                     '[[part]]\nname = "b"\nfamily = "involute"\nteeth = 14\n'
+                     '[[part]]\nname = "c"\nfamily = "triangular"\nteeth = 20000\n')
+    (tmp_path / "keep").mkdir()
+    (tmp_path / "keep" / "old.txt").write_text("mine\n")
+    rc, err = run(["--max-seconds", "20", "build", str(scene), "--out", "keep/a/b/c", "-q"], tmp_path)
+    assert rc == 2 and err.count("\n") == 1 and "budget" in err and "the DXF of" in err, err   # at c's write
+    assert sorted(os.listdir(tmp_path / "keep")) == ["old.txt"]
