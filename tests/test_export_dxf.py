@@ -441,8 +441,8 @@ def test_direct_writer_matches_ezdxf(version, tmp_path):
     bit: its compiled vector code fuses multiply-adds)."""
     from gear3d.export import dxf
     ring = gear3d.profile("involute", teeth=30, module=1.0, internal=True, tolerance=TOL)
-    fits, loops, _ = dxf.fit_profile(ring, start_angle_deg=10.0)
-    leads = [dxf._lead_in(f, 0.5, loops) for f in fits]
+    fits, _loops, _ = dxf.fit_profile(ring, start_angle_deg=10.0)
+    leads = [dxf._lead_in(f, 0.5, [g.points(8) for g in fits]) for f in fits]
     fast, slow = str(tmp_path / "a.dxf"), str(tmp_path / "b.dxf")
     dxf._write(fast, fits, ring, version, False, None, False, leads)
     allp = np.concatenate([dxf.spline_bbox(f) for f in fits] + [np.array([W, W]) for W, _ in leads])

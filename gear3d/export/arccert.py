@@ -578,8 +578,7 @@ def fit(R: Runs, budget: float, max_arc_deg: float = 90.0, split_at: float | Non
         evals += ev
     sp, split = sp
     sp, evals = _refine(R, sp, budget, max_arc_deg, jt, evals)
-    for parity in (0, 1):                     # a coarse polygon sees jumps that are not there
-        sp, evals = _merge_jumps(R, sp, budget, max_arc_deg, jt, parity, evals)
+    sp, evals = _merge_jumps(R, sp, budget, max_arc_deg, jt, evals)   # jumps a coarse polygon saw
     if split is not None and not ((sp.u0 == split.u0[0]) & (sp.u1 == split.u1[-1])).any():
         split = None                          # its span was split further: the caller cuts again
     corner = (sp.j0 >= 0) & jt.corner[np.maximum(sp.j0, 0)]
@@ -672,17 +671,25 @@ def split_span(R: Runs, sp: Spans, u: float, budget: float, max_arc_deg: float) 
     return _refine(R, two, budget, max_arc_deg, none, 0)[0]
 
 
-def _merge_jumps(R: Runs, sp: Spans, budget: float, max_arc_deg: float, jt: Joints, parity: int, evals):
-    """Join neighbouring spans k, k + 1 (k of the given parity) that meet at a joint between
-    runs which is no corner, where one biarc over both passes: a curvature jump between
-    runs forced a joint that the budget did not need."""
+def _merge_jumps(R: Runs, sp: Spans, budget: float, max_arc_deg: float, jt: Joints, evals):
+    """Join neighbouring spans k, k + 1 that meet at a joint between runs which is no
+    corner, where one biarc over both passes: a curvature jump between runs forced a joint
+    the budget did not need. All candidates in one certificate; of two that overlap (share
+    a span) the first passing one is taken."""
     n = len(sp.u0)
-    k = np.arange(parity, n - 1, 2)
+    k = np.arange(n - 1)
     j = sp.j1[k]
     ok = (j >= 0) & (np.abs(sp.u1[k] - np.round(sp.u1[k])) == 0)
     ok &= ~jt.corner[np.clip(j, 0, len(jt.corner) - 1)]
-    ok &= (np.cbrt(np.nan_to_num(sp.error[k], posinf=1e300)) + np.cbrt(np.nan_to_num(sp.error[k + 1], posinf=1e300))) \
-        ** 3 <= budget
+    e = np.cbrt(np.nan_to_num(sp.error, posinf=1e300))
+    ok &= (e[k] + e[k + 1]) ** 3 <= budget
+    # ... and the fitted arcs on both sides of the joint agree on the curvature there (the
+    # chords' estimate saw a jump that the arcs do not show)
+    ca = np.hypot(*(sp.P1[k] - sp.J[k]).T)
+    cb = np.hypot(*(sp.J[k + 1] - sp.P0[k + 1]).T)
+    ka = 4 * sp.b2[k] / np.maximum(ca * (1 + sp.b2[k] ** 2), 1e-300)
+    kb = 4 * sp.b1[k + 1] / np.maximum(cb * (1 + sp.b1[k + 1] ** 2), 1e-300)
+    ok &= np.abs(ka - kb) <= JUMP * np.maximum(np.abs(ka), np.abs(kb))
     k = k[ok]
     if not len(k):
         return sp, evals
@@ -690,11 +697,16 @@ def _merge_jumps(R: Runs, sp: Spans, budget: float, max_arc_deg: float, jt: Join
                   sp.j1[k + 1], known=(jt.u, jt.P))
     evals += EVALS_PER_SPAN * len(k)
     good = (new.error <= budget) & ~_too_wide(new.b1, max_arc_deg) & ~_too_wide(new.b2, max_arc_deg)
-    if not good.any():
+    taken, used = [], set()
+    for i in np.nonzero(good)[0].tolist():
+        if k[i] not in used and k[i] + 1 not in used:
+            taken.append(i)
+            used |= {int(k[i]), int(k[i]) + 1}
+    if not taken:
         return sp, evals
     drop = np.zeros(n, bool)
-    drop[k[good]] = drop[k[good] + 1] = True
-    both = Spans.cat(sp.take(np.nonzero(~drop)[0]), new.take(np.nonzero(good)[0]))
+    drop[list(used)] = True
+    both = Spans.cat(sp.take(np.nonzero(~drop)[0]), new.take(np.array(taken)))
     return both.take(np.argsort(both.u0, kind="stable")), evals
 
 

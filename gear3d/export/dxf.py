@@ -111,6 +111,8 @@ def write_dxf(profile, path, tolerance=None, kerf: float = 0.0, lead_in=None,
         lead_in = check_number("lead_in", lead_in, 0, 100 * _module(profile), lo_open=True, unit="mm")
     fits, loops, rep = fit_profile(profile, tolerance=tolerance, kerf=kerf, start_angle_deg=start_angle_deg,
                                    max_arc_deg=max_arc_deg)
+    if lead_in is not None and loops is None:
+        loops = [f.points(8) for f in fits]     # the contours written: their arcs, 8 points each
     leads = [_lead_in(f, lead_in, loops) for f in fits] if lead_in is not None else None
     rounding = _write(path, fits, profile, dxf_version, spline, pitch_circle if construction else None,
                       construction, leads)
@@ -152,7 +154,7 @@ def fit_profile(profile, tolerance=None, kerf: float = 0.0, start_angle_deg: flo
 
     Returns (fits, loops, report): one :class:`ArcSpline` per contour in cutting order
     from the start point at ``start_angle_deg``; the polygons the lead-in must not cross
-    (mm); the report (counts, budget, ``max_error`` = file -> exact curve and
+    (mm; None: the fits' own arcs); the report (counts, budget, ``max_error`` = file -> exact curve and
     ``max_error_curve_to_dxf`` = exact curve -> file, mm, ``certificate``). Shared by the
     DXF and the SVG outline. ToleranceError when no fit meets the tolerance.
     """
@@ -182,8 +184,7 @@ def certified_fits(exact, profile, tol: float, kerf: float, start: float, max_ar
     :func:`fit_profile` checks the report against the tolerance."""
     got = _exact_fits(exact, tol, start, max_arc_deg, kerf)
     if got is not None:
-        # the lead-in must not cross the contours written: their arcs, 8 points each
-        return got[0], [f.points(8) for f in got[0]], got[1]
+        return got[0], None, got[1]            # the polygons only if a lead-in asks (_lead_in)
     return _sampled_fits(profile, tol, kerf, start, max_arc_deg)
 
 
