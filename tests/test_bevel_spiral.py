@@ -184,3 +184,20 @@ def test_api_refuses_in_one_line():
         gear3d.bevel(teeth=20, mate_teeth=30, module=2.0, spiral_angle_deg=60)
     with pytest.raises(GearError, match="hand"):
         gear3d.bevel(teeth=20, mate_teeth=30, module=2.0, spiral_angle_deg=20, hand="up")
+
+
+def test_contact_lines_rays_for_straight_oblique_for_spiral():
+    """Straight pairs touch along rays through the apex (height / cone distance constant on a
+    line of contact); a spiral pair's lines cross the face obliquely, and a tooth's contact
+    lasts the profile plus the face contact ratio (the lines' angles span that much more)."""
+    from gear3d.bevel.rolling import contact_lines
+    g0 = pair_geometry(16, 24, 1.5)
+    for ln in contact_lines(g0)["lines"]:
+        if len(ln) > 2:
+            q = ln[:, 1] / ln[:, 0]
+            assert np.ptp(q) < 1e-9
+    g = with_tooth_line(g0, 35.0, None, "right")
+    data = contact_lines(g, lines=9)
+    full = [ln for ln in data["lines"] if len(ln) > 30]
+    assert full and all(np.ptp(ln[:, 1] / ln[:, 0]) > 0.02 for ln in full)
+    assert data["face_contact_ratio"] > 1.0
