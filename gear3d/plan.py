@@ -285,7 +285,8 @@ def plan_profile(family: str, params: dict, output=None, width=None, figure=None
     ext = os.path.splitext(str(output))[1].lower() if output else ""
     if ext and width is not None:                   # a spur body of the profile, then its mesh
         tri = 4.0 * sk.vertices
-        est = est.then(budget.body_estimate(tri, layer_vertices=sk.vertices)).then(write_estimate(ext, triangles=tri))
+        est = est.then(budget.body_estimate(tri, layer_vertices=sk.vertices, teeth=sk.teeth))
+        est = est.then(write_estimate(ext, triangles=tri))
     elif ext:
         est = est.then(write_estimate(ext, vertices=sk.vertices, per_tooth=sk.per_tooth))
     if figure:
@@ -355,7 +356,7 @@ def plan_body(family: str, params: dict, body_kw: dict, output=None, step=None) 
         budget.rim_range(float(rim_d) / 2, max(sk.pitch_radius, sk.r_max), "rim_diameter", rim_d, 2)
         est = est.then(budget.profile_estimate(sk.vertices + budget.circle_vertices(float(rim_d) / 2, tol)))
     est = est.then(budget.body_estimate(tri, features, f"a body of {nv:,.0f} vertices a layer x "
-                                                       f"{layers:,} layers", layer_vertices=nv))
+                                                       f"{layers:,} layers", layer_vertices=nv, teeth=sk.teeth))
     ext = os.path.splitext(str(output))[1].lower() if output else ""
     if ext:
         law = 3 if body_kw.get("kind") == "chevron-arch" else (2 if body_kw.get("kind") == "herringbone" else 1)

@@ -454,14 +454,15 @@ def _build(prof, law, W, tol, delta, e_off, cb, ct, ef_bottom, skip, share=1.0, 
 
     def charge(nv, layers):      # before the layers and the subdivided loops are made
         budget.check_body(2 * nv * layers + 2 * nv, "tolerance", tol, manifold=direct is None,
-                          what=f"a body of {nv:,} vertices a layer x {layers:,} layers", layer_vertices=nv)
+                          what=f"a body of {nv:,} vertices a layer x {layers:,} layers", layer_vertices=nv,
+                          teeth=prof.teeth)
     knots, max_len, bound = plan_layers(law, W, rho, loops, e_z, (cb, ct), charge)
     loops = subdivide(loops, max_len)
     cs = CrossSection(loops, FillRule.Positive)
     polys = [np.asarray(p, float) for p in cs.to_polygons()]
     nv = sum(len(p) for p in polys)
     est = 2 * nv * (len(knots) - 1) + 2 * nv
-    budget.check_body(est, "tolerance", tol, manifold=direct is None, layer_vertices=nv)
+    budget.check_body(est, "tolerance", tol, manifold=direct is None, layer_vertices=nv, teeth=prof.teeth)
     if direct is not None:
         # plain body: the closed mesh straight from the layers (a bore is one more loop,
         # not turned: a circle turned about its centre is the same circle)
