@@ -5,7 +5,8 @@ Two layers, both used by the command line:
 
 * :func:`guard` (in the process doing the work, main thread only): the address space is
   limited (``RLIMIT_AS``: what the process maps now + ``max_memory`` + :data:`AS_SLACK`
-  for libraries imported later and thread arenas), so a runaway allocation fails with a
+  and :data:`AS_PER_CPU` for libraries imported later and thread arenas; the resident
+  memory itself is watched by the supervisor), so a runaway allocation fails with a
   ``MemoryError``; and a CPU-time timer (``ITIMER_PROF``, SIGPROF) interrupts Python code
   once ``max_seconds`` of CPU are used. Both become :class:`LimitError` (a
   :class:`gear3d.budget.BudgetError`): the exporters' temporary files are removed on the way
@@ -33,8 +34,11 @@ from .budget import RAISE, BudgetError, fmt_bytes, fmt_seconds
 
 #: address space allowed beyond ``max_memory``: libraries mapped later (OpenCascade maps
 #: about 600 MB it never touches), thread stacks and malloc arenas (measured: a B-rep
-#: STEP run peaks at 956 MB of address space for 333 MB resident)
+#: STEP run peaks at 956 MB of address space for 333 MB resident), plus
+#: :data:`AS_PER_CPU` a core (manifold3d's worker threads: an 8 MB stack and a 64 MB
+#: malloc arena each, reserved, not used)
 AS_SLACK = 1024 ** 3
+AS_PER_CPU = 80 * 1024 ** 2
 #: seconds (of CPU, or of wall time after a SIGTERM) the supervisor gives a child past a
 #: limit before it kills it
 GRACE_S = 2.0
@@ -105,7 +109,7 @@ def guard(max_seconds: float, max_memory: int):
             old_handler = None
         try:
             soft, hard = resource.getrlimit(resource.RLIMIT_AS)
-            want = vm_size() + int(max_memory) + AS_SLACK
+            want = vm_size() + int(max_memory) + AS_SLACK + AS_PER_CPU * (os.cpu_count() or 1)
             if hard != resource.RLIM_INFINITY:
                 want = min(want, hard)
             if soft == resource.RLIM_INFINITY or want < soft:
