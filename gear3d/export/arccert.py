@@ -407,6 +407,28 @@ def certify(R: Runs, u0, u1, P0, P1, T0, T1, j0=None, j1=None, known=None) -> Sp
     return Spans(u0, u1, P0, P1, T0, T1, J, b1, b2, err, j0, j1)
 
 
+def estimate(R: Runs, u0, u1, P0, P1, T0, T1, known=None) -> np.ndarray:
+    """A quick estimate (mm) of the biarcs' errors, not a certificate: max |e| over
+    ESTIMATE_SAMPLES points per arc, one round of evaluations; inf where no valid biarc.
+    It calibrates the partition; :func:`certify` certifies the spans written."""
+    u0, u1 = np.asarray(u0, float), np.asarray(u1, float)
+    n = len(u0)
+    if n == 0:
+        return np.zeros(0)
+    J, Tm, b1, b2, ok = biarcs(P0, T0, P1, T1)
+    uJ, _lo, _hi, mono = _split_guess(R, u0, u1, P0, P1, J, Tm, known)
+    v = np.linspace(0.0, 1.0, ESTIMATE_SAMPLES + 1)
+    A1 = u0[:, None] + (uJ - u0)[:, None] * v
+    A2 = uJ[:, None] + (u1 - uJ)[:, None] * v
+    Q = R.eval_u(np.concatenate([A1, A2], axis=1).ravel()).reshape(n, -1, 2)
+    e = np.maximum(np.abs(circle_distance(Q[:, :len(v)], P0, J, b1)).max(axis=1),
+                   np.abs(circle_distance(Q[:, len(v):], J, P1, b2)).max(axis=1))
+    return np.where(ok & mono & np.isfinite(e), e, np.inf)
+
+
+#: points per arc of :func:`estimate`
+ESTIMATE_SAMPLES = 8
+
 #: exact evaluations per span of one :func:`certify` call
 EVALS_PER_SPAN = 2 + 2 * (SAMPLES + 1) + 7
 
@@ -570,12 +592,15 @@ def fit(R: Runs, budget: float, max_arc_deg: float = 90.0, split_at: float | Non
     together with the split; then failing spans are split until all pass."""
     jt = joints(R)
     w, forced = _chord_weights(jt)
-    sp, evals = _certify_partition(R, jt, forced, _partition(jt, w, forced, np.cbrt(AIM * budget)), split_at)
-    evals += 5 * sum(len(b) for b in R.breaks)
+    ut = _partition(jt, w, forced, np.cbrt(AIM * budget))
+    evals = 5 * sum(len(b) for b in R.breaks)
     for _ in range(CALIBRATE):
-        w = _calibrated(jt, w, sp[0], budget)
-        sp, ev = _certify_partition(R, jt, forced, _partition(jt, w, forced, np.cbrt(AIM * budget)), split_at)
+        first, ev = _certify_partition(R, jt, forced, ut, None, quick=True)
         evals += ev
+        w = _calibrated(jt, w, first, budget)
+        ut = _partition(jt, w, forced, np.cbrt(AIM * budget))
+    sp, ev = _certify_partition(R, jt, forced, ut, split_at)
+    evals += ev
     sp, split = sp
     sp, evals = _refine(R, sp, budget, max_arc_deg, jt, evals)
     sp, evals = _merge_jumps(R, sp, budget, max_arc_deg, jt, evals)   # jumps a coarse polygon saw
@@ -585,10 +610,11 @@ def fit(R: Runs, budget: float, max_arc_deg: float = 90.0, split_at: float | Non
     return Fit(sp, corner, jt.gap, evals, split)
 
 
-def _certify_partition(R: Runs, jt: Joints, forced, ut, split_at=None):
+def _certify_partition(R: Runs, jt: Joints, forced, ut, split_at=None, quick: bool = False):
     """Certified biarcs between the forced joints and the joints at chain parameters
     ``ut``, and the span holding ``split_at`` cut in two there; ((spans, split or None),
-    exact evaluations)."""
+    exact evaluations). ``quick``: only :func:`estimate` the errors (for the calibration;
+    returns the spans with those, and no split)."""
     extra = [] if split_at is None else [split_at]
     k, t = R.locate(np.concatenate([ut, extra]))
     Pt, Tt = point_tangents(R, k, t, _inner_mode(R, k, t))
@@ -614,6 +640,10 @@ def _certify_partition(R: Runs, jt: Joints, forced, ut, split_at=None):
             T0, T1 = cat([T0, Tout[j:j + 1], Ts]), cat([T1, Ts, Tin[j + 1:j + 2]])
     j0 = np.concatenate([idx[a], np.full(len(u0) - n, -1)])
     j1 = np.concatenate([idx[b], np.full(len(u0) - n, -1)])
+    if quick:
+        err = estimate(R, u0, u1, P0, P1, T0, T1, known=(jt.u, jt.P))
+        z = np.zeros(n)
+        return Spans(u0, u1, P0, P1, T0, T1, P0, z, z, err, j0, j1), 5 * len(k) + 2 * (ESTIMATE_SAMPLES + 1) * n
     sp = certify(R, u0, u1, P0, P1, T0, T1, j0, j1, known=(jt.u, jt.P))
     ev = 5 * len(k) + EVALS_PER_SPAN * len(u0)
     if cut is None:

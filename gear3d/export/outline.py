@@ -386,16 +386,16 @@ def _follows_polygon(runs: Runs, tol: float) -> bool:
 
 def _start_param(span, pieces, pitch, d):
     """Parameter in span (piece, copy, t0, t1) where the exact curve crosses the line
-    through the origin along ``d``: the sign change of the cross product among 17 exact
-    points, then secant steps kept inside it; the nearer end when the span does not
-    straddle the line."""
+    through the origin along ``d``: the sign change of the cross product among 33 exact
+    points, then three secant steps kept inside it (the start point need not be on the
+    ray to the last bit); the nearer end when the span does not straddle the line."""
     p, k, t0, t1 = span[:4]
     G = pieces[p]
 
     def f(t):
         q = rotate(G(np.atleast_1d(np.asarray(t, float))), k * pitch)
         return q[:, 0] * d[1] - q[:, 1] * d[0]
-    ts = np.linspace(t0, t1, 17)
+    ts = np.linspace(t0, t1, 33)
     v = f(ts)
     if not np.isfinite(v).all():
         return t0
@@ -404,20 +404,15 @@ def _start_param(span, pieces, pitch, d):
         return t1 if abs(v[-1]) < abs(v[0]) else t0
     i = int(s[0])
     a, b, fa, fb = ts[i], ts[i + 1], v[i], v[i + 1]
-    for _ in range(6):                                  # regula falsi (Illinois)
-        if fa == 0:
-            return a
-        if fb == 0 or a == b:
-            return b
-        m = b - fb * (b - a) / (fb - fa)
+    for _ in range(3):                                  # secant steps kept in the bracket
+        if fa == fb:
+            break
+        m = min(max(b - fb * (b - a) / (fb - fa), min(ts[i], ts[i + 1])), max(ts[i], ts[i + 1]))
         fm = f(m)[0]
         if fm == 0 or not np.isfinite(fm):
-            return m
-        if np.sign(fm) == np.sign(fb):
-            fa /= 2
-        else:
-            a, fa = b, fb
-        b, fb = m, fm
+            b = m
+            break
+        a, fa, b, fb = b, fb, m, fm
     t = b
     return t0 if abs(t - t0) <= 1e-12 else (t1 if abs(t - t1) <= 1e-12 else t)
 
