@@ -314,13 +314,13 @@ def body_estimate(triangles: float, manifold: bool = False, what: str = "", laye
     layers have ``layer_vertices`` vertices (0: unknown): the end faces' polygon
     triangulation grows with their square, and the measurement of tooth 0's side surface
     meets 7 points a triangle with the profile's chords near it (all of them for gears of
-    fewer than 6 teeth, ``gear3d.exact``)."""
+    6 teeth or fewer, ``gear3d.exact``)."""
     e = estimate("body.manifold" if manifold else "body", triangles, triangles,
                  what or f"a body of {float(triangles):,.0f} triangles")
     n = float(layer_vertices)
     if n:
         z = max(int(teeth), 1)
-        few = z < 6
+        few = z <= 6
         pts = 7 * 2 * 2 * (n if few else n / z)          # 2 triangles a quad, 2 band shapes
         pairs = pts * (n if few else 3 * n / z)
         e = Estimate(e.seconds + COSTS["body.caps"].seconds * n * n + COSTS["measure"].seconds * pairs,
