@@ -1,21 +1,13 @@
-"""Biarcs fitted to exact curve runs, and their two-sided certificate, for all arcs at once.
+"""Biarcs on exact curve runs and their two-sided certificate, for all arcs at once.
 
 A *run* is a smooth stretch of an exact piece ``G(t) -> (N, 2)`` (mm), from parameter
 ``ta`` to ``tb`` (either order: travel goes from ``ta`` to ``tb``), turned by ``rot`` (rad)
 and shifted by ``dx`` (mm, along x). A closed contour (or one period of it) is a list of
-runs in travel order; consecutive runs meet at *joints*: a corner where the two one-sided
-tangents differ, else a smooth joint whose tangent both sides share.
+runs in travel order (:class:`Runs`); :mod:`gear3d.export.biarcfit` places the biarcs.
 
-**Fit** (:func:`fit`). Between two joints P0, P1 of one run, with unit tangents T0, T1
-from the exact evaluator, the equal tangent length biarc is used (the two arcs meet at J
-with the tangent Tm). A joint shared by two biarcs gives both the same tangent, so the
-chain is G1 by construction. Joints sit on the run's known samples (``breaks``: the
-profile's own vertices), placed by an error model: a biarc's error grows as the cube of
-its length, and for one chord of length c whose end tangents make the angles a0, a1 with
-it, the error is close to c |a0 + a1| / 42 (a circle has a0 = -a1); the cube roots add up
-along a run. Every span that misses the budget, or has an arc of more than
-``max_arc_deg``, is split (at its middle sample, else its parameter midpoint) until all
-pass.
+**Biarc.** Between two points P0, P1 of the curve with unit tangents T0, T1 from the
+exact evaluator, the equal tangent length biarc: two arcs meeting at J with the tangent
+Tm (:func:`biarcs`).
 
 **Certificate** (:func:`certify`). The arc from A to B with centre C covers the stretch of
 curve between the rays from C through A and through B. A is the curve point at the span's
@@ -36,12 +28,13 @@ Units: mm, radians inside.
 Example
 -------
 >>> import numpy as np
->>> from gear3d.export.arccert import Runs, fit
->>> quarter = lambda t: 10.0 * np.stack([np.cos(t), np.sin(t)], axis=-1)
->>> runs = Runs.single([quarter], [0], [0.0], [np.pi / 2], close=None)
->>> f = fit(runs, budget=1e-6)
->>> len(f.spans.u0), bool(f.error < 1e-9)           # a circle: one biarc, exact
-(1, True)
+>>> from gear3d.export.arccert import Runs, biarcs, certify
+>>> G = lambda t: 10.0 * np.stack([np.cos(t), np.sin(t)], axis=-1)
+>>> runs = Runs.single([G], [0], [0.0], [np.pi / 2], close=None)
+>>> P0, P1 = G(np.array([0.0])), G(np.array([np.pi / 2]))
+>>> sp = certify(runs, [0.0], [1.0], P0, P1, np.array([[0.0, 1.0]]), np.array([[-1.0, 0.0]]))
+>>> bool(sp.error[0] < 1e-12)                   # a quarter circle is one biarc, exactly
+True
 """
 from __future__ import annotations
 
@@ -56,22 +49,10 @@ SAMPLES = 16
 SPLIT_SAMPLES = 8
 #: parameter step (absolute: pieces run over [0, 1]) of the finite-difference tangents
 STEP = 1e-6
-#: rad: joints whose two one-sided tangents differ by more are corners
-CORNER_RAD = 1e-4
 #: |bulge| below this is a straight line (the line is what gets certified). An arc that
 #: flat has its centre ~c/(4|b|) away, and a reader rebuilding it from the bulge loses
 #: ~1e-16 of that: 1e-6 keeps the loss below 3e-11 of the chord
 LINE_BULGE = 1e-6
-#: the error model: one chord's biarc error ~ c |a0 + a1| * MODEL (measured: 1/55 .. 1/42)
-MODEL = 1 / 40
-#: joints between runs whose chords' curvatures differ by more than this share are kept
-JUMP = 0.25
-#: the model aims at this share of the budget (the checked fit then mostly passes)
-AIM = 0.7
-#: partitions re-made from the measured errors
-CALIBRATE = 1
-#: split rounds before the fit gives up on a span
-MAX_ROUNDS = 24
 
 
 @dataclass
@@ -143,7 +124,8 @@ def untransform(p, close):
     return transform(np.asarray(p, float) - np.array([dx, 0.0]), (-a, 0.0))
 
 
-def _unit(v):
+def unit(v):
+    """Unit vectors (..., 2) of ``v`` and their lengths."""
     n = np.hypot(v[..., 0], v[..., 1])
     return v / np.maximum(n, 1e-300)[..., None], n
 
@@ -169,17 +151,17 @@ def point_tangents(R: Runs, r, t, mode):
                                          axis=1).ravel()).reshape(-1, 5, 2)
     # both are 2h dG/dtau, tau the travel (backward one-sided: the sign of mode turns it)
     D = np.where(central[:, None], G[:, 2] - G[:, 0], (-3 * G[:, 0] + 4 * G[:, 1] - G[:, 2]) * mode[:, None])
-    T, n = _unit(D)
-    s1, l1 = _unit((G[:, 3] - G[:, 0]) * mode[:, None])
-    s2, _ = _unit((G[:, 4] - G[:, 0]) * mode[:, None])
-    sec, _ = _unit(2 * s1 - s2)
+    T, n = unit(D)
+    s1, l1 = unit((G[:, 3] - G[:, 0]) * mode[:, None])
+    s2, _ = unit((G[:, 4] - G[:, 0]) * mode[:, None])
+    sec, _ = unit(2 * s1 - s2)
     slow = ~central & (n / (2 * h) * (w * 1e-3) < 0.5 * l1)
     P = np.where(central[:, None], G[:, 1], G[:, 0])
     T = np.where(slow[:, None], sec, T)
     if R.straight is not None and R.straight[r].any():
         line = R.straight[r]
         ends = R.eval(np.concatenate([r[line], r[line]]), np.concatenate([R.ta[r[line]], R.tb[r[line]]]))
-        T[line], _ = _unit(ends[line.sum():] - ends[:line.sum()])
+        T[line], _ = unit(ends[line.sum():] - ends[:line.sum()])
     return P, T
 
 
@@ -207,7 +189,7 @@ def biarcs(P0, T0, P1, T1):
     d = np.where(ok, vv / np.where(ok, den, 1.0), 0.0)
     Q0, Q1 = P0 + d[:, None] * T0, P1 - d[:, None] * T1
     J = 0.5 * (Q0 + Q1)
-    Tm, nm = _unit(Q1 - Q0)
+    Tm, nm = unit(Q1 - Q0)
     ok &= nm > 0
     b1, b2 = bulges(P0, J, T0), bulges(J, P1, Tm)
     ok &= np.isfinite(b1) & np.isfinite(b2) & (np.abs(b1) <= 1) & (np.abs(b2) <= 1)
@@ -246,7 +228,7 @@ def forward(Q, A, B, b) -> np.ndarray:
         Rs = c * (1 + b * b) / (4 * b)                         # signed radius (inf: a line)
         C = 0.5 * (A + B) + n * (0.5 * b * c - Rs)[:, None]
     line = ~np.isfinite(C).all(axis=1) | (np.abs(b) < 1e-9)
-    rad, _ = _unit(Q - np.where(line[:, None], 0.0, C)[:, None, :])
+    rad, _ = unit(Q - np.where(line[:, None], 0.0, C)[:, None, :])
     sgn = np.where(b < 0, -1.0, 1.0)[:, None, None]
     tang = np.where(line[:, None, None], u[:, None, :], np.stack([-rad[..., 1], rad[..., 0]], axis=-1) * sgn)
     return np.einsum("nkj,nkj->nk", np.diff(Q, axis=1), tang[:, :-1]) > 0
@@ -431,320 +413,3 @@ ESTIMATE_SAMPLES = 8
 
 #: exact evaluations per span of one :func:`certify` call
 EVALS_PER_SPAN = 2 + 2 * (SAMPLES + 1) + 7
-
-
-# ------------------------------------------------------------------ the fit
-
-@dataclass
-class Joints:
-    """The chain's known points (every run's breaks, one entry per joint between runs):
-    chain parameter u, point P, tangents in and out (equal except at a corner), corner."""
-    u: np.ndarray
-    P: np.ndarray
-    Tin: np.ndarray
-    Tout: np.ndarray
-    corner: np.ndarray
-    gap: float
-
-
-def _breaks(R: Runs):
-    """Every run's breaks, flattened: run, parameter, mode (+1 run start, -1 end, 0 inner)."""
-    rs, ts, ms = [], [], []
-    for k, b in enumerate(R.breaks):
-        b = np.asarray(b, float)
-        if len(b) < 2 or b[0] != R.ta[k] or b[-1] != R.tb[k]:
-            b = np.array([R.ta[k], R.tb[k]])
-        rs.append(np.full(len(b), k))
-        ts.append(b)
-        m = np.zeros(len(b), int)
-        m[0], m[-1] = 1, -1
-        ms.append(m)
-    return np.concatenate(rs), np.concatenate(ts), np.concatenate(ms)
-
-
-def joints(R: Runs) -> Joints:
-    """Points and tangents at every break (one evaluation round); at each joint between
-    runs the corner decision (the one-sided tangents differ by more than CORNER_RAD, or
-    the run says so) and, where smooth, the tangent both sides share. For a closed chain
-    the last joint is the first one carried by ``close``."""
-    r, t, mode = _breaks(R)
-    P, T = point_tangents(R, r, t, mode)
-    first, last = np.nonzero(mode == 1)[0], np.nonzero(mode == -1)[0]
-    Ts, Te, Ps, Pe = T[first], T[last], P[first], P[last]
-    if R.close is not None:
-        prev_T = np.concatenate([transform(Te[-1:], (-R.close[0], 0.0)), Te[:-1]])
-        prev_P = np.concatenate([untransform(Pe[-1:], R.close), Pe[:-1]])
-    else:
-        prev_T, prev_P = np.concatenate([Ts[:1], Te[:-1]]), np.concatenate([Ps[:1], Pe[:-1]])
-    cross = prev_T[:, 0] * Ts[:, 1] - prev_T[:, 1] * Ts[:, 0]
-    corner = R.corner | (np.abs(np.arctan2(cross, np.einsum("ij,ij->i", prev_T, Ts))) > CORNER_RAD)
-    gap = np.hypot(*(prev_P - Ps).T)
-    if R.close is None:
-        corner[0], gap[0] = True, 0.0
-    shared, _ = _unit(prev_T + Ts)
-    Tout_run = np.where(corner[:, None], Ts, shared)
-    Tin_run = np.where(corner[:, None], prev_T, shared)
-    # one entry per joint: the run starts, the inner breaks, and the chain's end
-    keep = mode != -1
-    u = np.arange(len(t), dtype=float)
-    u = r + (t - R.ta[r]) / np.where(R.tb[r] != R.ta[r], R.tb[r] - R.ta[r], 1.0)
-    Tin, Tout, cor = T.copy(), T.copy(), np.zeros(len(t), bool)
-    Tin[first], Tout[first], cor[first] = Tin_run, Tout_run, corner
-    uj, Pj, Tinj, Toutj, cj = u[keep], P[keep], Tin[keep], Tout[keep], cor[keep]
-    if R.close is not None:
-        Pend = transform(Ps[:1], R.close)
-        Tend = transform(Tin_run[:1], (R.close[0], 0.0))
-    else:
-        Pend, Tend = Pe[-1:], Te[-1:]
-    return Joints(np.concatenate([uj, [float(len(R.ta))]]), np.concatenate([Pj, Pend]),
-                  np.concatenate([Tinj, Tend]), np.concatenate([Toutj, Tend]),
-                  np.concatenate([cj, [True]]), float(gap.max(initial=0.0)))
-
-
-def _chord_weights(jt: Joints):
-    """Per chord between known joints the cube root of its modelled biarc error (mm^1/3),
-    and the forced joints: corners, curvature jumps between runs, the chain's ends."""
-    P, T0, T1 = jt.P, jt.Tout[:-1], jt.Tin[1:]
-    d = P[1:] - P[:-1]
-    c = np.hypot(d[:, 0], d[:, 1])
-    u = d / np.maximum(c, 1e-300)[:, None]
-    a0 = np.arctan2(u[:, 0] * T0[:, 1] - u[:, 1] * T0[:, 0], np.einsum("ij,ij->i", u, T0))
-    a1 = np.arctan2(u[:, 0] * T1[:, 1] - u[:, 1] * T1[:, 0], np.einsum("ij,ij->i", u, T1))
-    w = np.cbrt(MODEL * c * np.abs(a0 + a1))
-    # joints between runs where the curvature jumps (a fillet meets a flank) are kept
-    # too: the model, which sees each chord alone, cannot see a jump between chords
-    kappa = (a1 - a0) / np.maximum(c, 1e-300)
-    runs_end = np.nonzero(np.abs(jt.u[1:-1] - np.round(jt.u[1:-1])) == 0)[0] + 1
-    ka, kb = kappa[runs_end - 1], kappa[runs_end]
-    jump = np.abs(kb - ka) > JUMP * np.maximum(np.abs(ka), np.abs(kb))
-
-    forced = np.union1d(np.nonzero(jt.corner)[0], runs_end[jump])
-    if forced[0] != 0:
-        forced = np.concatenate([[0], forced])
-    return w, forced
-
-
-def _partition(jt: Joints, w, forced, share: float) -> np.ndarray:
-    """Chain parameters of the joints between the forced ones: equal parts of the summed
-    chord weights ``w``, each at most ``share`` (interpolated linearly within chords)."""
-    cum = np.concatenate([[0.0], np.cumsum(w)]) / share
-    a, b = forced[:-1], forced[1:]
-    total = cum[b] - cum[a]
-    count = np.maximum(1, np.ceil(total - 1e-9)).astype(int)
-    many = np.nonzero(count > 1)[0]
-    if not len(many):
-        return np.zeros(0)
-    seg = np.repeat(many, count[many] - 1)
-    kk = np.concatenate([np.arange(1, m) for m in count[many]])
-    target = cum[a[seg]] + total[seg] * kk / count[seg]
-    keep = np.concatenate([[True], np.diff(cum) > 0])
-    return np.interp(target, cum[keep], jt.u[keep])
-
-
-def _calibrated(jt: Joints, w, sp: "Spans", budget: float) -> np.ndarray:
-    """The chord weights rescaled so that along every certified span they add up to the
-    cube root of its measured error (a span with no valid biarc counts as 1.5 x budget:
-    about two parts). Chords the model saw as exact arcs (weight 0) share by length."""
-    c = np.hypot(*(jt.P[1:] - jt.P[:-1]).T)
-    w = w + 1e-6 * c
-    cum = np.concatenate([[0.0], np.cumsum(w)])
-    span_w = np.interp(sp.u1, jt.u, cum) - np.interp(sp.u0, jt.u, cum)
-    e = np.where(np.isfinite(sp.error), sp.error, 1.5 * budget)
-    f = np.cbrt(np.maximum(e, 1e-18)) / np.maximum(span_w, 1e-300)
-    mid = 0.5 * (jt.u[:-1] + jt.u[1:])
-    k = np.clip(np.searchsorted(sp.u0, mid, side="right") - 1, 0, len(sp.u0) - 1)
-    return w * f[k]
-
-
-def _too_wide(b, max_arc_deg):
-    return 4 * np.arctan(np.abs(b)) > math.radians(max_arc_deg) * (1 + 1e-12)
-
-
-@dataclass
-class Fit:
-    """A certified biarc chain: ``spans`` in travel order, ``corner`` (per span: its start
-    is a corner), ``gap`` (mm: the largest distance between two runs' ends that meet at a
-    joint), ``evaluations`` (exact curve points evaluated) and ``split``: the span that
-    holds the chain parameter asked for in :func:`fit` cut in two there, certified (None
-    when not asked for, or when that span was split further)."""
-    spans: Spans
-    corner: np.ndarray
-    gap: float
-    evaluations: int
-    split: Spans | None = None
-
-    @property
-    def error(self) -> float:
-        """The certified two-sided error (mm) of the chain: the worst span plus the gap."""
-        return float(self.spans.error.max(initial=0.0)) + self.gap
-
-
-def fit(R: Runs, budget: float, max_arc_deg: float = 90.0, split_at: float | None = None) -> Fit:
-    """Certified G1 biarcs along the chain, each within ``budget`` (mm), with arcs of at
-    most ``max_arc_deg``; a span that cannot meet them keeps its error (inf when no biarc
-    is valid): the caller checks :attr:`Fit.error`. ``split_at``: a chain parameter where
-    one copy of the chain must have a joint (the start point of a contour whose period
-    starts elsewhere): the span holding it is also certified cut in two there
-    (:attr:`Fit.split`).
-
-    Rounds: the modelled partition, certified; the partition again with every span's
-    weights calibrated by its measured error (spans aimed at AIM x budget), certified
-    together with the split; then failing spans are split until all pass."""
-    jt = joints(R)
-    w, forced = _chord_weights(jt)
-    ut = _partition(jt, w, forced, np.cbrt(AIM * budget))
-    evals = 5 * sum(len(b) for b in R.breaks)
-    for _ in range(CALIBRATE):
-        first, ev = _certify_partition(R, jt, forced, ut, None, quick=True)
-        evals += ev
-        w = _calibrated(jt, w, first, budget)
-        ut = _partition(jt, w, forced, np.cbrt(AIM * budget))
-    sp, ev = _certify_partition(R, jt, forced, ut, split_at)
-    evals += ev
-    sp, split = sp
-    sp, evals = _refine(R, sp, budget, max_arc_deg, jt, evals)
-    sp, evals = _merge_jumps(R, sp, budget, max_arc_deg, jt, evals)   # jumps a coarse polygon saw
-    if split is not None and not ((sp.u0 == split.u0[0]) & (sp.u1 == split.u1[-1])).any():
-        split = None                          # its span was split further: the caller cuts again
-    corner = (sp.j0 >= 0) & jt.corner[np.maximum(sp.j0, 0)]
-    return Fit(sp, corner, jt.gap, evals, split)
-
-
-def _certify_partition(R: Runs, jt: Joints, forced, ut, split_at=None, quick: bool = False):
-    """Certified biarcs between the forced joints and the joints at chain parameters
-    ``ut``, and the span holding ``split_at`` cut in two there; ((spans, split or None),
-    exact evaluations). ``quick``: only :func:`estimate` the errors (for the calibration;
-    returns the spans with those, and no split)."""
-    extra = [] if split_at is None else [split_at]
-    k, t = R.locate(np.concatenate([ut, extra]))
-    Pt, Tt = point_tangents(R, k, t, _inner_mode(R, k, t))
-    idx = np.concatenate([forced, np.full(len(ut), -1)])
-    u = np.concatenate([jt.u[forced], ut])
-    o = np.argsort(u, kind="stable")
-    idx, u = idx[o], u[o]
-    P = np.concatenate([jt.P[forced], Pt[:len(ut)]])[o]
-    Tin = np.concatenate([jt.Tin[forced], Tt[:len(ut)]])[o]
-    Tout = np.concatenate([jt.Tout[forced], Tt[:len(ut)]])[o]
-    a, b = np.arange(len(u) - 1), np.arange(1, len(u))
-    u0, u1, P0, P1, T0, T1 = u[a], u[b], P[a], P[b], Tout[a], Tin[b]
-    n = len(a)
-    cut = None
-    if split_at is not None:
-        j = int(np.clip(np.searchsorted(u, split_at, side="right") - 1, 0, n - 1))
-        if u[j] < split_at < u[j + 1]:
-            cut = j
-            Ps, Ts = Pt[-1:], Tt[-1:]
-            cat = np.concatenate
-            u0, u1 = cat([u0, [u[j], split_at]]), cat([u1, [split_at, u[j + 1]]])
-            P0, P1 = cat([P0, P[j:j + 1], Ps]), cat([P1, Ps, P[j + 1:j + 2]])
-            T0, T1 = cat([T0, Tout[j:j + 1], Ts]), cat([T1, Ts, Tin[j + 1:j + 2]])
-    j0 = np.concatenate([idx[a], np.full(len(u0) - n, -1)])
-    j1 = np.concatenate([idx[b], np.full(len(u0) - n, -1)])
-    if quick:
-        err = estimate(R, u0, u1, P0, P1, T0, T1, known=(jt.u, jt.P))
-        z = np.zeros(n)
-        return Spans(u0, u1, P0, P1, T0, T1, P0, z, z, err, j0, j1), 5 * len(k) + 2 * (ESTIMATE_SAMPLES + 1) * n
-    sp = certify(R, u0, u1, P0, P1, T0, T1, j0, j1, known=(jt.u, jt.P))
-    ev = 5 * len(k) + EVALS_PER_SPAN * len(u0)
-    if cut is None:
-        return (sp, None), ev
-    return (sp.take(np.arange(n)), sp.take(np.arange(n, n + 2))), ev
-
-
-def _refine(R: Runs, sp: Spans, budget: float, max_arc_deg: float, jt: Joints, evals):
-    """Split every span that misses the budget (or has too wide an arc) at its middle
-    joint, or its parameter midpoint when it spans one chord, until all pass; gives up on
-    a span narrower than 1e-9 of a run (the caller sees its error)."""
-    limit = 4 * len(jt.u) + 16                        # spans: far more than any fit needs
-    for _ in range(MAX_ROUNDS):
-        bad = ~(sp.error <= budget) | _too_wide(sp.b1, max_arc_deg) | _too_wide(sp.b2, max_arc_deg)
-        bad &= (sp.u1 - sp.u0) > 1e-9
-        if not bad.any() or len(sp.u0) > limit:
-            break
-        idx = np.nonzero(bad)[0]
-        # the known joint nearest the middle inside the span, else its parameter midpoint
-        first = np.searchsorted(jt.u, sp.u0[idx], side="right")
-        last = np.searchsorted(jt.u, sp.u1[idx], side="left")
-        at = last > first
-        jm = np.where(at, (first + last - 1) // 2, -1)
-        um = np.where(at, jt.u[np.clip(jm, 0, max(len(jt.u) - 1, 0))] if len(jt.u) else 0.0,
-                      0.5 * (sp.u0[idx] + sp.u1[idx]))
-        Pm, Tm = np.empty((len(idx), 2)), np.empty((len(idx), 2))
-        Pm[at], Tm[at] = jt.P[jm[at]], jt.Tin[jm[at]]
-        mid = ~at
-        if mid.any():
-            k, t = R.locate(um[mid])
-            Pm[mid], Tm[mid] = point_tangents(R, k, t, _inner_mode(R, k, t))
-            evals += 5 * int(mid.sum())
-        cat = np.concatenate
-        new = certify(R, cat([sp.u0[idx], um]), cat([um, sp.u1[idx]]), cat([sp.P0[idx], Pm]),
-                      cat([Pm, sp.P1[idx]]), cat([sp.T0[idx], Tm]), cat([Tm, sp.T1[idx]]),
-                      cat([sp.j0[idx], jm]), cat([jm, sp.j1[idx]]), known=(jt.u, jt.P))
-        evals += EVALS_PER_SPAN * len(new.u0)
-        both = Spans.cat(sp.take(np.nonzero(~bad)[0]), new)
-        sp = both.take(np.argsort(both.u0, kind="stable"))
-    return sp, evals
-
-
-def split_span(R: Runs, sp: Spans, u: float, budget: float, max_arc_deg: float) -> Spans:
-    """The one span ``sp`` split at the chain parameter ``u`` (a joint there, with the
-    curve's tangent): certified biarcs in chain order, the halves split further where they
-    miss the budget; a joint stays at ``u``."""
-    k, t = R.locate(np.array([u]))
-    P, T = point_tangents(R, k, t, _inner_mode(R, k, t))
-    cat = np.concatenate
-    two = certify(R, cat([sp.u0, [u]]), cat([[u], sp.u1]), cat([sp.P0, P]), cat([P, sp.P1]),
-                  cat([sp.T0, T]), cat([T, sp.T1]))
-    if (two.error <= budget).all():
-        return two
-    none = Joints(np.zeros(0), np.zeros((0, 2)), np.zeros((0, 2)), np.zeros((0, 2)), np.zeros(0, bool), 0.0)
-    return _refine(R, two, budget, max_arc_deg, none, 0)[0]
-
-
-def _merge_jumps(R: Runs, sp: Spans, budget: float, max_arc_deg: float, jt: Joints, evals):
-    """Join neighbouring spans k, k + 1 that meet at a joint between runs which is no
-    corner, where one biarc over both passes: a curvature jump between runs forced a joint
-    the budget did not need. All candidates in one certificate; of two that overlap (share
-    a span) the first passing one is taken."""
-    n = len(sp.u0)
-    k = np.arange(n - 1)
-    j = sp.j1[k]
-    ok = (j >= 0) & (np.abs(sp.u1[k] - np.round(sp.u1[k])) == 0)
-    ok &= ~jt.corner[np.clip(j, 0, len(jt.corner) - 1)]
-    e = np.cbrt(np.nan_to_num(sp.error, posinf=1e300))
-    ok &= (e[k] + e[k + 1]) ** 3 <= budget
-    # ... and the fitted arcs on both sides of the joint agree on the curvature there (the
-    # chords' estimate saw a jump that the arcs do not show)
-    ca = np.hypot(*(sp.P1[k] - sp.J[k]).T)
-    cb = np.hypot(*(sp.J[k + 1] - sp.P0[k + 1]).T)
-    ka = 4 * sp.b2[k] / np.maximum(ca * (1 + sp.b2[k] ** 2), 1e-300)
-    kb = 4 * sp.b1[k + 1] / np.maximum(cb * (1 + sp.b1[k + 1] ** 2), 1e-300)
-    ok &= np.abs(ka - kb) <= JUMP * np.maximum(np.abs(ka), np.abs(kb))
-    k = k[ok]
-    if not len(k):
-        return sp, evals
-    new = certify(R, sp.u0[k], sp.u1[k + 1], sp.P0[k], sp.P1[k + 1], sp.T0[k], sp.T1[k + 1], sp.j0[k],
-                  sp.j1[k + 1], known=(jt.u, jt.P))
-    evals += EVALS_PER_SPAN * len(k)
-    good = (new.error <= budget) & ~_too_wide(new.b1, max_arc_deg) & ~_too_wide(new.b2, max_arc_deg)
-    taken, used = [], set()
-    for i in np.nonzero(good)[0].tolist():
-        if k[i] not in used and k[i] + 1 not in used:
-            taken.append(i)
-            used |= {int(k[i]), int(k[i]) + 1}
-    if not taken:
-        return sp, evals
-    drop = np.zeros(n, bool)
-    drop[list(used)] = True
-    both = Spans.cat(sp.take(np.nonzero(~drop)[0]), new.take(np.array(taken)))
-    return both.take(np.argsort(both.u0, kind="stable")), evals
-
-
-def _inner_mode(R: Runs, k, t):
-    """Central differences, or one-sided into the run within two steps of its ends."""
-    w = np.abs(R.tb[k] - R.ta[k])
-    h = np.minimum(STEP, w / 4)
-    s = np.sign(R.tb[k] - R.ta[k])
-    from_start = (t - R.ta[k]) * s
-    to_end = (R.tb[k] - t) * s
-    return np.where(from_start < 2 * h, 1, np.where(to_end < 2 * h, -1, 0))

@@ -55,10 +55,11 @@ import math
 import numpy as np
 
 from ..errors import GearError, ToleranceError, check_choice, check_number
-from . import arccert
+from . import arccert, biarcfit
 from .arcfit import ArcSpline, fit_arcs, segments_distance, tangent_jumps
 from .dxfread import joint_jumps, measure, measure_segments, read_back, read_segments, sample_segments  # noqa: F401
-from .outline import profile_outline, rack_outline, start_point
+from .outline import profile_outline, start_point
+from .rackoutline import rack_outline
 
 VERSIONS = ("R12", "R2000", "R2004", "R2007", "R2010", "R2013", "R2018")
 OPTIONS = ("tolerance", "kerf", "lead_in", "start_angle_deg", "dxf_version", "spline",
@@ -68,7 +69,6 @@ LAYERS = {"OUTER": 7, "INNER": 5, "CONSTRUCTION": 8, "LEAD_IN": 3}
 DXF_MIN_TOLERANCE = 2e-6
 #: the exact fit aims every span at this share of the tolerance
 BUDGET = 0.9
-_start_point = start_point          # the name the rack and SVG code used
 
 
 def write(profile, path, **opts) -> str:
@@ -118,11 +118,11 @@ def write_dxf(profile, path, tolerance=None, kerf: float = 0.0, lead_in=None,
                       construction, leads)
     rep = dict(rep, max_error=rep["max_error"] + rounding,
                max_error_curve_to_dxf=rep["max_error_curve_to_dxf"] + rounding)
-    _accept(rep)
+    accept(rep)
     return {"dxf_version": dxf_version, "spline": bool(spline), "construction": bool(construction), **rep}
 
 
-def _accept(rep):
+def accept(rep):
     """ToleranceError unless both certified distances are within the tolerance."""
     worst = max(rep["max_error"], rep["max_error_curve_to_dxf"])
     if not worst <= rep["tolerance"]:
@@ -171,7 +171,7 @@ def fit_profile(profile, tolerance=None, kerf: float = 0.0, start_angle_deg: flo
     max_arc_deg = check_number("max_arc_deg", max_arc_deg, 1, 180, unit="deg")
     exact = profile if abs(profile.tolerance - tol) <= 1e-15 else profile.at_tolerance(tol)
     fits, loops, rep = certified_fits(exact, profile, tol, kerf, start, max_arc_deg)
-    _accept(dict(rep, tolerance=tol))
+    accept(dict(rep, tolerance=tol))
     arcs = sum(f.arcs for f in fits)
     lines = sum(f.lines for f in fits)
     return fits, loops, {"tolerance": tol, "kerf": kerf, "arcs": arcs, "lines": lines, "segments": arcs + lines,
@@ -215,7 +215,7 @@ def _exact_fits(profile, tol: float, start: float, max_arc_deg: float, kerf: flo
     polys = [np.asarray(l, float) for l in profile.loops]
     fits, errs, gaps, evals, known = [], [], [], 0, 0
     for c in contours:
-        F = arccert.fit(c.runs, BUDGET * tol, max_arc_deg, split_at=c.start_u)
+        F = biarcfit.fit(c.runs, BUDGET * tol, max_arc_deg, split_at=c.start_u)
         if not F.error <= tol or not _passes_check(F, c, kerf, polys, profile.tolerance):
             return None
         spline, err = _replicate(F, c, BUDGET * tol, max_arc_deg)
@@ -232,7 +232,7 @@ def _exact_fits(profile, tol: float, start: float, max_arc_deg: float, kerf: flo
                   "max_error": err, "max_error_curve_to_dxf": err, "samples": int(evals)}
 
 
-def _passes_check(F: arccert.Fit, contour, kerf: float = 0.0, polys=(), poly_tol: float = 0.0) -> bool:
+def _passes_check(F: biarcfit.Fit, contour, kerf: float = 0.0, polys=(), poly_tol: float = 0.0) -> bool:
     """The outline walk's own checks against the polygon. Every polygon vertex known to lie
     on the exact curve in this period lies within the certified error (+ Clipper's
     rounding) of the fitted arcs (a stretch of the outline the walk missed would show
@@ -286,7 +286,7 @@ def _vertices(sp: arccert.Spans, corner):
     return V[keep], B[keep], C[keep]
 
 
-def _replicate(F: arccert.Fit, contour, budget: float, max_arc_deg: float):
+def _replicate(F: biarcfit.Fit, contour, budget: float, max_arc_deg: float):
     """The whole contour as an :class:`ArcSpline` from its start point, and the largest
     certified error (mm): the period's biarcs repeated ``contour.copies`` times, each
     turned and shifted by ``close``. When the period starts at a corner, the biarc of
@@ -303,9 +303,9 @@ def _replicate(F: arccert.Fit, contour, budget: float, max_arc_deg: float):
     err = F.error
     if us > sp.u0[j]:
         parts = F.split if F.split is not None and F.split.u0[0] == sp.u0[j] else \
-            arccert.split_span(contour.runs, sp.take(np.array([j])), us, budget, max_arc_deg)
+            biarcfit.split_span(contour.runs, sp.take(np.array([j])), us, budget, max_arc_deg)
         if not (parts.error <= budget).all():
-            parts = arccert.split_span(contour.runs, sp.take(np.array([j])), us, budget, max_arc_deg)
+            parts = biarcfit.split_span(contour.runs, sp.take(np.array([j])), us, budget, max_arc_deg)
         err = max(err, float(parts.error.max()) + F.gap)
         first = parts.u0 < us
         pc = np.zeros(len(parts.u0), bool)

@@ -14,8 +14,8 @@ rim is the exact circle. Anything that does not fit this picture (a vertex that 
 neither, two corners in a row, a loop that does not repeat every pitch) returns None,
 and the caller falls back to a fit on a polygon measured by sampling.
 
-:func:`rack_outline` builds a rack's outline directly from its exact tooth period
-(translated by the pitch) and its straight ends and back.
+:func:`gear3d.export.rackoutline.rack_outline` builds a rack's outline directly from its
+exact tooth period (translated by the pitch) and its straight ends and back.
 
 Units: mm, radians inside.
 
@@ -384,7 +384,7 @@ def _follows_polygon(runs: Runs, tol: float) -> bool:
     return bool(np.all(dist <= tol))
 
 
-def _start_param(span, pieces, pitch, d):
+def start_param(span, pieces, pitch, d):
     """Parameter in span (piece, copy, t0, t1) where the exact curve crosses the line
     through the origin along ``d``: the sign change of the cross product among 33 exact
     points, then three secant steps kept inside it (the start point need not be on the
@@ -419,12 +419,11 @@ def _start_param(span, pieces, pitch, d):
 
 def profile_outline(prof, start_angle: float):
     """The exact contours of a :class:`gear3d.model.Profile` (see the module doc), or None."""
-    from ..model import _tooth_loop
     z = int(prof.teeth)
     pitch = 2 * math.pi / z
     if not prof.pieces or not prof.piece_params:
         return None
-    tl = _tooth_loop(prof.loops, prof.internal)
+    tl = prof.tooth_loop
     out = []
     for loop in prof.loops:
         L = np.asarray(loop, float)
@@ -467,7 +466,7 @@ def _tooth_contour(prof, L, z, pitch, start_angle, outer):
         return None
     step = 1 if step == 1 else (-1 if z > 1 else 0)
     d = np.array([math.cos(start_angle), math.sin(start_angle)])
-    ts = _start_param(e0, pieces, pitch, d)
+    ts = start_param(e0, pieces, pitch, d)
     turn = _sharp(L) > SHARP
     # the period runs from the first corner after the start point (the start point then
     # splits one biarc of tooth 0 only); a corner-free outline runs from the start point
@@ -506,99 +505,3 @@ def _tooth_contour(prof, L, z, pitch, start_angle, outer):
     if before.any():
         pts[before] = rotate(pts[before], step * pitch)
     return Contour(runs, z, outer, pts, start_u)
-
-
-# ------------------------------------------------------------------ racks
-
-def _line(a, b):
-    a, b = np.asarray(a, float), np.asarray(b, float)
-
-    def f(t):
-        t = np.asarray(t, float)[:, None]
-        return a + t * (b - a)
-    return f
-
-
-def rack_outline(part, start_angle: float):
-    """The exact contour of a rack part (:class:`gear3d.rack_part.RackPart`): its tooth
-    period's exact pieces for every tooth (shifted by the pitch), the two straight ends and
-    the back, as one closed chain of runs from the start point; or None."""
-    pieces = list(part.pieces)
-    if not pieces or len(part.samples) != len(pieces):
-        return None
-    p = part.pitch
-    N = int(part.teeth)
-    yr, yb = float(part.report["root_y"]), float(part.back_y)
-    x0, x1 = -p / 2, (N - 0.5) * p
-    ends = [np.asarray(f(np.array([0.0, 1.0])), float) for f in pieces]
-    if abs(ends[0][0, 0] - x0) > 1e-9 or abs(ends[-1][1, 0] - (x0 + p)) > 1e-9:
-        return None
-    if any(np.hypot(*(ends[i][1] - ends[i + 1][0])) > 1e-9 for i in range(len(ends) - 1)):
-        return None
-    # CCW: the back left to right, up the right end, the top right to left, down the left end
-    lines = [_line((x0, yb), (x1, yb)), _line((x1, yb), (x1, yr))]
-    allp = lines + pieces + [_line((x0, yr), (x0, yb))]
-    np_ = len(pieces)
-    piece, ta, tb, dx, brk = [0, 1], [0.0, 0.0], [1.0, 1.0], [0.0, 0.0], [np.array([0.0, 1.0])] * 2
-    for k in range(N - 1, -1, -1):
-        for i in range(np_ - 1, -1, -1):
-            t = np.asarray(part.samples[i][0], float)
-            piece.append(2 + i)
-            ta.append(float(t[-1]))
-            tb.append(float(t[0]))
-            dx.append(k * p)
-            brk.append(t[::-1].copy())
-    piece.append(2 + np_)
-    ta.append(0.0)
-    tb.append(1.0)
-    dx.append(0.0)
-    brk.append(np.array([0.0, 1.0]))
-    runs = Runs(allp, np.asarray(piece, int), np.asarray(ta), np.asarray(tb), np.zeros(len(ta)),
-                np.asarray(dx, float), brk, np.zeros(len(ta), bool), (0.0, 0.0))
-    flags = [True, True] + [bool(x) for x in (part.straight or [False] * np_)] + [True]
-    runs.straight = np.array([flags[i] for i in runs.piece], bool)
-    runs = _rotate_start(runs, part.loops[0], start_angle)
-    return None if runs is None else [Contour(runs, 1, True, np.asarray(part.loops[0], float))]
-
-
-def _rotate_start(runs: Runs, loop, start_angle):
-    """The closed chain re-started where the ray at ``start_angle`` meets ``loop``."""
-    _i, P, _ins = start_point(np.asarray(loop, float), start_angle)
-    d = np.array([math.cos(start_angle), math.sin(start_angle)])
-    # the run whose chord span holds the polygon point: nearest break chord
-    best = None
-    for r in range(len(runs.ta)):
-        b = runs.breaks[r]
-        q = runs.eval(np.full(len(b), r), b)
-        a, e = q[:-1], q[1:]
-        de = e - a
-        L2 = np.maximum(np.einsum("ij,ij->i", de, de), 1e-300)
-        f = np.clip(np.einsum("ij,ij->i", P - a, de) / L2, 0, 1)
-        dist = np.hypot(*(a + f[:, None] * de - P).T)
-        j = int(np.argmin(dist))
-        if best is None or dist[j] < best[0]:
-            best = (dist[j], r, j)
-    _, r, j = best
-    b = runs.breaks[r]
-    span = (runs.piece[r], 0, b[j], b[j + 1])
-    pieces = [lambda t, r=r: runs.eval(np.full(len(np.atleast_1d(t)), r), np.atleast_1d(t))]
-    ts = _start_param((0, 0, span[2], span[3]), pieces, 0.0, d)
-    order = list(range(r, len(runs.ta))) + list(range(0, r + 1))
-    f = lambda a: np.asarray(a)[order]                 # noqa: E731
-    ta, tb = f(runs.ta).astype(float), f(runs.tb).astype(float)
-    brk = [runs.breaks[k] for k in order]
-    ta[0] = ts
-    tb[-1] = ts
-    bs = np.asarray(brk[0])
-    brk[0] = np.concatenate([[ts], bs[(bs - ts) * np.sign(tb[0] - ta[0]) > 0]])
-    be = np.asarray(brk[-1])
-    brk[-1] = np.concatenate([be[(ts - be) * np.sign(ts - be[0]) > 0], [ts]])
-    out = Runs(runs.pieces, f(runs.piece), ta, tb, f(runs.rot), f(runs.dx), brk, f(runs.corner), (0.0, 0.0),
-               None if runs.straight is None else f(runs.straight))
-    keep = np.abs(out.tb - out.ta) > 0
-    if not keep.all():
-        idx = np.nonzero(keep)[0]
-        out = Runs(out.pieces, out.piece[idx], out.ta[idx], out.tb[idx], out.rot[idx], out.dx[idx],
-                   [out.breaks[k] for k in idx], out.corner[idx], (0.0, 0.0),
-                   None if out.straight is None else out.straight[idx])
-    return out

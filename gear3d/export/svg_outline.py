@@ -59,7 +59,7 @@ def write_svg_outline(profile, path, tolerance=None, kerf: float = 0.0, start_an
     ``stroke_width`` (mm) of the cut lines; ``margin`` (mm) of empty page around the part.
     """
     from ..errors import check_number
-    from .dxf import _accept, fit_profile
+    from .dxf import accept, fit_profile
     if extra:
         k = sorted(extra)[0]
         raise GearError(k, extra[k], "not an option of the SVG outline: one of " + ", ".join(OPTIONS))
@@ -70,7 +70,7 @@ def write_svg_outline(profile, path, tolerance=None, kerf: float = 0.0, start_an
     page = _write(path, fits, stroke_width, margin)
     rounding = page.pop("rounding")
     r = dict(r, max_error=r["max_error"] + rounding, max_error_curve_to_dxf=r["max_error_curve_to_dxf"] + rounding)
-    _accept(r)
+    accept(r)
     return {**page, **r}
 
 
