@@ -49,6 +49,12 @@ class Sketch:
     estimate: Estimate
     pitch_radius: float = 0.0
     period: object = None
+    rim_vertices: float = 0.0
+
+    @property
+    def layer_vertices(self) -> float:
+        """The vertices of the whole outline: the teeth and a ring's rim circle."""
+        return self.vertices + self.rim_vertices
 
 
 def probe_profile(family: str, params: dict) -> Sketch | None:
@@ -75,7 +81,8 @@ def probe_profile(family: str, params: dict) -> Sketch | None:
     length = float(np.nansum(seg)) * z
     est = pre.then(info["estimate"])
     tol = float(params.get("tolerance", 1e-3))
-    return Sketch(z, per * z, per, r, length, tol, est, float(info.get("pitch_radius", r)), chain)
+    return Sketch(z, per * z, per, r, length, tol, est, float(info.get("pitch_radius", r)), chain,
+                  float(info.get("rim_vertices", 0.0)))
 
 
 def write_estimate(ext: str, *, vertices: float = 0.0, per_tooth: float = 0.0, triangles: float = 0.0,
@@ -284,8 +291,8 @@ def plan_profile(family: str, params: dict, output=None, width=None, figure=None
     est = sk.estimate
     ext = os.path.splitext(str(output))[1].lower() if output else ""
     if ext and width is not None:                   # a spur body of the profile, then its mesh
-        tri = 4.0 * sk.vertices
-        est = est.then(budget.body_estimate(tri, layer_vertices=sk.vertices, teeth=sk.teeth))
+        tri = 4.0 * sk.layer_vertices
+        est = est.then(budget.body_estimate(tri, layer_vertices=sk.layer_vertices, teeth=sk.teeth))
         est = est.then(write_estimate(ext, triangles=tri))
     elif ext:
         est = est.then(write_estimate(ext, vertices=sk.vertices, per_tooth=sk.per_tooth))
@@ -313,7 +320,7 @@ def body_layers(sk: Sketch, body_kw: dict, tol: float) -> tuple:
     W = float(body_kw.get("width", 10.0))
     per = max(float(sk.per_tooth), 3.0)
     if kind == "spur":
-        return sk.vertices, 1
+        return sk.layer_vertices, 1
     beta = float(body_kw.get("helix_angle_deg", 0.0))
     gap = float(body_kw.get("gap", 0.0) or 0.0)
     m = 2 * sk.pitch_radius / max(sk.teeth, 1)
@@ -334,8 +341,8 @@ def body_layers(sk: Sketch, body_kw: dict, tol: float) -> tuple:
     try:
         B.plan_layers(law, W, max(sk.r_max, 1e-9), [np.asarray(sk.period, float)], e_z, (cb, ch), stop)
     except _Layers as s:
-        return max(sk.vertices, s.nv * sk.vertices / per), s.layers
-    return sk.vertices, 1
+        return max(sk.vertices, s.nv * sk.vertices / per) + sk.rim_vertices, s.layers
+    return sk.layer_vertices, 1
 
 
 def plan_body(family: str, params: dict, body_kw: dict, output=None, step=None) -> Estimate | None:
