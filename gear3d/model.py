@@ -347,7 +347,7 @@ def build_profile(family: str, params: dict, pieces, teeth: int, pitch_radius: f
     """
     stage("profile")
     tol = tolerance
-    _budget.check_rim(rim_radius, pitch_radius, RIM_SHARE * tol)     # range and the circle's vertices
+    _budget.check_rim(rim_radius, pitch_radius, RIM_SHARE * tol, pieces=pieces)    # range, circle vertices
     fs = [_finite(G) for G in pieces]
     # the share of the tolerance the chords may use: Clipper rounds every vertex to 1e-8 mm
     # and notch pruning may move a vertex by up to tol * PRUNE_SHARE (envelope.prune_spikes)
