@@ -115,6 +115,11 @@ _FIELDS = """() => Object.fromEntries([...document.querySelectorAll('#forms form
 _DEFAULTS = """() => Object.fromEntries([...document.querySelectorAll('#forms form [name]')].map(
     (i) => [({profile: '', body: 'b.', pair: 'pair.'})[i.dataset.scope] + i.name, i.dataset.default]))"""
 
+_FILLED = """(exp) => Object.entries(exp).every(([id, v]) => {
+    const i = document.getElementById(id);
+    return i && (i.type === 'checkbox' ? String(i.checked) : i.value) === v;
+})"""
+
 _DRAWN = """([fam, teeth]) => {
     const p = document.querySelector('#preview');
     const q = new URLSearchParams(p.dataset.query || '');
@@ -176,6 +181,11 @@ def _check_presets_fill_and_draw(page):
         page.select_option("#preset", p["name"])
         page.wait_for_function(_DRAWN, arg=[p["family"], p["profile"].get("teeth")])
         assert page.input_value("#family") == p["family"]
+        expected = {f"in-{sec}-{k}": v for sec in ("profile", "body", "pair") for k, v in p[sec].items()}
+        try:        # a family change may rebuild the body and pair forms after the preview: wait for them
+            page.wait_for_function(_FILLED, arg=expected, timeout=30_000)
+        except Exception:
+            pass    # the assertions below say which field is wrong
         fields = page.evaluate(_FIELDS)
         for sec, prefix in (("profile", "profile"), ("body", "body"), ("pair", "pair")):
             for k, v in p[sec].items():
