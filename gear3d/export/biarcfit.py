@@ -331,8 +331,9 @@ def _merge_jumps(R: Runs, sp: Spans, budget: float, max_arc_deg: float, jt: Join
     # chords' estimate saw a jump that the arcs do not show)
     ca = np.hypot(*(sp.P1[k] - sp.J[k]).T)
     cb = np.hypot(*(sp.J[k + 1] - sp.P0[k + 1]).T)
-    ka = 4 * sp.b2[k] / np.maximum(ca * (1 + sp.b2[k] ** 2), 1e-300)
-    kb = 4 * sp.b1[k + 1] / np.maximum(cb * (1 + sp.b1[k + 1] ** 2), 1e-300)
+    with np.errstate(over="ignore", invalid="ignore"):
+        ka = 4 * sp.b2[k] / np.maximum(ca * (1 + sp.b2[k] ** 2), 1e-300)
+        kb = 4 * sp.b1[k + 1] / np.maximum(cb * (1 + sp.b1[k + 1] ** 2), 1e-300)
     ok &= np.abs(ka - kb) <= JUMP * np.maximum(np.abs(ka), np.abs(kb))
     k = k[ok]
     if not len(k):

@@ -162,9 +162,12 @@ def _labels(L, S, I, J, teeth):
     return labs
 
 
-def _edge(la, lb):
+def _edge(la, lb, sizes=None, z=1):
     """The (piece, copy, ja, jb) both ends of a polygon edge share (adjacent samples
-    first), or None."""
+    first); else, when the polygon dropped the vertex where one piece ends and the next
+    begins (Clipper removes a vertex on a straight line), the two pieces' parts as a
+    list [(piece, copy, ja, end), (next piece, copy, 0, jb)]; else None. ``sizes``: the
+    pieces' sample counts, in chain order (the last piece's next is piece 0, one copy on)."""
     best = None
     for pa, ja, ka in la:
         for pb, jb, kb in lb:
@@ -173,7 +176,17 @@ def _edge(la, lb):
                     return pa, ka, ja, jb
                 if best is None or abs(ja - jb) < abs(best[2] - best[3]):
                     best = (pa, ka, ja, jb)
-    return best
+    if best is not None or not sizes:
+        return best
+    n = len(sizes)
+    for pa, ja, ka in la:
+        for pb, jb, kb in lb:
+            for (p, jp, kp), (q, jq, kq), fwd in (((pa, ja, ka), (pb, jb, kb), True), ((pb, jb, kb), (pa, ja, ka), False)):
+                if p < n and q == (p + 1) % n and kq == (kp + (1 if p == n - 1 else 0)) % z and jq >= 1 \
+                        and jp <= sizes[p] - 2:
+                    a, b = (p, kp, jp, sizes[p] - 1), (q, kq, 0, jq)
+                    return [a, b] if fwd else [(q, kq, jq, 0), (p, kp, sizes[p] - 1, jp)]
+    return None
 
 
 # ------------------------------------------------------------------ corners
@@ -257,6 +270,7 @@ def _corner(V, la, prev_a, lb, next_b, pieces, tps, pitch, pts, pairs):
 
 
 def len_copies(pitch: float) -> int:
+    """The number of teeth whose pitch (rad) this is."""
     return max(1, int(round(2 * math.pi / pitch)))
 
 
@@ -274,26 +288,30 @@ def _known_crossing(pairs, p, q, dk, z, range_p, range_q):
 
 # ------------------------------------------------------------------ spans and runs
 
-def _spans(L, labs, edges_wanted, pieces, tps, pitch, pts=None, pairs=None):
-    """Exact spans (piece, copy, t0, t1, corner_before) of the polygon edges
-    ``edges_wanted`` (edge v runs from vertex v to v + 1; ``labs``: vertex -> labels, for
-    those vertices and two more on each side). A corner vertex splits its two edges at the
-    exact crossing. Returns {edge: span}, or None when an edge cannot be labelled."""
+def _spans(L, labs, edges_wanted, pieces, tps, pitch, pts=None, pairs=None, nraw=None):
+    """Exact spans of the polygon edges ``edges_wanted`` (edge v runs from vertex v to
+    v + 1; ``labs``: vertex -> labels, for those vertices and two more on each side): per
+    edge a list of (piece, copy, t0, t1, corner_before), one entry, or two where the
+    polygon dropped a junction of pieces. A corner vertex splits its two edges at the
+    exact crossing. Returns {edge: [spans]}, or None when an edge cannot be labelled."""
     n = len(L)
+    z = len_copies(pitch)
+    sizes = [len(t) for t in tps[:nraw]] if nraw else None
     lab = lambda v: labs.get(v % n, set())             # noqa: E731
     edges = {}
     for v in range(edges_wanted[0] - 2, edges_wanted[-1] + 3):
         a, b = lab(v), lab(v + 1)
         if a and b:
-            e = _edge(a, b)
+            e = _edge(a, b, sizes, z)
             if e is None:
                 return None
             edges[v % n] = e
     spans = {}
     for v in edges_wanted:
         if v % n in edges:
-            p, k, ja, jb = edges[v % n]
-            spans[v % n] = (p, k, tps[p][ja], tps[p][jb], False)
+            e = edges[v % n]
+            spans[v % n] = [(p, k, tps[p][ja], tps[p][jb], False) for p, k, ja, jb in (e if isinstance(e, list) else [e])]
+    edges = {v: (e if not isinstance(e, list) else None) for v, e in edges.items()}
     for v in range(edges_wanted[0], edges_wanted[-1] + 2):
         if lab(v):
             continue
@@ -307,8 +325,8 @@ def _spans(L, labs, edges_wanted, pieces, tps, pitch, pts=None, pairs=None):
         if got is None:
             return None
         (p, k, t0, s), (q, m, u, t1) = got
-        spans[a] = (p, k, t0, s, False)
-        spans[v % n] = (q, m, u, t1, True)
+        spans[a] = [(p, k, t0, s, False)]
+        spans[v % n] = [(q, m, u, t1, True)]
     if any(v % n not in spans for v in edges_wanted):
         return None
     return spans
@@ -454,11 +472,12 @@ def _tooth_contour(prof, L, z, pitch, start_angle, outer):
     pieces, tps, S, I, J, pts = _samples(prof)
     window = np.arange(i - 3, i + m + 5) % n
     labs = dict(zip(window.tolist(), _labels(L[window], S, I, J, z)))
-    spans = _spans(L, labs, list(range(i, i + m + 1)), pieces, tps, pitch, pts, prof.corner_pairs)
-    if spans is None:
+    spans = _spans(L, labs, list(range(i, i + m + 1)), pieces, tps, pitch, pts, prof.corner_pairs,
+                   len(prof.pieces))
+    if spans is None or len(spans[i]) != 1 or len(spans[(i + m) % n]) != 1:
         return None
     # the edge one period on must be the same edge, one copy on
-    e0, e1 = spans[i], spans[(i + m) % n]
+    e0, e1 = spans[i][0], spans[(i + m) % n][0]
     if e0[0] != e1[0] or abs(e0[2] - e1[2]) > 1e-9 or abs(e0[3] - e1[3]) > 1e-9:
         return None
     step = (e1[1] - e0[1]) % z
@@ -470,21 +489,22 @@ def _tooth_contour(prof, L, z, pitch, start_angle, outer):
     turn = _sharp(L) > SHARP
     # the period runs from the first corner after the start point (the start point then
     # splits one biarc of tooth 0 only); a corner-free outline runs from the start point
-    corner_at = [v for v in range(i + 1, i + m) if spans[v % n][4]]
+    corner_at = [v for v in range(i + 1, i + m) if spans[v % n][0][4]]
     c = corner_at[0] if corner_at else i
-    seq, sh = [], []
+    seq, sh, at = [], [], {}
     for v in list(range(c, i + m)) + list(range(i, c)):
-        p_, k, t0, t1, cb = spans[v % n]
-        k = (k - e0[1]) % z
-        k = k - z if k > z // 2 else k                        # the copy relative to the start's
-        if v < c:
-            k += step                                       # these edges, one period on
-        if c == i and v == i:
-            t0 = ts
-        seq.append((p_, k, t0, t1, cb))
-        sh.append(bool(turn[v % n]) and not cb and not (c == i and v == i))
+        at[v] = len(seq)
+        for q, (p_, k, t0, t1, cb) in enumerate(spans[v % n]):
+            k = (k - e0[1]) % z
+            k = k - z if k > z // 2 else k                    # the copy relative to the start's
+            if v < c:
+                k += step                                   # these edges, one period on
+            if c == i and v == i:
+                t0 = ts
+            seq.append((p_, k, t0, t1, cb))
+            sh.append(q == 0 and bool(turn[v % n]) and not cb and not (c == i and v == i))
     if c == i:                                               # back to the start point
-        p_, k, t0, t1, cb = spans[i % n]
+        p_, k, t0, t1, cb = spans[i % n][0]
         seq.append((p_, step, t0, ts, cb))
         sh.append(bool(turn[i % n]) and not cb)
     runs, where = _to_runs(seq, pieces, pitch, (step * pitch, 0.0), sh)
@@ -494,7 +514,7 @@ def _tooth_contour(prof, L, z, pitch, start_angle, outer):
         return None
     start_u = None
     if c != i:
-        r = where[m - (c - i)]                              # edge i, one period on
+        r = where[at[i]]                                    # edge i, one period on
         if r is None:
             return None
         start_u = r + (ts - runs.ta[r]) / (runs.tb[r] - runs.ta[r])
