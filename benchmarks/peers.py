@@ -15,7 +15,8 @@ fitted for each mesh; the tooth thickness is the theoretical one, not fitted.
 
 gear3d's sources are byte-compiled first (``compileall``), as an installed package is.
 
-Run:  python benchmarks/peers.py [--runs 5] [--publish]
+Run:  python benchmarks/peers.py [--runs 5] [--publish] [--case worm]
+(``--case worm``: the worm pair against BOSL2's worm() + worm_gear(), benchmarks/peers_worm.py)
 ``--dxf``: gear3d's 2D DXF against BOSL2's spur20_2d.scad (benchmarks/peers_dxf.py).
 ``--publish`` writes the table into BENCHMARKS.md (between the peers markers) and the plot
 benchmarks/peers.png. Needs ``openscad`` (apt-get install -y openscad).
@@ -118,11 +119,17 @@ def main(argv=None) -> int:
     ap.add_argument("--publish", action="store_true")
     ap.add_argument("--dxf", action="store_true",
                     help="the 2D DXF against BOSL2's spur20_2d.scad instead (benchmarks/peers_dxf.py)")
+    ap.add_argument("--case", choices=["helical", "worm"], default="helical",
+                    help="helical: the reference helical gear (default); worm: the worm pair (peers_worm.py)")
     args = ap.parse_args(argv)
     if args.dxf:                                   # the DXF rows live in peers_dxf.py
         sys.path.insert(0, str(Path(__file__).resolve().parent))
         from peers_dxf import main as dxf_main
         return dxf_main(["--runs", str(args.runs)] + (["--publish"] if args.publish else []))
+    if args.case == "worm":
+        sys.path.insert(0, str(Path(__file__).resolve().parent))
+        from peers_worm import main as worm_main
+        return worm_main(["--runs", str(args.runs)])
     openscad = shutil.which("openscad")
     if openscad is None:
         print("openscad not found: apt-get install -y openscad", file=sys.stderr)
