@@ -462,13 +462,15 @@ def test_direct_writer_matches_ezdxf(version, tmp_path):
 
 
 def test_default_dxf_imports_no_heavy_module(tmp_path):
-    """Writing the default DXF (and a kerf) needs numpy only: no ezdxf, shapely or scipy."""
+    """Writing the default DXF (and a kerf, and R12, and the SVG outline) needs numpy only:
+    no ezdxf, shapely, scipy or svgelements (the read-back is for the tests)."""
     import subprocess
     import sys
     code = ("import sys, gear3d; from gear3d.export.dxf import write_dxf; "
             f"write_dxf(gear3d.profile('involute', teeth=20), {str(tmp_path / 'a.dxf')!r}, kerf=0.0125, lead_in=2); "
             f"write_dxf(gear3d.profile('involute', teeth=20), {str(tmp_path / 'b.dxf')!r}, dxf_version='R12'); "
-            "print(sorted(m for m in ('ezdxf', 'shapely', 'scipy', 'trimesh') if m in sys.modules))")
+            f"gear3d.write(gear3d.profile('involute', teeth=20), {str(tmp_path / 'c.svg')!r}); "
+            "print(sorted(m for m in ('ezdxf', 'shapely', 'scipy', 'trimesh', 'svgelements') if m in sys.modules))")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
     assert out.strip() == "[]"
 
