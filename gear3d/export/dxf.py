@@ -8,13 +8,16 @@ Pipeline (mm throughout):
    start point (where the ray at ``start_angle_deg`` from the centre meets the contour:
    outermost crossing for an outer contour, innermost for a hole) is a chain of runs; a
    ring's rim is the exact circle; a rack is its exact tooth period shifted by the pitch,
-   plus its straight ends and back.
-2. **Fit and certificate** (:mod:`gear3d.export.arccert`). G1 biarcs (tangent-continuous;
-   true corners stay corners) within 0.9 x tolerance, each certified two-sided from its
-   own centre: the curve's distance to the arc's circle along the stretch of curve it
-   covers (Newton on the exact piece's parameter for the extremes), which bounds both the
-   file -> curve and the curve -> file distances. One period is fitted and certified; the
-   other teeth are the same arcs turned by the pitch (an isometry: the same errors).
+   plus its straight ends and back. A ``kerf`` (signed, > 0 = the material grows: the wire
+   path runs outside the part) offsets the runs exactly (:mod:`gear3d.export.offset`).
+2. **Fit and certificate** (:mod:`gear3d.export.biarcfit`, :mod:`gear3d.export.arccert`).
+   G1 biarcs (tangent-continuous; true corners stay corners) within 0.9 x tolerance, each
+   certified two-sided from its own centre: the curve's distance to the arc's circle
+   along the stretch of curve it covers (Newton on the exact piece's parameter for the
+   extremes), which bounds both the file -> curve and the curve -> file distances. One
+   period is fitted and certified; the other teeth are the same arcs turned by the pitch
+   (an isometry: the same errors). The polygon checks the walk: its vertices must lie
+   within the certified error of the arcs (with a kerf: no nearer than |k| - error).
 3. **Write** (R2000 by default, ``$INSUNITS`` = mm, ``$EXTMIN``/``$EXTMAX`` = the exact
    bounding box of everything written): layers ``OUTER`` (CCW loops: gear outline, ring
    rim), ``INNER`` (CW loops: holes), ``LEAD_IN`` (wire lead-in lines) and, only with
@@ -26,14 +29,15 @@ Pipeline (mm throughout):
    construction geometry are written directly (:mod:`gear3d.export.dxfwrite`, the bytes
    ezdxf would write); the other variants with ezdxf.
 
-A file is accepted only when the certified error (plus the rounding of any number the
-format recomputes, e.g. an R12 arc's centre) is within the tolerance itself. **Fallback:**
-with a ``kerf`` (signed offset, > 0 = the material grows, i.e. the wire path runs outside
-the part), or an outline the exact walk cannot follow, the old route is taken: a
-reference build 20x finer, offset with round joins (shapely), fitted by
-:func:`gear3d.export.arcfit.fit_arcs` and measured by sampling both ways against the exact
-curve (``Profile.exact_distance``), the budget shrinking (0.75, 0.45, 0.27 x tolerance)
-until it fits. The report says which (``certificate``: ``"exact"`` or ``"sampled"``).
+A file is accepted only when the certified error (plus what a reader's double arithmetic
+can lose rebuilding the arcs) is within the tolerance itself. **Fallback:** when the exact
+route cannot follow the outline (a kerf offset with a cusp, where the curve bends tighter
+than the kerf, or one stretch's offset running into another's; a cusp inside a run), the
+sampled route is taken: a reference build 20x finer, offset with round joins (shapely),
+fitted by :func:`gear3d.export.arcfit.fit_arcs` and measured by sampling both ways against
+the exact curve (``Profile.exact_distance``), the budget shrinking (0.75, 0.45, 0.27 x
+tolerance) until it fits. The report says which (``certificate``: ``"exact"`` or
+``"sampled"``).
 Tolerances below :data:`DXF_MIN_TOLERANCE` are refused up front. The tangent jump at every
 joint is measured on the arcs written: ``max_tangent_jump_deg`` over the smooth joints
 (~1e-10 deg), ``corners`` (true corners of the curve, kept) and ``min_corner_deg``.
