@@ -118,3 +118,15 @@ class Graph:
             if on_stage is not None:
                 on_stage(s)
         return {k: self.results[k] for k in targets}
+
+
+def first_upstream(g, key, kind):
+    """The result of the stage of ``kind`` nearest upstream of stage ``key`` (breadth first
+    through its dependencies; ``key`` itself counts), or None when there is none."""
+    stack = [key]
+    while stack:
+        k = stack.pop(0)
+        if g.stages[k].kind == kind:
+            return g.results.get(k)
+        stack.extend(g.stages[k].deps)
+    return None

@@ -20,6 +20,7 @@ import html
 import os
 
 from ..export import atomic_path
+from .graph import first_upstream
 
 PREVIEWS = "previews"
 _STYLE = """body{font-family:system-ui,sans-serif;margin:1.5em;color:#222}
@@ -27,17 +28,6 @@ table{border-collapse:collapse;width:100%}td,th{border-bottom:1px solid #ddd;pad
 th{background:#f4f4f4}img{width:220px;height:auto;background:#fff;border:1px solid #eee}
 .ok{color:#176d2c}.bad{color:#b00020;font-weight:bold}code{background:#f4f4f4;padding:0 .2em}
 .num{font-variant-numeric:tabular-nums;white-space:nowrap}"""
-
-
-def _first(g, key, kind):
-    """The result of the nearest upstream stage of ``kind`` (None when there is none)."""
-    stack = [key]
-    while stack:
-        k = stack.pop(0)
-        if g.stages[k].kind == kind:
-            return g.results.get(k)
-        stack.extend(g.stages[k].deps)
-    return None
 
 
 def outline_png(profile, path) -> str:
@@ -149,10 +139,10 @@ def _part_rows(report, g, owners, out_dir) -> list:
         keys = owners["parts"].get(name, {})
         obj = None
         for key in keys.values():
-            obj = _first(g, key, "body") or obj
+            obj = first_upstream(g, key, "body") or obj
         if obj is None:
             for key in keys.values():
-                obj = _first(g, key, "profile") or obj
+                obj = first_upstream(g, key, "profile") or obj
         rel = _save(obj, out_dir, name)
         rows.append(f"<tr><td>{_img(rel)}</td><td><b>{html.escape(name)}</b></td>"
                     f'<td class="num {"ok" if _within(d) else "bad"}">{_fmt_mm(_max_error(d))}</td>'
@@ -177,7 +167,7 @@ def _pair_rows(report, g, owners, out_dir) -> list:
     for name, d in report["pairs"].items():
         placed = None
         for key in owners["pairs"].get(name, {}).values():
-            placed = placed or _first(g, key, "place")
+            placed = placed or first_upstream(g, key, "place")
         rel = _save(placed, out_dir, name)
         c = d.get("check") or {}
         if c:
@@ -198,7 +188,7 @@ def _assembly_rows(report, g, owners, out_dir) -> list:
     for name, d in report["assemblies"].items():
         built = None
         for key in owners["assemblies"].get(name, {}).values():
-            built = built or _first(g, key, "harmonic")
+            built = built or first_upstream(g, key, "harmonic")
         rel = _save(list(built[1]) if built else None, out_dir, name)
         ratio = d.get("ratio")
         rows.append(f"<tr><td>{_img(rel)}</td><td><b>{html.escape(name)}</b></td>"

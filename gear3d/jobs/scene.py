@@ -22,7 +22,7 @@ import os
 from collections.abc import Mapping
 
 from ..errors import GearError
-from .graph import Graph
+from .graph import Graph, first_upstream
 from .specs import AssemblySpec, Job, PartSpec, Scene
 from .template import MESH_KINDS, TemplateError
 from .. import profile
@@ -454,17 +454,6 @@ def build_scene(scene: Scene, out_dir, only=None, dry_run=False, log=None) -> di
     return report
 
 
-def _first(g, key, kind):
-    """The result of the nearest upstream stage of ``kind``."""
-    stack = [key]
-    while stack:
-        k = stack.pop(0)
-        if g.stages[k].kind == kind:
-            return g.results.get(k)
-        stack.extend(g.stages[k].deps)
-    return None
-
-
 def _profile_summary(p) -> dict:
     r = p.report
     keep = ("rack", "teeth", "module", "pitch_radius", "tip_radius", "root_radius", "undercut", "pointed",
@@ -487,11 +476,11 @@ def _report(scene: Scene, g, owners, res) -> dict:
         for kind, key in t.items():
             info = res[key]
             d["outputs"][kind] = info
-            p = _first(g, key, "profile")
+            p = first_upstream(g, key, "profile")
             if p is not None:
                 d["profiles"][f"{p.tolerance:g}"] = _profile_summary(p)
                 errs.append(p.report["max_error"])
-            b = _first(g, key, "body")
+            b = first_upstream(g, key, "body")
             if b is not None:
                 d["bodies"][f"{b.report['tolerance']:g}"] = _body_summary(b)
                 errs.append(b.report["max_error"])
@@ -501,7 +490,7 @@ def _report(scene: Scene, g, owners, res) -> dict:
     pairs = {}
     for name, t in owners["pairs"].items():
         d = {"outputs": {k: res[v] for k, v in t.items() if k != "check"}}
-        placed = [b for k, v in t.items() if k != "check" for b in (_first(g, v, "place") or ())]
+        placed = [b for k, v in t.items() if k != "check" for b in (first_upstream(g, v, "place") or ())]
         if placed:             # the placed bodies' measured errors count like a part's
             d["max_error"] = max(b.report["max_error"] for b in placed)
             errs.append(d["max_error"])
@@ -517,7 +506,7 @@ def _report(scene: Scene, g, owners, res) -> dict:
     for name, t in owners["assemblies"].items():
         d = {"outputs": {k: res[v] for k, v in t.items()}}
         for k in t:
-            built = _first(g, t[k], "harmonic")
+            built = first_upstream(g, t[k], "harmonic")
             if built is not None:
                 d["parts"] = {p.name: {kk: p.report.get(kk) for kk in
                                        ("volume", "triangles", "genus", "profile_max_error", "tolerance")}
