@@ -60,6 +60,13 @@ class _Parser(argparse.ArgumentParser):
                                              + " (plain ASCII digits)")
         return super()._get_value(action, arg_string)
 
+    def add_subparsers(self, **kw):
+        """argparse's ``add_subparsers``; the action is kept as ``gear3d_subcommands`` (its
+        ``choices`` name the sub-commands: argparse has no public list of them)."""
+        act = super().add_subparsers(**kw)
+        self.gear3d_subcommands = act
+        return act
+
     def error(self, message):  # one line, exit code 2
         sys.stderr.write(f"gear3d: error: {_one_line(_param_first(message))}\n")
         raise SystemExit(2)

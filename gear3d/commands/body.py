@@ -24,10 +24,9 @@ def body_flags() -> list:
 
 def add_parser(sub):
     p = sub.add_parser("body", help="a 3D gear body -> .stl .3mf .step .png .json", add_help=False)
-    add_profile_flags(p)
-    for a in p._actions:        # a body is a mesh: its default is the printing tolerance
-        if a.dest == "tolerance":
-            a.help = f"max deviation from the exact curve (mm); default {MESH_TOLERANCE:g} mm for mesh outputs (a body)"
+    # a body is a mesh: its default is the printing tolerance
+    add_profile_flags(p, tolerance_help=f"max deviation from the exact curve (mm); default {MESH_TOLERANCE:g} mm "
+                                        "for mesh outputs (a body)")
     for name in ("kind", "hand"):
         prm = BODY[name]
         p.add_argument("--" + name, default=prm.default, choices=list(prm.choices), help=prm.help_text())

@@ -34,9 +34,7 @@ PRECISION_RANGE = (1e-4, 0.5)
 def add_pair_flags(c):
     """Flags of ``gear3d check pair`` (and its alias ``gear3d pair``): the family flags,
     with ``--shift-coeff`` and ``--center-distance`` re-read as pair flags."""
-    add_profile_flags(c)
-    # --shift-coeff/--center-distance of the profile table read as pair flags (a number or
-    # auto); argparse has no public handle on an added action, so retype the ones it holds
+    # --shift-coeff/--center-distance of the profile table read as pair flags (a number or auto)
     pair_flags = {
         "shift_coeff": (number_or_auto("float", -3, 3),
                         "profile shift of wheel 1 (x m), in [-3, 3], or auto (involute: the smallest "
@@ -46,9 +44,7 @@ def add_pair_flags(c):
                             "rolling; internal: the largest); default: the operating one of the "
                             "shifts (involute), the standard one otherwise"),
     }
-    for action in c._actions:
-        if action.dest in pair_flags:
-            action.type, action.help = pair_flags[action.dest]
+    add_profile_flags(c, retype=pair_flags)
     c.add_argument("--mate-shift-coeff", type=number_or_auto("float", -3, 3), default=None,
                    help="profile shift of wheel 2 (x m, + = thicker teeth, rings too), or auto; default 0")
     c.add_argument("--mate", choices=["same", "rolled"], default="same",

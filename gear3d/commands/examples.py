@@ -91,7 +91,6 @@ def wrap(prose: str | None, width: int = 78) -> str | None:
 def apply(p: argparse.ArgumentParser, name: str) -> None:
     """:func:`add_examples` on command ``name`` and on each of its sub-commands."""
     add_examples(p, name)
-    for act in p._actions:
-        if isinstance(act, argparse._SubParsersAction):
-            for sub_name, sp in act.choices.items():
-                apply(sp, f"{name} {sub_name}")
+    subs = getattr(p, "gear3d_subcommands", None)       # recorded by gear3d.cli's parser class
+    for sub_name, sp in (subs.choices.items() if subs is not None else ()):
+        apply(sp, f"{name} {sub_name}")

@@ -21,7 +21,6 @@ scene kind: their templates run through this command.
 """
 from __future__ import annotations
 
-import argparse
 import os
 import sys
 
@@ -39,15 +38,10 @@ def add_parser(sub):
     from .profile import MESH_EXTS, add_param_flag, add_profile_flags
     p = sub.add_parser("planetary", add_help=False,
                        help="a planetary set: sun, planets, ring (+ carrier) in phase, checked -> .3mf + .json")
-    add_profile_flags(p)
-    for a in p._actions:
-        if a.dest == "family":            # may come from --template
-            a.nargs, a.default = "?", None
-        if a.dest in HIDDEN:
-            a.help = argparse.SUPPRESS
-        elif a.dest == "tolerance":
-            a.help = ("max deviation from the exact curve (mm), profiles, bodies and the rolling checks; "
-                      f"default {MESH_TOLERANCE:g} mm with a mesh output (-o), else {DEFAULT_TOLERANCE:g} mm")
+    add_profile_flags(p, hidden=HIDDEN, family_optional=True,      # FAMILY may come from --template
+                      tolerance_help="max deviation from the exact curve (mm), profiles, bodies and the rolling "
+                                     f"checks; default {MESH_TOLERANCE:g} mm with a mesh output (-o), else "
+                                     f"{DEFAULT_TOLERANCE:g} mm")
     for prm in PLANETARY_PARAMS:      # the set's own flags: shown for every family (gear3d_param None)
         if prm.kind is str:
             p.add_argument("--" + prm.name, dest="pl_" + prm.name, default=None,

@@ -94,11 +94,21 @@ def add_param_flag(p, param, dest: str, typ=None, help_text: str | None = None):
         act = p.add_argument(param.flag, type=typ, dest=dest, default=None, metavar=_metavar(param),
                              help=help_text if help_text is not None else param.help_text())
     act.gear3d_param = param.name
+    _record(p, act)
     for alias in param.aliases:
         a = p.add_argument(alias, type=typ, dest=dest, default=None, action=DeprecatedFlag,
                            canonical=param.flag, help=argparse.SUPPRESS)
         a.gear3d_param = param.name
+        _record(p, a)
     return act
+
+
+def _record(p, action) -> None:
+    """Keep ``action`` in the parser's own list of table flags (``p.gear3d_flags``): the
+    family help walks it (argparse has no public list of a parser's actions)."""
+    if not hasattr(p, "gear3d_flags"):
+        p.gear3d_flags = []
+    p.gear3d_flags.append(action)
 
 
 def _metavar(param) -> str:
@@ -130,10 +140,11 @@ class FamilyHelp(argparse.Action):
 def show_family_help(parser, family) -> None:
     """Print ``parser``'s help for ``family`` (None or unknown: the families and the other flags)."""
     tab = by_name(family) if family in FAMILY_PARAMS else {}
-    saved = [(a, a.help) for a in parser._actions]
+    flags = getattr(parser, "gear3d_flags", [])
+    saved = [(a, a.help) for a in flags]
     saved_epilog = parser.epilog
     try:
-        for a in parser._actions:
+        for a in flags:
             name = getattr(a, "gear3d_param", None)
             if name is None or a.help == argparse.SUPPRESS:
                 continue
@@ -166,18 +177,27 @@ DXF_FLAGS = [
 ]
 
 
-def add_profile_flags(p, helix: bool = False):
-    """Add the family parameter flags (shared with ``gear3d body`` and ``gear3d check pair``),
-    read off the one table (gear3d.params), and the family-aware ``-h/--help``. ``helix``:
-    ``--helix-angle-deg`` for the normal module of a profile alone (a body has its own)."""
-    if "--help" not in p._option_string_actions:     # a parser made with add_help=False
+def add_profile_flags(p, helix: bool = False, *, retype=None, hidden=(), tolerance_help: str = TOLERANCE_HELP,
+                      family_optional: bool = False):
+    """Add the family parameter flags (shared with ``gear3d body``, ``gear3d check pair`` and
+    ``gear3d planetary``), read off the one table (gear3d.params), and the family-aware
+    ``-h/--help``. ``helix``: ``--helix-angle-deg`` for the normal module of a profile alone
+    (a body has its own); ``retype``: ``{name: (argparse type, help)}`` for flags a command
+    reads its own way (a pair's ``--shift-coeff``); ``hidden``: names left out of the help;
+    ``tolerance_help``: the ``--tolerance`` line; ``family_optional``: FAMILY may be left out
+    (a template gives it)."""
+    retype = retype or {}
+    if not p.add_help:                 # a parser made with add_help=False: the family-aware help
         p.add_argument("-h", "--help", action=FamilyHelp, help="show the flags of the FAMILY given before it")
-    p.add_argument("family", help="gear family (see `gear3d families`; `FAMILY --help` for its flags)")
+    p.add_argument("family", help="gear family (see `gear3d families`; `FAMILY --help` for its flags)",
+                   **({"nargs": "?", "default": None} if family_optional else {}))
     for flag, typ, hlp, dest, param in flag_table(helix):
-        add_param_flag(p, param, dest, typ, hlp)
-    add_param_flag(p, INTERNAL, "internal").gear3d_param = None          # every family: always shown
+        typ, hlp = retype.get(dest, (typ, hlp))
+        add_param_flag(p, param, dest, typ, argparse.SUPPRESS if dest in hidden else hlp)
+    add_param_flag(p, INTERNAL, "internal",
+                   help_text=argparse.SUPPRESS if "internal" in hidden else None).gear3d_param = None
     add_param_flag(p, TOLERANCE, "tolerance", number("float", 0, 1, lo_open=True, unit="mm"),
-                   TOLERANCE_HELP).gear3d_param = None
+                   tolerance_help).gear3d_param = None
 
 
 def default_tolerance(output=None, mesh: bool = False) -> float:
