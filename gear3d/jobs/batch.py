@@ -405,11 +405,28 @@ class _PoolRunner:
         self._watch_r.close()
 
 
+def quiet_local_cluster():
+    """Keep the LocalCluster gear3d starts (and its worker processes, which read the
+    environment when they import ``distributed``) from logging below CRITICAL.
+
+    At shutdown a worker's last heartbeat can meet a scheduler that is already closing, and
+    ``distributed`` logs that as an ERROR with a traceback although every part was built: the
+    batch's own summary line and exit code say what happened. A level the user has set in the
+    environment (``DASK_LOGGING__DISTRIBUTED``) is kept. Parts that fail still come back as
+    exceptions through their futures.
+    """
+    import logging
+    level = os.environ.setdefault("DASK_LOGGING__DISTRIBUTED", "critical")
+    logging.getLogger("distributed").setLevel(level.upper())
+
+
 class _DaskRunner:
     """Dask distributed: a LocalCluster, or the cluster behind ``scheduler``."""
 
     def __init__(self, workers, scheduler, processes):
         require_dask()
+        if not scheduler:
+            quiet_local_cluster()
         from dask.distributed import Client, LocalCluster
         self.cluster = None
         if scheduler:
