@@ -34,6 +34,7 @@ from __future__ import annotations
 import csv
 import io
 import json
+import logging
 import os
 import sys
 import time
@@ -415,7 +416,6 @@ def quiet_local_cluster():
     environment (``DASK_LOGGING__DISTRIBUTED``) is kept. Parts that fail still come back as
     exceptions through their futures.
     """
-    import logging
     level = os.environ.setdefault("DASK_LOGGING__DISTRIBUTED", "critical")
     logging.getLogger("distributed").setLevel(level.upper())
 
