@@ -37,10 +37,11 @@ import numpy as np
 
 from . import budget as _budget
 from .errors import GearError, ToleranceError, check_choice, check_number
-from .export import atomic_path, write
+from .export import write
 from .geometry import check_points, rotate, segment_foot, signed_area
 from .params import DEFAULT_TOLERANCE, MAX_TOLERANCE_TEXT, MIN_TOLERANCE, max_tolerance
-from .profiles import profile, reject_unknown
+from .profiles import reject_unknown
+from .spec import profile
 from .tessellate import tessellate
 
 #: families that have a rack part
@@ -151,14 +152,15 @@ class RackPart:
         """The same rack rebuilt at another tolerance (mm) (the DXF arc fit's reference)."""
         return rack(self.family, **dict(self.params, tolerance=tolerance))
 
-    def straight_edges(self, loop) -> np.ndarray:
+    def straight_edges(self, loop, offset: float = 0.0) -> np.ndarray:
         """Per edge of the closed polygon ``loop`` (edge k from vertex k to k+1): True when
-        it lies on a straight piece of the exact outline (three interior points within
-        1e-12 m of it; a chord of a curved piece sags by more)."""
+        it lies on a straight piece of the exact outline, or of its offset by ``offset``
+        (mm, a kerf: its distance is |offset|): three interior points within 1e-12 m of
+        it (a chord of a curved piece, or of an offset corner's arc, sags by more)."""
         L = check_points(loop)
         B = np.roll(L, -1, axis=0)
         q = np.concatenate([L + f * (B - L) for f in (0.25, 0.5, 0.75)])
-        d = self.exact_distance(q).reshape(3, -1).max(axis=0)
+        d = np.abs(self.exact_distance(q) - abs(float(offset))).reshape(3, -1).max(axis=0)
         return d <= 1e-12 * max(self.module, 1.0)
 
     def inside(self, points, periodic: bool = True) -> np.ndarray:
@@ -172,6 +174,12 @@ class RackPart:
         if not periodic:
             ins &= (q[:, 0] > -p / 2) & (q[:, 0] < (self.teeth - 0.5) * p) & (q[:, 1] > self.back_y)
         return ins
+
+    def extrude(self, width: float, helix_angle_deg: float = 0.0, hand: str = "right",
+                name: str = "rack") -> "RackBody":
+        """The rack body ``width`` mm wide (:func:`rack_body`; mesh outputs of
+        :func:`gear3d.export.write` extrude a rack part with it)."""
+        return rack_body(self, width, helix_angle_deg, hand, name)
 
     def figure(self, path=None, pinion=None, pinion_place=None, title=None):
         """PNG/SVG figure of the rack (pitch line dashed), optionally with a placed pinion."""
@@ -675,31 +683,26 @@ def rack_body(part: RackPart, width: float = 10.0, helix_angle_deg: float = 0.0,
 
 # ----------------------------------------------------------------------------- writing
 
-def write_rack(part: RackPart, path, width=None) -> str:
-    """Write a rack outline atomically: .json (loops + report), .svg (1:1 outline in mm, the
-    measured polygon), .png (figure), .dxf (one closed LWPOLYLINE of lines and arcs, mm: the
-    G1 biarc fit of :mod:`gear3d.export.dxf`, read back and measured both ways against the
-    exact rack within its tolerance; straight flanks are LINE segments), or a mesh format
-    (a spur rack ``width`` mm wide). Returns a one-line summary ("" when there is none)."""
-    from .export.json_format import dumps
+def write_rack(part: RackPart, path, width=None, **opts) -> str:
+    """Write a rack outline through :func:`gear3d.export.write` (atomic, one exporter per
+    extension, as a gear profile): .json (loops + report), .png (figure), .dxf and .svg
+    (the certified G1 biarc fit of :mod:`gear3d.export.dxf`: straight flanks, ends and back
+    are lines, curved flanks arcs, certified two-sided against the exact rack pieces within
+    the tolerance), or a mesh format (a spur rack ``width`` mm wide). ``opts``: the
+    format's options (DXF: ``dxf_version``, ``kerf``, ``lead_in``, ``start_angle_deg``,
+    ``spline``, ``construction``, ``pitch_circle``; SVG: ``kerf``, ...). Returns the
+    exporter's one-line summary ("" when there is none).
+
+    >>> import gear3d, os, tempfile
+    >>> r = gear3d.rack("involute", teeth=4, module=2.0, tolerance=1e-3)
+    >>> write_rack(r, os.path.join(tempfile.mkdtemp(), "r.dxf"), dxf_version="R12")[:9]
+    'dxf R12: '
+    """
     ext = str(path).lower().rsplit(".", 1)[-1]
     if ext in ("json", "svg", "png", "dxf"):
         if width is not None:
             raise GearError("width", width, "only with a 3D output (.stl .3mf .step .obj .ply .vtu)")
-        with atomic_path(path) as tmp:
-            if ext == "json":
-                with open(tmp, "w", encoding="utf-8") as fh:
-                    fh.write(dumps({"family": part.family, "rack": True, "params": part.params,
-                                    "loops": [l.tolist() for l in part.loops], "report": part.report}) + "\n")
-            elif ext == "dxf":
-                from .export.dxf import write as write_dxf
-                return write_dxf(part, tmp)
-            elif ext == "svg":
-                from .export.svg_outline import write_polygons
-                write_polygons(part.loops, tmp)
-            else:
-                rack_figure(part, tmp, title=None)
-        return ""
+        return write(part, path, **opts) or ""
     if width is None:
         raise GearError("width", None, "a number > 0 mm for a 3D output (--width)")
-    return write(rack_body(part, width), path) or ""
+    return write(part, path, width=width, **opts) or ""

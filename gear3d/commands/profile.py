@@ -258,7 +258,7 @@ def add_parser(sub):
 def run(args) -> int:
     if getattr(args, "rack", False):
         from .rackflags import run_profile_cli
-        return run_profile_cli(args, family_params)
+        return run_profile_cli(args, family_params, _write_options)
     out = args.output
     if out is not None:
         check_output(out, kinds="profile")

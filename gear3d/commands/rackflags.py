@@ -46,26 +46,26 @@ def _check_given(args, names, what):
             raise GearError(n.removeprefix("b_"), v, f"not an option of {what}")
 
 
-def run_profile_cli(args, family_params) -> int:
-    """``gear3d profile FAMILY --rack ...``; ``family_params(args, output, mesh)`` reads the family's flags."""
+def run_profile_cli(args, family_params, write_options) -> int:
+    """``gear3d profile FAMILY --rack ...``; ``family_params(args, output, mesh)`` reads the
+    family's flags, ``write_options(args, output)`` the exporter's (the gear's own: --width,
+    the DXF flags), checked against the output before any work."""
     from ..rack_part import rack, write_rack
     out = args.output
     if out is not None:
         check_path(out, "output", (".json", ".svg", ".png", ".dxf", ".stl", ".3mf", ".step", ".stp",
                                    ".obj", ".ply", ".vtu"))
-    _check_given(args, ("kerf", "lead_in", "start_angle_deg", "dxf_version", "spline", "construction",
-                        "no_pitch_circle"), "a rack outline")
+    opts = write_options(args, out)
+    width = opts.pop("width", None)
     from .figureflag import check_figure_arg, write_figure_arg
     check_figure_arg(args)
     part = rack(args.family, **_rack_kw(args, family_params, out))
     if out is None:
         from ..export.json_format import dumps
-        if args.width is not None:
-            raise GearError("width", args.width, "only with an output file (-o)")
         sys.stdout.write(dumps(part.report) + "\n")
         write_figure_arg(args, part)
         return 0
-    info = write_rack(part, out, args.width)
+    info = write_rack(part, out, width, **opts)
     write_figure_arg(args, part)
     r = part.report
     sys.stdout.write(f"wrote {out}: {part.family} rack {r['teeth']} teeth, s={r['tooth_thickness_at_pitch_line']:.6g} mm, "

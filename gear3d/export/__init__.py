@@ -229,14 +229,22 @@ def remove_dirs(made) -> None:
 
 def _kind(obj) -> str:
     from ..model import Profile
-    if isinstance(obj, Profile):
+    if isinstance(obj, Profile) or is_rack(obj):
         return "profile"
     if isinstance(obj, (list, tuple)):
         if obj and all(is_body(b) for b in obj):
             return "body"
     elif is_body(obj):
         return "body"
-    raise GearError("obj", type(obj).__name__, "a Profile, a body (with .mesh) or a list of bodies")
+    raise GearError("obj", type(obj).__name__, "a Profile, a rack part, a body (with .mesh) or a list of bodies")
+
+
+def is_rack(obj) -> bool:
+    """A rack part (:class:`gear3d.rack_part.RackPart`: a 2D outline written like a profile,
+    extruded by its own ``extrude``), told by its interface: importing rack_part here would
+    close an import circle (it writes through this module)."""
+    return all(hasattr(obj, a) for a in ("straight_edges", "extrude", "loops", "report")) \
+        and not hasattr(obj, "pitch_radius")
 
 
 def is_body(obj) -> bool:
@@ -313,9 +321,9 @@ def write(obj, path, **opts):
 
     Parameters
     ----------
-    obj : Profile, Body, list of Body, or a rack part
-        What to write: a profile (DXF, SVG, JSON, PNG; a mesh format extrudes it with
-        ``width=`` mm), a body or bodies (STL, 3MF, STEP, OBJ, PLY, VTU, JSON).
+    obj : Profile, rack part, Body or list of Body
+        What to write: a profile or a rack part (DXF, SVG, JSON, PNG; a mesh format
+        extrudes it with ``width=`` mm), a body or bodies (STL, 3MF, STEP, OBJ, PLY, VTU, JSON).
     path : str or os.PathLike
         The file; its extension (one of :data:`FORMATS`) picks the format.
     **opts
@@ -360,11 +368,14 @@ def write(obj, path, **opts):
 
 
 def as_bodies(obj, width=None, **body_opts) -> list:
-    """The bodies to write: a body, a list of bodies, or a profile extruded (spur, ``width`` mm)."""
+    """The bodies to write: a body, a list of bodies, or a profile or rack part extruded
+    (spur, ``width`` mm)."""
     from ..model import Profile
-    if isinstance(obj, Profile):
+    if isinstance(obj, Profile) or is_rack(obj):
         if width is None:
             raise GearError("width", None, "a number > 0 mm to extrude a profile into a body")
+        if is_rack(obj):
+            return [obj.extrude(width, **body_opts)]
         from ..solids.body import body
         return [body(obj, kind="spur", width=width, **body_opts)]
     if isinstance(obj, (list, tuple)):

@@ -21,7 +21,8 @@ Pipeline (mm throughout):
 3. **Write** (R2000 by default, ``$INSUNITS`` = mm, ``$EXTMIN``/``$EXTMAX`` = the exact
    bounding box of everything written): layers ``OUTER`` (CCW loops: gear outline, ring
    rim), ``INNER`` (CW loops: holes), ``LEAD_IN`` (wire lead-in lines) and, only with
-   ``construction=True``, ``CONSTRUCTION`` (centre cross, pitch circle; not plotted).
+   ``construction=True``, ``CONSTRUCTION`` (centre cross, pitch circle; not plotted; a
+   rack: a cross at tooth 0's centre on the pitch line, and the pitch line end to end).
    ``dxf_version="R12"`` writes LINE/ARC entities in cutting order along each contour
    (each entity starts where the previous one ends; an arc cut clockwise is an ARC from
    its end point to its start point, since DXF arcs run counter-clockwise); ``spline=True``
@@ -98,7 +99,10 @@ def write_dxf(profile, path, tolerance=None, kerf: float = 0.0, lead_in=None,
     holes). ``dxf_version``: R2000 (default) ... R2018, or R12 (LINE/ARC entities in
     cutting order). ``spline``: one exact rational SPLINE per contour (R2000+).
     ``construction``: also write the centre cross and (``pitch_circle``) the pitch circle
-    on the non-plotting CONSTRUCTION layer; by default the file holds the cut geometry only.
+    on the non-plotting CONSTRUCTION layer (a rack: the cross at tooth 0's centre on the
+    pitch line, and the pitch line from end to end); by default the file holds the cut
+    geometry only. A rack takes every option: its start point is where the ray from tooth
+    0's centre on the pitch line meets its outline.
     """
     if extra:
         k = sorted(extra)[0]
@@ -109,8 +113,6 @@ def write_dxf(profile, path, tolerance=None, kerf: float = 0.0, lead_in=None,
     for name, v in (("spline", spline), ("construction", construction), ("pitch_circle", pitch_circle)):
         if not isinstance(v, (bool, np.bool_)):
             raise GearError(name, v, "true or false")
-    if construction and not hasattr(profile, "pitch_radius"):
-        raise GearError("construction", construction, "False for a rack (it has no centre or pitch circle)")
     if lead_in is not None:
         lead_in = check_number("lead_in", lead_in, 0, 100 * _module(profile), lo_open=True, unit="mm")
     fits, loops, rep = fit_profile(profile, tolerance=tolerance, kerf=kerf, start_angle_deg=start_angle_deg,
@@ -347,8 +349,8 @@ def _sampled_fits(profile, tol: float, kerf: float, start: float, max_arc_deg: f
     loops = [np.insert(l, i + 1, p, axis=0) if ins else l for l, (i, p, ins) in zip(loops, starts)]
     start_idx = [(i + 1) if ins else i for i, _, ins in starts]
     straight = [None] * len(loops)
-    if kerf == 0.0 and hasattr(ref, "straight_edges"):
-        straight = [ref.straight_edges(l) for l in loops]
+    if hasattr(ref, "straight_edges"):               # a rack: its lines (offset by the kerf) stay LINEs
+        straight = [ref.straight_edges(l, kerf) for l in loops]
     budget = 0.75 * tol
     for _attempt in range(3):
         fits = [fit_arcs(l, budget, start=s, max_angle_deg=max_arc_deg, straight=st)
@@ -576,7 +578,11 @@ def _make_doc(fits, profile, version, spline, pitch_circle, construction, leads,
         msp.add_line((-mark, 0), (mark, 0), dxfattribs=cat)
         msp.add_line((0, -mark), (0, mark), dxfattribs=cat)
         boxes.append(np.array([[-mark, -mark], [mark, mark]]))
-        if pitch_circle:
+        if pitch_circle and _is_rack(profile):          # a rack's pitch line, end to end
+            x0, x1 = profile.report["x_range"]
+            msp.add_line((x0, 0), (x1, 0), dxfattribs=cat)
+            boxes.append(np.array([[x0, 0.0], [x1, 0.0]]))
+        elif pitch_circle:
             rp = profile.pitch_radius
             msp.add_circle((0, 0), rp, dxfattribs=cat)
             boxes.append(np.array([[-rp, -rp], [rp, rp]]))

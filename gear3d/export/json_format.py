@@ -8,7 +8,7 @@ from collections.abc import Mapping
 import numpy as np
 
 from ..errors import GearError
-from . import as_bodies, body_name
+from . import as_bodies, body_name, is_rack
 
 
 def clean(x):
@@ -52,6 +52,9 @@ def to_dict(obj) -> dict:
         return {"family": obj.family, "params": clean(obj.params),
                 "loops": [np.asarray(l, float).tolist() for l in obj.loops],
                 "report": clean(obj.report)}
+    if is_rack(obj):
+        return {"family": obj.family, "rack": True, "params": clean(obj.params),
+                "loops": [np.asarray(l, float).tolist() for l in obj.loops], "report": clean(obj.report)}
     bodies = as_bodies(obj)
     return {"bodies": [{"name": body_name(b, i), "report": clean(getattr(b, "report", {}) or {})}
                        for i, b in enumerate(bodies)]}
