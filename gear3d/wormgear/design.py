@@ -26,8 +26,11 @@ from dataclasses import dataclass
 from ..errors import GearError, ToleranceError, check_bool, check_choice, check_number
 
 WORM_TYPES = ("ZA", "ZN", "ZI", "ZK")
-#: the worm types built today (ZK, the biconical-disc worm, is refused with one line)
-BUILT_TYPES = ("ZA", "ZN", "ZI")
+#: the worm types built (all four: ZK's axial profile is solved in :mod:`.zk`)
+BUILT_TYPES = ("ZA", "ZN", "ZI", "ZK")
+#: mm: the ZK grinding disc's default outside radius (a 250 mm disc, a common size on worm
+#: grinding machines), raised to 25 modules for large worms
+DEFAULT_DISC_RADIUS = 125.0
 #: default friction coefficient for the self-locking flag (tan γ < μ)
 DEFAULT_FRICTION = 0.05
 #: mm: default tolerance of worm and wheel meshes (printing)
@@ -53,6 +56,10 @@ class WormDesign:
     throat: bool
     tolerance: float
     friction: float
+    #: ZK: the grinding disc's outside radius (mm; 0 for the other types)
+    disc_radius: float = 0.0
+    #: the normal backlash j_n (mm) at the pitch point, made by thinning the worm's thread
+    backlash: float = 0.0
 
     # ------------------------------------------------------------ derived sizes
     @property
@@ -136,6 +143,20 @@ class WormDesign:
         return self.wheel_throat_radius + k * self.module
 
     @property
+    def pitch_normal_z(self) -> float:
+        """|n_z| of the worm flank's unit normal at the pitch point (the axial component,
+        from the axial profile's slope e'(r1)): cos αn cos γ for ZA, ZN and ZI."""
+        from .thread import nominal_profile
+        de = float(nominal_profile(self)(self.r1)[1])
+        return self.r1 / math.sqrt((de * self.r1) ** 2 + self.p ** 2 + self.r1 ** 2)
+
+    @property
+    def worm_thinning(self) -> float:
+        """mm, per flank, axially: how much the worm's thread is thinned for the backlash,
+        j_n / (2 n_z) (the circumferential backlash on the wheel's pitch circle is twice that)."""
+        return self.backlash / (2 * self.pitch_normal_z) if self.backlash else 0.0
+
+    @property
     def self_locking(self) -> bool:
         return self.tan_gamma < self.friction
 
@@ -164,25 +185,28 @@ class WormDesign:
 def design(module=2.0, starts=1, wheel_teeth=30, diameter_quotient=None, worm_pitch_diameter=None,
            axial_pressure_angle_deg=None, normal_pressure_angle_deg=None, worm_type="ZA",
            addendum_coeff=1.0, dedendum_coeff=1.2, hand="right", shift_coeff=0.0, worm_length=None,
-           face_width=None, throat=True, tolerance=DEFAULT_TOLERANCE, friction=DEFAULT_FRICTION) -> WormDesign:
+           face_width=None, throat=True, tolerance=DEFAULT_TOLERANCE, friction=DEFAULT_FRICTION,
+           disc_radius=None, backlash=0.0) -> WormDesign:
     """Validate a worm gear set (mm, degrees) and derive its sizes.
 
     One of ``diameter_quotient`` (q, default 10) or ``worm_pitch_diameter`` (d1, mm); one of
     ``axial_pressure_angle_deg`` or ``normal_pressure_angle_deg`` (default normal 20°),
     converted by tan αn = tan αx cos γ. ``worm_length`` defaults to (11 + 0.06 z2) m
     (at least 4 leads), ``face_width`` to 0.75 d_a1 (at most the largest the worm cuts).
+    ``disc_radius`` (ZK only, mm): the grinding disc's outside radius, default
+    max(125, 25 m). ``backlash`` (mm, default 0): the normal backlash at the pitch point,
+    made by thinning the worm's thread (the wheel stays the envelope of the nominal worm).
     Every refusal is one :class:`GearError` line naming the parameter and its range.
     """
     m = check_number("module", module, 0.05, 100, unit="mm")
     z1 = int(check_number("starts", starts, 1, 8, integer=True))
     z2 = int(check_number("wheel_teeth", wheel_teeth, 8, 1000, integer=True))
     wt = check_choice("worm_type", worm_type, WORM_TYPES)
-    if wt not in BUILT_TYPES:
-        raise GearError("worm_type", wt, "one of " + ", ".join(BUILT_TYPES),
-                        "ZK (biconical disc) worms are not built yet")
     d1 = _pitch_diameter(m, diameter_quotient, worm_pitch_diameter)
     ha = check_number("addendum_coeff", addendum_coeff, 0.5, 1.5)
     hf = check_number("dedendum_coeff", dedendum_coeff, ha, 2.0, unit=f"(at least addendum_coeff {ha:g})")
+    R = _disc(wt, disc_radius, m, ha, hf)
+    jn = check_number("backlash", backlash, 0.0, 0.25 * m, unit=f"mm (at most a quarter module, {0.25 * m:g})")
     if d1 / 2 - hf * m <= 0.5 * m:
         raise GearError("dedendum_coeff", hf, f"a number below {(d1 / 2 - 0.5 * m) / m:.4g}",
                         "the worm's root would come within half a module of its axis")
@@ -195,7 +219,7 @@ def design(module=2.0, starts=1, wheel_teeth=30, diameter_quotient=None, worm_pi
     throat = check_bool("throat", throat)
     L = _length("worm_length", worm_length, max((11 + 0.06 * z2) * m, 4 * z1 * math.pi * m), 2 * math.pi * m,
                 200 * z1 * math.pi * m)
-    d = WormDesign(m, z1, z2, d1, ax, an, wt, ha, hf, hand, x, L, 1.0, throat, tol, mu)
+    d = WormDesign(m, z1, z2, d1, ax, an, wt, ha, hf, hand, x, L, 1.0, throat, tol, mu, R, jn)
     from .thread import check_thread, max_face_width
     check_thread(d)
     bmax = max_face_width(d)
@@ -203,7 +227,19 @@ def design(module=2.0, starts=1, wheel_teeth=30, diameter_quotient=None, worm_pi
     if d.throat and d.wheel_outside_radius >= d.center_distance:
         raise GearError("diameter_quotient", d.diameter_quotient, "a larger value",
                         "the wheel's rim would reach the worm axis")
-    return WormDesign(m, z1, z2, d1, ax, an, wt, ha, hf, hand, x, L, B, throat, tol, mu)
+    return WormDesign(m, z1, z2, d1, ax, an, wt, ha, hf, hand, x, L, B, throat, tol, mu, R, jn)
+
+
+def _disc(wt, R, m, ha, hf) -> float:
+    """The ZK disc's outside radius (mm), or 0.0 for the other worm types."""
+    if wt != "ZK":
+        if R is not None:
+            raise GearError("disc_radius", R, "None unless worm_type is ZK")
+        return 0.0
+    if R is None:
+        return max(DEFAULT_DISC_RADIUS, 25 * m)
+    lo = 5 * (ha + hf) * m
+    return check_number("disc_radius", R, lo, 5000.0, unit=f"mm (5 thread depths, {lo:.6g}, to 5000)")
 
 
 def _pitch_diameter(m, q, d1) -> float:

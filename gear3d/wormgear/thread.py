@@ -47,8 +47,39 @@ def _inv(a):
 
 def axial_profile(d):
     """``f(rho) -> (e, de/drho)`` (mm, arrays): the half width of the worm's groove in the
-    axial section at radius ``rho`` (mm) and its slope, for the worm type of ``d``."""
+    axial section at radius ``rho`` (mm) and its slope, for the worm type of ``d``: the
+    nominal worm, which is also the hob that cuts the wheel (see :func:`worm_profile` for
+    the worm as made, thinned for the backlash)."""
+    return nominal_profile(d)
+
+
+def worm_profile(d):
+    """The worm's axial profile as made: the nominal one (:func:`axial_profile`) with each
+    flank moved ``d.worm_thinning`` (mm) axially into the thread for the backlash."""
+    f, dx = nominal_profile(d), d.worm_thinning
+    if not dx:
+        return f
+
+    def g(rho):
+        e, de = f(rho)
+        return e + dx, de
+    return g
+
+
+_CACHE: dict = {}
+
+
+def nominal_profile(d):
+    """:func:`axial_profile` (the ZK disc's solve is cached per design)."""
     px4, p = d.axial_pitch / 4, d.p
+    if d.worm_type == "ZK":
+        key = (d.module, d.starts, d.worm_pitch_diameter, d.alpha_n, d.dedendum_coeff, d.disc_radius)
+        if key not in _CACHE:
+            from .zk import zk_profile
+            if len(_CACHE) > 64:
+                _CACHE.clear()
+            _CACHE[key] = zk_profile(d)
+        return _CACHE[key]
     if d.worm_type == "ZA":
         t = math.tan(d.alpha_x)
 
@@ -232,8 +263,9 @@ def transverse_pieces(d):
     """Exact pieces (``G(t) -> (N, 2)`` mm, t in [0, 1]) of one period of the worm's
     transverse section (thread 0 centred at angle 0, counter-clockwise from -π/z1 to
     π/z1): root arc, flank, tip arc, flank, root arc; and their names. The thread's half
-    angle at radius ρ is ``w(ρ) = (px/2 - e(ρ)) / p``."""
-    f = axial_profile(d)
+    angle at radius ρ is ``w(ρ) = (px/2 - e(ρ)) / p`` with the worm's profile as made
+    (:func:`worm_profile`: thinned by ``d.worm_thinning`` for the backlash)."""
+    f = worm_profile(d)
     rf, ra, p, half = d.worm_root_radius, d.worm_tip_radius, d.p, math.pi / d.starts
     wf = (d.axial_pitch / 2 - float(f(rf)[0])) / p
     wa = (d.axial_pitch / 2 - float(f(ra)[0])) / p
