@@ -1,0 +1,389 @@
+"""Exact runs of a tooth loop for the B-rep writer (:mod:`gear3d.export.step_brep`).
+
+A trimmed tooth loop (vertices, mm) is mapped back onto the profile's exact pieces: every
+stretch of the loop that lies on one piece becomes a :class:`Run` with exact end points.
+Trimmed corners are located by Newton on the two pieces' parameters; pruned notches by the
+pieces' closest approach. :func:`nearest_on_piece` measures a point's distance to a piece.
+
+Example::
+
+    >>> import gear3d
+    >>> from gear3d.export.step_brep_runs import exact_set, loop_runs
+    >>> p = gear3d.profile("involute", teeth=12, module=1, tolerance=0.01)
+    >>> runs = loop_runs(exact_set(p), p.tooth_loop)
+    >>> len(runs) >= 4
+    True
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..errors import GearError
+
+
+@dataclass
+class Run:
+    """One stretch of the tooth loop on one exact piece: ``piece`` index, tooth copy ``k``
+    (turned by 2πk/z), parameter interval [t0, t1] in loop order (t0 > t1 when the loop
+    runs against the piece), exact end points ``p0``/``p1`` (mm, in place)."""
+    piece: int
+    k: int
+    t0: float
+    t1: float
+    p0: np.ndarray | None = None   # exact start point (mm, in copy k's frame, i.e. turned)
+    p1: np.ndarray | None = None
+
+
+def rot2(pts, ang):
+    """Points (..., 2) mm turned by ``ang`` rad about the origin."""
+    c, s = math.cos(ang), math.sin(ang)
+    pts = np.asarray(pts, float)
+    return np.stack([c * pts[..., 0] - s * pts[..., 1], s * pts[..., 0] + c * pts[..., 1]], axis=-1)
+
+
+def _deriv(G, t, h=1e-6):
+    """(G, G', G'') at parameters t (central differences, step h)."""
+    t = np.asarray(t, float)
+    P = G(np.concatenate([t - h, t, t + h])).reshape(3, len(t), 2)
+    return P[1], (P[2] - P[0]) / (2 * h), (P[2] - 2 * P[1] + P[0]) / (h * h)
+
+
+def nearest_on_piece(G, samples_t, pts, lo, hi, iters=8):
+    """Distance (mm) from points (N,2) to the exact piece G on [lo, hi] (parameter):
+    start at the nearest of ``samples_t`` (sorted), then Newton on (G - p)·G' = 0,
+    clipped to the interval. Returns (distance, t)."""
+    from scipy.spatial import cKDTree
+    pts = np.asarray(pts, float)
+    st = np.asarray(samples_t, float)
+    st = np.unique(np.concatenate([[lo, hi], st[(st >= lo) & (st <= hi)]]))
+    # dense samples (8 per sample interval, at least 512): the start is then a fine chord
+    st = np.unique(np.concatenate([(st[:-1, None] + np.diff(st)[:, None] * np.arange(8) / 8).ravel(),
+                                   np.linspace(lo, hi, 513), [hi]]))
+    S = G(st)
+    _, j = cKDTree(S).query(pts)
+    # project on the two chords at the nearest sample; keep the nearer
+    t = st[j].copy()
+    bestd = np.hypot(*(S[j] - pts).T)
+    for a_i in (np.maximum(j - 1, 0), j):
+        b_i = np.minimum(a_i + 1, len(st) - 1)
+        a, d = S[a_i], S[b_i] - S[a_i]
+        L2 = np.maximum(np.einsum("ij,ij->i", d, d), 1e-300)
+        w = np.clip(np.einsum("ij,ij->i", pts - a, d) / L2, 0, 1)
+        dd = np.hypot(*(a + w[:, None] * d - pts).T)
+        take = dd < bestd
+        bestd[take] = dd[take]
+        t[take] = st[a_i][take] + w[take] * (st[b_i] - st[a_i])[take]
+    h = max((hi - lo) * 1e-5, 1e-9)
+    best = np.full(len(pts), np.inf)
+    tb = t.copy()
+    for _ in range(iters):
+        P, D1, D2 = _deriv(G, t, h)
+        r = P - pts
+        d = np.hypot(r[:, 0], r[:, 1])
+        better = d < best                 # keep the best iterate: Newton may overshoot
+        best[better], tb[better] = d[better], t[better]
+        f = np.einsum("ij,ij->i", r, D1)
+        fp = np.einsum("ij,ij->i", D1, D1) + np.einsum("ij,ij->i", r, D2)
+        step = np.where(fp > 0, -f / np.where(fp > 0, fp, 1), 0.0)
+        # never step further than a tenth of the interval at once
+        lim = 0.1 * (hi - lo)
+        t = np.clip(t + np.clip(step, -lim, lim), lo, hi)
+    d = np.hypot(*(G(t) - pts).T)
+    better = d < best
+    best[better], tb[better] = d[better], t[better]
+    return best, tb
+
+
+def _corner_params(Ga, ka, ta, Gb, kb, tb, q, ang):
+    """Exact crossing of piece a (copy ka) near parameter ta and piece b (copy kb) near tb:
+    Newton in (s, u). Returns (s, u, point)."""
+    s, u = float(ta), float(tb)
+    h = 1e-7
+    for _ in range(40):
+        A = rot2(Ga(np.array([s, s + h, s - h])), ka * ang)
+        B = rot2(Gb(np.array([u, u + h, u - h])), kb * ang)
+        F = A[0] - B[0]
+        if np.hypot(*F) < 1e-14:
+            break
+        J = np.stack([(A[1] - A[2]) / (2 * h), -(B[1] - B[2]) / (2 * h)], axis=1)
+        try:
+            step = np.linalg.solve(J, -F)
+        except np.linalg.LinAlgError:
+            break
+        s, u = s + step[0], u + step[1]
+    A = rot2(Ga(np.array([s])), ka * ang)[0]
+    B = rot2(Gb(np.array([u])), kb * ang)[0]
+    return s, u, 0.5 * (A + B), float(np.hypot(*(A - B)))
+
+
+def _closest_params(Ga, ka, ta, Gb, kb, tb, ang, iters=80):
+    """Parameters (s, u) in [0, 1] where piece a (copy ka) and piece b (copy kb) come closest
+    (a crossing when they cross): damped Gauss-Newton from (ta, tb). Returns
+    (s, u, midpoint, distance)."""
+    s, u = float(ta), float(tb)
+    h = 1e-7
+    lam = 1e-12
+
+    def res(s, u):
+        return (rot2(Ga(np.array([s])), ka * ang)[0] - rot2(Gb(np.array([u])), kb * ang)[0])
+    r = res(s, u)
+    for _ in range(iters):
+        A = rot2(Ga(np.array([s + h, s - h])), ka * ang)
+        B = rot2(Gb(np.array([u + h, u - h])), kb * ang)
+        J = np.stack([(A[0] - A[1]) / (2 * h), -(B[0] - B[1]) / (2 * h)], axis=1)
+        JtJ = J.T @ J
+        g = J.T @ r
+        step = -np.linalg.solve(JtJ + lam * np.trace(JtJ) * np.eye(2) + 1e-300 * np.eye(2), g)
+        s2, u2 = float(np.clip(s + step[0], 0, 1)), float(np.clip(u + step[1], 0, 1))
+        r2 = res(s2, u2)
+        if r2 @ r2 < r @ r:
+            s, u, r = s2, u2, r2
+            lam = max(lam / 10, 1e-15)
+        else:
+            lam *= 10
+            if lam > 1e6:
+                break
+    pa = rot2(Ga(np.array([s])), ka * ang)[0]
+    pb = rot2(Gb(np.array([u])), kb * ang)[0]
+    return s, u, 0.5 * (pa + pb), float(np.hypot(*(pa - pb)))
+
+
+@dataclass
+class ExactSet:
+    """The exact pieces the trimmed loop is mapped onto: the profile's tooth-period
+    evaluators plus, when the profile was cut by a turned tip circle (``tip_radius``), that
+    circle over tooth 0's sector (t in [0, 1] -> angle (t - 1/2)·2π/z), sampled at the
+    loop's own vertices on it."""
+    pieces: list
+    piece_params: list
+    teeth: int
+    tolerance: float
+
+
+def exact_set(profile) -> ExactSet:
+    """The :class:`ExactSet` of a profile (mm)."""
+    pieces, params = list(profile.pieces), [np.asarray(t, float) for t in profile.piece_params]
+    z = profile.teeth
+    rt = (getattr(profile, "params", None) or {}).get("tip_radius")
+    if rt:
+        rt = float(rt)
+        ang = 2 * math.pi / z
+        L = np.vstack(profile.loops)
+        r = np.hypot(L[:, 0], L[:, 1])
+        on = np.abs(r - rt) <= 1e-7 * max(1.0, rt)
+        if on.any():
+            phi = np.arctan2(L[on, 1], L[on, 0])
+            t = (phi - np.round(phi / ang) * ang) / ang + 0.5
+            # every tooth repeats tooth 0's vertices: merge copies that differ by rounding
+            t = np.sort(np.clip(t, 0, 1))
+            t = t[np.concatenate([[True], np.diff(t) > 1e-9])]
+            if len(t) > 1:     # the circle was sampled evenly: continue past the corners
+                dt = float(np.median(np.diff(t)))
+                t = np.unique(np.concatenate([t, t[0] - dt * np.arange(1, 4), t[-1] + dt * np.arange(1, 4)]))
+
+            def arc(tt, rt=rt, ang=ang):
+                a = (np.asarray(tt, float) - 0.5) * ang
+                return np.stack([rt * np.cos(a), rt * np.sin(a)], axis=-1)
+            pieces.append(arc)
+            params.append(t)
+    return ExactSet(pieces, params, z, float(profile.tolerance))
+
+
+def _vertex_candidates(S, L, z, ang):
+    """For every loop vertex (L, mm), the sorted exact samples it coincides with:
+    (piece, sample index, tooth copy) within a few 1e-7 mm."""
+    from scipy.spatial import cKDTree
+    allS = np.concatenate(S)
+    lab = np.concatenate([np.full(len(s), j) for j, s in enumerate(S)])
+    idx = np.concatenate([np.arange(len(s)) for s in S])
+    tree = cKDTree(allS)
+    M = len(L)
+    k0 = np.rint(np.arctan2(L[:, 1], L[:, 0]) / ang).astype(int)
+    match_tol = 1e-7 + 1e-12 * float(np.abs(L).max())
+    # candidates (piece, index, copy) of every vertex
+    cands = [[] for _ in range(M)]
+    for dk in (-1, 0, 1):
+        k = k0 + dk
+        if z == 1 and dk:
+            continue
+        c, s_ = np.cos(-k * ang), np.sin(-k * ang)
+        Q = np.stack([c * L[:, 0] - s_ * L[:, 1], s_ * L[:, 0] + c * L[:, 1]], axis=1)
+        for i, hits in enumerate(tree.query_ball_point(Q, match_tol)):
+            for h in hits:
+                cands[i].append((int(lab[h]), int(idx[h]), int(k[i] % z if z > 1 else 0)))
+    return [sorted(set(c)) for c in cands]
+
+
+def _corner_edge(S, L, cands, i, a, b, ang):
+    """Label of an edge from or to a trimmed corner: the chord of the matched end's piece
+    that holds the other end (mm)."""
+    def pt(j, n, k):
+        return rot2(S[j][n], k * ang)
+    best = None
+    m, other, sgn = (a, b, 1) if cands[a] else (b, a, -1)
+    if not cands[m]:
+        raise GearError("step", "brep", "'faceted' for this profile",
+                        f"loop edge {i} joins two trimmed corners; no exact piece found")
+    dbest = math.inf
+    for (j, n, k) in cands[m]:
+        for dn in (-1, 1):
+            if not 0 <= n + dn < len(S[j]):
+                continue
+            p, q = pt(j, n, k), pt(j, n + dn, k)
+            d = q - p
+            w = np.clip((L[other] - p) @ d / max(d @ d, 1e-300), 0, 1)
+            dist = float(np.hypot(*(L[other] - p - w * d)))
+            if dist < dbest:
+                dbest = dist
+                best = (j, k, n, n + dn) if sgn > 0 else (j, k, n + dn, n)
+    if dbest > 1e-6 + 1e-9 * float(np.abs(L).max()):
+        raise GearError("step", "brep", "'faceted' for this profile",
+                        f"loop vertex near ({L[other][0]:.4g}, {L[other][1]:.4g}) lies on no "
+                        f"chord of the exact pieces ({dbest:.2g} mm off)")
+    return best
+
+
+def _edge_labels(S, L, cands, ang):
+    """Label every edge (i, i+1) with (piece, copy, index a, index b), or None for a bridge
+    (trimming pruned the samples, and the corner, between its matched ends)."""
+    M = len(L)
+    labels = [None] * M
+    for i in range(M):
+        a, b = i, (i + 1) % M
+        best = None
+        if cands[a] and cands[b]:
+            for (ja, na, ka) in cands[a]:
+                for (jb, nb, kb) in cands[b]:
+                    if ja == jb and ka == kb and abs(na - nb) == 1:
+                        best = (ja, ka, na, nb)
+                        break
+                if best:
+                    break
+        if best is None and cands[a] and cands[b]:
+            labels[i] = None      # a bridge: trimming pruned the samples (and corner) between
+            continue
+        if best is None:
+            best = _corner_edge(S, L, cands, i, a, b, ang)
+        labels[i] = best
+    return labels
+
+
+def _edge_groups(labels, cands, params):
+    """Consecutive edges on the same (piece, copy, direction) as raw runs
+    [piece, copy, t start, t end, first edge's indices, last edge's indices, first vertex,
+    last vertex]; bridges end a group. A t is None where the end is a corner."""
+    M = len(labels)
+
+    def key(lb):
+        return None if lb is None else (lb[0], lb[1], 1 if lb[3] > lb[2] else -1)
+    start = next((i for i in range(M) if labels[i] is not None and key(labels[i]) != key(labels[i - 1])),
+                 None)
+    if start is None:  # the whole loop is one piece (a closed curve)
+        raise GearError("step", "brep", "'faceted' for this profile", "the loop is one periodic piece")
+    groups = []          # [labels, first vertex]
+    prev = None
+    for s_ in range(M):
+        i = (start + s_) % M
+        lb = labels[i]
+        if lb is not None:
+            # same piece, copy and direction, and the samples follow on (a self-crossing of
+            # one piece, e.g. a pointed tip, starts a new run)
+            if groups and key(lb) == key(prev) and prev[3] == lb[2]:
+                groups[-1][0].append(lb)
+            else:
+                groups.append([[lb], i])
+        prev = lb
+    runs = []
+    for g, ia in groups:
+        j, k, _, _ = g[0]
+        ib = (ia + len(g)) % M
+        t = params[j]
+        ta = t[g[0][2]] if cands[ia] else None
+        tb = t[g[-1][3]] if cands[ib] else None
+        runs.append([j, k, ta, tb, g[0][2], g[0][3], g[-1][2], g[-1][3], ia, ib])
+    return runs
+
+
+def loop_runs(profile, loop) -> list:
+    """Map a closed trimmed loop (vertices mm) onto the exact pieces: the list of
+    :class:`Run` in loop order, each with exact end points. Raises GearError when a stretch
+    of the loop lies on no piece (a case this writer does not handle)."""
+    pieces, params, z = profile.pieces, profile.piece_params, profile.teeth
+    ang = 2 * math.pi / z
+    S = [np.asarray(G(np.asarray(t, float)), float) for G, t in zip(pieces, params)]
+    L = np.asarray(loop, float)
+    cands = _vertex_candidates(S, L, z, ang)
+    labels = _edge_labels(S, L, cands, ang)
+    runs = _edge_groups(labels, cands, params)
+    return _resolve_ends(profile, S, L, runs, ang)
+
+
+def _resolve_ends(profile, S, L, runs, ang):
+    """Exact end points of raw runs: corners by Newton, junctions by equal points, bridges by
+    the closest approach of the two pieces. Returns the list of :class:`Run`."""
+    pieces, params, z = profile.pieces, profile.piece_params, profile.teeth
+
+    def pt(j, n, k):
+        return rot2(S[j][n], k * ang)
+
+    # resolve the ends: corners by Newton, junctions by equal points. Every tooth repeats
+    # tooth 0's corners turned: solve each distinct one once
+    memo = {}
+
+    def crossing(fn, ja, ka, ta, jb, kb, tb):
+        key = (fn.__name__, ja, round(float(ta), 12), jb, round(float(tb), 12), (kb - ka) % z)
+        if key not in memo:
+            if fn is _corner_params:
+                memo[key] = fn(pieces[ja], 0, ta, pieces[jb], kb - ka, tb, None, ang)
+            else:
+                memo[key] = fn(pieces[ja], 0, ta, pieces[jb], kb - ka, tb, ang)
+        s, u, p, gap = memo[key]
+        return s, u, rot2(p, ka * ang), gap
+
+    out = []
+    n = len(runs)
+    ends = [None] * n     # exact point at the end of run i (= start of run i+1)
+    t_end = [None] * n
+    t_start = [None] * n
+    for i in range(n):
+        A, B = runs[i], runs[(i + 1) % n]
+        ja, ka, jb, kb = A[0], A[1], B[0], B[1]
+        if A[9] != B[8]:
+            # a bridge edge between matched vertices: the exact crossing lies near it
+            # (or, where a sub-tolerance notch was pruned, the closest approach: its midpoint
+            # pins both ends, and the measurement below sees how far that moved the flank)
+            s, u, p, gap = crossing(_closest_params, ja, ka, params[ja][A[7]], jb, kb, params[jb][B[4]])
+            va, vb = L[A[9]], L[B[8]]
+            dv = vb - va
+            w = float(np.clip((p - va) @ dv / max(dv @ dv, 1e-300), 0, 1))
+            off = float(np.hypot(*(va + w * dv - p)))
+            if gap > profile.tolerance / 10 or off > 2 * profile.tolerance + 1e-9:
+                raise GearError("step", "brep", "'faceted' for this profile",
+                                f"no exact crossing of pieces {ja} and {jb} near "
+                                f"({va[0]:.4g}, {va[1]:.4g})")
+            t_end[i], t_start[(i + 1) % n], ends[i] = s, u, p
+            continue
+        if A[3] is not None and B[2] is not None:
+            # both matched at the shared vertex: a junction of pieces
+            pa = pt(ja, A[7], ka)
+            t_end[i], t_start[(i + 1) % n] = A[3], B[2]
+            ends[i] = pa
+            continue
+        # a corner: A's last chord (A[6]->A[7]) meets B's first chord (B[4]->B[5])
+        ta = 0.5 * (params[ja][A[6]] + params[ja][A[7]])
+        tb = 0.5 * (params[jb][B[4]] + params[jb][B[5]])
+        s, u, p, gap = crossing(_corner_params, ja, ka, ta, jb, kb, tb)
+        lo_a, hi_a = sorted((params[ja][A[6]], params[ja][A[7]]))
+        lo_b, hi_b = sorted((params[jb][B[4]], params[jb][B[5]]))
+        wa, wb = 0.5 * (hi_a - lo_a) + 1e-12, 0.5 * (hi_b - lo_b) + 1e-12
+        if gap > 1e-9 or not (lo_a - wa <= s <= hi_a + wa and lo_b - wb <= u <= hi_b + wb):
+            raise GearError("step", "brep", "'faceted' for this profile",
+                            f"no exact crossing of pieces {ja} and {jb} near "
+                            f"({L[A[9]][0]:.4g}, {L[A[9]][1]:.4g})")
+        t_end[i], t_start[(i + 1) % n], ends[i] = s, u, p
+    for i, r in enumerate(runs):
+        out.append(Run(r[0], r[1], float(t_start[i]), float(t_end[i]), ends[i - 1], ends[i]))
+    return out
