@@ -140,8 +140,9 @@ def _rss_peak() -> int:
 
 # --------------------------------------------------------------------- the supervisor
 
-def _child_usage(pid: int):
-    """(CPU seconds, resident bytes) of process ``pid`` from /proc, or None."""
+def child_usage(pid: int):
+    """(CPU seconds, resident bytes) of process ``pid`` from /proc, or None (the supervisor's
+    and the web server's view of a worker)."""
     try:
         with open(f"/proc/{pid}/stat", "rb") as fh:
             fields = fh.read().rsplit(b")", 1)[1].split()
@@ -205,7 +206,7 @@ def _watch(pid, rfd, max_seconds, max_memory, select) -> int:
             r, _, _ = select.select([rfd], [], [], POLL_S)
             if r:
                 buf = _drain(rfd, temps, buf)
-            use = _child_usage(pid)
+            use = child_usage(pid)
             if use is None:
                 continue
             cpu, rss = use
