@@ -36,11 +36,11 @@ def _build(name):
     profile tolerance, the 3D body at the preview tolerance."""
     import gear3d
     from gear3d.web import formargs
-    from gear3d.web.app import _preview_body
+    from gear3d.web.builds import preview_body
     p = preset(name)
-    pk, _ = formargs.profile_kwargs(_form(p))
-    pk2, bk, _ = formargs.body_kwargs(_form(p))
-    return gear3d.profile(p["family"], **pk), _preview_body(p["family"], pk2, bk)
+    pk = formargs.profile_kwargs(_form(p))
+    pk2, bk = formargs.body_kwargs(_form(p))
+    return gear3d.profile(p["family"], **pk), preview_body(p["family"], pk2, bk)
 
 
 def test_every_preset_is_a_form_the_page_can_send():
@@ -88,12 +88,14 @@ def test_ec_presets_are_a_chevron_arch_pair():
 
 @pytest.mark.parametrize("name", ["seed001-internal-sine", "involute-20-40"])
 def test_preset_pairs_roll_as_the_papers_say(name):
+    import gear3d
     from gear3d.analysis.pairs import check_pair
-    from gear3d.commands.check import build_pair
     from gear3d.web import formargs
     p = preset(name)
     kw, z2, internal, mate = formargs.pair_kwargs(_form(p, [("tolerance", "0.01")]))
-    p1, p2 = build_pair(p["family"], dict(kw), z2, internal, mate)
+    assert mate == "same"
+    p1 = gear3d.profile(p["family"], **kw)
+    p2 = gear3d.profile(p["family"], **dict(kw, teeth=z2, **({"internal": True} if internal else {})))
     rep = check_pair(p1, p2, internal=internal)
     assert not rep["interference"], rep["max_penetration"]
     if name == "seed001-internal-sine":                 # Fig. 15: m (Z/2 + c_h), ring m (Z'/2 - c_h)

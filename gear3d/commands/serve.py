@@ -2,13 +2,15 @@
 
 Needs the web extra: ``pip install 'gear3d[web]'`` (Starlette and uvicorn). Binds to
 127.0.0.1:8000 by default, prints the URL and logs each request in one line on stderr.
-``--port 0`` picks a free port (the printed URL tells which).
+``--port 0`` picks a free port (the printed URL tells which). Builds run in ``--max-builds``
+worker processes, each build under the budget's limits (``--max-seconds``, ``--max-memory``,
+``--max-triangles``, given before or after ``serve``): planned before it starts, and stopped
+by the watchdog when it runs past them (503 naming the resource; the worker is replaced).
 """
 from __future__ import annotations
 
 import sys
 
-from .. import profile
 from ..errors import GearError, check_number
 
 
@@ -51,19 +53,17 @@ def run(args) -> int:
         raise GearError("serve", e.name, "available with the web extra: pip install 'gear3d[web]'",
                         f"{e.name} is not installed") from None
     from ..web.app import create_app
-    app = create_app(max_builds=args.max_builds)
+    from ..web.schema import families
     sock = _socket(args.host, port)
-    _warm_up()
-    host, bound = sock.getsockname()[:2]
-    shown = f"[{host}]" if ":" in host else host
-    sys.stdout.write(f"gear3d serve: http://{shown}:{bound}/  (Ctrl+C to stop)\n")
-    sys.stdout.flush()
-    config = uvicorn.Config(app, log_level="warning", access_log=False, lifespan="off")
-    uvicorn.Server(config).run(sockets=[sock])
+    families()                         # every family's table loaded: the first form is fast
+    app = create_app(max_builds=args.max_builds, workers=True)    # the build workers warm up
+    try:
+        host, bound = sock.getsockname()[:2]
+        shown = f"[{host}]" if ":" in host else host
+        sys.stdout.write(f"gear3d serve: http://{shown}:{bound}/  (Ctrl+C to stop)\n")
+        sys.stdout.flush()
+        config = uvicorn.Config(app, log_level="warning", access_log=False, lifespan="off")
+        uvicorn.Server(config).run(sockets=[sock])
+    finally:
+        app.state.pool.close()
     return 0
-
-
-def _warm_up():
-    """Import what a preview needs and build one profile, so the page's first answer is fast."""
-    from ..web.svg import profile_svg
-    profile_svg(profile("involute", teeth=20))

@@ -1,27 +1,40 @@
-"""A form -> the keywords the CLI would pass for the same flags.
+"""A form -> keywords of the library, read off the parameter tables (:mod:`gear3d.params`).
 
-The form's texts are read by the CLI's own flag types (their range checks included) into an
-``argparse.Namespace`` of the CLI's own parser, and the CLI's own helpers turn it into
-keywords (``family_params``, ``body_params``, ``pair_profiles``). So the page builds exactly
-what ``gear3d profile`` / ``gear3d body`` / ``gear3d check pair`` build, defaults included
-(the tolerance the CLI picks for a mesh output, say), and a download has the CLI's bytes.
+The web page is a sibling of the command line: both turn their inputs into keywords with
+the same tables (the family's, ``BODY_PARAMS``, ``PAIR_PARAMS``, ``WORM_PARAMS``,
+``BEVEL_PARAMS``) and call the library. A text is read as a plain ASCII number (``1_0`` is
+not 10), a switch word or one of the choices, then checked against its parameter's range;
+a refused text raises ``GearError(name, value, allowed)`` with the table's words, as the
+command line's refusal of the same flag.
 
-A refused text raises ``GearError(name, value, allowed)`` with the CLI's own range.
+Defaults follow the tables: a field left empty is not passed (the builder's default), and
+the tolerance, which the command line picks by the output, is 0.001 mm for a profile and
+0.01 mm for a body (:data:`gear3d.params.DEFAULT_TOLERANCE`, :data:`~gear3d.params.MESH_TOLERANCE`).
+
+Example::
+
+    >>> from gear3d.web.formargs import profile_kwargs
+    >>> profile_kwargs({"family": "involute", "profile": {"teeth": "12"}, "body": {}, "pair": {}})
+    {'teeth': 12, 'tolerance': 0.001}
 """
 from __future__ import annotations
 
-import argparse
-import inspect
-
+from ..cliargs import plain_int, plain_number
 from ..errors import GearError
-from .schema import cli_parsers, is_flag, number_kind
+from ..params import (BEVEL_PARAMS, BODY, DEFAULT_TOLERANCE, FAMILY_PARAMS, MESH_TOLERANCE, PAIR, WORM_PARAMS,
+                      check_excludes)
 
 _TRUE, _FALSE = ("1", "true", "on", "yes"), ("0", "false", "off", "no")
+
+#: sets built by their own function (not a profile family): name -> their table
+SETS = {"worm": WORM_PARAMS, "bevel": BEVEL_PARAMS}
+
+#: families whose builder takes ``center_distance`` itself (a pair's is its placement)
+CENTER_DISTANCE_FAMILIES = ("ec-pinion", "ec-wheel")
 
 
 def _shown(text: str):
     """The value as a GearError shows it: a number when the text is one, else the text."""
-    from ..cliargs import plain_int, plain_number
     for cast in (plain_int, plain_number):
         v = cast(text)
         if v is not None:
@@ -29,84 +42,94 @@ def _shown(text: str):
     return text
 
 
-def typed(action, name: str, text: str):
-    """``text`` read as the CLI reads it for ``action`` (its type and choices), or GearError."""
-    if is_flag(action):
+def read(param, text: str, name: str | None = None):
+    """``text`` read as a value of ``param`` (a :class:`gear3d.params.Param`) and checked
+    against its range, or GearError naming ``name`` (default the parameter's)."""
+    nm = name or param.name
+    if param.kind is bool:
         v = text.lower()
         if v in _TRUE or v in _FALSE:
             return v in _TRUE
-        raise GearError(name, text, "true or false")
-    if action.choices and text not in action.choices:
-        raise GearError(name, text, "one of " + ", ".join(map(str, action.choices)))
-    conv = action.type or str
-    if conv in (int, float):               # plain ASCII numbers only (1_0 is not 10), as the CLI reads them
-        from ..cliargs import plain_int, plain_number
-        v = plain_int(text) if conv is int else plain_number(text)
+        raise GearError(nm, text, "true or false")
+    if param.kind in (int, float):
+        if param.auto and text == "auto":
+            return "auto"
+        v = plain_int(text) if param.kind is int else plain_number(text)
         if v is None:
-            raise GearError(name, _shown(text), "an integer" if conv is int else "a number")
-        return v
-    try:
-        return conv(text)
-    except argparse.ArgumentTypeError as e:
-        msg = str(e)
-        allowed = msg.split("is not allowed: ", 1)[1] if "is not allowed: " in msg else msg
-        raise GearError(name, _shown(text), allowed) from None
-    except (TypeError, ValueError):
-        kind = number_kind(action)
-        raise GearError(name, _shown(text), "an integer" if kind == "int" else "a number") from None
+            raise GearError(nm, _shown(text), param.allowed() if param.auto else
+                            ("an integer" if param.kind is int else "a number"))
+        return param.check(v, nm)
+    return param.check(text, nm)
 
 
-def namespace(section: str, family: str, *parts) -> argparse.Namespace:
-    """The CLI's Namespace for ``section`` ("profile", "body", "pair") with the given
-    ``(section_of_fields, {name: text})`` parts set (later parts win)."""
-    parser, _ = cli_parsers()[section]
-    ns = parser.parse_args([family])
-    by_dest = {a.dest: a for a in parser._actions}
-    for sec, texts in parts:
-        for name, text in texts.items():
-            act = (by_dest.get("b_" + name) or by_dest.get(name)) if sec == "body" else by_dest.get(name)
-            if act is None:
-                raise GearError(name, text, f"a parameter of the `gear3d {section}` command")
-            setattr(ns, act.dest, typed(act, name, text))
-    return ns
+def _section(table: dict, texts: dict, section: str) -> dict:
+    out = {}
+    for name, text in texts.items():
+        if name not in table:
+            raise GearError(name, text, f"a parameter of the {section} form")
+        out[name] = read(table[name], text)
+    return out
 
 
-def family_params(ns, output=None, mesh: bool = False) -> dict:
-    """The CLI's ``family_params`` (its tolerance default by output, where it has one)."""
-    from ..commands.profile import family_params as fp
-    if len(inspect.signature(fp).parameters) > 1:
-        return fp(ns, output, mesh=mesh)
-    return fp(ns)
+def family_table(family: str) -> dict:
+    """``{name: Param}`` of a family's form (GearError for a family without a table)."""
+    if family not in FAMILY_PARAMS:
+        raise GearError("family", family, "one of " + ", ".join(sorted(FAMILY_PARAMS) + sorted(SETS)))
+    return {p.name: p for p in FAMILY_PARAMS[family]}
 
 
-def profile_kwargs(form: dict, output=None) -> tuple:
-    """(``profile()`` keywords, the Namespace) of ``gear3d profile FAMILY ... [-o output]``."""
-    ns = namespace("profile", form["family"], ("profile", form["profile"]))
-    return family_params(ns, output), ns
+def profile_kwargs(form: dict, mesh: bool = False) -> dict:
+    """``gear3d.profile(family, **kw)`` keywords of the form's profile section; ``tolerance``
+    defaults to 0.001 mm, 0.01 mm for a mesh (``mesh``)."""
+    tab = family_table(form["family"])
+    kw = _section(tab, form["profile"], "profile")
+    check_excludes(kw, tab.values())
+    kw.setdefault("tolerance", MESH_TOLERANCE if mesh else DEFAULT_TOLERANCE)
+    return kw
 
 
-def body_kwargs(form: dict, output=None) -> tuple:
-    """(``profile()`` keywords, ``body()`` keywords, the Namespace) of ``gear3d body FAMILY ...
-    [-o output]``; the profile's tolerance is the body's, as the user asked (see
-    :func:`profile_tolerance` for the share the CLI builds it at)."""
-    from ..commands.body import body_params
-    ns = namespace("body", form["family"], ("profile", form["profile"]), ("body", form["body"]))
-    kw = body_params(ns)
-    if "width" not in kw:
-        raise GearError("width", None, "a number > 0 mm (--width)")
-    return family_params(ns, output, mesh=True), kw, ns
-
-
-def profile_tolerance(body_tol: float, kind: str, offset: bool) -> float:
-    """The tolerance (mm) the CLI builds a body's profile at: the core's planned share of the
-    body tolerance (``gear3d.solids.body.profile_tolerance``)."""
-    from ..solids.body import profile_tolerance as share
-    return share(body_tol, kind, offset)
+def body_kwargs(form: dict) -> tuple:
+    """(profile keywords at the body's tolerance, ``gear3d.body`` keywords) of the form's
+    profile and body sections. ``kind`` and ``hand`` are always given (their defaults); a
+    width is required (the page always sends it)."""
+    pk = profile_kwargs(form, mesh=True)
+    bk = {"kind": BODY["kind"].default, "hand": BODY["hand"].default}
+    bk.update(_section(BODY, form["body"], "body"))
+    if "width" not in bk:
+        raise GearError("width", None, BODY["width"].allowed())
+    if bk.get("keyway") is False:
+        bk.pop("keyway")
+    return pk, bk
 
 
 def pair_kwargs(form: dict) -> tuple:
-    """(wheel-1 keywords, z2, internal, mate mode) of ``gear3d check pair FAMILY ...``."""
-    from ..commands.check import pair_profiles
-    ns = namespace("pair", form["family"], ("profile", form["profile"]), ("pair", form["pair"]))
-    kw, z2, internal = pair_profiles(ns)
-    return kw, z2, internal, ns.mate
+    """(wheel-1 keywords, z2, internal, mate mode) of the form's profile and pair sections
+    (the pair's ``mate_teeth`` wins over an EC family's own)."""
+    kw = profile_kwargs(form)
+    pair = _section(PAIR, form["pair"], "pair")
+    if form["family"] not in CENTER_DISTANCE_FAMILIES:
+        kw.pop("center_distance", None)          # a pair placement, not a family parameter
+    z2 = pair.get("mate_teeth", kw.pop("mate_teeth", None))
+    kw.pop("mate_teeth", None)
+    if z2 is None:
+        raise GearError("mate_teeth", None, PAIR["mate_teeth"].allowed())
+    internal = kw.pop("internal", False)
+    z1 = kw.get("teeth")
+    if internal and z1 is not None and z2 <= z1:
+        raise GearError("mate_teeth", z2, f"an integer in [{z1 + 1}, 100000] for a ring",
+                        f"the ring needs more teeth than the {z1}-tooth pinion")
+    return kw, z2, internal, pair.get("mate", PAIR["mate"].default)
+
+
+def set_kwargs(form: dict) -> dict:
+    """``gear3d.worm(...)`` / ``gear3d.bevel(...)`` keywords of a set's form (its profile
+    section holds the set's table)."""
+    table = SETS[form["family"]]
+    tab = {p.name: p for p in table}
+    kw = _section(tab, form["profile"], form["family"])
+    check_excludes(kw, table)
+    for p in table:                        # what the set's function needs even at its default
+        if p.name in ("part", "tolerance") or (form["family"] == "bevel" and p.name in ("teeth", "mate_teeth",
+                                                                                        "module")):
+            kw.setdefault(p.name, p.default)
+    return kw
