@@ -34,8 +34,11 @@ from ..watchdog import GRACE_S, LimitError, child_usage
 
 #: seconds between two looks at a running build
 POLL_S = 0.02
-#: a build may take this many times its CPU limit in wall time (a loaded machine) before it is stopped
-WALL_FACTOR = 4.0
+#: a build may take this many times its CPU limit, plus :data:`WALL_SLACK_S`, in wall time
+#: before it is stopped whatever its CPU time (a worker blocked, not computing; a loaded
+#: machine gives a build far less than a core: the limit itself is CPU time)
+WALL_FACTOR = 10.0
+WALL_SLACK_S = 10.0
 
 
 class Busy(Exception):
@@ -133,7 +136,8 @@ class Pool:
             raise Busy(f"busy: {self.n} build(s) already running, try again in a moment") from None
         try:
             out = self._watch(w, job)
-        except BaseException:
+        except BaseException as e:
+            log_line(log, f"build worker {w.proc.pid} stopped: {type(e).__name__}: {e}")
             w.kill()
             w = _Worker(self.ctx, self.limits)
             w.wait_ready()
@@ -165,7 +169,7 @@ class Pool:
                         os.kill(pid, signal.SIGUSR2)          # the guard ends a Python frame cleanly
                 elif cpu > max_s:
                     over, since = Stopped("time", cpu, max_s), time.monotonic()
-                elif time.monotonic() - t0 > WALL_FACTOR * max_s + GRACE_S:
+                elif time.monotonic() - t0 > WALL_FACTOR * max_s + WALL_SLACK_S:
                     over, since = Stopped("time", cpu, max_s), time.monotonic() - GRACE_S
             elif time.monotonic() - since > GRACE_S:
                 raise over

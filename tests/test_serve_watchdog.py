@@ -1,0 +1,70 @@
+"""``gear3d serve``'s per-build watchdog (issue #27): a build that runs past ``--max-seconds``
+is stopped cleanly, the server answers one JSON refusal naming the resource, the build slot
+is free for the next request and no temporary file is left behind.
+
+An estimate that is wrong is what the watchdog is for, so the server under test is started
+with every estimate accepted (a ``sitecustomize`` on its ``PYTHONPATH``, written here, makes
+``gear3d.budget.check`` pass everything in the server and in its build workers): the plan
+lets a large STL download start, and only the watchdog can stop it. Oracles: the HTTP status
+and the strict JSON body, the server's own temporary folder (``TMPDIR``) left empty, and a
+second request answered 200 on a one-slot server.
+"""
+from __future__ import annotations
+
+import os
+import re
+import subprocess
+import sys
+
+import pytest
+
+from test_serve_rules import Server, _strict
+from test_web import _Lines
+
+WRONG_ESTIMATES = '''\
+import gear3d.budget as _b
+_b.check = lambda est, *a, **k: est      # every estimate accepted: only the watchdog can stop the work
+'''
+
+
+class WatchedServer(Server):
+    """``gear3d serve --port 0 --max-builds 1 --max-seconds 1`` whose estimates all pass."""
+
+    def __init__(self, folder):
+        self.folder = str(folder)
+        site, self.tmp = folder / "site", folder / "tmp"
+        site.mkdir()
+        self.tmp.mkdir()
+        (site / "sitecustomize.py").write_text(WRONG_ESTIMATES)
+        env = dict(os.environ, PYTHONPATH=os.pathsep.join([str(site), os.environ.get("PYTHONPATH", "")]),
+                   TMPDIR=str(self.tmp))
+        self.proc = subprocess.Popen([sys.executable, "-m", "gear3d.cli", "serve", "--port", "0", "--max-builds", "1",
+                                      "--max-seconds", "1"], cwd=self.folder, env=env, stdout=subprocess.PIPE,
+                                     stderr=subprocess.PIPE, text=True)
+        self.out = _Lines(self.proc.stdout, folder / "serve.out")
+        self.log = _Lines(self.proc.stderr, folder / "serve.log")
+        m = self.out.wait(re.compile(r"^gear3d serve: http://127\.0\.0\.1:(\d+)/ "), 120)
+        if m is None:
+            self.stop()
+            pytest.fail("gear3d serve printed no URL: " + self.log.text()[-2000:])
+        self.port = int(m.group(1))
+
+
+@pytest.mark.slow                  # a server of its own: ~10 s on a busy 2-core machine
+def test_a_build_past_max_seconds_is_stopped_and_the_next_one_runs(tmp_path):
+    s = WatchedServer(tmp_path)
+    try:
+        # 3,000 teeth at 1 um, 10 mm wide: far more than 1 s of CPU (the budget would refuse it)
+        st, h, body = s.request("GET", "/api/download?family=involute&teeth=3000&tolerance=0.001&b.width=10&fmt=stl")
+        err = _strict(body)
+        assert st == 503 and h["content-type"] == "application/json", (st, body[:300])
+        assert err["resource"] == "time" and err["param"] == "max_seconds" and "limit" in err["error"]
+        assert "Traceback" not in body.decode() and s.folder not in body.decode()
+        left = [p.name for p in s.tmp.iterdir() if not p.name.startswith("pymp-")]   # pymp-: the fork server's socket
+        assert left == []                                   # the download's folder is gone
+        for q in ("family=involute&teeth=24", "family=worm"):       # the one slot is free again
+            st, _, body = s.request("GET", "/api/profile?" + q)
+            assert st == 200, body[:300]
+        assert "Traceback" not in s.log.text()
+    finally:
+        s.stop()
