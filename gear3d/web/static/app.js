@@ -201,6 +201,7 @@ async function preview() {
   $("#preview").dataset.ms = String(shown);
   $("#preview").dataset.query = q;         // what is drawn (the browser test waits on it)
   table($("#report"), [
+    ...(r.section ? [["section", r.section]] : []),
     ["max_error (measured)", fmt(r.max_error * 1000, " um")], ["tolerance", fmt(r.tolerance * 1000, " um")],
     ["undercut", fmt(r.undercut) + (r.undercut ? ` (depth ${fmt(r.undercut_depth, " mm")})` : ""), r.undercut],
     ["pointed", fmt(r.pointed) + (r.pointed ? ` (tip shortfall ${fmt(r.tip_shortfall, " mm")})` : ""), r.pointed],
@@ -454,7 +455,14 @@ async function loadFamily(name) {
   if (res.status !== 200) { setStatus(res.body.error); return false; }
   schema = res.body;
   for (const s of SCOPES) buildForm(s, schema[s]);
+  // a worm or bevel set: one form (its table), no body or pair form, its own downloads
+  const isSet = !!schema.set;
+  for (const id of ["#section-body", "#section-pair", "#pair-panel"]) $(id).hidden = isSet;
+  $("#title-profile").textContent = isSet ? (name === "worm" ? "Worm pair" : "Bevel pair") : "Profile";
+  $("#preview-title").textContent = isSet ? (name === "worm" ? "Wheel mid-plane section" : "Gear heel section") : "Profile";
+  for (const b of document.querySelectorAll("#downloads button")) b.hidden = !(schema.downloads || []).includes(b.dataset.fmt);
   document.body.dataset.family = name;
+  document.body.dataset.set = isSet ? "1" : "";
   if (!presetList.length && schema.presets) fillPresets(schema.presets);
   return true;
 }
@@ -550,6 +558,7 @@ async function main() {
     const b = document.createElement("button");
     b.type = "button";
     b.id = `download-${f}`;
+    b.dataset.fmt = f;
     b.textContent = f.toUpperCase();
     b.addEventListener("click", () => download(f));
     dl.append(b);
