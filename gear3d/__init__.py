@@ -6,7 +6,7 @@ carry a measured error; bodies come from manifold3d; exporters write STL/3MF/STE
 Public names are imported lazily so that ``import gear3d`` and the CLI start fast.
 """
 from .errors import GearError, ToleranceError
-from .profiles import families, profile
+from .spec import GearSpec, families, profile
 
 __version__ = "0.1.0"
 
@@ -29,7 +29,7 @@ _LAZY = {
     "bevel": "gear3d.bevel",
 }
 
-__all__ = ["GearError", "ToleranceError", "profile", "families", *_LAZY]
+__all__ = ["GearError", "ToleranceError", "GearSpec", "profile", "families", *_LAZY]
 
 
 def __getattr__(name):

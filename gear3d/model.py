@@ -20,7 +20,6 @@ from .geometry import check_points, circle_crossings, point_segment_distance, ro
 from .reports import ProfileReport
 from .tessellate import chord_deviation, tessellate
 from . import budget as _budget
-from .profiles import profile as make
 from .progress import stage
 
 #: Clipper2 (inside manifold3d) rounds to 1e-8 mm; half a unit in each axis
@@ -114,6 +113,9 @@ class Profile:
     #: per corner (piece ``len(pieces)`` is :attr:`tip_arc`); :func:`gear3d.profiles.mate.tool_chain`
     #: walks the exact boundary with them
     corner_pairs: list = field(repr=False, default_factory=list)
+    #: what rebuilds this gear at another tolerance (:class:`gear3d.spec.GearSpec`, set by
+    #: :func:`gear3d.profile`; any value with ``profile(tolerance)``), or None (built by hand)
+    spec: object = field(repr=False, default=None)
 
     @property
     def boundary(self):
@@ -143,10 +145,13 @@ class Profile:
         return float(sum(signed_area(l) for l in self.loops))
 
     def at_tolerance(self, tolerance: float) -> "Profile":
-        """The same gear rebuilt at another tolerance (mm)."""
-        params = dict(self.params)
-        params["tolerance"] = tolerance
-        return make(self.family, **params)
+        """The same gear at another tolerance (mm). Deprecated alias of
+        ``self.spec.profile(tolerance)``; a profile subclass that rebuilds itself otherwise
+        (a worm wheel's section) overrides it."""
+        if self.spec is None:
+            raise GearError("profile", f"a {self.family} profile without a spec",
+                            "a profile made by gear3d.profile (its spec rebuilds it at another tolerance)")
+        return self.spec.profile(tolerance)
 
     def reference(self) -> "Profile":
         """A much finer build (tolerance/50, else /20 or /10 if that one cannot be certified)

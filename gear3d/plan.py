@@ -63,7 +63,7 @@ def probe_profile(family: str, params: dict) -> Sketch | None:
     period (it built the whole profile: nothing is left to plan)."""
     import numpy as np
 
-    from .profiles import profile
+    from .spec import profile
     with budget.probing() as root:
         try:
             profile(family, **dict(params))

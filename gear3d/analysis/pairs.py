@@ -428,7 +428,7 @@ def largest_addendum(family: str, teeth1: int, teeth2: int, internal: bool = Fal
                      precision: float = 1e-3, lo: float = 0.05, hi: float = 1.5, **params):
     """Largest ``addendum_coeff`` (to ``precision``) for which the pair of ``family`` wheels
     with the same coefficient rolls without interference. Bisection on :func:`check_pair`."""
-    from ..profiles import profile
+    from ..spec import profile
     precision = check_number("precision", precision, 1e-4, 0.5, unit="modules")
     lo = check_number("lo", lo, 0, None, lo_open=True)
     hi = check_number("hi", hi, lo, None, lo_open=True)
@@ -460,7 +460,7 @@ def tip_correction(family: str, teeth1: int, teeth2: int, internal: bool = True,
     bisected to ``precision`` (in modules). Returns the corrected tip radii (mm), ``a``,
     and the contact ratio before and after (the lost contact).
     """
-    from ..profiles import profile
+    from ..spec import profile
     precision = check_number("precision", precision, 1e-4, 0.5, unit="modules")
     kw = dict(addendum_coeff=addendum_coeff, tolerance=tolerance, **params)
     p1 = profile(family, teeth=teeth1, **kw)

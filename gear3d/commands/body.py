@@ -8,7 +8,7 @@ from __future__ import annotations
 import sys
 
 from .profile import add_param_flag, add_profile_flags, family_params, print_notes
-from .. import profile
+from ..spec import GearSpec
 from ..conventions import uses_conventions
 from ..export import check_output, write
 from ..params import BODY, BODY_PARAMS, MESH_TOLERANCE
@@ -56,7 +56,6 @@ def run(args) -> int:
     if getattr(args, "rack", False):
         from .rackflags import run_body_cli
         return run_body_cli(args, family_params)
-    from ..solids.body import body
     out = args.output
     if out is not None:
         check_output(out, kinds="body")
@@ -66,15 +65,15 @@ def run(args) -> int:
     fp = family_params(args, out, mesh=True)
     if uses_conventions(fp):                  # normal sizes are taken at the body's helix angle
         fp["helix_angle_deg"] = kw.get("helix_angle_deg", 0.0)
-    # build the profile once, at the share of the body tolerance the body plan gives it
-    from ..solids.body import profile_tolerance
+    # the spec builds the profile once, at the share of the body tolerance the body plan gives it
     kw.setdefault("tolerance", fp["tolerance"])
-    fp["tolerance"] = profile_tolerance(kw["tolerance"], kw["kind"], bool(kw.get("xy_offset")))
+    spec = GearSpec(args.family, {k: v for k, v in fp.items() if k != "tolerance"})
+    fp["tolerance"] = spec.profile_tolerance(**kw)         # what the plan charges for
     from .profile import FAMILY_FLAGS_PLANNED
     if args.family in FAMILY_FLAGS_PLANNED:     # profile, layers and export: refused before any is built
         from ..plan import plan_body
         plan_body(args.family, fp, kw, out, args.step)
-    b = body(profile(args.family, **fp), **kw)
+    b = spec.body(**kw)
     if out is None:
         from ..export.json_format import dumps
         sys.stdout.write(dumps(b.report) + "\n")

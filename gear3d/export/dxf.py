@@ -150,6 +150,13 @@ def _module(profile):
     return profile.module
 
 
+def rebuilt(profile, tolerance: float):
+    """The same outline at ``tolerance`` (mm): a gear profile's spec rebuilds it
+    (:class:`gear3d.spec.GearSpec`); a rack part or a worm wheel's section rebuilds itself."""
+    spec = getattr(profile, "spec", None)
+    return spec.profile(tolerance) if spec is not None else profile.at_tolerance(tolerance)
+
+
 def _is_rack(profile) -> bool:
     return hasattr(profile, "straight_edges") and not hasattr(profile, "pitch_radius")
 
@@ -175,7 +182,7 @@ def fit_profile(profile, tolerance=None, kerf: float = 0.0, start_angle_deg: flo
     kerf = check_number("kerf", kerf, -m, m, unit="mm (at most one module)")
     start = math.radians(check_number("start_angle_deg", start_angle_deg, -360, 360, unit="deg"))
     max_arc_deg = check_number("max_arc_deg", max_arc_deg, 1, 180, unit="deg")
-    exact = profile if abs(profile.tolerance - tol) <= 1e-15 else profile.at_tolerance(tol)
+    exact = profile if abs(profile.tolerance - tol) <= 1e-15 else rebuilt(profile, tol)
     fits, loops, rep = certified_fits(exact, profile, tol, kerf, start, max_arc_deg)
     accept(dict(rep, tolerance=tol))
     arcs = sum(f.arcs for f in fits)
@@ -341,7 +348,7 @@ def _sampled_fits(profile, tol: float, kerf: float, start: float, max_arc_deg: f
     by the kerf), measured by sampling both ways against the exact curve."""
     from ..tessellate import MIN_TOLERANCE
     ref_tol = max(tol / 20, MIN_TOLERANCE)
-    ref = profile if profile.tolerance <= ref_tol else profile.at_tolerance(ref_tol)
+    ref = profile if profile.tolerance <= ref_tol else rebuilt(profile, ref_tol)
     loops = [np.asarray(l, float) for l in ref.loops]
     if kerf != 0.0:
         loops = offset_loops(loops, kerf, ref_tol)

@@ -26,6 +26,7 @@ from .graph import Graph, first_upstream
 from .specs import AssemblySpec, Job, PartSpec, Scene
 from .template import MESH_KINDS, TemplateError
 from .. import profile
+from ..spec import GearSpec
 from ..budget import limits
 from ..export import atomic_path, check_out_dir, make_out_dir, remove_dirs, write
 
@@ -217,9 +218,7 @@ def body_stage(g: Graph, job: Job, part: PartSpec, tol, prefix, parts_by_name=No
         return g.add("body", {"body": b, "tolerance": tol, "rack": True, "name": part.name}, [prof],
                      fn=run_body, label=label, file=job.file, prefix=prefix + ".body", keys=tuple(b))
     # the profile is built once, at the share of the body tolerance the body plan gives it
-    from ..solids.body import profile_tolerance
-    prof = profile_stage(g, job, part, profile_tolerance(tol, b.get("kind", "spur"), bool(b.get("xy_offset"))),
-                         prefix)
+    prof = profile_stage(g, job, part, GearSpec.profile_tolerance(tol, **b), prefix)
     deps = [prof]
     if b.get("mate"):
         other = parts_by_name[b["mate"]]

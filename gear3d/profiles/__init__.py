@@ -1,4 +1,5 @@
-"""Gear families. Each registers a builder ``f(**params) -> Profile``.
+"""Gear families. Each registers a builder ``f(**params) -> Profile``; :func:`build` looks
+one up (the public :func:`gear3d.profile` goes through :mod:`gear3d.spec`).
 
 Rack families (involute, sine) go through the one engine in :mod:`gear3d.envelope`;
 closed forms (sine-circular, ...) hand their exact evaluators to the same builder.
@@ -31,49 +32,11 @@ FAMILY_MODULE = {
 }
 
 
-def profile(family: str, **params):
-    """Build a profile of ``family`` (see :data:`FAMILIES`) from keyword parameters (mm, deg).
-
-    Sizes are transverse (``module``, ``pressure_angle_deg``); ``normal_module``,
-    ``normal_pressure_angle_deg`` (at ``helix_angle_deg``, default 0) and ``diametral_pitch``
-    (1/inch) are converted by :func:`gear3d.conventions.to_transverse`.
-
-    Parameters
-    ----------
-    family : str
-        One of :func:`families` ("involute", "sine", "cycloidal", "gerotor-inner", "mate", ...).
-    **params
-        The family's keywords, each with its unit, range and default in the family's table
-        (:mod:`gear3d.params`, ``docs/parameters.md``). Common to most families: ``teeth``
-        (default 20), ``module`` (mm, default 1), ``internal`` (a ring gear, default False)
-        and ``tolerance`` (mm, default :data:`gear3d.params.DEFAULT_TOLERANCE`, from
-        :data:`gear3d.params.MIN_TOLERANCE` to :func:`gear3d.params.max_tolerance` of the
-        module): the largest distance allowed between the polygon and the exact curve.
-
-    Returns
-    -------
-    Profile
-        The closed loops (mm, centre at the origin, tooth 0 on +x) and the report of what
-        was measured, ``report["max_error"] <= tolerance`` included.
-
-    Raises
-    ------
-    GearError
-        A parameter out of its range, named with its value and the allowed range.
-    ToleranceError
-        A tolerance that cannot be met (finer than double precision, or too many vertices).
-
-    Examples
-    --------
-    >>> import gear3d
-    >>> p = gear3d.profile("involute", teeth=20, module=1.0, tolerance=0.01)
-    >>> p.pitch_radius                                           # m z / 2
-    10.0
-    >>> round(p.report["tip_radius"], 6), round(p.report["root_radius"], 6)   # r + m, r - 1.25 m
-    (11.0, 8.75)
-    >>> p.report["max_error"] <= p.tolerance
-    True
-    """
+def build(family: str, **params):
+    """The registry's builder: a profile of ``family`` from keyword parameters (mm, deg),
+    validated, sizes converted to the transverse plane, without a spec. The public entry is
+    :func:`gear3d.profile` (:func:`gear3d.spec.profile`), which attaches the
+    :class:`gear3d.spec.GearSpec` that rebuilds the profile; see it for the parameters."""
     if isinstance(family, str) and family in FAMILY_MODULE and family not in FAMILIES:
         import importlib
         importlib.import_module(f"{__name__}.{FAMILY_MODULE[family]}")

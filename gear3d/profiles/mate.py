@@ -15,9 +15,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..curves import Chain, Run, untangle
-from ..envelope import wheel_envelope_pieces
+from ..envelope import branch_changes, wheel_envelope_pieces
 from ..errors import GearError, check_number
 from ..geometry import polyline_distance, rotate, signed_area
+from ..spec import GearSpec
 
 
 #: two cut parameters closer than this (in a piece's parameter) are one cut
@@ -249,8 +250,9 @@ def roll(cutter: Cutter, teeth: int, internal: bool | None = None, tolerance: fl
             p, nn = pn(t)
             return rotate(p, beta0), rotate(nn, beta0)
         return f
-    pieces = [piece for pn, smooth in cutter.chain.elements()
-              for piece in wheel_envelope_pieces(rotated(pn), r1, r2, pair_internal, smooth)]
+    elements = cutter.chain.elements()
+    pieces = [piece for (pn, smooth), br in zip(elements, _branches(elements))
+              for piece in wheel_envelope_pieces(rotated(pn), r1, r2, pair_internal, smooth, br)]
     nominal, rim = _mate_radii(cutter, a, m, gen_internal, pair_internal, rim_radius)
     clip = None
     if tip_radius is not None:
@@ -259,11 +261,45 @@ def roll(cutter: Cutter, teeth: int, internal: bool | None = None, tolerance: fl
         nominal = max(nominal, tr) if gen_internal else min(nominal, tr)
     params = dict(tool=source, teeth=z2, internal=bool(internal), tolerance=tol, tip_radius=tip_radius,
                   rim_radius=rim_radius, **(source_params or {}))
-    return build_profile("mate", params, pieces, z2, r2, internal=gen_internal,
+    prof = build_profile("mate", params, pieces, z2, r2, internal=gen_internal,
                          tolerance=tol, rim_radius=rim, clip_radius=clip, nominal_tip_radius=nominal,
                          names=[f"tool-element-{i}" for i in range(len(pieces))],
                          extra_report={"tool_family": cutter.family, "tool_teeth": z1,
                                        "center_distance": a, "pair_internal": pair_internal})
+    # the mate family (gear3d.profile("mate", ...)) rebuilds it from these keywords
+    prof.spec = GearSpec("mate", {k: v for k, v in params.items() if k != "tolerance"})
+    return prof
+
+
+def _branches(elements) -> list:
+    """Per tool element, the fixed root of its envelope (+1, -1) or None (the element's own
+    nearer root, split where it switches: :func:`gear3d.envelope.wheel_envelope_pieces`).
+
+    The nearer root switches (p.n changes sign) only at a heavily undercut cutter's undercut
+    corner: a dip that starts in one element (the corner's fan, or the trochoid beside it)
+    and ends in its neighbour. Switching there and back joins the two roots by two roll
+    paths that run out and back side by side: a thin band (0.1 mm wide, up to 0.9 mm long on
+    a turned-tip 12-tooth pinion) whose winding is +1, so the trimming kept it as material,
+    though every roll-path point lies inside the swept cutter (brute-force cutting removes
+    it), and its length depended on the chords. Both roots are contacts, so an element with
+    a dip stays on the root of its nearest element without one: the raw envelope is then one
+    continuous envelope curve, with no roll path, and what the far root adds is an ordinary
+    swallowtail that the trimming removes (tests/test_certified_mate.py: brute-force cut)."""
+    signs = [branch_changes(pn) for pn, _smooth in elements]
+    changes = [bool(np.any(sg[:-1] * sg[1:] < 0)) for sg in signs]
+    steady = [i for i, c in enumerate(changes) if not c and np.any(signs[i] != 0)]
+    if not any(changes) or not steady:
+        return [None] * len(elements)
+    n = len(elements)
+    out = []
+    for i, c in enumerate(changes):
+        if not c:
+            out.append(None)
+            continue
+        j = min(steady, key=lambda k: min((k - i) % n, (i - k) % n))
+        sg = signs[j][signs[j] != 0]
+        out.append(1 if sg[0] > 0 else -1)
+    return out
 
 
 def _mate_radii(cutter: Cutter, a: float, m: float, gen_internal: bool, pair_internal: bool, rim_radius):

@@ -13,7 +13,7 @@ import numpy as np
 from ..errors import GearError, check_number
 from ..params import DEFAULT_TOLERANCE
 from ..model import build_profile
-from . import common, profile, register, reject_unknown, table
+from . import build, common, register, reject_unknown, table
 
 
 @register("sine-circular")
@@ -51,7 +51,7 @@ def scp_sgp_error(teeth=20, module=1.0, addendum_coeff=1.0, n=721, tolerance=1e-
     Returns (angles, error). Both profiles share the pitch circle and tooth phase; the
     SGP radius at each angle is the exact ray/polygon crossing of a fine SGP build.
     """
-    sgp = profile("sine", teeth=teeth, module=module, addendum_coeff=addendum_coeff, tolerance=tolerance)
+    sgp = build("sine", teeth=teeth, module=module, addendum_coeff=addendum_coeff, tolerance=tolerance)
     z, R, ha = teeth, module * teeth / 2, addendum_coeff * module
     phi = np.linspace(-math.pi / z, math.pi / z, n)
     r_scp = R + ha * np.cos(z * phi)

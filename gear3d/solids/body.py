@@ -43,7 +43,6 @@ from .twist import KINDS, TwistLaw, default_arch_radius, twist_law
 from ..budget import staged
 from ..params import BODY, MAX_TOLERANCE_TEXT, MIN_TOLERANCE, max_tolerance   # the one table (ranges stated once)
 from ..placement import mesh_placement, standard_center_distance
-from ..profiles import profile as make
 from ..progress import stage
 from .. import budget
 
@@ -272,7 +271,7 @@ def body(profile, kind="spur", width=10.0, helix_angle_deg=0.0, hand="right", ga
         check_number("rim_diameter", rim_diameter, 2 * rr, None, lo_open=True,
                      unit=f"mm (beyond the root diameter {2 * rr:.6g})")
         budget.check_rim(rim_diameter / 2, prof.pitch_radius, tol, "rim_diameter", scale=2)
-        prof = _rebuild(prof, rim_radius=rim_diameter / 2)
+        prof = _spec_of(prof).replace(rim_radius=rim_diameter / 2).profile(prof.tolerance)
     delta = check_number("xy_offset", xy_offset, -m / 2, m / 2, unit="mm (|offset| <= module/2)")
     ef = check_number("elephant_foot", elephant_foot, 0, W / 2, hi_open=True, unit="mm")
     ch = check_number("chamfer", chamfer, 0, W / 2, hi_open=True, unit="mm")
@@ -292,7 +291,7 @@ def body(profile, kind="spur", width=10.0, helix_angle_deg=0.0, hand="right", ga
         # the profile leaves too little room for the twist and offset terms: one rebuild
         if tp < MIN_TOLERANCE:
             raise ToleranceError("tolerance", tol, f"a number >= {tol_lo:g} mm for this body")
-        prof = prof.at_tolerance(tp)
+        prof = _spec_of(prof).profile(tp)
     skip = [(0.0, cb), (W - ct, W)] + ([(W / 2 - gap / 2, W / 2 + gap / 2)] if gap else [])
     share = TWIST_OPTIMISM
     # plain bodies (no chamfer, gap or hub feature but a bore) are built as a mesh directly
@@ -576,10 +575,13 @@ def _check_profile(profile):
     return profile
 
 
-def _rebuild(prof, **changes):
-    params = dict(prof.params)
-    params.update(changes)
-    return make(prof.family, **params)
+def _spec_of(prof):
+    """What rebuilds ``prof`` (its :class:`gear3d.spec.GearSpec`); GearError for a profile
+    built by hand, which a body cannot rebuild at its tolerance share or with a new rim."""
+    if getattr(prof, "spec", None) is None:
+        raise GearError("profile", f"a {prof.family} profile without a spec",
+                        "a profile made by gear3d.profile (the body rebuilds it at its share of the tolerance)")
+    return prof.spec
 
 
 def _rigid(angle: float, x: float) -> np.ndarray:

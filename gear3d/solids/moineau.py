@@ -16,7 +16,7 @@ import numpy as np
 
 from ..errors import check_number
 from ..params import MESH_TOLERANCE
-from ..profiles import profile
+from ..spec import profile
 
 
 def moineau_pair(eccentricity: float = 1.0, tooth_radius: float = 2.5, rotor_lead: float = 30.0,
