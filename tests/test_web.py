@@ -318,6 +318,7 @@ def test_page_in_chromium(tmp_path, capsys):
                 _check_bad_value_next_to_the_field(page)
                 _check_stl_download_is_the_clis_bytes(page, tmp_path, capsys)
                 _check_pair_interference_drawn_red(page)
+                _check_worm_and_bevel(page, tmp_path, capsys)
                 assert not errors, errors
             finally:
                 browser.close()
@@ -408,6 +409,55 @@ def _check_pair_interference_drawn_red(page):
     OUT.mkdir(parents=True, exist_ok=True)
     page.screenshot(path=str(OUT / "page.png"), full_page=True)
     assert (OUT / "page.png").stat().st_size > 10_000
+
+
+def _check_worm_and_bevel(page, tmp_path, capsys):
+    """The sets: one form, the wheel's mid-plane section (its throat radius m (z2/2 + 1)) or
+    the bevel gear's heel section (pitch radius m z1 / 2) drawn, the set's own downloads, an
+    STL that is the CLI's bytes."""
+    import numpy as np
+
+    from gear3d.cli import main
+
+    def drawn_radius(cls="profile"):
+        pts = _profile_points(page.get_attribute(f"#preview svg .full path.{cls}", "d"))
+        return np.hypot(pts[:, 0], pts[:, 1]).max()
+    page.select_option("#family", "worm")
+    page.wait_for_selector("body[data-family='worm'] #preview svg.gear3d-preview[data-teeth='30']")
+    assert page.is_hidden("#section-body") and page.is_hidden("#section-pair") and page.is_hidden("#pair-panel")
+    assert page.is_visible("#download-dxf") and page.is_hidden("#download-svg")
+    assert abs(drawn_radius() - 2.0 * (30 / 2 + 1)) < 2e-3
+    assert "wheel mid-plane section" in page.inner_text("#report")
+    page.fill("#in-profile-wheel_teeth", "24")
+    page.select_option("#in-profile-part", "wheel")
+    page.wait_for_selector("#preview svg.gear3d-preview[data-teeth='24']")
+    page.wait_for_selector("#view3d[data-family='worm'][data-triangles]")
+    with page.expect_download(timeout=TIMEOUT_MS) as dl:
+        page.click("#download-stl")
+    web = tmp_path / "worm-web.stl"
+    dl.value.save_as(web)
+    assert dl.value.suggested_filename == "worm-z24-wheel.stl"
+    cli = tmp_path / "worm-cli.stl"
+    assert main(["worm", "--module", "2", "--starts", "1", "--wheel-teeth", "24", "--part", "wheel", "-o", str(cli)]) == 0
+    capsys.readouterr()
+    assert web.read_bytes() == cli.read_bytes()
+    OUT.mkdir(parents=True, exist_ok=True)
+    page.screenshot(path=str(OUT / "worm.png"), full_page=True)
+    page.select_option("#family", "bevel")
+    page.wait_for_selector("body[data-family='bevel'] #preview svg.gear3d-preview[data-teeth='20']")
+    assert abs(float(page.get_attribute("#preview svg .full circle.pitch-circle", "r")) - 2.0 * 20 / 2) < 1e-6
+    assert page.is_visible("#download-step") and page.is_hidden("#download-dxf")
+    with page.expect_download(timeout=TIMEOUT_MS) as dl:
+        page.click("#download-stl")
+    web = tmp_path / "bevel-web.stl"
+    dl.value.save_as(web)
+    cli = tmp_path / "bevel-cli.stl"
+    assert main(["bevel", "--teeth", "20", "--mate-teeth", "40", "--module", "2", "-o", str(cli)]) == 0
+    capsys.readouterr()
+    assert web.read_bytes() == cli.read_bytes() and dl.value.suggested_filename == "bevel-z20-gear.stl"
+    page.select_option("#family", "involute")
+    page.wait_for_selector("body[data-family='involute'] #preview svg.gear3d-preview")
+    assert page.is_visible("#section-body") and page.is_visible("#download-svg")
 
 
 def _check_one_log_line_a_request(server):
