@@ -85,12 +85,12 @@ def profile_preview(family: str, pk: dict) -> Reply:
 def build_body(family: str, pk: dict, bk: dict, output=None):
     """``gear3d body FAMILY ...``'s body: the body tolerance (default the profile's), the
     profile built at the share of it the body plan gives the profile, planned first."""
-    from ..solids.body import body, profile_tolerance
+    from ..spec import GearSpec
     bk = dict(bk)
     bk.setdefault("tolerance", pk["tolerance"])
-    fp = dict(pk, tolerance=profile_tolerance(bk["tolerance"], bk.get("kind", "spur"), bool(bk.get("xy_offset"))))
-    plan.plan_body(family, fp, bk, output)
-    return body(profile(family, **fp), **bk)
+    spec = GearSpec(family, {k: v for k, v in pk.items() if k != "tolerance"})
+    plan.plan_body(family, dict(pk, tolerance=spec.profile_tolerance(**bk)), bk, output)
+    return spec.body(**bk)
 
 
 def preview_body(family: str, pk: dict, bk: dict):
