@@ -1,5 +1,5 @@
 """``gear3d worm --module M --starts N --wheel-teeth Z ... --part worm|wheel|pair -o FILE``:
-a cylindrical worm (ZA, ZN, ZI) and its throated wheel, the exact envelope of the worm.
+a cylindrical worm (ZA, ZN, ZI, ZK) and its throated wheel, the exact envelope of the worm.
 
 Frames: the wheel on its own has axis z and mid-plane z = 0 (tooth 0 on +x); the worm on
 its own has axis z and is centred at z = 0; ``--part pair`` places the wheel (turned so
@@ -36,7 +36,12 @@ def add_parser(sub):
     a.add_argument("--normal-pressure-angle-deg", type=float, default=None,
                    help="αn, 5..35 deg (default 20); tan αn = tan αx cos γ")
     p.add_argument("--worm-type", default="ZA", help="ZA (straight axial section), ZN (straight normal "
-                   "section), ZI (involute helicoid); ZK is not built yet (default ZA)")
+                   "section), ZI (involute helicoid), ZK (ground by a biconical disc) (default ZA)")
+    p.add_argument("--disc-radius", type=float, default=None,
+                   help="ZK only: the grinding disc's outside radius, mm (default max(125, 25 m): a 250 mm disc)")
+    p.add_argument("--backlash", type=float, default=None,
+                   help="normal backlash j_n at the pitch point, mm (default 0): the worm's thread is thinned, "
+                        "the wheel stays the envelope of the nominal worm (the hob)")
     p.add_argument("--hand", default="right", choices=["right", "left"], help="hand of worm and wheel (default right)")
     p.add_argument("--addendum-coeff", type=float, default=1.0, help="worm addendum and wheel throat addendum, in modules (default 1)")
     p.add_argument("--dedendum-coeff", type=float, default=1.2,
@@ -70,13 +75,16 @@ def add_parser(sub):
     return p
 
 
+#: the feature keywords of gear3d.worm (not the design's)
+FEATURES = ("worm_bore", "wheel_bore", "hub_diameter", "hub_length")
+
+
 def _params(args) -> dict:
     kw = {"module": args.module, "starts": args.starts, "wheel_teeth": args.wheel_teeth,
           "worm_type": args.worm_type, "hand": args.hand, "addendum_coeff": args.addendum_coeff,
           "dedendum_coeff": args.dedendum_coeff, "throat": args.throat, "shift_coeff": args.shift_coeff}
     for k in ("diameter_quotient", "worm_pitch_diameter", "axial_pressure_angle_deg", "normal_pressure_angle_deg",
-              "worm_length", "face_width", "tolerance", "friction", "worm_bore", "wheel_bore", "hub_diameter",
-              "hub_length"):
+              "worm_length", "face_width", "tolerance", "friction", "disc_radius", "backlash", *FEATURES):
         v = getattr(args, k)
         if v is not None:
             kw[k] = v
@@ -102,8 +110,7 @@ def run(args) -> int:
     from ..wormgear import worm
     from ..wormgear.design import design
     kw = _params(args)
-    d = design(**{k: v for k, v in kw.items() if k not in ("worm_bore", "wheel_bore", "hub_diameter",
-                                                            "hub_length")})
+    d = design(**{k: v for k, v in kw.items() if k not in FEATURES})
     check = bool(args.check or args.contact_png)
     s = worm(part=args.part, check=check, **kw)
     lines = []

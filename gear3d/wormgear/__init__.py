@@ -1,9 +1,9 @@
-"""Worm gearing: cylindrical worms (ZA, ZN, ZI) and the throated wheel as the exact
+"""Worm gearing: cylindrical worms (ZA, ZN, ZI, ZK) and the throated wheel as the exact
 envelope of the worm, section by section (issue #23).
 
 * :mod:`.design` - the validated parameters and every derived size;
 * :mod:`.thread` - the thread in closed form (axial profile, section in a wheel plane,
-  transverse section);
+  transverse section); :mod:`.zk` - the ZK worm's axial profile (the disc's envelope);
 * :mod:`.wheel`, :mod:`.wheel_body` - the wheel's certified sections and its body;
 * :mod:`.worm_body` - the worm's body (the exact section screwed along its axis);
 * :mod:`.contact` - the mid-plane contact ratio.
@@ -74,6 +74,14 @@ class WormReport:
     wheel_triangles: int | None
     #: the rolling check of the pair (:func:`gear3d.wormgear.rolling.rolling_check`), when asked
     rolling: dict | None = None
+    #: ZK: the grinding disc's outside radius (mm); None for the other types
+    disc_radius: float | None = None
+    #: the normal backlash asked (mm), at the pitch point; made by thinning the worm's thread
+    backlash: float = 0.0
+    #: the circumferential backlash on the wheel's pitch circle it makes, j_n / n_z (mm)
+    backlash_circumferential: float = 0.0
+    #: how much each worm flank is moved into the thread, axially (mm): j_t / 2
+    worm_thinning: float = 0.0
 
     def to_dict(self) -> dict:
         return {f.name: _clean(getattr(self, f.name)) for f in fields(self)}
@@ -241,4 +249,5 @@ def _report(d, part, w, wh) -> WormReport:
         worm_max_error=we, wheel_max_error=he,
         wheel_section_max_error=r.get("section_max_error"), wheel_band_max_error=r.get("band_max_error"),
         wheel_sections=r.get("sections"), worm_triangles=int(w.report["triangles"]) if w is not None else None,
-        wheel_triangles=r.get("triangles"))
+        wheel_triangles=r.get("triangles"), disc_radius=d.disc_radius if d.worm_type == "ZK" else None,
+        backlash=d.backlash, backlash_circumferential=2 * d.worm_thinning, worm_thinning=d.worm_thinning)

@@ -19,7 +19,8 @@ one wheel pitch (the wheel by φ, the worm by s φ z2/z1):
   worm's axial movements (= arcs on the wheel's pitch circle) that close the gap on each
   flank. Their minima over all teeth and sections (refined by golden section on the exact
   piece) give the interference (negative), the circumferential backlash (the sum of both
-  flanks' minima; normal backlash = that x cos αn cos γ) and the transmission error (the
+  flanks' minima; normal backlash = that x n_z, the axial component of the flank's unit
+  normal at the pitch point: cos αn cos γ for ZA, ZN and ZI) and the transmission error (the
   variation of the driving flank's minimum over the positions). The radial clearances
   (wheel tip to worm root, worm tip to wheel root) come from the same points.
 
@@ -58,13 +59,15 @@ SHOWN = 8
 FLANKS = (("a", -1.0), ("b", 1.0))
 
 
-def rolling_check(d, positions: int = POSITIONS, heights: int = HEIGHTS, thinning: float = 0.0) -> dict:
+def rolling_check(d, positions: int = POSITIONS, heights: int = HEIGHTS, thinning: float | None = None) -> dict:
     """Roll the pair of design ``d`` through one wheel pitch at ``positions`` positions on
     ``heights`` wheel sections; the report (mm, µrad; strict-JSON-ready, see module doc).
     ``thinning`` (mm): the worm's flanks moved into its thread by that much axially (each
     flank) for the gaps - the wheel stays the envelope of the nominal worm, so the check
-    must find that backlash (a negative value thickens the thread: interference)."""
+    must find that backlash (a negative value thickens the thread: interference); default
+    the design's own, ``d.worm_thinning`` (from ``d.backlash``)."""
     f = axial_profile(d)
+    thinning = d.worm_thinning if thinning is None else thinning
     B = d.face_width
     H = np.unique(np.concatenate([np.linspace(-B / 2, B / 2, heights), [0.0]]))
     S = sheet.sections(d, H)
@@ -288,14 +291,13 @@ def _summary(d, zones, lines, gaps, phis) -> dict:
     gaps = dict(gaps, tip=np.where(np.isfinite(gaps["tip"]), gaps["tip"], np.inf),
                 root=np.where(np.isfinite(gaps["root"]), gaps["root"], np.inf))
     both = gaps["a"] + gaps["b"]
-    cg = 1 / math.sqrt(1 + d.tan_gamma ** 2)
     jt = float(np.min(both)) if np.isfinite(both).any() else None
     rep = {"wheel_pitch_deg": 360.0 / d.wheel_teeth,
            "min_gap": _res(min(fin)) if fin else None,
            "interference": bool(fin and min(fin) < -RESOLUTION) or bool(np.min(gaps["tip"]) < 0)
            or bool(np.min(gaps["root"]) < 0),
            "backlash_circumferential": _res(jt),
-           "backlash_normal": None if jt is None else _res(jt * math.cos(d.alpha_n) * cg),
+           "backlash_normal": None if jt is None else _res(jt * d.pitch_normal_z),
            "clearance_wheel_tip": _finite_min(gaps["tip"]), "clearance_worm_tip": _finite_min(gaps["root"])}
     te = {}
     for name, _side in FLANKS:

@@ -23,6 +23,10 @@ solved in closed form: ``a cos θ + b sin θ + c = 0`` with ``a = (r_d - w tan �
 point at radius ``ρ`` is screwed back to the axial half-plane: ``e = z - p atan2(y, x)``.
 ``e`` at a given ρ is found by Newton on r_d (vectorised, started from a table, checked to
 :data:`NEWTON_TOL`); de/dρ by the chain rule on central differences of the closed form.
+On the thread's radii a Chebyshev series stands for the solve, kept only when it agrees
+with it within :data:`CHEB_TOL` (1e-11 mm) at 401 points (the rolling check and the wheel
+evaluate ``e`` millions of times); outside them, where the worm has no flank (the rolling
+check asks there for points it then masks), the profile continues along its end tangent.
 
 As R → ∞ the disc's cone becomes its tangent plane at the pitch point, whose envelope under
 a screw is an involute helicoid: the ZK flank tends to the **ZI** flank with the same αn
@@ -95,8 +99,8 @@ class _Disc:
             rd = rd - step
             if np.all(np.abs(r0 - rho) <= NEWTON_TOL) and np.all(ok0) and np.all(slope < 0):
                 return rd
-        raise GearError("disc_radius", self.R, "a larger disc for this worm",
-                        "the disc's contact line does not reach every radius of the thread")
+        raise GearError("disc_radius", self.R, "another disc for this worm",
+                        "Newton on the disc radius did not converge to every radius of the thread")
 
 
 def _wrap(a):
@@ -104,19 +108,27 @@ def _wrap(a):
 
 
 def _table(disc, rho_lo, rho_hi):
-    """(ρ, r_d) at 65 disc radii covering [rho_lo, rho_hi] (ρ ascending) for Newton's start."""
+    """(ρ, r_d) at 65 disc radii covering [rho_lo, rho_hi] (ρ ascending) for Newton's start.
+    Refused when the contact line does not reach down to rho_lo one-to-one: as for a ZI
+    worm's base cylinder, a steep thread's disc flank turns back above some radius."""
     span = rho_hi - rho_lo
-    rd = disc.Cx - np.linspace(rho_lo - 0.2 * span, rho_hi + 0.2 * span, 65)
+    rd = disc.Cx - np.linspace(rho_hi + 0.3 * span, rho_lo - 0.5 * span, 129)    # r_d ascending
     rho, _, ok = disc.contact(rd)
-    if not np.all(ok) or np.any(np.diff(rho) <= 0):          # ρ must fall as r_d grows
-        raise GearError("disc_radius", disc.R, "a larger disc for this worm",
-                        "the disc's contact line is not one-to-one in the worm's radius")
-    return rho, rd
+    bad = np.nonzero(~ok[1:] | (np.diff(rho) >= 0))[0]       # ρ must fall as r_d grows
+    n = bad[0] + 1 if len(bad) else len(rd)
+    if not ok[0] or rho[n - 1] > rho_lo or rho[0] < rho_hi:
+        raise GearError("disc_radius", disc.R, "a smaller disc (or a larger pressure angle, a smaller lead angle)",
+                        f"the disc's flank reaches down to a radius of {rho[:n].min():.4g} mm only, above the "
+                        f"{rho_lo:.4g} mm the thread needs")
+    return rho[:n][::-1], rd[:n][::-1]
 
 
 def _rho_range(d):
+    """The radii (mm) the thread's profile is asked for: the root (or the wheel sections'
+    virtual root, if lower) to the cutting worm's tip, with 2 % of a module to spare."""
     m = d.module
-    return d.r1 - max(d.dedendum_coeff, d.addendum_coeff + 0.2) * m - 0.1 * m, d.r1 + d.dedendum_coeff * m + 0.1 * m
+    lo = min(d.r1 - d.dedendum_coeff * m, d.r1 - (d.addendum_coeff + 0.1) * m)
+    return lo - 0.02 * m, d.r1 + d.dedendum_coeff * m + 0.02 * m
 
 
 def _make(d, w0):
@@ -136,6 +148,53 @@ def _make(d, w0):
     return e_of
 
 
+def _fast(d, exact):
+    """``exact`` (the Newton solve) replaced on the thread's radii by a Chebyshev series of
+    degree :data:`CHEB_DEGREE`, kept only if it is within :data:`CHEB_TOL` of the solve at
+    :data:`CHEB_CHECKS` points between its nodes (else the solve itself is used). Outside
+    the radii the profile continues along the end's tangent (:func:`_continued`)."""
+    from numpy.polynomial import chebyshev as C
+    lo, hi = _rho_range(d)
+    mid, half = 0.5 * (lo + hi), 0.5 * (hi - lo)
+    coef = C.chebinterpolate(lambda x: exact(mid + half * x)[0], CHEB_DEGREE)
+    dcoef = C.chebder(coef) / half
+    x = np.linspace(-1, 1, CHEB_CHECKS)
+    e, de = exact(mid + half * x)
+    if np.abs(C.chebval(x, coef) - e).max() > CHEB_TOL or np.abs(C.chebval(x, dcoef) - de).max() > 1e-7:
+        return _continued(exact, lo, hi)
+
+    def series(rho):
+        x = (rho - mid) / half
+        return C.chebval(x, coef), C.chebval(x, dcoef)
+    return _continued(series, lo, hi)
+
+
+def _continued(g, lo, hi):
+    """``g`` on [lo, hi] (mm); outside, where the worm has no flank (the rolling check asks
+    there for points it then masks), continued along the end's tangent."""
+    ends = g(np.array([lo, hi]))
+
+    def f(rho):
+        rho = np.asarray(rho, float)
+        r = np.clip(rho, lo, hi)
+        e, de = g(r)
+        out = r != rho
+        if np.any(out):
+            k = (rho > hi).astype(int)
+            e = np.where(out, ends[0][k] + ends[1][k] * (rho - r), e)
+            de = np.where(out, ends[1][k], de)
+        return e, de
+    return f
+
+
+#: degree of the Chebyshev series that stands for the solve (checked, see :func:`_fast`)
+CHEB_DEGREE = 40
+#: mm: the series must be this close to the solve at every check point
+CHEB_TOL = 1e-11
+#: points between the nodes where the series is checked against the solve
+CHEB_CHECKS = 401
+
+
 def zk_profile(d):
     """``f(rho) -> (e, de/drho)`` (mm, arrays of any shape): the ZK worm's axial profile for
     the disc of ``d.disc_radius`` (outside radius, mm) at the normal pressure angle
@@ -147,4 +206,4 @@ def zk_profile(d):
             lo = mid
         else:
             hi = mid
-    return _make(d, 0.5 * (lo + hi))
+    return _fast(d, _make(d, 0.5 * (lo + hi)))
