@@ -1,4 +1,4 @@
-"""One parameter table per family (issue #17 item 1): every parameter declared once.
+"""One parameter table per family: every parameter declared once.
 
 A :class:`Param` states a parameter's name, type, unit, range, default, help and the
 parameters it excludes. The tables drive
@@ -222,7 +222,7 @@ def _with(p: Param, **kw) -> Param:
     return replace(p, **kw)
 
 
-_SINE_FORM = _p("form", str, default="epi", choices=("epi", "hypo"), help="seed 000 rack form")
+_SINE_FORM = _p("form", str, default="epi", choices=("epi", "hypo"), help="unit-radius rack form: epi or hypo (the same sine rack half a pitch apart)")
 _PINS = _p("pins", int, "", 3, 10_000, default=12, help="number of pins N")
 _PIN_R = _p("pin_circle_radius", float, "mm", 0, 1e5, lo_open=True, default=30.0, help="pin circle radius R")
 _PIN_RP = _p("pin_radius", float, "mm", 0, None, lo_open=True, default=3.0, help="pin radius",
@@ -230,7 +230,7 @@ _PIN_RP = _p("pin_radius", float, "mm", 0, None, lo_open=True, default=3.0, help
 _ECC = _p("eccentricity", float, "mm", 0, None, lo_open=True, default=1.5, help="eccentricity e",
           limits="e N / R < 1")
 _TR = _p("teeth", int, "", 1, 100_000, default=None, help="teeth (derived; give it only to confirm it)")
-_VARIANT = _p("variant", str, default="epi", choices=("epi", "hypo"), help="seed 000's two gerotor variants")
+_VARIANT = _p("variant", str, default="epi", choices=("epi", "hypo"), help="equidistant epicycloidal (epi) or hypocycloidal (hypo) outer rotor")
 _ROTOR = _p("tooth_radius", float, "mm", 0, 1e5, lo_open=True, default=2.5, help="section circle radius rho")
 _LEAD = _p("rotor_lead", float, "mm", 0, None, lo_open=True, help="rotor lead (for the flow report)")
 
@@ -245,16 +245,16 @@ FAMILY_PARAMS: dict = {
         INTERNAL, TOLERANCE, TIP, RIM),
     "sine": (
         TEETH,
-        _with(MODULE, default=None, help="module m (default 1 mm; 2 x unit_radius with seed 000's form)",
+        _with(MODULE, default=None, help="module m (default 1 mm; 2 x unit_radius for the unit-radius rack)",
               excludes=MODULE.excludes + ("unit_radius",)),
         _p("addendum_coeff", float, "x m", 0, 5, lo_open=True, help="sine amplitude (default 1)"),
         _p("shift_coeff", float, "x m", -5, 5, default=0.0, help="rack displacement"),
         INTERNAL, TOLERANCE, TIP, RIM, _SINE_FORM,
-        _p("unit_radius", float, "mm", 0, 500, lo_open=True, help="seed 000: rack unit radius r",
+        _p("unit_radius", float, "mm", 0, 500, lo_open=True, help="unit-radius rack: its unit radius r (module 2r)",
            excludes=("module",)),
-        _p("amplitude", float, "mm", 0, None, lo_open=True, help="seed 000: harmonic amplitude A (default r)",
+        _p("amplitude", float, "mm", 0, None, lo_open=True, help="unit-radius rack: harmonic amplitude A (default r)",
            limits="only with unit_radius"),
-        _p("displacement", float, "mm", help="seed 000: rack displacement dx (default 0)",
+        _p("displacement", float, "mm", help="unit-radius rack: rack displacement dx (default 0)",
            limits="only with unit_radius")),
     "sine-circular": (
         TEETH, MODULE, _with(ADD, hi=5), INTERNAL, TOLERANCE, RIM),
