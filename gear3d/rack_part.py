@@ -1,4 +1,4 @@
-"""Linear racks as parts (issue #14 item 1): the rack that meshes with a family's gears.
+"""Linear racks as parts: the rack that meshes with a family's gears.
 
 Frame (mm): the pitch line is y = 0, teeth point to +y, tooth 0 is centred on x = 0 and
 tooth k on x = k p (p = pi m); the rack runs from x = -p/2 to x = (N - 1/2) p (both ends in
@@ -297,7 +297,7 @@ def rack_params(family, kw):
         ds = kw.pop("displacement", None)
         if ur is not None:
             if kw.get("module") is not None:
-                raise GearError("module", kw["module"], "omitted when unit_radius (seed 000 form) is given")
+                raise GearError("module", kw["module"], "omitted when unit_radius (the unit-radius rack) is given")
             ur = check_number("unit_radius", ur, 0, 500, lo_open=True, unit="mm")
             kw["module"] = 2 * ur
             A = check_number("amplitude", ur if A is None else A, 0, None, lo_open=True, unit="mm")
@@ -307,7 +307,7 @@ def rack_params(family, kw):
         else:
             for k, v in (("amplitude", A), ("displacement", ds)):
                 if v is not None:
-                    raise GearError(k, v, "only with unit_radius (seed 000's rack); with module use "
+                    raise GearError(k, v, "only with unit_radius (the unit-radius rack); with module use "
                                     + ("addendum_coeff" if k == "amplitude" else "shift_coeff"))
     m = check_number("module", 1.0 if kw.get("module") is None else kw.pop("module"), 0, 1000,
                      lo_open=True, unit="mm")

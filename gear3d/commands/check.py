@@ -7,7 +7,7 @@ full report, ``--png OUT`` (or .svg) the rolled positions of one wheel in the ot
 interference-free ``addendum_coeff``; ``--tip-correction`` turns the tips until the pair
 meshes (seed 001 Fig. 20-21).
 
-Shifted pairs (issue #14 item 2): each wheel keeps its own shift (``--shift-coeff``,
+Shifted pairs: each wheel keeps its own shift (``--shift-coeff``,
 ``--mate-shift-coeff``, numbers or ``auto``). Involute pairs run at the operating centre
 distance of x1 + x2 with shortened tips (:func:`gear3d.shift.design_pair`); other families
 at the working centre distance the rolling check finds when a wheel is shifted
@@ -163,7 +163,7 @@ def add_check_pair_flags(c):
     c.add_argument("--max-safe-addendum", action="store_true",
                    help="deprecated spelling of --largest-addendum")
     c.add_argument("--tip-correction", action="store_true",
-                   help="lower/raise the tips until the pair meshes (seed 001 Fig. 20)")
+                   help="lower/raise the tips until the pair meshes (tip correction)")
     c.add_argument("--json", default=None, help="write the report as JSON")
     c.add_argument("--png", default=None, help="figure of the rolled positions (.png or .svg)")
     c.add_argument("-o", "--output", default=None, help="a .json report or a .png/.svg figure")

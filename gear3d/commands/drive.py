@@ -17,7 +17,7 @@ NOTE = "gear3d: note: `gear3d drive harmonic` is deprecated; use `gear3d harmoni
 def add_parser(sub):
     p = sub.add_parser("drive", help="deprecated spelling of `gear3d harmonic` (drive harmonic ...)")
     kinds = p.add_subparsers(dest="drive_kind", metavar="KIND", parser_class=type(p))
-    harmonic.add_actions(kinds.add_parser("harmonic", help="strain-wave drives (seed 002): use `gear3d harmonic`"))
+    harmonic.add_actions(kinds.add_parser("harmonic", help="strain-wave drives: use `gear3d harmonic`"))
     return p
 
 

@@ -27,7 +27,7 @@ TOOTH_CHOICES = ("triangular", "sine", "involute")
 
 
 def _design_flags(p):
-    p.add_argument("--seed002", action="store_true", help="seed 002's worked design (m 0.3, 200/202, 192/190)")
+    p.add_argument("--seed002", action="store_true", help="the worked design of the double harmonic transmission (m 0.3, 200/202 and 192/190 teeth)")
     p.add_argument("--module", type=number("float", 0, 1000, lo_open=True, unit="mm"), default=None,
                    help="module m (mm)")
     p.add_argument("--z2", type=number("int", 1, 100_000), default=None, help="double: outer teeth of the flexspline")
@@ -88,7 +88,7 @@ def _check_paths(args):
 
 
 def add_parser(sub):
-    p = sub.add_parser("harmonic", help="strain-wave drives (seed 002): design | build | check")
+    p = sub.add_parser("harmonic", help="strain-wave drives: design | build | check")
     add_actions(p)
     return p
 
@@ -117,7 +117,7 @@ def add_actions(p):
                    help=f"profile tolerance (mm); default {CHECK_TOLERANCE:g} mm")
     c.add_argument("--positions", type=number("int", 1, 1000), default=16, help="flex rotations sampled over one pitch")
     c.add_argument("--deflection", type=number("float", 0, None, unit="mm"), default=None, help="override w0 of the stage (mm); 0 = undeflected")
-    c.add_argument("--png", default=None, help="write a figure like seed 002 Figs. 3-4")
+    c.add_argument("--png", default=None, help="write a figure: the deflected flex teeth and the rigid wheel around the engagement axis, and every tooth's engagement depth")
     c.add_argument("--json", default=None, help="write the report to this file instead of stdout")
     return acts
 

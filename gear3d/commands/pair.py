@@ -1,6 +1,6 @@
 """``gear3d pair FAMILY --teeth N --mate-teeth M ...``: deprecated alias of ``gear3d check pair``.
 
-Same flags and work as ``gear3d check pair`` (:mod:`gear3d.commands.check`, issue #17: one
+Same flags and work as ``gear3d check pair`` (:mod:`gear3d.commands.check`: one
 command per job); without an output file it prints the JSON report on stdout, as it always
 did, and it ends with a one-line deprecation note on stderr. ``--largest-addendum`` is the
 flag of both (``--max-safe-addendum`` is its deprecated spelling).

@@ -1,4 +1,4 @@
-"""``--rack`` for ``gear3d profile|body|pair``: the flags and the runs (issue #14 item 1).
+"""``--rack`` for ``gear3d profile|body|pair``: the flags and the runs.
 
 The rack parts themselves are :mod:`gear3d.rack_part`; the pinion-and-rack check is
 :mod:`gear3d.analysis.rack_mesh`. The calling command passes its own ``family_params``
@@ -16,7 +16,7 @@ from ..params import BODY
 
 def add_rack_flags(p, pair: bool = False):
     """``--rack`` and its flags (``gear3d profile|body|pair``)."""
-    p.add_argument("--rack", action="store_true", help="a linear rack of the family (issue #14): "
+    p.add_argument("--rack", action="store_true", help="a linear rack of the family: "
                    "--teeth rack teeth" + (" ; the pinion has --teeth, the rack --rack-teeth" if pair else ""))
     p.add_argument("--back-height", type=number("float", 0, None, lo_open=True, unit="mm"), default=None,
                    help="rack: back height below the root line (mm), default 2 module")

@@ -27,7 +27,7 @@ def sine(teeth=20, module=None, addendum_coeff=None, shift_coeff=0.0, internal=F
     form = P["form"].check(form)
     if unit_radius is not None:
         if module is not None:
-            raise GearError("module", module, "omitted when unit_radius (seed 000 form) is given")
+            raise GearError("module", module, "omitted when unit_radius (the unit-radius rack) is given")
         ur = P["unit_radius"].check(unit_radius)
         module = 2 * ur
         A = P["amplitude"].check(amplitude if amplitude is not None else ur)
@@ -36,7 +36,7 @@ def sine(teeth=20, module=None, addendum_coeff=None, shift_coeff=0.0, internal=F
     else:
         for k, v in (("amplitude", amplitude), ("displacement", displacement)):
             if v is not None:
-                raise GearError(k, v, "only with unit_radius (seed 000's rack); with module use "
+                raise GearError(k, v, "only with unit_radius (the unit-radius rack); with module use "
                                 + ("addendum_coeff" if k == "amplitude" else "shift_coeff"))
     module = 1.0 if module is None else module
     addendum_coeff = 1.0 if addendum_coeff is None else addendum_coeff
