@@ -1,4 +1,4 @@
-"""Planetary sets (issue #14 item 5): sun, planets and ring placed in phase, checked by rolling.
+"""Planetary sets: sun, planets and ring placed in phase, checked by rolling.
 
 :func:`planetary_set` builds a standard (unshifted) simple planetary set of one family: a
 sun of ``sun`` teeth at the origin, ``planets`` identical planets of ``planet`` teeth on the
@@ -47,7 +47,7 @@ from .budget import check_body
 from .conventions import to_transverse
 from .placement import mesh_phase, standard_center_distance
 
-#: rack-generated families with a module whose same-family pairs mesh (issue #14 item 1)
+#: rack-generated families with a module whose same-family pairs mesh
 PLANETARY_FAMILIES = ("cycloidal", "involute", "sine", "triangular")
 SPACINGS = ("equal", "nearest")
 

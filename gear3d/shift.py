@@ -1,4 +1,4 @@
-"""Shifted involute pair design (issue #14 item 2): shifts, operating centre distance, tips (mm, deg).
+"""Shifted involute pair design: shifts, operating centre distance, tips (mm, deg).
 
 What KHK's and KISSsoft's calculators do, for wheels cut by the ISO 53 rack of
 :func:`gear3d.profiles.involute.involute` (shifts + = thicker teeth, rings too; see

@@ -1,4 +1,4 @@
-"""Contact of a pair as conjugate action on the exact flanks (issue #22).
+"""Contact of a pair as conjugate action on the exact flanks.
 
 Two flanks are in *conjugate* contact at a wheel-1 angle φ when they touch at a point
 whose common normal passes through the pitch point I (Willis). On the exact pieces that

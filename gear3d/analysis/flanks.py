@@ -1,4 +1,4 @@
-"""One wheel's exact flanks for the conjugate-contact check (issue #22).
+"""One wheel's exact flanks for the conjugate-contact check.
 
 A profile's exact boundary (:class:`gear3d.exact.ExactBoundary`) holds one tooth period's
 exact pieces G(t), the samples that survived trimming and, where trimming cut a piece, the

@@ -1,10 +1,10 @@
-"""Pair checks by rolling (issue #3): interference, clearance, contact, transmission error.
+"""Pair checks by rolling: interference, clearance, contact, transmission error.
 
 Two profiles are placed at their centre distance in mesh phase and rolled through at
 least one full tooth cycle, the step chosen from the tolerance. Interference and clearance
 are checked with shapely/GEOS on the placed polygons (independent of the Clipper trimming
-that built them). Contact is conjugate action on the exact flanks (issue #22,
-:mod:`gear3d.analysis.contact`): the contact ratio counts only the positions where tooth
+that built them). Contact is conjugate action on the exact flanks
+(:mod:`gear3d.analysis.contact`): the contact ratio counts only the positions where tooth
 0's driving flank touches wheel 2 with the common normal through the pitch point, both
 points on smooth exact pieces; a corner touching by its edge is reported apart.
 

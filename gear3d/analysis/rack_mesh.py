@@ -1,4 +1,4 @@
-"""Pinion against rack, by rolling (issue #14 item 1): interference, backlash, contact ratio.
+"""Pinion against rack, by rolling: interference, backlash, contact ratio.
 
 Frame: the rack's (:mod:`gear3d.rack_part`): pitch line y = 0, teeth up. The pinion's own
 frame (tooth 0 on +x) is turned by -90 deg so that its tooth 0 points down at the rack,

@@ -1,5 +1,5 @@
 """Straight bevel gears (spherical-involute and octoid forms) on spherical sections of the
-one conjugate engine (issue #24).
+one conjugate engine.
 
 ``gear3d.bevel(...)`` (this package is callable) builds a member, its mate or the pair and
 returns a :class:`Bevel`: the bodies and a typed, frozen :class:`BevelReport` whose

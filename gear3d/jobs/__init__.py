@@ -1,4 +1,4 @@
-"""Scenes and part libraries (issue #8): TOML templates -> stage graph -> files.
+"""Scenes and part libraries: TOML templates -> stage graph -> files.
 
 * :mod:`.template` -- load and validate scene / library TOML files (data only, no eval);
 * :mod:`.specs` -- what they return: frozen ``Scene`` / ``Library`` of ``PartSpec``,

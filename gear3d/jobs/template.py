@@ -951,7 +951,7 @@ def markdown() -> str:
              "name with `-` for `_`); see [parameters.md](parameters.md) for every family's table:",
              "", *[f"* `{fam}`: " + ", ".join(f"`{p.name}`" for p in ps if p.name != "tolerance")
                   for fam, ps in FAMILY_PARAMS.items()], "",
-             "A rack part (`rack = true`, issue #14) takes its family's rack keys (`gear3d.rack`):", "",
+             "A rack part (`rack = true`) takes its family's rack keys (`gear3d.rack`):", "",
              *[f"* `{fam}` rack: " + ", ".join(f"`{k}`" for k in keys + ("back_height",))
                for fam, keys in RACK_KEYS.items()], "",
              "Families with a module also take the helical / inch alternatives (taken at the body's",

@@ -1,5 +1,5 @@
 """Worm gearing: cylindrical worms (ZA, ZN, ZI, ZK) and the throated wheel as the exact
-envelope of the worm, section by section (issue #23).
+envelope of the worm, section by section.
 
 * :mod:`.design` - the validated parameters and every derived size;
 * :mod:`.thread` - the thread in closed form (axial profile, section in a wheel plane,
