@@ -195,8 +195,17 @@ def wheel_roll_path(p, phi_a: float, phi_b: float, r1: float, r2: float, interna
 BRANCH_SAMPLES = 1025
 
 
-def wheel_envelope_pieces(point_normal, r1: float, r2: float, internal: bool, smooth: bool = True) -> list:
-    """:func:`wheel_envelope_piece` of one tool element, split where the nearer root
+def branch_changes(point_normal) -> np.ndarray:
+    """Signs of p.n (the nearer root's switch, see :func:`_wheel_roots`) of one tool element
+    on :data:`BRANCH_SAMPLES` samples of its parameter [0, 1]."""
+    p, n = point_normal(np.linspace(0.0, 1.0, BRANCH_SAMPLES))
+    return np.sign(np.einsum("ij,ij->i", p, n))
+
+
+def wheel_envelope_pieces(point_normal, r1: float, r2: float, internal: bool, smooth: bool = True,
+                          branch: int | None = None) -> list:
+    """:func:`wheel_envelope_piece` of one tool element; with ``branch`` (+1 or -1) the
+    element is one piece on that fixed root (no split, no roll path); otherwise split where the nearer root
     switches (p.n changes sign, found on :data:`BRANCH_SAMPLES` samples and bisected to
     1e-13 in t), each sub-piece on its own fixed root, joined by the roll path of the
     switching point from one root's tool angle to the other's (the short way round).
@@ -205,6 +214,9 @@ def wheel_envelope_pieces(point_normal, r1: float, r2: float, internal: bool, sm
     tessellation then bridges the jump with a chord whose position depends on the
     tolerance, and a coarse and a fine build disagree by up to a module (issue #13's
     stability benchmark). Returns the list of pieces in boundary order."""
+    if branch is not None:
+        return [wheel_envelope_piece(point_normal, r1, r2, internal, smooth, branch)]
+
     def sgn(t):
         p, n = point_normal(np.atleast_1d(np.asarray(t, float)))
         return np.sign(np.einsum("ij,ij->i", p, n))
