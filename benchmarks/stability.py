@@ -268,6 +268,9 @@ def run(n: int, seed: int, workers: int, spot: int, progress: bool = True, max_m
     with ctx.Pool(workers, initializer=_limit, maxtasksperchild=200) as pool:
         for i, r in enumerate(pool.imap(_worker, jobs, chunksize=4)):
             results.append({**cases[i], **r})
+            if progress and r["outcome"] == "bug":
+                print(f"\nbug: case {chosen[i][0]} {cases[i]['family']} {json.dumps(cases[i]['params'])} "
+                      f"body {json.dumps(cases[i]['body'])}: {r['why']}", file=sys.stderr, flush=True)
             if max_minutes is not None and time.time() - t0 > 60 * max_minutes:
                 pool.terminate()          # the first len(results) cases of the seed's sequence
                 break
