@@ -47,29 +47,30 @@ PRESETS = (
      "body": {"width": "10", "bore": "5"},
      "pair": {"mate_teeth": "40"}},
     {"name": "seed002-harmonic", "label": "Harmonic drive flexspline (Table 2)",
-     "description": "seed 002 Table 2: the flexspline's 200 outer teeth, m 0.3 mm, 12 mm wide, "
-                    "0.6 mm wall; its 202-tooth ring meshes deflected (gear3d harmonic)",
+     "description": "the double harmonic transmission's Table 2: the flexspline's 200 outer teeth, "
+                    "m 0.3 mm, 12 mm wide, 0.6 mm wall; its 202-tooth ring meshes deflected (gear3d harmonic)",
      "family": "triangular",
      "profile": {"teeth": "200", "module": "0.3", "addendum_coeff": "0.875", "dedendum_coeff": "1.125",
                  "half_angle_deg": "28.608611", "thickness_coeff": "0.4375"},
      "body": {"width": "12", "bore": "58.125"},
      "pair": {}},
     {"name": "seed003-ec-pinion", "label": "Chevron-arch EC pinion",
-     "description": "seed 003: 2-tooth eccentric-cycloidal pinion (tooth circle 5 mm at 1.5 mm) "
-                    "for a 20-tooth wheel, chevron-arch teeth, 20 mm wide, helix 30 deg",
+     "description": "the chevron-arch transmitter's gearing: 2-tooth eccentric-cycloidal pinion "
+                    "(tooth circle 5 mm at 1.5 mm) for a 20-tooth wheel, chevron-arch teeth, 20 mm wide, "
+                    "helix 30 deg",
      "family": "ec-pinion",
      "profile": {"teeth": "2", "mate_teeth": "20", "eccentricity": "1.5", "tooth_radius": "5"},
      "body": {"kind": "chevron-arch", "width": "20", "helix_angle_deg": "30", "bore": "4"},
      "pair": {}},
     {"name": "seed003-ec-wheel", "label": "Chevron-arch EC wheel",
-     "description": "seed 003: the 20-tooth EC wheel of the pinion above (equidistant of the "
+     "description": "the 20-tooth EC wheel of the pinion above (equidistant of the "
                     "epitrochoid), its chevron-arch twist the pinion's mate (left hand)",
      "family": "ec-wheel",
      "profile": {"teeth": "20", "mate_teeth": "2", "eccentricity": "1.5", "tooth_radius": "5"},
      "body": {"kind": "chevron-arch", "width": "20", "helix_angle_deg": "30", "hand": "left", "bore": "20"},
      "pair": {}},
     {"name": "seed001-internal-sine", "label": "Internal sine pair 20 in 21",
-     "description": "seed 001 Fig. 15: sine teeth Z = 20 in Z' = 21, m 1 mm, c_h = 0.5 "
+     "description": "the sine gear paper's Fig. 15: sine teeth Z = 20 in Z' = 21, m 1 mm, c_h = 0.5 "
                     "(no tip interference); Check pair rolls it",
      "family": "sine",
      "profile": {"teeth": "20", "module": "1", "addendum_coeff": "0.5", "internal": "true"},
