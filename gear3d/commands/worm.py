@@ -59,6 +59,17 @@ def add_parser(sub):
     p.add_argument("--wheel-bore", type=float, default=None, help="wheel bore diameter, mm")
     p.add_argument("--hub-diameter", type=float, default=None, help="wheel hub diameter, mm (with --hub-length)")
     p.add_argument("--hub-length", type=float, default=None, help="wheel hub length, mm, centred on the mid-plane")
+    p.add_argument("--wheel-keyway", action="store_true", default=None,
+                   help="DIN 6885-1 keyway groove in the wheel's bore (needs --wheel-bore)")
+    p.add_argument("--web-thickness", type=float, default=None,
+                   help="thin the wheel between hub and rim to a web this thick, mm, centred on the mid-plane")
+    p.add_argument("--rim-diameter", type=float, default=None,
+                   help="the rim's inside diameter, where the web meets it, mm (with --web-thickness; default "
+                        "the smallest root diameter less 4 modules)")
+    p.add_argument("--shaft-diameter", type=float, default=None,
+                   help="worm shaft diameter, mm, below the root diameter (with --shaft-length)")
+    p.add_argument("--shaft-length", type=float, default=None,
+                   help="worm shaft length at each end of the thread, mm (with --shaft-diameter)")
     p.add_argument("--part", required=True, choices=["worm", "wheel", "pair"], help="what to build")
     p.add_argument("-o", "--output", default=None,
                    help="mesh file: .stl or .3mf (pair: two named objects); or, with --part wheel, .dxf: the "
@@ -76,7 +87,8 @@ def add_parser(sub):
 
 
 #: the feature keywords of gear3d.worm (not the design's)
-FEATURES = ("worm_bore", "wheel_bore", "hub_diameter", "hub_length")
+FEATURES = ("worm_bore", "wheel_bore", "hub_diameter", "hub_length", "wheel_keyway", "web_thickness",
+            "rim_diameter", "shaft_diameter", "shaft_length")
 
 
 def _params(args) -> dict:

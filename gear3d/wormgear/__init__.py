@@ -152,9 +152,11 @@ def worm(part="pair", tolerance=None, worm_bore=None, wheel_bore=None, hub_diame
     """Worm and worm wheel (mm, degrees): ``part`` = worm | wheel | pair; the design keywords
     of :func:`gear3d.wormgear.design.design` (module, starts, wheel_teeth, diameter_quotient or
     worm_pitch_diameter, axial_ or normal_pressure_angle_deg, worm_type, addendum_coeff,
-    dedendum_coeff, hand, shift_coeff, worm_length, face_width, throat, friction);
-    ``tolerance`` (mm, default 0.01); ``worm_bore`` (mm), ``wheel_bore``, ``hub_diameter``
-    and ``hub_length`` (the wheel's hub, centred on its mid-plane); ``check`` rolls the pair
+    dedendum_coeff, hand, shift_coeff, worm_length, face_width, throat, friction, disc_radius
+    for ZK, backlash); ``tolerance`` (mm, default 0.01); ``worm_bore`` (mm), ``wheel_bore``,
+    ``hub_diameter`` and ``hub_length`` (the wheel's hub, centred on its mid-plane);
+    ``wheel_keyway``, ``web_thickness``, ``rim_diameter``, ``shaft_diameter`` and
+    ``shaft_length`` (:mod:`gear3d.wormgear.rims`); ``check`` rolls the pair
     through one wheel pitch on the exact surfaces (``report.rolling``: interference,
     backlash, transmission error, contact lines and pattern; see
     :mod:`gear3d.wormgear.rolling`).
@@ -165,15 +167,19 @@ def worm(part="pair", tolerance=None, worm_bore=None, wheel_bore=None, hub_diame
     part = check_choice("part", part, PARTS)
     if tolerance is not None:
         params["tolerance"] = tolerance
-    d = validate(part, worm_bore, wheel_bore, hub_diameter, hub_length, check, **params)
+    extra = {k: params.pop(k) for k in EXTRA_KEYS if k in params}
+    d = validate(part, worm_bore, wheel_bore, hub_diameter, hub_length, check, **params, **extra)
     _check_budget(d, part)
     w = wh = None
     if part in ("worm", "pair"):
         from .worm_body import worm_body
-        w = worm_body(d, bore=worm_bore)
+        w = worm_body(d, bore=worm_bore, shaft_diameter=extra.get("shaft_diameter"),
+                      shaft_length=extra.get("shaft_length"))
     if part in ("wheel", "pair"):
         from .wheel_body import wheel_body
-        wh = wheel_body(d, bore=wheel_bore, hub_diameter=hub_diameter, hub_length=hub_length)
+        wh = wheel_body(d, bore=wheel_bore, hub_diameter=hub_diameter, hub_length=hub_length,
+                        keyway=extra.get("wheel_keyway", False), web_thickness=extra.get("web_thickness"),
+                        rim_diameter=extra.get("rim_diameter"))
     roll = None
     if check_bool("check", check):
         from .rolling import rolling_check
@@ -186,11 +192,14 @@ def worm(part="pair", tolerance=None, worm_bore=None, wheel_bore=None, hub_diame
     return WormSet(d, w, wh, rep, roll)
 
 
+#: the wheel's keyway, web and rim, the worm's shaft (:mod:`gear3d.wormgear.rims`)
+EXTRA_KEYS = ("wheel_keyway", "web_thickness", "rim_diameter", "shaft_diameter", "shaft_length")
 #: the keywords of :func:`worm` that are not the design's
-FEATURE_KEYS = ("part", "worm_bore", "wheel_bore", "hub_diameter", "hub_length", "check")
+FEATURE_KEYS = ("part", "worm_bore", "wheel_bore", "hub_diameter", "hub_length", "check") + EXTRA_KEYS
 
 
 def validate(part="pair", worm_bore=None, wheel_bore=None, hub_diameter=None, hub_length=None, check=False,
+             wheel_keyway=False, web_thickness=None, rim_diameter=None, shaft_diameter=None, shaft_length=None,
              **params) -> WormDesign:
     """Check every keyword of :func:`worm` without building anything (templates check a
     scene this way before any work): the design (:func:`gear3d.wormgear.design.design`),
@@ -203,10 +212,18 @@ def validate(part="pair", worm_bore=None, wheel_bore=None, hub_diameter=None, hu
     if worm_bore is not None and part == "wheel":
         raise GearError("worm_bore", worm_bore, "None unless the worm is built")
     check_bore(d, worm_bore)
-    if part == "worm" and any(v is not None for v in (wheel_bore, hub_diameter, hub_length)):
-        raise GearError("wheel_bore" if wheel_bore is not None else "hub_diameter",
-                        wheel_bore if wheel_bore is not None else hub_diameter, "None unless the wheel is built")
-    check_features(d, d.wheel_root_radius, wheel_bore, hub_diameter, hub_length, d.tolerance)
+    wheel_only = {"wheel_bore": wheel_bore, "hub_diameter": hub_diameter, "hub_length": hub_length,
+                  "wheel_keyway": wheel_keyway or None, "web_thickness": web_thickness, "rim_diameter": rim_diameter}
+    worm_only = {"shaft_diameter": shaft_diameter, "shaft_length": shaft_length}
+    for only, other in ((wheel_only, "worm"), (worm_only, "wheel")):
+        given = [k for k, v in only.items() if v is not None]
+        if part == other and given:
+            raise GearError(given[0], only[given[0]], f"None unless the {'wheel' if other == 'worm' else 'worm'} "
+                            "is built")
+    check_features(d, d.wheel_root_radius, wheel_bore, hub_diameter, hub_length, d.tolerance, keyway=wheel_keyway,
+                   web_thickness=web_thickness, rim_diameter=rim_diameter)
+    from .rims import check_worm
+    check_worm(d, worm_bore, shaft_diameter, shaft_length)
     return d
 
 

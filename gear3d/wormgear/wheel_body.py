@@ -212,14 +212,17 @@ def assemble(d, layers):
     return np.concatenate(Vs), np.concatenate(Fs)
 
 
-def wheel_body(d, tolerance=None, bore=None, hub_diameter=None, hub_length=None, name="worm-wheel"):
+def wheel_body(d, tolerance=None, bore=None, hub_diameter=None, hub_length=None, name="worm-wheel",
+               keyway=False, web_thickness=None, rim_diameter=None):
     """The worm wheel body (mm) of design ``d``: axis z, mid-plane z = 0, tooth 0 about +x
     in the mid-plane. ``bore`` (diameter), ``hub_diameter``/``hub_length`` (a boss centred
-    on the mid-plane, longer than the face width). Returns a :class:`WormPart` whose report
-    carries the measured errors."""
+    on the mid-plane, longer than the face width), ``keyway`` (DIN 6885 in the bore),
+    ``web_thickness``/``rim_diameter`` (see :mod:`gear3d.wormgear.rims`). Returns a
+    :class:`WormPart` whose report carries the measured errors."""
     tol = d.tolerance if tolerance is None else check_number("tolerance", tolerance, 1e-4, d.module / 10,
                                                              unit="mm")
-    feats = check_features(d, d.wheel_root_radius, bore, hub_diameter, hub_length, tol)
+    feats = check_features(d, d.wheel_root_radius, bore, hub_diameter, hub_length, tol, keyway=keyway,
+                           web_thickness=web_thickness, rim_diameter=rim_diameter)
     V, F, info = _build(d, tol)
     sec_err, band_err = info["section_max_error"], info["band_max_error"]
     budget.check_body(len(F), "tolerance", tol)
@@ -255,9 +258,11 @@ def _build(d, tol):
                       "method": "sections"}
 
 
-def check_features(d, root, bore, hub_diameter, hub_length, tol) -> dict:
-    """The wheel's bore and hub (mm) checked against its root radius ``root``: a dict of the
-    features given; one GearError line for a bad one."""
+def check_features(d, root, bore, hub_diameter, hub_length, tol, keyway=False, web_thickness=None,
+                   rim_diameter=None) -> dict:
+    """The wheel's bore and hub (mm) checked against its root radius ``root``, then keyway,
+    web and rim (:func:`gear3d.wormgear.rims.check_wheel`): a dict of the features given;
+    one GearError line for a bad one."""
     feats = {}
     if hub_diameter is not None or hub_length is not None:
         if hub_diameter is None or hub_length is None:
@@ -271,6 +276,8 @@ def check_features(d, root, bore, hub_diameter, hub_length, tol) -> dict:
         hi = min(2 * root, feats.get("hub_diameter", math.inf)) - 2 * d.module * 0.25
         feats["bore"] = check_number("wheel_bore", bore, 0, hi, lo_open=True, hi_open=True,
                                      unit=f"mm (below {hi:.6g}: a wall of a quarter module)")
+    from .rims import check_wheel
+    feats.update(check_wheel(d, feats.get("bore"), feats.get("hub_diameter"), keyway, web_thickness, rim_diameter))
     return feats
 
 
@@ -284,10 +291,8 @@ def _apply_features(V, F, d, feats, tol):
         Lh = feats["hub_length"]
         hub = Manifold.extrude(CrossSection([circle_loop(feats["hub_diameter"] / 2, tol)], FillRule.Positive), Lh)
         man = Manifold.batch_boolean([man, hub.translate((0, 0, -Lh / 2))], OpType.Add)
-    if "bore" in feats:
-        Lb = 2 * max(d.face_width, feats.get("hub_length", 0.0)) + 2
-        hole = Manifold.extrude(CrossSection([circle_loop(feats["bore"] / 2, tol, ccw=True)], FillRule.Positive), Lb)
-        man = Manifold.batch_boolean([man, hole.translate((0, 0, -Lb / 2))], OpType.Subtract)
+    from .rims import apply_wheel
+    man = apply_wheel(man, d, feats, tol)
     if man.is_empty() or man.status().name != "NoError":
         raise GearError("wheel_bore", feats.get("bore"), "values that leave a solid wheel")
     return man

@@ -65,14 +65,17 @@ def check_bore(d, bore) -> None:
                      unit=f"mm (below {hi:.6g}: a wall of a quarter module under the root)")
 
 
-def worm_body(d, tolerance=None, bore=None, name="worm"):
+def worm_body(d, tolerance=None, bore=None, name="worm", shaft_diameter=None, shaft_length=None):
     """The worm body of design ``d`` (mm): axis z, centred at z = 0 (through ``transform``),
-    length ``d.worm_length``, optional ``bore`` (diameter, mm). Returns a
-    :class:`gear3d.solids.body.Body` with the measured ``max_error`` in its report."""
-    from ..solids.body import body, profile_tolerance
+    thread length ``d.worm_length``, optional ``bore`` (diameter, mm) and a shaft of
+    ``shaft_diameter`` and ``shaft_length`` at each end (:mod:`gear3d.wormgear.rims`).
+    Returns a :class:`gear3d.solids.body.Body` with the measured ``max_error`` in its report."""
+    from ..solids.body import Body, body, mesh_properties, profile_tolerance
+    from .rims import apply_worm, check_worm
     tol = d.tolerance if tolerance is None else check_number("tolerance", tolerance, 1e-4, d.module / 10,
                                                              unit="mm")
     check_bore(d, bore)
+    shaft = check_worm(d, bore, shaft_diameter, shaft_length)
     prof = worm_section(d, profile_tolerance(tol, "helical"))
     L = d.worm_length
     beta = 90.0 - d.lead_angle_deg
@@ -82,8 +85,8 @@ def worm_body(d, tolerance=None, bore=None, name="worm"):
     from ..solids import body as _body_mod
     shown = min(beta, getattr(_body_mod, "MAX_HELIX_DEG", 90.0))
     try:
-        b = body(prof, kind="helical", width=L, helix_angle_deg=shown, hand=d.hand, tolerance=tol, bore=bore,
-                 name=name, _law=law)
+        b = body(prof, kind="helical", width=L, helix_angle_deg=shown, hand=d.hand, tolerance=tol,
+                 bore=None if shaft else bore, name=name, _law=law)
     except GearError as e:
         if e.param == "bore":
             raise GearError("worm_bore", bore, e.allowed, e.why) from None
@@ -91,6 +94,12 @@ def worm_body(d, tolerance=None, bore=None, name="worm"):
     b.report["helix_angle_deg"] = beta
     b.report["lead"] = d.lead
     b.report["total_twist_deg"] = math.degrees(L / d.p)
+    if shaft:
+        man = apply_worm(b.manifold, shaft, L, tol, bore)
+        m = man.to_mesh64()
+        V, F = np.asarray(m.vert_properties, float)[:, :3], np.asarray(m.tri_verts, np.int64)
+        rep = dict(b.report, **shaft, bore=bore, triangles=int(len(F)), **mesh_properties(V, F))
+        b = Body(man, b.profile, b.twist, rep, name, arrays=(V, F))
     t = np.eye(4)
     t[2, 3] = -L / 2
     return b.placed(t, name)
