@@ -87,3 +87,115 @@ def test_backlash_in_the_report_and_cli(tmp_path):
     with pytest.raises(GearError) as e:
         design(module=2, starts=1, wheel_teeth=30, backlash=0.6)
     assert e.value.param == "backlash" and "0.5" in str(e.value)
+
+
+# ------------------------------------------------------------------ rim, web, keyway, shaft
+
+def _closed(V, F):
+    """Every edge shared by exactly two faces, in opposite directions (watertight, oriented)."""
+    e = np.concatenate([F[:, [0, 1]], F[:, [1, 2]], F[:, [2, 0]]])
+    fwd = {tuple(x) for x in e.tolist()}
+    return len(fwd) == len(e) and all((b, a) in fwd for a, b in fwd)
+
+
+def _volume(V, F):
+    t = V[F]
+    return float(np.einsum("ij,ij->i", t[:, 0], np.cross(t[:, 1], t[:, 2])).sum() / 6)
+
+
+def _circle_slack(r, tol, length):
+    """An inscribed polygon whose chords sag at most tol lies between radii r - tol and r."""
+    return math.pi * (r * r - (r - tol) ** 2) * length
+
+
+TOL = 0.02
+
+
+def test_wheel_web_bore_keyway_volumes_against_formulas():
+    kw = dict(module=2, starts=1, wheel_teeth=30, part="wheel", tolerance=TOL)
+    plain = gear3d.worm(**kw)
+    s = gear3d.worm(wheel_bore=12, wheel_keyway=True, web_thickness=6, rim_diameter=44, **kw)
+    d = s.design
+    B, rb, t = d.face_width, 6.0, 6.0
+    b, t2 = 4.0, 1.8                                            # DIN 6885-1, bore over 10 up to 12 mm
+    rk = rb + t2
+    r_in = max(rb + 2 * 1.0, rk + 1.0, 0.25 * d.wheel_root_radius)   # walls of m/2 past bore and groove
+    r_out = 22.0
+    # the groove: the box x in [0, rk], |y| <= b/2, less its part inside the bore
+    inside = (b / 2) * math.sqrt(rb * rb - b * b / 4) + rb * rb * math.asin(b / (2 * rb))
+    cut = math.pi * rb * rb * B + (b * rk - inside) * B + math.pi * (r_out ** 2 - r_in ** 2) * (B - t)
+    V0, V1 = _volume(*plain.wheel.arrays()), _volume(*s.wheel.arrays())
+    slack = _circle_slack(rb, TOL, B) + 2 * _circle_slack(r_out, TOL, (B - t) / 2) + b * TOL * B
+    assert abs((V0 - V1) - cut) <= slack, (V0 - V1, cut, slack)
+    assert _closed(*s.wheel.arrays()) and s.wheel.report["genus"] == 1
+    assert s.wheel.report["features"]["web"] == (pytest.approx(r_in), r_out, t)
+    assert s.report.max_error <= TOL
+
+
+def test_worm_shaft_and_bore_volumes_against_formulas():
+    kw = dict(module=2, starts=1, wheel_teeth=30, tolerance=TOL, worm_length=30)
+    plain = gear3d.worm(part="worm", **kw)
+    s = gear3d.worm(part="pair", worm_bore=6, shaft_diameter=12, shaft_length=10, **kw)
+    L, rs, Ls, rb = 30.0, 6.0, 10.0, 3.0
+    added = 2 * math.pi * rs * rs * Ls - math.pi * rb * rb * (L + 2 * Ls)
+    V0, V1 = _volume(*plain.worm.arrays()), _volume(*s.worm.arrays())
+    slack = 2 * _circle_slack(rs, TOL, Ls) + _circle_slack(rb, TOL, L + 2 * Ls)
+    assert abs((V1 - V0) - added) <= slack, (V1 - V0, added, slack)
+    V, F = s.worm.arrays()
+    assert _closed(V, F) and s.worm.report["genus"] == 1
+    z = V[:, 2] + s.worm.transform[2, 3]                 # the part's frame: centred on z = 0
+    assert z.min() == pytest.approx(-L / 2 - Ls, abs=1e-9) and z.max() == pytest.approx(L / 2 + Ls, abs=1e-9)
+    # in the pair the shafts lie along the worm's axis (x) through (0, a, 0)
+    worm = s.parts()[1]
+    Vw = np.asarray(worm.arrays()[0]) @ worm.transform[:3, :3].T + worm.transform[:3, 3]
+    assert Vw[:, 0].max() == pytest.approx(L / 2 + Ls, abs=1e-9)
+
+
+REFUSED = [
+    (dict(part="worm", shaft_diameter=15.2, shaft_length=5), "shaft_diameter", "15.2"),
+    (dict(part="worm", shaft_diameter=10), "shaft_length", "None"),
+    (dict(part="worm", worm_bore=8, shaft_diameter=8.5, shaft_length=5), "shaft_diameter", "(10, 15.2)"),
+    (dict(part="wheel", web_thickness=4, rim_diameter=56), "rim_diameter", "53.2"),
+    (dict(part="wheel", rim_diameter=40), "rim_diameter", "web_thickness"),
+    (dict(part="wheel", web_thickness=30), "web_thickness", "face width"),
+    (dict(part="wheel", wheel_keyway=True), "wheel_keyway", "wheel_bore"),
+    (dict(part="worm", web_thickness=5), "web_thickness", "wheel"),
+    (dict(part="wheel", shaft_diameter=10, shaft_length=5), "shaft_diameter", "worm"),
+]
+
+
+@pytest.mark.parametrize("kw,param,word", REFUSED)
+def test_feature_refusals_name_the_parameter_and_range(kw, param, word):
+    with pytest.raises(GearError) as e:
+        gear3d.wormgear.validate(module=2, starts=1, wheel_teeth=30, **kw)
+    assert e.value.param == param and word in str(e.value) and "\n" not in str(e.value)
+
+
+def test_cli_features_and_template(tmp_path, capsys):
+    from gear3d.cli import main
+    out = tmp_path / "p.stl"
+    rc = main(["worm", "--module", "2", "--starts", "1", "--wheel-teeth", "30", "--part", "pair", "--tolerance",
+               "0.02", "--wheel-bore", "12", "--wheel-keyway", "--web-thickness", "6", "--shaft-diameter", "12",
+               "--shaft-length", "8", "-o", str(out)])
+    assert rc == 0 and out.stat().st_size > 0
+    rc = main(["worm", "--module", "2", "--starts", "1", "--wheel-teeth", "30", "--part", "worm",
+               "--shaft-diameter", "17", "--shaft-length", "5", "-o", str(tmp_path / "no.stl")])
+    err = capsys.readouterr().err.strip().splitlines()
+    assert rc == 2 and len(err) == 1 and "shaft_diameter = 17" in err[0]
+    assert not (tmp_path / "no.stl").exists()
+    # the same keys in a template: built, and refused by key
+    from gear3d.jobs.scene import build_scene
+    from gear3d.jobs.template import TemplateError, load_scene
+    src = tmp_path / "s.toml"
+    body = ('[scene]\nname = "w"\ntolerance = 0.05\n[[part]]\nname = "drive"\nkind = "worm"\npart = "pair"\n'
+            'module = 1\nstarts = 1\nwheel_teeth = 24\nworm_type = "ZK"\ndisc_radius = 60\nbacklash = 0.05\n'
+            'wheel_bore = 6\nweb_thickness = 4\nshaft_diameter = 6\nshaft_length = 5\noutputs = ["json"]\n')
+    src.write_text(body)
+    rep = build_scene(load_scene(src), tmp_path / "out")
+    import json
+    js = json.loads((tmp_path / "out" / "drive.json").read_text())
+    assert js["worm_type"] == "ZK" and js["disc_radius"] == 60 and js["backlash"] == 0.05
+    assert rep["parts"]["drive"]["bodies"]
+    src.write_text(body.replace("shaft_diameter = 6", "shaft_diameter = 60"))
+    with pytest.raises(TemplateError, match="shaft_diameter"):
+        load_scene(src)
