@@ -8,7 +8,8 @@ from collections.abc import Mapping
 import numpy as np
 
 from ..errors import GearError
-from . import as_bodies, body_name, is_rack
+from . import is_rack
+from ..solids.convert import as_bodies, body_name
 
 
 def clean(x):

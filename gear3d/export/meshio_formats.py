@@ -6,7 +6,7 @@ import os
 
 import numpy as np
 
-from . import as_bodies, body_mesh
+from ..solids.convert import as_bodies, body_mesh
 
 FORMAT = {".obj": "obj", ".ply": "ply", ".vtu": "vtu"}
 

@@ -24,7 +24,7 @@ import numpy as np
 
 from ..errors import GearError, check_choice
 from .. import __version__
-from . import as_bodies, body_mesh, body_name
+from ..solids.convert import as_bodies, body_mesh, body_name
 
 
 def _r(x: float) -> str:

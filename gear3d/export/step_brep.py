@@ -41,7 +41,8 @@ import time
 import numpy as np
 
 from ..errors import GearError, ToleranceError
-from . import as_bodies, body_name
+from ..solids.convert import as_bodies, body_name
+from .step_brep_bevel import bevel_solid, is_bevel
 from .step_brep_fit import (FIT_SHARE, SMOOTH_JOINT, FaceRec, Flank, Group, fit_piece, fit_runs,
                             law_fit, law_pieces, measure_faces, merge_runs, turn)
 from .step_brep_occ import (SEW_TOL, bspline_curve, bspline_surface, circle_wire, count,
@@ -49,7 +50,7 @@ from .step_brep_occ import (SEW_TOL, bspline_curve, bspline_surface, circle_wire
                             transformed, volume, wire_of_curves, write_shape)
 from .step_brep_runs import ExactSet, Run, exact_set, loop_runs, nearest_on_piece, rot2
 
-__all__ = ["FIT_SHARE", "SEW_TOL", "SMOOTH_JOINT", "ExactSet", "FaceRec", "Flank", "Group", "Run",
+__all__ = ["bevel_solid", "solid_of", "FIT_SHARE", "SEW_TOL", "SMOOTH_JOINT", "ExactSet", "FaceRec", "Flank", "Group", "Run",
            "brep_solid", "bspline_curve", "bspline_surface", "count", "exact_set", "fit_piece",
            "law_fit", "loop_runs", "nearest_on_piece", "require_occ", "section_wire", "volume",
            "write", "write_shape", "circle_wire", "cylinder_face", "features", "plane_face",
@@ -250,14 +251,28 @@ def _validate(shape, b, tol):
             "mesh_volume": Vm, "volume_difference": V - Vm, "volume_allowed": tol * area}
 
 
-def write(obj, path, **opts):
+def solid_of(b, geometry=None):
+    """(OCC solid, info) of one body: a bevel member through
+    :func:`gear3d.export.step_brep_bevel.bevel_solid` (``geometry``: the bevel pair's, needed
+    for spiral and Zerol members), a gear, ring or worm body through :func:`brep_solid`."""
+    if is_bevel(b):
+        return bevel_solid(b, geometry)
+    if getattr(b, "profile", None) is None and (getattr(b, "report", None) or {}).get("part") == "wheel":
+        raise GearError("step", "brep", "'faceted' for a worm wheel",
+                        "the wheel's B-rep (surfaces through its stacked sections) is not built yet")
+    return brep_solid(b)
+
+
+def write(obj, path, geometry=None, **opts):
     """Write a body (or a list of placed bodies) as exact B-rep STEP; returns a short info
-    string with the measured error. Nothing is written when a check fails."""
+    string with the measured error. Nothing is written when a check fails. ``geometry``:
+    a bevel pair's :class:`~gear3d.bevel.geometry.PairGeometry` (``gear3d.bevel(...).geometry``),
+    needed for spiral and Zerol bevel members."""
     require_occ()
     bodies = as_bodies(obj, **opts)
     shapes, infos = [], []
     for b in bodies:
-        s, info = brep_solid(b)
+        s, info = solid_of(b, geometry)
         shapes.append(s)
         infos.append(info)
         rep = getattr(b, "report", None)

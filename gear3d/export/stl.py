@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from . import as_bodies, body_mesh
+from ..solids.convert import as_bodies, body_mesh
 
 #: one binary STL facet record
 FACET = np.dtype([("normal", "<f4", (3,)), ("vertices", "<f4", (3, 3)), ("attr", "<u2")])

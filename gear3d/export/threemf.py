@@ -26,7 +26,7 @@ import numpy as np
 
 from .. import __version__
 from ..errors import GearError, check_number
-from . import as_bodies, body_name
+from ..solids.convert import as_bodies, body_name
 
 NS_CORE = "http://schemas.microsoft.com/3dmanufacturing/core/2015/02"
 NS_PROD = "http://schemas.microsoft.com/3dmanufacturing/production/2015/06"

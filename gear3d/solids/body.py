@@ -39,6 +39,7 @@ from ..errors import GearError, ToleranceError, check_choice, check_number
 from .features import (apply_features, chamfer_vectors, offset_loops,
                        plan_features, subdivide)
 from ..reports import BodyReport
+from .solid import Solid
 from .twist import KINDS, TwistLaw, default_arch_radius, twist_law
 from ..budget import staged
 from ..params import BODY, MAX_TOLERANCE_TEXT, MIN_TOLERANCE, max_tolerance   # the one table (ranges stated once)
@@ -66,7 +67,7 @@ TWIST_RETRIES = 5
 TWIST_OPTIMISM = 3.0
 
 
-class Body:
+class Body(Solid):
     """One gear body. ``manifold``/``mesh`` are in the part's own frame (gear axis = z,
     bottom face at z = 0, tooth 0 on +x at z where θ = 0); ``transform`` (4x4) places it in
     an assembly (identity unless placed by :func:`place_pair`).
@@ -99,34 +100,12 @@ class Body:
 
     def __init__(self, manifold, profile, twist: TwistLaw, report: dict, name: str,
                  transform=None, _mesh=None, arrays=None):
-        self._manifold = manifold
+        super().__init__(name, report, transform, manifold=manifold, arrays=arrays, mesh=_mesh)
         self.profile = profile
         self.twist = twist
-        self.report = report
-        self.name = name
-        self.transform = np.eye(4) if transform is None else np.asarray(transform, float)
-        self._mesh = _mesh
-        self._arrays = arrays
 
     def __repr__(self) -> str:
         return f"Body(name={self.name!r}, kind={self.report.get('kind')!r}, triangles={self.report.get('triangles')})"
-
-    @property
-    def manifold(self):
-        """The manifold3d ``Manifold`` (made from the mesh arrays on first use)."""
-        if self._manifold is None:
-            from manifold3d import Manifold, Mesh64
-            V, F = self._arrays
-            self._manifold = Manifold(Mesh64(vert_properties=np.ascontiguousarray(V, np.float64),
-                                             tri_verts=np.ascontiguousarray(F, np.uint64)))
-        return self._manifold
-
-    def arrays(self):
-        """(vertices (n, 3) float64 mm, faces (m, 3) int64) in the part frame."""
-        if self._arrays is None:
-            m = self.manifold.to_mesh64()
-            self._arrays = (np.asarray(m.vert_properties, float)[:, :3], np.asarray(m.tri_verts, np.int64))
-        return self._arrays
 
     @property
     def kind(self) -> str:
@@ -136,31 +115,11 @@ class Body:
     def width(self) -> float:
         return self.report["width"]
 
-    @property
-    def mesh(self):
-        """trimesh.Trimesh of the body (float64 vertices, part frame, cached)."""
-        if self._mesh is None:
-            import trimesh
-            V, F = self.arrays()
-            self._mesh = trimesh.Trimesh(V, F, process=False)
-        return self._mesh
-
-    def world_manifold(self):
-        """The manifold moved by ``transform``."""
-        return self.manifold.transform(np.asarray(self.transform, float)[:3, :4])
-
-    def world_mesh(self):
-        """A trimesh copy moved by ``transform``."""
-        m = self.mesh.copy()
-        m.apply_transform(self.transform)
-        return m
-
     def placed(self, transform, name: str | None = None) -> "Body":
         """The same body with another placement (shares the manifold and mesh)."""
-        if self._manifold is None and self._arrays is not None:
-            self.manifold                      # make it once, shared by both copies
-        return Body(self._manifold, self.profile, self.twist, self.report, name or self.name,
-                    np.asarray(transform, float), self._mesh, self._arrays)
+        sh = self._shared()
+        return Body(sh["manifold"], self.profile, self.twist, self.report, name or self.name,
+                    np.asarray(transform, float), sh["mesh"], sh["arrays"])
 
 
 # --------------------------------------------------------------------------- body()

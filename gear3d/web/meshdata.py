@@ -10,7 +10,7 @@ import numpy as np
 
 def encode(bodies) -> bytes:
     """One binary blob of a body or list of bodies (their placement applied), mm."""
-    from ..export import as_bodies, body_mesh
+    from ..solids.convert import as_bodies, body_mesh
     vs, fs, n = [], [], 0
     for b in as_bodies(bodies):
         v, f = body_mesh(b)
