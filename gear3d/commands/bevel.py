@@ -45,6 +45,10 @@ def add_parser(sub):
     p.add_argument("--part", default="gear", choices=["gear", "mate", "pair"],
                    help="gear (z1), mate (z2, own frame) or pair (the mate placed in mesh)")
     p.add_argument("-o", "--output", required=True, help="output file; extension picks the format")
+    p.add_argument("--step", default=None, choices=["faceted", "brep"],
+                   help="STEP flavour: faceted (default) or brep (exact surfaces: the flanks are cones through the "
+                        "apex over the certified section, warped for spiral and Zerol bevels; needs pip install "
+                        "'gear3d[cad]')")
     p.add_argument("--json", default=None, help="write the report as strict JSON")
     p.add_argument("--png", default=None,
                    help="figure (.png/.svg): each member's heel profile on its developed back cone (Tredgold) "
@@ -70,6 +74,9 @@ def run(args) -> int:
     from ..bevel import build
     out = args.output
     check_output(out, kinds="body")
+    if args.step == "brep" and out.lower().endswith((".step", ".stp")):
+        from ..export.step_brep import require_occ
+        require_occ()                       # before any work: one line naming what to install
     if args.json is not None:
         check_path(args.json, "json", (".json",))
     for name in ("png", "preview_png", "contact_png"):
@@ -81,16 +88,22 @@ def run(args) -> int:
               args.shaft_angle_deg, args.form, args.shift_coeff, args.tolerance, args.part,
               mate_form=args.mate_form, check=args.check, spiral_angle_deg=args.spiral_angle_deg,
               cutter_radius=args.cutter_radius, hand=args.hand)
-    info = write(list(b.bodies), out)
+    brep = args.step == "brep" and out.lower().endswith((".step", ".stp"))
+    step_opts = {"step": args.step} if args.step and out.lower().endswith((".step", ".stp")) else {}
+    info = write(list(b.bodies), out, **step_opts, **({"geometry": b.geometry} if brep else {}))
     if args.json is not None:
         from ..export.json_format import dumps
         with atomic_path(args.json, "json") as tmp, open(tmp, "w", encoding="utf-8") as f:
             f.write(dumps(b.report.to_dict()) + "\n")
     _figures(args, b)
     r = b.report
-    sys.stdout.write(f"wrote {out}: bevel {r.form} {args.teeth}/{args.mate_teeth} {r.part}, "
-                     f"{sum(m.triangles for m in r.members)} triangles, max_error={r.max_error:.3g} mm "
-                     f"(tolerance {r.tolerance:g} mm)" + (f" {info}" if info else "") + "\n")
+    if brep:          # the file holds surfaces, not the mesh's triangles
+        sys.stdout.write(f"wrote {out}: bevel {r.form} {args.teeth}/{args.mate_teeth} {r.part}, "
+                         f"{str(info).removeprefix('step: ')} (tolerance {r.tolerance:g} mm)\n")
+    else:
+        sys.stdout.write(f"wrote {out}: bevel {r.form} {args.teeth}/{args.mate_teeth} {r.part}, "
+                         f"{sum(m.triangles for m in r.members)} triangles, max_error={r.max_error:.3g} mm "
+                         f"(tolerance {r.tolerance:g} mm)" + (f" {info}" if info else "") + "\n")
     if r.check is None:
         return 0
     from ..bevel.rolling import finding_code, summary
