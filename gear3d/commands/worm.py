@@ -24,7 +24,7 @@ from ..export import atomic_path, check_path, write
 
 
 def add_parser(sub):
-    p = sub.add_parser("worm", help="a worm and its throated wheel (exact envelope) -> .stl .3mf .dxf .json .png")
+    p = sub.add_parser("worm", help="a worm and its throated wheel (exact envelope) -> .stl .3mf .step .dxf .json .png")
     p.add_argument("--module", type=float, required=True, help="axial module m_x (= the wheel's transverse module), mm")
     p.add_argument("--starts", type=int, required=True, help="worm starts z1, 1..8")
     p.add_argument("--wheel-teeth", type=int, required=True, help="wheel teeth z2, 8..1000")
@@ -72,8 +72,11 @@ def add_parser(sub):
                    help="worm shaft length at each end of the thread, mm (with --shaft-diameter)")
     p.add_argument("--part", required=True, choices=["worm", "wheel", "pair"], help="what to build")
     p.add_argument("-o", "--output", default=None,
-                   help="mesh file: .stl or .3mf (pair: two named objects); or, with --part wheel, .dxf: the "
-                        "wheel's mid-plane section (lines and arcs, certified within --tolerance)")
+                   help="mesh file: .stl or .3mf (pair: two named objects), .step; or, with --part wheel, .dxf: "
+                        "the wheel's mid-plane section (lines and arcs, certified within --tolerance)")
+    p.add_argument("--step", default=None, choices=["faceted", "brep"],
+                   help="STEP flavour: faceted (default) or brep (--part worm: exact surfaces, the thread's "
+                        "section fitted by B-splines and screwed along the axis; needs pip install 'gear3d[cad]')")
     p.add_argument("--json", default=None, help="write the report (strict JSON)")
     p.add_argument("--png", default=None, help="figure of the wheel's mid-plane section")
     p.add_argument("--check", action="store_true",
@@ -108,13 +111,27 @@ def _check_outputs(args):
             and args.contact_png is None:
         raise GearError("output", None, "at least one of -o FILE.stl|.3mf|.dxf, --json, --png, --check, --contact-png")
     if args.output is not None:
-        check_path(args.output, "output", exts=(".stl", ".3mf", ".dxf"))
+        check_path(args.output, "output", exts=(".stl", ".3mf", ".dxf", ".step", ".stp"))
+        if _brep(args):
+            if args.part != "worm":
+                raise GearError("step", "brep", "faceted with --part " + args.part,
+                                "the B-rep is built for the worm; the wheel's is not built yet")
+            from ..export.step_brep import require_occ
+            require_occ()
         if args.output.lower().endswith(".dxf") and args.part != "wheel":
             raise GearError("output", args.output, "a .stl or .3mf file for --part " + args.part,
                             "the DXF is the wheel's mid-plane section: --part wheel")
     for name, ext in (("json", ".json"), ("png", ".png"), ("contact_png", ".png")):
         if getattr(args, name) is not None:
             check_path(getattr(args, name), name, exts=(ext,))
+
+
+def _is_step(args) -> bool:
+    return args.output is not None and args.output.lower().endswith((".step", ".stp"))
+
+
+def _brep(args) -> bool:
+    return args.step == "brep" and _is_step(args)
 
 
 def run(args) -> int:
@@ -130,7 +147,7 @@ def run(args) -> int:
         info = write(s.midplane_section(), args.output)
         lines.append(f"wrote {args.output}: wheel mid-plane section, {info}")
     elif args.output is not None:
-        info = write(s.parts(), args.output)
+        info = write(s.parts(), args.output, **({"step": args.step} if args.step and _is_step(args) else {}))
         lines.append(f"wrote {args.output}: {args.part}, max_error={s.report.max_error:.3g} mm "
                      f"(tolerance {s.report.tolerance:g} mm)" + (f" {info}" if info else ""))
     if args.png is not None:
