@@ -41,6 +41,7 @@ from .export import write
 from .geometry import check_points, rotate, segment_foot, signed_area
 from .params import DEFAULT_TOLERANCE, MAX_TOLERANCE_TEXT, MIN_TOLERANCE, max_tolerance
 from .profiles import reject_unknown
+from .solids.solid import Solid
 from .spec import profile
 from .tessellate import tessellate
 
@@ -579,39 +580,19 @@ def rack_figure(part: RackPart, path=None, pinion=None, place=None, title=None, 
 
 # ----------------------------------------------------------------------------- bodies
 
-class RackBody:
+class RackBody(Solid):
     """A straight or helical rack body (mm): the outline extruded along z over ``width``,
     each layer shifted along x by z tan(beta) (a sheared prism: the side faces are planar
-    parallelograms, so two layers are exact). Exporters take it like a gear body
-    (``arrays()``, ``manifold``, ``mesh``, ``report``, ``name``, ``transform``)."""
+    parallelograms, so two layers are exact). A :class:`gear3d.solids.solid.Solid`: the
+    exporters take it like a gear body (``arrays()``, ``manifold``, ``mesh``, ``report``,
+    ``name``, ``transform``)."""
 
     def __init__(self, part: RackPart, V, F, report: dict, name: str = "rack"):
-        self.part, self._V, self._F, self.report, self.name = part, V, F, report, name
-        self.transform = np.eye(4)
-        self._manifold = None
-        self._mesh = None
+        super().__init__(name, report, arrays=(V, F))
+        self.part = part
 
     def __repr__(self) -> str:
         return f"RackBody(name={self.name!r}, triangles={self.report.get('triangles')})"
-
-    def arrays(self):
-        """(vertices (n, 3) float64 mm, faces (m, 3) int64)."""
-        return self._V, self._F
-
-    @property
-    def manifold(self):
-        if self._manifold is None:
-            from manifold3d import Manifold, Mesh64
-            self._manifold = Manifold(Mesh64(vert_properties=np.ascontiguousarray(self._V, np.float64),
-                                             tri_verts=np.ascontiguousarray(self._F, np.uint64)))
-        return self._manifold
-
-    @property
-    def mesh(self):
-        if self._mesh is None:
-            import trimesh
-            self._mesh = trimesh.Trimesh(self._V, self._F, process=False)
-        return self._mesh
 
 
 def rack_body(part: RackPart, width: float = 10.0, helix_angle_deg: float = 0.0, hand: str = "right",
