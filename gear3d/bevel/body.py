@@ -36,6 +36,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..solids.solid import Solid
 from .geometry import PairGeometry
 from .section import member, section
 
@@ -85,41 +86,17 @@ def cap_segments(r_max: float, sag: float) -> int:
     return max(int(math.ceil(math.pi / math.acos(max(1.0 - sag / r_max, -1.0)))), 16)
 
 
-class BevelBody:
-    """One bevel body: ``manifold`` (manifold3d, own frame), ``name``, ``report`` (dict,
-    mm) and ``transform`` (4x4, its place in a pair)."""
+class BevelBody(Solid):
+    """One bevel body (a :class:`gear3d.solids.solid.Solid`): ``manifold`` (manifold3d, own
+    frame), ``name``, ``report`` (dict, mm), ``transform`` (4x4, its place in a pair) and the
+    base's cached ``arrays()`` / ``mesh``."""
 
     def __init__(self, manifold, name: str, report: dict, transform=None, profile=None):
-        self.manifold = manifold
-        self.name = name
-        self.report = report
-        self.transform = np.eye(4) if transform is None else np.asarray(transform, float)
+        super().__init__(name, report, transform, manifold=manifold)
         self.profile = profile
-        self._arrays = None
-        self._mesh = None
 
     def __repr__(self) -> str:
         return f"BevelBody(name={self.name!r}, triangles={self.report.get('triangles')})"
-
-    def arrays(self):
-        """(vertices (n, 3) float64 mm, faces (m, 3) int64) in the body's own frame."""
-        if self._arrays is None:
-            m = self.manifold.to_mesh64()
-            self._arrays = (np.asarray(m.vert_properties, float)[:, :3], np.asarray(m.tri_verts, np.int64))
-        return self._arrays
-
-    @property
-    def mesh(self):
-        """trimesh.Trimesh of the body (own frame)."""
-        if self._mesh is None:
-            import trimesh
-            V, F = self.arrays()
-            self._mesh = trimesh.Trimesh(V, F, process=False)
-        return self._mesh
-
-    def world_manifold(self):
-        """The manifold moved by ``transform``."""
-        return self.manifold.transform(np.asarray(self.transform, float)[:3, :4])
 
 
 #: above this (section vertices x cap segments) the teeth cone is built in LAYERS layers

@@ -21,35 +21,24 @@ from ..errors import GearError, check_choice, check_number
 from .synthesis import HarmonicDesign
 from .. import profile
 from ..params import DEFAULT_TOLERANCE, MIN_TOLERANCE
+from ..solids.solid import Solid
 from ..tessellate import tessellate
 
 TOOTH_FAMILIES = ("triangular", "sine", "involute")
 
 
-class Part:
-    """A named solid: ``manifold`` (local frame, mm), ``transform`` (4x4 placement),
-    ``report`` (dict) and ``mesh`` (trimesh from ``to_mesh64()``, ``process=False``)."""
+class Part(Solid):
+    """A named solid (a :class:`gear3d.solids.solid.Solid`): ``manifold`` (local frame, mm),
+    ``transform`` (4x4 placement), ``report`` (dict: volume mm^3, genus, triangles) and the
+    base's cached ``arrays()`` / ``mesh``."""
 
     def __init__(self, name, manifold, report=None, transform=None):
-        self.name = name
-        self.manifold = manifold
-        self.report = dict(report or {})
-        self.transform = np.eye(4) if transform is None else np.asarray(transform, float)
-        self._mesh = None
+        super().__init__(name, dict(report or {}), transform, manifold=manifold)
         if manifold.is_empty():
             raise GearError("part", name, "a non-empty solid", "the boolean result is empty")
         self.report.setdefault("volume", float(manifold.volume()))
         self.report.setdefault("genus", int(manifold.genus()))
         self.report.setdefault("triangles", int(manifold.num_tri()))
-
-    @property
-    def mesh(self):
-        if self._mesh is None:
-            import trimesh
-            m = self.manifold.to_mesh64()
-            self._mesh = trimesh.Trimesh(np.asarray(m.vert_properties)[:, :3],
-                                         np.asarray(m.tri_verts), process=False)
-        return self._mesh
 
     def placed(self, transform=None, manifold=None, name=None) -> "Part":
         """A copy with another placement (and optionally another solid or name)."""

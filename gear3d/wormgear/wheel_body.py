@@ -26,6 +26,7 @@ import numpy as np
 
 from .. import budget
 from ..errors import GearError, ToleranceError, check_number
+from ..solids.solid import Solid
 from .wheel import MAX_SPLITS, SECTION_SHARE, band_error, band_faces, layer_points, section, section_turn, \
     tooth_chain, zipper
 
@@ -38,34 +39,18 @@ MAX_SECTIONS = 2000
 MAX_PARTS = 8
 
 
-class WormPart:
-    """A worm or wheel body for the exporters: ``arrays()`` (float64 vertices mm, faces),
-    ``name``, ``report`` (dict) and ``transform`` (4x4, the placement)."""
+class WormPart(Solid):
+    """A worm or wheel body for the exporters (a :class:`gear3d.solids.solid.Solid`): mesh
+    arrays (float64 vertices mm, int64 faces), ``name``, ``report`` (dict) and ``transform``
+    (4x4, the placement); the base makes ``manifold`` and ``mesh`` from the arrays."""
 
     def __init__(self, V, F, name: str, report: dict, transform=None, manifold=None):
-        self._V, self._F = np.asarray(V, float), np.asarray(F, np.int64)
-        self.name, self.report = name, report
-        self.transform = np.eye(4) if transform is None else np.asarray(transform, float)
-        self._manifold = manifold
-
-    def arrays(self):
-        return self._V, self._F
-
-    @property
-    def manifold(self):
-        if self._manifold is None:
-            from manifold3d import Manifold, Mesh64
-            self._manifold = Manifold(Mesh64(vert_properties=np.ascontiguousarray(self._V),
-                                             tri_verts=np.ascontiguousarray(self._F, np.uint64)))
-        return self._manifold
-
-    @property
-    def mesh(self):
-        import trimesh
-        return trimesh.Trimesh(self._V, self._F, process=False)
+        super().__init__(name, report, transform, manifold=manifold,
+                         arrays=(np.asarray(V, float), np.asarray(F, np.int64)))
 
     def placed(self, transform, name=None) -> "WormPart":
-        return WormPart(self._V, self._F, name or self.name, self.report, transform, self._manifold)
+        V, F = self.arrays()
+        return WormPart(V, F, name or self.name, self.report, transform, self._manifold)
 
 
 def _initial_heights(d, tol) -> list:
