@@ -494,3 +494,47 @@ def tip_correction(family: str, teeth1: int, teeth2: int, internal: bool = True,
             "contact_ratio_before": before["contact_ratio"], "contact_ratio_after": rep["contact_ratio"],
             "lost_contact": before["contact_ratio"] - rep["contact_ratio"], "interference_before": True,
             "max_penetration_before": before["max_penetration"], "check_after": rep}
+
+
+def summary(rep: dict) -> str:
+    """A short human summary of a :func:`check_pair` report (mm): interference (where), the
+    centre distance and shifts, the clearance, the contact ratio and the tolerance, in one line.
+
+    Examples
+    --------
+    >>> rep = {"interference": False, "max_penetration": 0.0, "min_clearance": 0.0015,
+    ...        "contact_ratio": 1.557, "contact_ratio_uncertainty": 1e-5, "tolerance": 0.001}
+    >>> summary(rep)
+    'no interference: max penetration 0.00 um; min clearance 1.50 um; contact ratio 1.557; tolerance 1 um'
+    """
+    at = rep.get("interference_at") or {}
+    where = ""
+    if rep["interference"] and at:
+        where = (f" at wheel-1 r={at['radius1']:.4f} mm / wheel-2 r={at['radius2']:.4f} mm"
+                 + (" (opposite the pitch point)" if at.get("opposite_pitch_point") else ""))
+    mc = rep.get("min_clearance")
+    aw = rep.get("working_pressure_angle_deg")
+    at_cd = (f"; centre distance {rep['center_distance']:.4f} mm"
+             + (f" (working pressure angle {aw:.4f} deg)" if aw is not None else "")
+             if "center_distance" in rep else "")
+    xs = rep.get("shift_coeffs") or []
+    if any(x not in (None, 0) for x in xs):
+        at_cd = "; shifts " + " / ".join("-" if x is None else f"{x:.4f}" for x in xs) + at_cd
+    return (f"{'INTERFERENCE' if rep['interference'] else 'no interference'}{at_cd}: max penetration "
+            f"{rep['max_penetration'] * 1000:.2f} um{where}; min clearance "
+            f"{'locked' if mc is None else f'{mc * 1000:.2f} um'}; {contact_phrase(rep)}; "
+            f"tolerance {rep['tolerance'] * 1000:g} um")
+
+
+def contact_phrase(rep) -> str:
+    """The contact ratio for a summary line, with its uncertainty when it shows in three
+    decimals, and what it means when the teeth lose contact (``continuous`` False)."""
+    eps, unc = rep["contact_ratio"], rep.get("contact_ratio_uncertainty")
+    if eps is None:
+        return "contact ratio - (no exact pieces)"
+    text = f"contact ratio {eps:.3f}" + (f" +- {unc:.3f}" if unc is not None and unc >= 5e-4 else "")
+    if rep.get("continuous") is not False:
+        return text
+    if eps < 1:
+        return text + " < 1: the teeth lose contact"
+    return text + ", not above 1 by more than its uncertainty: the teeth may lose contact"

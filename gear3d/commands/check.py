@@ -268,6 +268,7 @@ def run(args, alias: bool = False) -> int:
             rep["design"] = design
         if found is not None:
             rep["working_center_distance"] = found
+        from ..analysis.pairs import summary
         msg.append(summary(rep))
         if fig:
             from ..figures import pair_figure
@@ -304,38 +305,3 @@ def _rack_pair(args, alias: bool) -> int:
     if alias:
         sys.stderr.write("note: `gear3d pair` is deprecated: use `gear3d check pair` (same flags)\n")
     return rc
-
-
-def summary(rep: dict) -> str:
-    """A short human summary of a check_pair report (mm)."""
-    at = rep.get("interference_at") or {}
-    where = ""
-    if rep["interference"] and at:
-        where = (f" at wheel-1 r={at['radius1']:.4f} mm / wheel-2 r={at['radius2']:.4f} mm"
-                 + (" (opposite the pitch point)" if at.get("opposite_pitch_point") else ""))
-    mc = rep.get("min_clearance")
-    aw = rep.get("working_pressure_angle_deg")
-    at_cd = (f"; centre distance {rep['center_distance']:.4f} mm"
-             + (f" (working pressure angle {aw:.4f} deg)" if aw is not None else "")
-             if "center_distance" in rep else "")
-    xs = rep.get("shift_coeffs") or []
-    if any(x not in (None, 0) for x in xs):
-        at_cd = "; shifts " + " / ".join("-" if x is None else f"{x:.4f}" for x in xs) + at_cd
-    return (f"{'INTERFERENCE' if rep['interference'] else 'no interference'}{at_cd}: max penetration "
-            f"{rep['max_penetration'] * 1000:.2f} um{where}; min clearance "
-            f"{'locked' if mc is None else f'{mc * 1000:.2f} um'}; {contact_phrase(rep)}; "
-            f"tolerance {rep['tolerance'] * 1000:g} um")
-
-
-def contact_phrase(rep) -> str:
-    """The contact ratio for a summary line, with its uncertainty when it shows in three
-    decimals, and what it means when the teeth lose contact (``continuous`` False)."""
-    eps, unc = rep["contact_ratio"], rep.get("contact_ratio_uncertainty")
-    if eps is None:
-        return "contact ratio - (no exact pieces)"
-    text = f"contact ratio {eps:.3f}" + (f" +- {unc:.3f}" if unc is not None and unc >= 5e-4 else "")
-    if rep.get("continuous") is not False:
-        return text
-    if eps < 1:
-        return text + " < 1: the teeth lose contact"
-    return text + ", not above 1 by more than its uncertainty: the teeth may lose contact"

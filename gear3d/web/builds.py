@@ -115,7 +115,7 @@ def body_preview(family: str, pk: dict, bk: dict) -> Reply:
 def pair_check(family: str, kw: dict, z2: int, internal: bool, mate: str) -> Reply:
     """Roll wheel 1 (``kw``) with its mate (``z2`` teeth, same family, or rolled with wheel 1
     as the cutter): ``{"report", "summary", "animation"}``."""
-    from ..commands.check import summary
+    from ..analysis.pairs import summary
     from ..plan import check_pair
     from ..profiles.mate import mate as rolled
     from .pairview import pair_animation
