@@ -42,7 +42,7 @@ def test_zk_tends_to_zi_like_one_over_the_disc_radius():
     assert all(a > b for a, b in zip(gaps, gaps[1:]))
     ratios = [a / b for a, b in zip(gaps, gaps[1:])]
     assert all(1.8 < q < 2.2 for q in ratios), ratios          # first order in 1/R
-    assert gaps[-1] < 2e-4                                     # 0.13 µm·m per mm of R
+    assert gaps[-1] < 2e-4                      # measured: R x gap = 0.50 mm² (0.126 µm at R = 4 m)
     # ... and not to ZN: that gap stays (ZN and ZI differ by far more)
     assert _flank_gap(design(worm_type="ZK", disc_radius=4000, **kw), zn) > 20 * gaps[-1]
 
@@ -124,8 +124,8 @@ def test_zk_groove_is_the_disc_swept_along_the_helix(R, kw):
     rho = np.linspace(d.worm_root_radius, d.hob_tip_radius, 13)
     brute = _brute_e(G, rho, w0)
     mine = axial_profile(d)(rho)[0]
-    # the grid's parabola and the bisections leave well under a nanometre... at most 1e-7 here
-    assert np.abs(brute - mine).max() < 1e-7, np.abs(brute - mine).max()
+    # the grid's parabola and the bisections leave well under a nanometre (measured 1.7e-12 mm)
+    assert np.abs(brute - mine).max() < 1e-9, np.abs(brute - mine).max()
     # the worm's certified transverse section: its vertices' thread half angle against the brute force
     from gear3d.wormgear.worm_body import worm_section
     prof = worm_section(d, 0.002)
@@ -136,7 +136,7 @@ def test_zk_groove_is_the_disc_swept_along_the_helix(R, kw):
     assert sel.sum() >= 6
     half = (G["px"] / 2 - _brute_e(G, r[sel], w0)) / G["p"]
     dev = np.abs(np.abs(np.arctan2(L[sel, 1], L[sel, 0])) - half) * r[sel]
-    assert dev.max() <= 0.002 + 1e-7
+    assert dev.max() <= 1e-7                   # the vertices are samples of the exact curve (2e-8)
 
 
 # ------------------------------------------------------------------ the wheel's mid-plane
@@ -186,7 +186,10 @@ def test_zk_wheel_midplane_is_the_rack_envelope(x):
     assert sel.sum() >= 10
     half = _rack_envelope_half_angle(d, r[sel])
     dev = np.abs(np.abs(ang[sel]) - half) * r[sel]
-    assert dev.max() <= tol + 1e-6, dev.max()
+    # the section's vertices are samples of its exact envelope (measured 5e-9 mm); its chords
+    # are certified within tol by the builder
+    assert dev.max() <= 1e-6, dev.max()
+    assert prof.report["max_error"] <= tol
 
 
 # ------------------------------------------------------------------ the set, the CLI, refusals
