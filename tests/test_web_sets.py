@@ -103,3 +103,30 @@ def test_sets_go_through_the_budget_and_name_bad_values(app):
     assert st == 400 and _strict(body)["param"] == "fmt"
     st, _, body = _asgi_get(app, "/api/pair", "family=worm")
     assert st == 400 and _strict(body)["param"] == "family"
+
+
+@pytest.mark.parametrize("table", ["worm", "bevel"])
+def test_the_sets_builders_refuse_what_their_tables_refuse(table):
+    """Each number of WORM_PARAMS / BEVEL_PARAMS whose range is all the builder checks (no
+    ``limits``): just outside the table's range, the builder refuses it by name."""
+    from gear3d.errors import GearError
+    from gear3d.params import BEVEL_PARAMS, WORM_PARAMS
+    from gear3d.web.builds import _bevel_geometry, _worm_design
+    if table == "worm":
+        params, base, build = WORM_PARAMS, {"module": 2.0, "starts": 1, "wheel_teeth": 30}, _worm_design
+    else:
+        params, base, build = BEVEL_PARAMS, {"teeth": 20, "mate_teeth": 40, "module": 2.0}, _bevel_geometry
+    build(dict(base))                                      # the base design is fine
+    checked = 0
+    for p in params:
+        if p.kind not in (int, float) or p.limits:
+            continue
+        step = 1 if p.kind is int else 1e-9 * max(1.0, abs(p.lo or 0), abs(p.hi or 0))
+        outside = [v for v in ((p.lo if p.lo_open else p.lo - step) if p.lo is not None else None,
+                               (p.hi if p.hi_open else p.hi + step) if p.hi is not None else None) if v is not None]
+        for v in outside:
+            with pytest.raises(GearError) as e:
+                build(dict(base, **{p.name: v}))
+            assert e.value.param == p.name, (p.name, v, str(e.value))
+            checked += 1
+    assert checked >= (14 if table == "worm" else 9)
