@@ -448,8 +448,15 @@ WORM_PARAMS: tuple = (
        help="normal pressure angle (default 20); tan a_n = tan a_x cos gamma", excludes=("axial_pressure_angle_deg",)),
     _p("axial_pressure_angle_deg", float, "deg", 5, 35, help="axial pressure angle",
        excludes=("normal_pressure_angle_deg",)),
-    _p("worm_type", str, default="ZA", choices=("ZA", "ZN", "ZI"),
-       help="ZA (straight axial section), ZN (straight normal section), ZI (involute helicoid)"),
+    _p("worm_type", str, default="ZA", choices=("ZA", "ZN", "ZI", "ZK"),
+       help="ZA (straight axial section), ZN (straight normal section), ZI (involute helicoid), "
+            "ZK (ground by a biconical disc)"),
+    _p("disc_radius", float, "mm", 0, 5000, lo_open=True,
+       help="ZK only: the grinding disc's outside radius (default max(125, 25 m))",
+       limits="at least 5 thread depths; ZK only"),
+    _p("backlash", float, "mm", 0, None, default=0.0,
+       help="normal backlash at the pitch point: the worm's thread is thinned, the wheel stays the hob's envelope",
+       limits="at most module/4"),
     _p("hand", str, default="right", choices=("right", "left"), help="hand of worm and wheel"),
     _p("addendum_coeff", float, "x m", 0.5, 1.5, default=1.0, help="worm addendum and wheel throat addendum"),
     _p("dedendum_coeff", float, "x m", 0.5, 2.0, default=1.2, help="worm and wheel dedendum (clearance: "

@@ -58,6 +58,7 @@ LABELS = {
     "worm_type": "Worm type", "worm_length": "Worm length", "face_width": "Face width", "throat": "Throated wheel",
     "friction": "Friction coefficient", "worm_bore": "Worm bore", "wheel_bore": "Wheel bore", "part": "Part",
     "shaft_angle_deg": "Shaft angle", "spiral_angle_deg": "Spiral angle", "cutter_radius": "Cutter radius",
+    "disc_radius": "Grinding disc radius",
 }
 #: labels a set words its own way
 SET_LABELS = {"bevel": {"form": "Tooth form", "teeth": "Teeth of the gear", "hand": "Spiral hand"},
