@@ -29,31 +29,29 @@ returned. ``report["max_error"]`` is that measurement.
 """
 from __future__ import annotations
 
+import inspect
 import math
+from dataclasses import dataclass
 
 import numpy as np
 
 from ..envelope import circle_loop
-from ..geometry import first_unique_rows, rotate
-from ..errors import GearError, ToleranceError, check_choice, check_number
+from ..errors import GearError, ToleranceError, check_number
 from .features import (apply_features, chamfer_vectors, offset_loops,
                        plan_features, subdivide)
 from ..reports import BodyReport
+from .layers import (measure, measure_mesh, mesh_properties, minimum_vertices, plan_layers,  # noqa: F401
+                     twisted_mesh, warp_layers)
+from .options import (MAX_HELIX_DEG, MIN_TWIST_TOLERANCE, Finish, Shape, body_options,  # noqa: F401
+                      check_finish, check_shape, check_tolerance)
 from .solid import Solid
-from .twist import KINDS, TwistLaw, default_arch_radius, twist_law
+from .twist import TwistLaw
 from ..budget import staged
-from ..params import BODY, MAX_TOLERANCE_TEXT, MIN_TOLERANCE, max_tolerance   # the one table (ranges stated once)
+from ..params import BODY_PARAMS, MIN_TOLERANCE   # the one table (ranges stated once)
 from ..placement import mesh_placement, standard_center_distance
 from ..progress import stage
 from .. import budget
 
-#: the steepest helix angle (deg) of a body: at 85 deg a tooth wraps tan 85 = 11.4 face
-#: widths around the pitch cylinder; steeper helices are worms (gear3d worm), and near 90
-#: deg the layer count tan(beta) W / r grows without bound
-MAX_HELIX_DEG = 85.0
-#: smallest body tolerance with a twist (part of it goes to the profile, whose floor is
-#: :data:`gear3d.params.MIN_TOLERANCE`)
-MIN_TWIST_TOLERANCE = 2e-7
 #: share of a twisted body's tolerance given to its profile polygon (the rest: twist terms)
 PROFILE_SHARE = 0.6
 #: attempts at a twisted body before refusing; each one after a measured miss shrinks the
@@ -125,10 +123,7 @@ class Body(Solid):
 # --------------------------------------------------------------------------- body()
 
 @staged
-def body(profile, kind="spur", width=10.0, helix_angle_deg=0.0, hand="right", gap=0.0,
-         arch_radius=None, tolerance=None, bore=None, hub_diameter=None, hub_length=0.0,
-         keyway=False, set_screw=None, lightening_holes=0, web_thickness=None, xy_offset=0.0,
-         elephant_foot=0.0, chamfer=0.0, name=None, rim_diameter=None, _law=None) -> Body:
+def body(profile, **options) -> Body:
     """A 3D gear body (mm, degrees) from a :class:`gear3d.model.Profile`.
 
     ``kind``: spur | helical | herringbone | chevron-arch (see :mod:`gear3d.solids.twist`).
@@ -198,121 +193,175 @@ def body(profile, kind="spur", width=10.0, helix_angle_deg=0.0, hand="right", ga
     """
     prof = _check_profile(profile)
     stage("body")
-    kind = check_choice("kind", kind, KINDS)
-    W = BODY["width"].check(width if width is not None else float("nan"))
-    if kind == "spur":
-        beta = check_number("helix_angle_deg", helix_angle_deg, 0, 0, unit="deg for a spur body "
-                            "(use kind='helical')")
-    else:
-        beta = check_number("helix_angle_deg", helix_angle_deg, 0, MAX_HELIX_DEG, lo_open=True,
-                            unit="deg (steeper helices are worms: gear3d worm)")
-    hand = BODY["hand"].check(hand if hand is not None else "")
-    gap = check_number("gap", gap, 0, 0 if kind != "herringbone" else W, hi_open=kind == "herringbone",
-                       unit="mm" if kind == "herringbone" else "mm (a gap is for herringbone bodies)")
-    m = prof.module
-    R = None
-    if kind == "chevron-arch":
-        hi = W / (2 * math.sin(math.radians(beta)))
-        R = arch_radius if arch_radius is not None else min(max(default_arch_radius(W, beta), m), hi)
-        R = check_number("arch_radius", R, m, hi, unit=f"mm (module .. W/(2 sin β) for β={beta:g} deg)")
-    elif arch_radius is not None:
-        raise GearError("arch_radius", arch_radius, "None unless kind='chevron-arch'")
-    twisted = kind != "spur"
-    tol_lo = MIN_TWIST_TOLERANCE if twisted else MIN_TOLERANCE
-    tol = check_number("tolerance", prof.tolerance if tolerance is None else tolerance, tol_lo, max_tolerance(m),
-                       unit=f"mm ({MAX_TOLERANCE_TEXT})")
-    if tolerance is None:
-        tol = prof.tolerance
-    if rim_diameter is not None:
-        if not prof.internal:
-            raise GearError("rim_diameter", rim_diameter, "None for an external gear (rings only)")
-        rr = float(prof.report["root_radius"])
-        check_number("rim_diameter", rim_diameter, 2 * rr, None, lo_open=True,
-                     unit=f"mm (beyond the root diameter {2 * rr:.6g})")
-        budget.check_rim(rim_diameter / 2, prof.pitch_radius, tol, "rim_diameter", scale=2)
-        prof = _spec_of(prof).replace(rim_radius=rim_diameter / 2).profile(prof.tolerance)
-    delta = check_number("xy_offset", xy_offset, -m / 2, m / 2, unit="mm (|offset| <= module/2)")
-    ef = check_number("elephant_foot", elephant_foot, 0, W / 2, hi_open=True, unit="mm")
-    ch = check_number("chamfer", chamfer, 0, W / 2, hi_open=True, unit="mm")
-    cb, ct = max(ef, ch), ch
-    if cb + ct >= W:
-        raise GearError("chamfer", ch, f"chamfers that sum to less than the width {W:g} mm")
-    feats = plan_features(prof, W, bore=bore, hub_diameter=hub_diameter, hub_length=hub_length,
-                          keyway=keyway, set_screw=set_screw, lightening_holes=lightening_holes,
-                          web_thickness=web_thickness)
+    return _body(prof, body_options(options))
 
-    # ---- the law and the error budget
-    sign = 1.0 if hand == "right" else -1.0
-    law = _law if _law is not None else twist_law(kind, W, prof.pitch_radius, sign, beta, gap, R)
-    e_off = tol / 8 if delta else 0.0
-    tp = profile_tolerance(tol, kind, bool(delta))
-    if prof.report["max_error"] > tp * (1 + 1e-9):
-        # the profile leaves too little room for the twist and offset terms: one rebuild
-        if tp < MIN_TOLERANCE:
-            raise ToleranceError("tolerance", tol, f"a number >= {tol_lo:g} mm for this body")
-        prof = _spec_of(prof).profile(tp)
+
+#: the keywords as ``help(gear3d.body)`` and ``inspect.signature`` show them: the table's
+body.__signature__ = inspect.Signature(
+    [inspect.Parameter("profile", inspect.Parameter.POSITIONAL_OR_KEYWORD)]
+    + [inspect.Parameter(p.name, inspect.Parameter.KEYWORD_ONLY, default=p.default) for p in BODY_PARAMS],
+    return_annotation="Body")
+
+
+def _with_rim(prof, rim_diameter, tol: float):
+    """``prof`` rebuilt by its spec with a rim of ``rim_diameter`` (mm; rings only)."""
+    if rim_diameter is None:
+        return prof
+    if not prof.internal:
+        raise GearError("rim_diameter", rim_diameter, "None for an external gear (rings only)")
+    rr = float(prof.report["root_radius"])
+    check_number("rim_diameter", rim_diameter, 2 * rr, None, lo_open=True,
+                 unit=f"mm (beyond the root diameter {2 * rr:.6g})")
+    budget.check_rim(rim_diameter / 2, prof.pitch_radius, tol, "rim_diameter", scale=2)
+    return _spec_of(prof).replace(rim_radius=rim_diameter / 2).profile(prof.tolerance)
+
+
+def _within_share(prof, tol: float, shape: Shape, fin: Finish):
+    """``prof``, or - when its error leaves too little room for the twist and offset terms -
+    the same gear rebuilt by its spec at its share of the body tolerance ``tol`` (mm)."""
+    tp = profile_tolerance(tol, shape.kind, bool(fin.xy_offset))
+    if prof.report["max_error"] <= tp * (1 + 1e-9):
+        return prof
+    if tp < MIN_TOLERANCE:
+        tol_lo = MIN_TWIST_TOLERANCE if shape.twisted else MIN_TOLERANCE
+        raise ToleranceError("tolerance", tol, f"a number >= {tol_lo:g} mm for this body")
+    return _spec_of(prof).profile(tp)
+
+
+@dataclass(frozen=True)
+class BuildPlan:
+    """What every attempt at a body's layers shares: the twist ``law``, ``width`` and
+    ``tolerance`` (mm), the print ``finish``, the offset joins' error ``e_off`` (mm), the
+    layer bands not measured (``skip``, mm) and ``direct`` (None: a manifold with features;
+    a bore radius in mm, 0 for none: a plain body built as mesh arrays)."""
+    law: TwistLaw
+    width: float
+    tolerance: float
+    finish: Finish
+    e_off: float
+    skip: tuple
+    direct: float | None
+
+
+def _plan(prof, shape: Shape, fin: Finish, tol: float, feats, law) -> BuildPlan:
+    W, gap, cb, ct = shape.width, shape.gap, fin.bottom, fin.top
     skip = [(0.0, cb), (W - ct, W)] + ([(W / 2 - gap / 2, W / 2 + gap / 2)] if gap else [])
-    share = TWIST_OPTIMISM
     # plain bodies (no chamfer, gap or hub feature but a bore) are built as a mesh directly
     plain = not (cb or ct or gap or feats.hub_length or feats.keyway or feats.set_screw
                  or feats.lightening_holes or feats.web)
     direct = (feats.bore / 2 if feats.bore else 0.0) if plain else None
+    e_off = tol / 8 if fin.xy_offset else 0.0
+    return BuildPlan(law, W, tol, fin, e_off, tuple(skip), direct)
+
+
+def _body(prof, o: dict, law=None) -> Body:
+    """:func:`body` of validated-by-name keywords ``o``; ``law``: a mate's twist law."""
+    m = prof.module
+    shape = check_shape(o, m)
+    tol = check_tolerance(o["tolerance"], prof, shape.twisted)
+    prof = _with_rim(prof, o["rim_diameter"], tol)
+    fin = check_finish(o, shape.width, m)
+    feats = plan_features(prof, shape.width, bore=o["bore"], hub_diameter=o["hub_diameter"],
+                          hub_length=o["hub_length"], keyway=o["keyway"], set_screw=o["set_screw"],
+                          lightening_holes=o["lightening_holes"], web_thickness=o["web_thickness"])
+    law = law if law is not None else shape.law(prof.pitch_radius)
+    prof = _within_share(prof, tol, shape, fin)
+    plan = _plan(prof, shape, fin, tol, feats, law)
+    built = _attempts(prof, plan)
+    man, arrays, props = _solid(built.mesh, prof, plan, shape, feats, o["bore"])
+    report = _report(prof, plan, shape, built, props, feats)
+    name = o["name"] or f"{prof.family}-z{prof.teeth}-{shape.kind}"
+    return Body(man, prof, law, report, str(name), arrays=arrays)
+
+
+@dataclass(frozen=True)
+class Built:
+    """One attempt's result: ``mesh`` (a Manifold, or (V, F) arrays), the layer ``knots``
+    (mm), the edge cap ``max_len`` (mm), the predicted ``bound`` and measured ``max_error``
+    (mm), the measured ``heights`` (mm) and the profile's own error ``e_p`` (mm)."""
+    mesh: object
+    knots: object
+    max_len: float
+    bound: float
+    max_error: float
+    heights: list
+    e_p: float
+
+
+def _attempts(prof, plan: BuildPlan) -> Built:
+    """Build and measure until the body is within its tolerance: each miss shrinks the
+    twist budget by what the measurement says; ToleranceError after TWIST_RETRIES."""
+    share, tol = TWIST_OPTIMISM, plan.tolerance
     for _attempt in range(TWIST_RETRIES):
-        built = _build(prof, law, W, tol, delta, e_off, cb, ct, ef >= ch, skip, share, direct)
-        man, knots, max_len, bound, max_err, heights, e_p = built
-        if max_err <= tol:
-            break
+        built = _build(prof, plan, share)
+        if built.max_error <= tol:
+            return built
         # the twist terms missed: shrink their budget by what the measurement says (the
         # twist error grows about with the square of the turn per layer), at least halve it
-        e_t, room = max_err - e_p - e_off, tol - e_p - e_off
+        e_t, room = built.max_error - built.e_p - plan.e_off, tol - built.e_p - plan.e_off
         share *= min(0.5, max(0.05, 0.8 * (room / e_t) ** 2)) if e_t > 0 and room > 0 else 0.5
-    else:
-        raise ToleranceError("tolerance", tol, "a coarser value",
-                             f"measured body error {max_err:.3g} mm exceeds it (profile polygon "
-                             f"{e_p:.3g} mm by its own measure)")
-    arrays = None
-    if direct is not None:
-        arrays, man = man, None
-        V, F = arrays
+    raise ToleranceError("tolerance", tol, "a coarser value",
+                         f"measured body error {built.max_error:.3g} mm exceeds it (profile polygon "
+                         f"{built.e_p:.3g} mm by its own measure)")
+
+
+def _solid(mesh, prof, plan: BuildPlan, shape: Shape, feats, bore):
+    """(manifold or None, arrays or None, {volume, surface_area, genus, triangles, vertices,
+    watertight}) of the measured layers, with the gap cut and the hub features applied."""
+    if plan.direct is not None:
+        V, F = mesh
         props = mesh_properties(V, F)
         if not (len(F) and props["volume"] > 0):
-            raise GearError("width", W, "values that leave a solid body", "the body came out empty")
-        ntri, nvert, watertight = len(F), len(V), True     # closed by construction (tests check)
-    else:
-        if gap:
-            man = _cut_gap(man, prof, W, gap, tol)
-        man = apply_features(man, feats, W, tol)
-        _check_manifold(man, "bore", bore)
-        props = {"volume": float(man.volume()), "surface_area": float(man.surface_area()),
-                 "genus": int(man.genus())}
-        ntri, nvert = int(man.num_tri()), int(man.num_vert())
-        watertight = bool(ntri > 0 and man.status().name == "NoError")
+            raise GearError("width", plan.width, "values that leave a solid body", "the body came out empty")
+        # closed by construction (tests check)
+        return None, mesh, dict(props, triangles=len(F), vertices=len(V), watertight=True)
+    man = mesh
+    if shape.gap:
+        man = _cut_gap(man, prof, plan.width, shape.gap, plan.tolerance)
+    man = apply_features(man, feats, plan.width, plan.tolerance)
+    _check_manifold(man, "bore", bore)
+    ntri = int(man.num_tri())
+    return man, None, {"volume": float(man.volume()), "surface_area": float(man.surface_area()),
+                       "genus": int(man.genus()), "triangles": ntri, "vertices": int(man.num_vert()),
+                       "watertight": bool(ntri > 0 and man.status().name == "NoError")}
 
-    n_bore = len(circle_loop(direct, tol)) if direct else 0
+
+def _report(prof, plan: BuildPlan, shape: Shape, built: Built, props: dict, feats) -> BodyReport:
+    """The body's report: its form, what was measured (mm, mm^2, mm^3, deg) and its gear."""
+    tol, W, law, beta, knots = plan.tolerance, shape.width, plan.law, shape.helix_angle_deg, built.knots
+    n_bore = len(circle_loop(plan.direct, tol)) if plan.direct else 0
     min_v = minimum_vertices(prof, law, tol, W)
-    rep = prof.report
-    report = BodyReport(**{
-        "kind": kind, "width": W, "helix_angle_deg": beta, "hand": law.hand,
-        "gap": gap, "arch_radius": R,
-        "lead": (2 * math.pi * prof.pitch_radius / math.tan(math.radians(beta))) if twisted else math.inf,
+    rep, nvert, fin = prof.report, props["vertices"], plan.finish
+    return BodyReport(**{
+        "kind": shape.kind, "width": W, "helix_angle_deg": beta, "hand": law.hand,
+        "gap": shape.gap, "arch_radius": shape.arch_radius,
+        "lead": (2 * math.pi * prof.pitch_radius / math.tan(math.radians(beta))) if shape.twisted else math.inf,
         "total_twist_deg": math.degrees(float(np.ptp(law(np.linspace(0, W, 257))))),
         "volume": props["volume"], "surface_area": props["surface_area"],
-        "triangles": ntri, "vertices": nvert,
-        "layers": len(knots) - 1, "max_edge_length": max_len,
+        "triangles": props["triangles"], "vertices": nvert,
+        "layers": len(knots) - 1, "max_edge_length": built.max_len,
         "min_vertices": min_v, "vertex_ratio": (nvert - n_bore * len(knots)) / min_v,
-        "max_error": max_err, "max_error_bound": bound, "measured_heights": heights,
-        "tolerance": tol, "watertight": watertight,
+        "max_error": built.max_error, "max_error_bound": built.bound, "measured_heights": built.heights,
+        "tolerance": tol, "watertight": props["watertight"],
         "genus": props["genus"],
-        "family": prof.family, "teeth": prof.teeth, "module": m, "internal": prof.internal,
+        "family": prof.family, "teeth": prof.teeth, "module": prof.module, "internal": prof.internal,
         "pitch_radius": prof.pitch_radius, "tip_radius": rep["tip_radius"],
         "root_radius": rep["root_radius"], "rim_radius": rep.get("rim_radius"),
-        "profile_area": prof.area, "profile_tolerance": prof.tolerance, "profile_max_error": e_p,
-        "xy_offset": delta, "elephant_foot": ef, "chamfer": ch,
+        "profile_area": prof.area, "profile_tolerance": prof.tolerance, "profile_max_error": built.e_p,
+        "xy_offset": fin.xy_offset, "elephant_foot": fin.elephant_foot, "chamfer": fin.chamfer,
         "features": {k: v for k, v in vars(feats).items() if k != "volumes" and v},
         "feature_volumes": dict(feats.volumes),
     })
-    name = name or f"{prof.family}-z{prof.teeth}-{kind}"
-    return Body(man, prof, law, report, str(name), arrays=arrays)
+
+
+@staged
+def law_body(profile, law: TwistLaw, **options) -> Body:
+    """:func:`body` turned by the given twist ``law`` (θ(z) in rad, z in mm: a worm's, or a
+    mate's from :meth:`TwistLaw.mate`) instead of the one ``kind`` and ``helix_angle_deg``
+    make; the keywords are :func:`body`'s, validated the same way."""
+    prof = _check_profile(profile)
+    stage("body")
+    return _body(prof, body_options(options), law)
 
 
 def mate_body(profile2, like: Body, **features) -> Body:
@@ -324,8 +373,8 @@ def mate_body(profile2, like: Body, **features) -> Body:
     law = like.twist.mate(p2.pitch_radius, internal)
     r = like.report
     features.setdefault("tolerance", r["tolerance"])
-    return body(p2, kind=r["kind"], width=r["width"], helix_angle_deg=r["helix_angle_deg"],
-                hand=law.hand, gap=r["gap"], arch_radius=r["arch_radius"], _law=law, **features)
+    return law_body(p2, law, kind=r["kind"], width=r["width"], helix_angle_deg=r["helix_angle_deg"],
+                    hand=law.hand, gap=r["gap"], arch_radius=r["arch_radius"], **features)
 
 
 def place_pair(body1: Body, body2: Body, internal: bool = False, center_distance=None) -> list:
@@ -399,16 +448,17 @@ def profile_tolerance(tol: float, kind: str = "spur", offset: bool = False) -> f
     return t * (PROFILE_SHARE if kind != "spur" else 1.0)
 
 
-def _build(prof, law, W, tol, delta, e_off, cb, ct, ef_bottom, skip, share=1.0, direct=None):
-    """Extrude, warp and measure one attempt; ``share`` scales the twist budget.
-    ``direct``: None builds a manifold (extrude + warp); a number builds the mesh arrays
-    directly, with a bore of that radius (mm, 0 = none).
-    Returns (manifold or (V, F), knots, max_len, bound, max_error, heights, e_profile)."""
+def _build(prof, plan: BuildPlan, share: float = 1.0) -> Built:
+    """Extrude, warp and measure one attempt of ``plan``; ``share`` scales the twist budget.
+    ``plan.direct`` None builds a manifold (extrude + warp); a number builds the mesh arrays
+    directly, with a bore of that radius (mm, 0 = none)."""
     from manifold3d import CrossSection, FillRule, Manifold
+    law, W, tol, direct = plan.law, plan.width, plan.tolerance, plan.direct
+    delta, cb, ct = plan.finish.xy_offset, plan.finish.bottom, plan.finish.top
     e_p = float(prof.report["max_error"])
-    loops = offset_loops(prof.loops, delta, e_off)
+    loops = offset_loops(prof.loops, delta, plan.e_off)
     rho = max(float(np.hypot(l[:, 0], l[:, 1]).max()) for l in loops)
-    e_z = max(tol - e_p - e_off, 0.0) * share
+    e_z = max(tol - e_p - plan.e_off, 0.0) * share
 
     def charge(nv, layers):      # before the layers and the subdivided loops are made
         budget.check_body(2 * nv * layers + 2 * nv, "tolerance", tol, manifold=direct is None,
@@ -421,6 +471,7 @@ def _build(prof, law, W, tol, delta, e_off, cb, ct, ef_bottom, skip, share=1.0, 
     nv = sum(len(p) for p in polys)
     est = 2 * nv * (len(knots) - 1) + 2 * nv
     budget.check_body(est, "tolerance", tol, manifold=direct is None, layer_vertices=nv, teeth=prof.teeth)
+    skip = list(plan.skip)
     if direct is not None:
         # plain body: the closed mesh straight from the layers (a bore is one more loop,
         # not turned: a circle turned about its centre is the same circle)
@@ -430,102 +481,20 @@ def _build(prof, law, W, tol, delta, e_off, cb, ct, ef_bottom, skip, share=1.0, 
             fixed.append(True)
         V, F = twisted_mesh(polys, knots, law, fixed)
         max_err, heights = measure_mesh(V, F, law, prof, knots, delta, skip, min_radius=direct + tol if direct else 0.0)
-        return (V, F), knots, max_len, bound, max_err, heights, e_p
+        return Built((V, F), knots, max_len, bound, max_err, heights, e_p)
     vecs = None
     if cb or ct:
+        ef_bottom = plan.finish.elephant_foot >= plan.finish.chamfer
         vecs = (chamfer_vectors(polys, cb, "elephant_foot" if ef_bottom else "chamfer") if cb else None,
                 chamfer_vectors(polys, ct, "chamfer") if ct else None)
 
     man = Manifold.extrude(cs, W, len(knots) - 2)
-    man = man.warp_batch(_warp(law, W, knots, polys, vecs, cb, ct))
+    man = man.warp_batch(warp_layers(law, W, knots, polys, vecs, cb, ct))
     _check_manifold(man, "width", W)
 
     # ---- measure the tooth surface against the exactly turned profile
     max_err, heights = measure(man, law, prof, knots, delta, skip)
-    return man, knots, max_len, bound, max_err, heights, e_p
-
-
-def twisted_mesh(polys, knots, law, fixed=None):
-    """Closed triangle mesh (V (n, 3) float64 mm, F (m, 3) int64) of polygons ``polys``
-    (outer loops CCW, holes CW, mm) stacked at heights ``knots`` (mm), each layer turned by
-    ``law(z)`` (rad) except the loops flagged in ``fixed``. Side quads are split into two
-    triangles; the end faces come from manifold3d's polygon triangulation (no new vertices),
-    so every edge is shared by exactly two triangles, all facing outwards."""
-    from manifold3d import triangulate
-    fixed = [False] * len(polys) if fixed is None else fixed
-    P = np.concatenate(polys)
-    n, K = len(P), len(knots)
-    turn = np.concatenate([np.full(len(p), not f) for p, f in zip(polys, fixed)])
-    th = np.asarray(law(knots), float)[:, None]
-    c, s = np.where(turn, np.cos(th), 1.0), np.where(turn, np.sin(th), 0.0)
-    x = c * P[None, :, 0] - s * P[None, :, 1]
-    y = s * P[None, :, 0] + c * P[None, :, 1]
-    V = np.stack([x, y, np.broadcast_to(np.asarray(knots, float)[:, None], x.shape)], axis=-1).reshape(-1, 3)
-    a, b, start = [], [], 0
-    for p in polys:
-        i = np.arange(len(p))
-        a.append(start + i)
-        b.append(start + (i + 1) % len(p))
-        start += len(p)
-    a, b = np.concatenate(a), np.concatenate(b)
-    k = (np.arange(K - 1) * n)[:, None]
-    A0, B0 = (k + a).ravel(), (k + b).ravel()
-    A1, B1 = A0 + n, B0 + n
-    # split each side quad along the diagonal whose zig-zag bulges out of the material where
-    # the chords sag into it: the diagonal that runs with the turn (measured: 25% less error)
-    up = np.repeat(np.diff(th[:, 0]) >= 0, len(a))
-    t1 = np.where(up[:, None], np.stack([A0, B0, A1], axis=1), np.stack([A0, B0, B1], axis=1))
-    t2 = np.where(up[:, None], np.stack([B0, B1, A1], axis=1), np.stack([A0, B1, A1], axis=1))
-    sides = np.concatenate([t1, t2])
-    T = np.asarray(triangulate(polys), np.int64).reshape(-1, 3)
-    F = np.concatenate([T[:, ::-1], sides, T + (K - 1) * n])
-    return V, F
-
-
-def minimum_vertices(prof, law, tol: float, W: float) -> float:
-    """A reference vertex count (teeth only, no bore) for a body at tolerance ``tol`` (mm):
-    what a stack of turned profile polygons needs under the additive error model
-    e_profile + e_layers <= tol, with each term at its unavoidable minimum,
-
-        min over f in (0, 1) of  N(f tol) * (L((1 - f) tol) + 1)
-
-    N(e): the profile's equal-sag vertex count, ``teeth * min_vertices_per_tooth`` at the
-    profile's tolerance, scaled by sqrt(tolerance / e) (chord sag grows with the square of
-    the chord); L(e): on each smooth piece of the twist law, the layers for which the
-    outermost point's chord between layers sags by e, r (1 - cos(Δθ/2)) = e, and the law's
-    own bend between layers r θ'' Δz² / 8 stays within e (no zig-zag term). A spur body has
-    one layer. The measured error, not this model, certifies a body, so a body may well
-    come out below this count; ``vertex_ratio`` in the report is its count over it."""
-    n1 = prof.teeth * float(prof.report.get("min_vertices_per_tooth", 0.0)) or float(prof.report["vertices"])
-    tp = prof.tolerance
-    r = float(prof.report.get("tip_radius", prof.pitch_radius))
-    r = max(r, float(prof.report.get("rim_radius") or 0.0))
-    cuts = law.breaks()
-    pieces = [(a, b, *law.bounds(a, b)) for a, b in zip(cuts[:-1], cuts[1:]) if b > a]
-    if all(d1 == 0 for *_ab, d1, _d2 in pieces):
-        return 2 * n1 * math.sqrt(tp / tol)
-    best = math.inf
-    for f in np.linspace(0.02, 0.98, 97):
-        e_t = (1 - f) * tol
-        dth = 2 * math.acos(max(1 - e_t / r, -1.0))
-        layers = 0
-        for a, b, d1, d2 in pieces:
-            n = math.ceil((b - a) * d1 / dth - 1e-9)
-            if d2 > 0:
-                n = max(n, math.ceil((b - a) / math.sqrt(8 * e_t / (r * d2)) - 1e-9))
-            layers += max(n, 1)
-        best = min(best, n1 * math.sqrt(tp / (f * tol)) * (layers + 1))
-    return best
-
-
-def mesh_properties(V, F) -> dict:
-    """Volume (mm^3), surface area (mm^2) and genus of a closed, consistently oriented mesh."""
-    t = V[F]
-    cr = np.cross(t[:, 1] - t[:, 0], t[:, 2] - t[:, 0])
-    vol = float(np.einsum("ij,ij->i", t[:, 0], cr).sum() / 6)
-    area = float(0.5 * np.sqrt(np.einsum("ij,ij->i", cr, cr)).sum())
-    chi = len(V) - 3 * len(F) // 2 + len(F)
-    return {"volume": vol, "surface_area": area, "genus": int((2 - chi) // 2)}
+    return Built(man, knots, max_len, bound, max_err, heights, e_p)
 
 
 def _check_profile(profile):
@@ -549,164 +518,6 @@ def _rigid(angle: float, x: float) -> np.ndarray:
     t[:2, :2] = [[c, -s], [s, c]]
     t[0, 3] = x
     return t
-
-
-def plan_layers(law: TwistLaw, W: float, rho: float, loops, e_z: float, chamfers, charge=None):
-    """Layer heights (mm), edge-length cap (mm) and the predicted error bound (mm).
-    ``charge(vertices per layer, layers)`` is called before anything of that size is made
-    (the resource budget).
-
-    Pieces between the law's breaks and the chamfer bands get uniform layers. The share f of
-    the twist budget going to the arc sag ρΔθ²/8 (the rest to the zig-zag LΔθ/4) is chosen
-    to minimise vertices x layers."""
-    cb, ct = chamfers
-    cuts = set(law.breaks()) | {cb, W - ct}
-    cuts = sorted(z for z in cuts if 0 <= z <= W)
-    pieces = [(a, b) for a, b in zip(cuts[:-1], cuts[1:]) if b - a > 1e-12 * max(W, 1)]
-    bnds = [law.bounds(a, b) for a, b in pieces]
-    if all(d1 == 0 for d1, _ in bnds):
-        return np.array(cuts), math.inf, 0.0
-    if e_z <= 0:
-        raise ToleranceError("tolerance", e_z, "a positive twist budget")
-    curved = any(d2 > 0 for _, d2 in bnds)
-    e_law = 0.25 * e_z if curved else 0.0
-    e = e_z - e_law
-    lens = np.concatenate([np.hypot(*(np.roll(l, -1, axis=0) - l).T) for l in loops])
-    best = None
-    for f in np.linspace(0.05, 0.95, 19):
-        dth = math.sqrt(8 * f * e / rho)
-        lmax = 4 * (1 - f) * e / (2 * math.sin(dth / 2))
-        nv = int(np.ceil(lens / lmax).sum())
-        counts = []
-        for (a, b), (d1, d2) in zip(pieces, bnds):
-            n = max(1, math.ceil((b - a) * d1 / dth - 1e-9))
-            if d2 > 0:
-                n = max(n, math.ceil((b - a) / math.sqrt(8 * e_law / (rho * d2))))
-            counts.append(n)
-        cost = nv * sum(counts)
-        if best is None or cost < best[0]:
-            best = (cost, counts, lmax)
-    _, counts, lmax = best
-    if charge is not None:
-        charge(max(int(np.ceil(lens / lmax).sum()), len(lens)), sum(counts))
-    zs = [np.linspace(a, b, n + 1)[:-1] for (a, b), n in zip(pieces, counts)]
-    knots = np.concatenate(zs + [np.array([W])])
-    dz = np.diff(knots)
-    mid = (knots[:-1] + knots[1:]) / 2
-    dth = np.abs(np.diff(law(knots)))
-    d2 = np.abs(law.d2theta(np.concatenate([knots[:-1], mid, knots[1:]]))).reshape(3, -1).max(0)
-    bound = float((rho * dth ** 2 / 8 + lmax * 2 * np.sin(dth / 2) / 4 + rho * d2 * dz ** 2 / 8).max())
-    return knots, float(lmax), bound
-
-
-def _warp(law, W, knots, polys, vecs, cb, ct):
-    """The vectorised warp: uniform layer -> planned height, chamfer inset, turn by θ(z)."""
-    K = len(knots)
-    tree = None
-    if vecs is not None:
-        from scipy.spatial import cKDTree
-        tree = cKDTree(np.concatenate(polys))
-        vb = np.concatenate(vecs[0]) if vecs[0] is not None else None
-        vt = np.concatenate(vecs[1]) if vecs[1] is not None else None
-
-    def warp(P):
-        P = np.asarray(P, float)
-        j = np.clip(np.rint(P[:, 2] * (K - 1) / W).astype(np.int64), 0, K - 1)
-        z = knots[j]
-        xy = P[:, :2]
-        if tree is not None:
-            xy = xy.copy()
-            for c, vec, depth in ((cb, vb, z), (ct, vt, W - z)):
-                if not c:
-                    continue
-                inset = c * np.clip(1 - depth / c, 0, 1)
-                sel = inset > 0
-                if sel.any():
-                    _, idx = tree.query(xy[sel])
-                    xy[sel] -= inset[sel, None] * vec[idx]
-        th = law(z)
-        c, s = np.cos(th), np.sin(th)
-        return np.stack([c * xy[:, 0] - s * xy[:, 1], s * xy[:, 0] + c * xy[:, 1], z], axis=1)
-    return warp
-
-
-#: barycentric sample points on each measured side triangle: the edge midpoints (a profile
-#: chord's midpoint, the chord between layers, the split diagonal), the centroid and three
-#: interior points; the corners are profile vertices turned exactly (their error is the
-#: profile's own, which it reports)
-_BARY = np.array([[.5, .5, 0], [0, .5, .5], [.5, 0, .5], [1 / 3, 1 / 3, 1 / 3],
-                  [.6, .2, .2], [.2, .6, .2], [.2, .2, .6]])
-
-
-def _measured_bands(knots, law, skip):
-    """Layer bands (index k: knots[k]..knots[k+1]) to measure: one of every distinct shape
-    (layer height, signed turn, curvature of the law), outside the chamfer bands and the
-    gap. Bands of the same shape are the same surface turned (the warp turns whole layers of
-    one profile polygon), so one of each stands for all of them. The turn's sign counts: a
-    band turning the other way (a herringbone's upper half) meets its quads' diagonals the
-    other way round and is a different surface."""
-    dz = np.diff(knots)
-    th = law(knots)
-    dth = np.diff(th)
-    mid = 0.5 * (knots[:-1] + knots[1:])
-    d2 = np.abs(law.d2theta(mid))
-    scale = max(float(np.abs(dz).max()), 1e-300)
-    sig = np.stack([np.round(dz / scale, 9), np.round(dth, 12), np.round(d2, 9)], axis=1)
-    idx = first_unique_rows(sig).tolist()
-    out = []
-    for k in idx:
-        a, b = knots[k], knots[k + 1]
-        if not any(lo - 1e-12 <= a and b <= hi + 1e-12 for lo, hi in skip if hi > lo):
-            out.append(int(k))
-    return out
-
-
-def measure(man, law, prof, knots, delta=0.0, skip=()):
-    """:func:`measure_mesh` of a manifold3d ``Manifold``."""
-    m = man.to_mesh64()
-    return measure_mesh(np.asarray(m.vert_properties, float)[:, :3], np.asarray(m.tri_verts, np.int64),
-                        law, prof, knots, delta, skip)
-
-
-def measure_mesh(V, F, law, prof, knots, delta=0.0, skip=(), min_radius=0.0):
-    """Max distance (mm) of the body's tooth surface from the exactly turned profile.
-
-    The side triangles of tooth 0 in the measured layer bands (:func:`_measured_bands`)
-    are sampled at 16 barycentric points each; every point is turned back by -θ(z) at its
-    own height and its distance to the exact profile (offset by ``delta``) is found on the
-    exact evaluators (:meth:`Profile.exact_distance`, nearest points by Newton's method).
-    The end faces are the profile polygon itself, whose measured error the profile
-    reports. Triangles whose centroid lies within ``min_radius`` (mm: a bore) are not the
-    tooth surface. Returns (max error in mm, the measured band heights in mm)."""
-    stage("measure")
-    knots = np.asarray(knots, float)
-    bands = _measured_bands(knots, law, list(skip))
-    if not bands:
-        return float(prof.report["max_error"]), []
-    lay = np.clip(np.searchsorted(knots, V[:, 2] - 1e-9 * max(knots[-1], 1.0)), 0, len(knots) - 1)
-    tl = lay[F]
-    lo, hi = tl.min(axis=1), tl.max(axis=1)
-    sel = (hi - lo == 1) & np.isin(lo, bands)
-    tri = V[F[sel]]                                      # (T, 3, 3)
-    if min_radius:
-        c = tri.mean(axis=1)
-        tri = tri[np.hypot(c[:, 0], c[:, 1]) > min_radius]
-    if prof.teeth > 2:                                   # tooth 0's sector only
-        c = tri.mean(axis=1)
-        a = np.arctan2(c[:, 1], c[:, 0]) - law(c[:, 2])
-        a = (a + math.pi) % (2 * math.pi) - math.pi
-        tri = tri[np.abs(a) <= math.pi / prof.teeth + 1e-9]
-    if not len(tri):
-        raise GearError("width", None, "a body with material", "no side surface to measure")
-    pts = np.einsum("bk,tkj->tbj", _BARY, tri).reshape(-1, 3)
-    xy = rotate(pts[:, :2], -law(pts[:, 2]))
-    # points that turn back onto the same place (a spur wall: the quads' two triangles and
-    # their neighbours share chord points) are measured once; the representative of a
-    # group lies within 1e-10 mm of the others
-    first = first_unique_rows(np.round(xy, 10))
-    err = np.abs(prof.exact_distance(xy[first]) - abs(delta)) + (1e-10 if len(first) < len(xy) else 0.0)
-    heights = sorted({float(knots[k]) for k in bands} | {float(knots[k + 1]) for k in bands})
-    return max(float(err.max()), float(prof.report["max_error"])), heights
 
 
 def _cut_gap(man, prof, W, gap, tol):

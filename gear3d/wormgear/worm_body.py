@@ -70,7 +70,7 @@ def worm_body(d, tolerance=None, bore=None, name="worm", shaft_diameter=None, sh
     thread length ``d.worm_length``, optional ``bore`` (diameter, mm) and a shaft of
     ``shaft_diameter`` and ``shaft_length`` at each end (:mod:`gear3d.wormgear.rims`).
     Returns a :class:`gear3d.solids.body.Body` with the measured ``max_error`` in its report."""
-    from ..solids.body import Body, body, mesh_properties, profile_tolerance
+    from ..solids.body import Body, law_body, mesh_properties, profile_tolerance
     from .rims import apply_worm, check_worm
     tol = d.tolerance if tolerance is None else check_number("tolerance", tolerance, 1e-4, d.module / 10,
                                                              unit="mm")
@@ -85,8 +85,8 @@ def worm_body(d, tolerance=None, bore=None, name="worm", shaft_diameter=None, sh
     from ..solids import body as _body_mod
     shown = min(beta, getattr(_body_mod, "MAX_HELIX_DEG", 90.0))
     try:
-        b = body(prof, kind="helical", width=L, helix_angle_deg=shown, hand=d.hand, tolerance=tol,
-                 bore=None if shaft else bore, name=name, _law=law)
+        b = law_body(prof, law, kind="helical", width=L, helix_angle_deg=shown, hand=d.hand, tolerance=tol,
+                     bore=None if shaft else bore, name=name)
     except GearError as e:
         if e.param == "bore":
             raise GearError("worm_bore", bore, e.allowed, e.why) from None
