@@ -58,8 +58,19 @@ class Server:
             c.close()
 
     def rss(self) -> int:
-        with open(f"/proc/{self.proc.pid}/status") as fh:
-            return int(re.search(r"VmRSS:\s+(\d+)", fh.read()).group(1)) * 1024
+        """Resident bytes of the server and every process under it (its build workers and
+        their fork server)."""
+        todo, total = [self.proc.pid], 0
+        while todo:
+            pid = todo.pop()
+            try:
+                with open(f"/proc/{pid}/status") as fh:
+                    total += int(re.search(r"VmRSS:\s+(\d+)", fh.read()).group(1)) * 1024
+                with open(f"/proc/{pid}/task/{pid}/children") as fh:
+                    todo += [int(c) for c in fh.read().split()]
+            except (OSError, AttributeError):
+                continue
+        return total
 
     def stop(self):
         self.proc.terminate()
