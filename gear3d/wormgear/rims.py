@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import math
 
+from ..envelope import circle_loop
 from ..errors import GearError, check_bool, check_number
 from ..solids.features import Features, apply_features, keyway_size
 
@@ -102,12 +103,13 @@ def check_worm(d, bore=None, shaft_diameter=None, shaft_length=None) -> dict:
 
 
 def apply_worm(man, feats: dict, L: float, tol: float, bore=None):
-    """The worm ``man`` (thread in z in [0, L], mm) with a shaft at both ends and the ``bore``
-    (diameter) through all; built with the feature system's discs."""
-    from manifold3d import Manifold, OpType
-    from ..solids.features import _disc
+    """The worm ``man`` (thread in z in [0, L], mm) with a shaft at both ends (polygons
+    inscribed within ``tol``) and the ``bore`` (diameter) through all, cut by the feature
+    system."""
+    from manifold3d import CrossSection, FillRule, Manifold, OpType
     ds, Ls = feats["shaft_diameter"], feats["shaft_length"]
-    ends = [_disc(ds / 2, tol, Ls, -Ls), _disc(ds / 2, tol, Ls, L)]
+    shaft = Manifold.extrude(CrossSection([circle_loop(ds / 2, tol)], FillRule.Positive), Ls)
+    ends = [shaft.translate((0, 0, -Ls)), shaft.translate((0, 0, L))]
     man = Manifold.batch_boolean([man, *ends], OpType.Add)
     if bore is not None:
         man = apply_features(man.translate((0, 0, Ls)), Features(bore=bore), L + 2 * Ls, tol).translate((0, 0, -Ls))

@@ -32,6 +32,7 @@ import numpy as np
 
 from ..errors import GearError
 from ..racks import Corner, Rack, Smooth, line_piece
+from .zk import zk_profile
 
 #: modules: the virtual root line of a section's rack lies this far outside the blank
 #: (rack parts beyond the blank never touch it, so the worm's real root is not needed)
@@ -75,7 +76,6 @@ def nominal_profile(d):
     if d.worm_type == "ZK":
         key = (d.module, d.starts, d.worm_pitch_diameter, d.alpha_n, d.dedendum_coeff, d.disc_radius)
         if key not in _CACHE:
-            from .zk import zk_profile
             if len(_CACHE) > 64:
                 _CACHE.clear()
             _CACHE[key] = zk_profile(d)
