@@ -509,7 +509,7 @@ BEVEL_PARAMS: tuple = (
        help="spiral angle at mid-face: a spiral bevel (0 with a cutter radius: Zerol)"),
     _p("cutter_radius", float, "mm", 0, None, lo_open=True,
        help="radius of the crown's circular tooth line (default the mean cone distance)"),
-    _p("hand", str, choices=("right", "left"), help="hand of the gear's spiral (the mate gets the other)"),
+    _p("hand", str, choices=("right", "left"), help="hand of the gear's spiral, default right (the mate gets the other)"),
     _p("part", str, default="gear", choices=("gear", "mate", "pair"),
        help="gear (z1), mate (z2, own frame) or pair (the mate placed in mesh)"),
     _p("tolerance", float, "mm", 0, 1, lo_open=True, default=MESH_TOLERANCE,

@@ -15,35 +15,30 @@ from __future__ import annotations
 
 import sys
 
-from ..cliargs import number
 from ..errors import GearError
 from ..export import atomic_path, check_output, check_path, write
-from ..params import MESH_TOLERANCE
+from ..params import BEVEL_PARAMS
+
+
+#: flags the command needs (the table's defaults serve the web form and the Python API)
+REQUIRED = ("teeth", "mate_teeth", "module")
 
 
 def add_parser(sub):
     from ..bevel.geometry import FORMS
+    from .profile import arg_type
     p = sub.add_parser("bevel", help="bevel gears: straight, spiral, Zerol (spherical-involute or octoid) -> .stl .3mf .step + .json")
-    p.add_argument("--teeth", type=number("int", 3, 1000), required=True, help="teeth of the gear (z1)")
-    p.add_argument("--mate-teeth", type=number("int", 3, 1000), required=True, help="teeth of the mate (z2)")
-    p.add_argument("--module", type=number("float", 0, 1000, lo_open=True, unit="mm"), required=True,
-                   help="outer (heel) module m (mm)")
-    p.add_argument("--face-width", type=number("float", 0, None, lo_open=True, unit="mm"), default=None,
-                   help="face width b along the pitch element (mm); default and largest R_e/3")
-    p.add_argument("--pressure-angle-deg", type=number("float", 10, 35, unit="deg"), default=20.0,
-                   help="pressure angle (deg), default 20")
-    p.add_argument("--shaft-angle-deg", type=number("float", 10, 170, unit="deg"), default=90.0,
-                   help="shaft angle Σ (deg), default 90")
-    p.add_argument("--form", default="spherical-involute", choices=list(FORMS),
-                   help="tooth form: spherical-involute (default) or octoid (plane-flank crown gear)")
-    p.add_argument("--mate-form", default=None, choices=list(FORMS),
-                   help="the mate's tooth form (default --form; an octoid is not conjugate to a spherical involute)")
-    p.add_argument("--shift-coeff", type=number("float", -2, 2), default=0.0,
-                   help="profile shift x of the gear (the mate gets -x), default 0")
-    p.add_argument("--tolerance", type=number("float", 0, 1, lo_open=True, unit="mm"), default=MESH_TOLERANCE,
-                   help=f"max deviation of the mesh from the exact surfaces (mm), default {MESH_TOLERANCE:g}")
-    p.add_argument("--part", default="gear", choices=["gear", "mate", "pair"],
-                   help="gear (z1), mate (z2, own frame) or pair (the mate placed in mesh)")
+    for prm in BEVEL_PARAMS:          # the set's table (gear3d.params): flags, ranges, defaults, help
+        if prm.choices:
+            p.add_argument(prm.flag, default=prm.default, choices=list(prm.choices), help=prm.help_text())
+        else:
+            need = prm.name in REQUIRED
+            p.add_argument(prm.flag, type=arg_type(prm), default=None if need else prm.default, required=need,
+                           help=prm.help_text(default_text="" if need else None))
+        if prm.name == "form":
+            p.add_argument("--mate-form", default=None, choices=list(FORMS),
+                           help="the mate's tooth form (default --form; an octoid is not conjugate to a "
+                                "spherical involute)")
     p.add_argument("-o", "--output", required=True, help="output file; extension picks the format")
     p.add_argument("--step", default=None, choices=["faceted", "brep"],
                    help="STEP flavour: faceted (default) or brep (exact surfaces: the flanks are cones through the "
@@ -60,13 +55,6 @@ def add_parser(sub):
                    help="--part pair: roll the pair (interference, backlash, contact ratio, transmission error): "
                         "one summary line, the numbers under 'check' in --json; exit 1 on interference or a "
                         "contact ratio below 1")
-    p.add_argument("--spiral-angle-deg", type=number("float", 0, 60, hi_open=True, unit="deg"), default=None,
-                   help="spiral angle at mid-face (deg): a spiral bevel (0 with --cutter-radius: Zerol)")
-    p.add_argument("--cutter-radius", type=number("float", 0, None, lo_open=True, unit="mm"), default=None,
-                   help="radius of the crown's circular tooth line (the face-mill cutter, mm); default the mean "
-                        "cone distance")
-    p.add_argument("--hand", default=None, choices=["left", "right"],
-                   help="hand of the gear's spiral (the mate gets the other), default right")
     return p
 
 
