@@ -130,3 +130,19 @@ def test_the_sets_builders_refuse_what_their_tables_refuse(table):
             assert e.value.param == p.name, (p.name, v, str(e.value))
             checked += 1
     assert checked >= (14 if table == "worm" else 9)
+
+
+def test_the_set_tables_name_every_keyword_of_their_builders():
+    """WORM_PARAMS / BEVEL_PARAMS hold exactly the keywords of gear3d.worm (its design and its
+    features) and gear3d.bevel, but the checks and the mate's own form (not on the form)."""
+    import inspect
+
+    from gear3d.bevel import build
+    from gear3d.params import BEVEL_PARAMS, WORM_PARAMS
+    from gear3d.wormgear import validate
+    from gear3d.wormgear.design import design
+
+    def names(*fns):
+        return {n for f in fns for n, p in inspect.signature(f).parameters.items() if p.kind is not p.VAR_KEYWORD}
+    assert {p.name for p in WORM_PARAMS} == names(design, validate) - {"check"}
+    assert {p.name for p in BEVEL_PARAMS} == names(build) - {"check", "mate_form"}
