@@ -84,7 +84,7 @@ COSTS = {
     # gear3d.model.build_profile after sampling: pattern, trim (Clipper), corners, measure
     "profile": Cost(12e-6, 900.0, 0.05, 40e6, "involute z=3000 (66,000 vertices) 0.31 s, +22 MB; "
                     "triangular z=20,000 (100,000 vertices) 0.21 s, +24 MB; cycloidal 0.38 s"),
-    # gear3d.model._sector_distance: per (point, edge) pair near tooth 0, numpy in chunks
+    # gear3d.buildsteps.sector_distance: per (point, edge) pair near tooth 0, numpy in chunks
     "profile.pairs": Cost(1e-8, 0.0, 0.0, 0.0, "moineau-stator rho=1e5, e=1: 27,800 x 55,600 pairs, 5.4 s"),
     # solids.body: the layer mesh (float64 V, int64 F, intermediates) and its measurement
     "body": Cost(1.2e-6, 260.0, 0.1, 60e6, "helical z=20..400 at 2-10 um: 0.6-0.9 us and 180-240 B "
@@ -297,7 +297,7 @@ def profile_estimate(vertices: float, per_tooth: float = 0.0) -> Estimate:
     """A profile of ``vertices`` vertices (all teeth) with ``per_tooth`` in one tooth period
     (0: unknown): trimming and measuring it, and measuring what trimming removed from tooth
     0 against the edges within 1.5 pitches (all edges for 4 teeth or fewer): per_tooth x
-    min(vertices, 3 per_tooth) point-edge pairs (``gear3d.model._sector_distance``)."""
+    min(vertices, 3 per_tooth) point-edge pairs (``gear3d.buildsteps.sector_distance``)."""
     v, p = float(vertices), float(per_tooth)
     e = estimate("profile", v, PROFILE_VERTEX_COST * v, f"{v:,.0f} profile vertices")
     if p:

@@ -3,7 +3,7 @@
 Two chords that each stay within ``d`` of their curves, where the curves cross at angle
 gamma, cross within ``d / sin(gamma / 2)`` (<= ``2 d / sin(gamma)``) of the exact crossing.
 So after a first trim, the chords that meet at a new (Clipper-made) vertex are refined to
-``d = tol * sin(gamma) / 3`` (:data:`gear3d.model.CORNER_SHARE`), which bounds the corner
+``d = tol * sin(gamma) / 3`` (:data:`gear3d.buildsteps.CORNER_SHARE`), which bounds the corner
 by (2/3) tol, and the corner error is then *measured*: Newton's method finds the exact
 crossing of the two exact curves and its distance to the polygon corner.
 """

@@ -13,41 +13,15 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .envelope import PRUNE_SHARE, RIM_SHARE, circle_loop, pattern, signed_area, trim
+from .buildsteps import SURVIVED, cusps, exact_boundary, exact_extreme, generate, measured_error, \
+    sector_distance, tooth_loop
+from .envelope import RIM_SHARE, signed_area
 from .errors import GearError, ToleranceError, check_number
-from .corners import chords_near, corner_angle, exact_crossing, new_vertices, refine
-from .geometry import check_points, circle_crossings, point_segment_distance, rotate, segment_foot, unique_sorted
+from .geometry import check_points, circle_crossings, point_segment_distance
 from .reports import ProfileReport
-from .tessellate import chord_deviation, tessellate
 from . import budget as _budget
 from .progress import stage
 
-#: Clipper2 (inside manifold3d) rounds to 1e-8 mm; half a unit in each axis
-CLIPPER_ROUNDING = 0.5e-8 * math.sqrt(2)
-#: rounds of the tip/root radius search: each keeps 2 of 32 intervals, 16^5 ~ 1e6 x narrower
-EXTREME_ROUNDS = 5
-#: singular points: grid points per bracket and rounds (64^9 > 2^52: to double precision)
-TRANSITION_GRID = 64
-TRANSITION_ROUNDS = 9
-#: the blank's radius lies this many tolerances beyond the nominal tip (its chords sag
-#: by up to one tolerance and must never touch the true tip)
-BLANK_MARGIN = 2
-#: trimmed corners: chords near a corner are refined to CORNER_SHARE x tol x sin(gamma),
-#: which puts the corner within (2/3) tol of the exact crossing (see _trim_and_refine)
-CORNER_SHARE = 1 / 3
-#: the smallest crossing angle's sine the refinement target uses (a grazing crossing
-#: would otherwise ask for endless refinement; the measured corner error still decides)
-MIN_CORNER_SINE = 0.01
-#: chords within NEAR_CHORDS x tol of a corner are the ones that may make it
-NEAR_CHORDS = 2
-#: refine-and-trim passes per attempt; attempts, each shrinking the chords' share by
-#: CORNER_SHRINK, before the builder refuses the tolerance
-REFINE_PASSES = 5
-CORNER_ATTEMPTS = 4
-CORNER_SHRINK = 4
-#: a raw sample within SURVIVED x tol of the trimmed polygon survived trimming (the
-#: polygon is within tol of the exact boundary, the sample on it: 2 tol with room)
-SURVIVED = 2
 #: a tooth is *pointed* when its flanks cross more than POINTED_SHORTFALL x tol short of
 #: the tip circle it was cut for (the blank's own margin and chords stay below that)
 POINTED_SHORTFALL = 4
@@ -104,7 +78,7 @@ class Profile:
     _ref: "Profile | None" = field(repr=False, default=None)
     #: the exact boundary (:class:`gear3d.exact.ExactBoundary`) the measurements use, or
     #: a function that makes it on first use (see :attr:`boundary`)
-    _boundary: object = field(repr=False, default=None)
+    exact_boundary: object = field(repr=False, default=None)
     #: the turned tip circle when the clip radius binds: (exact evaluator over tooth 0's
     #: sector, t in [0, 1]; its sample parameters), else None. It is exact but not one of
     #: the raw ``pieces`` (the mate builder rolls it as part of the tool).
@@ -137,7 +111,7 @@ class Profile:
     @property
     def tooth_loop(self) -> np.ndarray:
         """The loop that carries the teeth (the outer loop of a gear, the hole of a ring)."""
-        return _tooth_loop(self.loops, self.internal)
+        return tooth_loop(self.loops, self.internal)
 
     @property
     def area(self) -> float:
@@ -239,213 +213,97 @@ def arc_thickness(loop: np.ndarray, radius: float) -> float:
 
 # ------------------------------------------------------------------- the builder
 
-#: chord budget shares tried in turn when a swallowtail is mis-trimmed (see
-#: :func:`_backward_survivors`): a swallowtail thinner than the chords can come out of the
-#: fill as a positive sliver instead of a negative lobe; finer chords resolve it
-SLIVER_SHARES = (1.0, 0.25, 0.0625)
-
-
-def _backward_survivors(tl: np.ndarray, chain: np.ndarray, label: np.ndarray, phys: np.ndarray,
-                        teeth: int, tol: float) -> bool:
-    """True when a vertex of the trimmed tooth loop ``tl`` is a raw sample on a branch past
-    a singular point (``phys`` False) *and* more than ``tol`` from its own piece's regular
-    chords (pieces with none are left alone). Such a branch lies inside the tool, so the
-    exact trimmed outline runs along it only at its singular point (a cusp on the
-    outline, e.g. at the undercut limit, is real); a vertex of it far from the cusp means
-    the fill kept a sliver of a swallowtail: the outline then reaches up to the sliver's
-    length off the true boundary, while every chord is still within tolerance of *some*
-    exact curve. Checked for tooth 0 and its neighbours' copies of the chain."""
-    bi = np.nonzero(~phys)[0]
-    if not len(bi):
-        return False
-    lo, hi = tl.min(axis=0) - 1e-6, tl.max(axis=0) + 1e-6
-    hit = np.zeros(len(bi), bool)
-    for k in ((0,) if teeth == 1 else (-1, 0, 1)):
-        b = rotate(chain[bi], 2 * math.pi * k / teeth)
-        near = np.nonzero(np.all((b >= lo) & (b <= hi), axis=1))[0]
-        for s in range(0, len(near), 64):
-            idx = near[s:s + 64]
-            d2 = ((b[idx, None, :] - tl[None, :, :]) ** 2).sum(axis=2)
-            hit[idx] |= (d2 <= 1e-14).any(axis=1)
-    for j in bi[hit]:
-        # the regular chords of the same piece (both ends regular); a piece without one
-        # has no singular point on it (its whole run is the other orientation, e.g. a
-        # gerotor's inner envelope, or a degenerate joint)
-        i = np.nonzero((label[:-1] == label[j]) & (label[1:] == label[j]) & phys[:-1] & phys[1:])[0]
-        if len(i) and point_segment_distance(chain[j][None, :], chain[i], chain[i + 1]).min() > tol:
-            return True
-    return False
-
-
-def _cusps(chain: np.ndarray, tol: float) -> np.ndarray:
-    """Indices of chain vertices where the curve reverses direction (singular points)."""
-    seg = np.diff(chain, axis=0)
-    ln = np.hypot(seg[:, 0], seg[:, 1])
-    keep = ln > 1e-12
-    idx = np.nonzero(keep)[0]
-    s = seg[keep] / ln[keep, None]
-    dots = np.einsum("ij,ij->i", s[:-1], s[1:])
-    rev = np.nonzero(dots < -0.5)[0]
-    return idx[rev + 1]
-
-
-@dataclass
-class _Samples:
-    """The builder's working samples: per exact piece ``f`` its parameters ``t``, points
-    (mm) and every chord's *measured* deviation from the exact curve (mm)."""
-    fs: list
-    ts: list
-    pts: list
-    devs: list
-
-    def add(self, f, tess):
-        self.fs.append(f)
-        self.ts.append(tess.t)
-        self.pts.append(tess.points)
-        self.devs.append(tess.deviation)
-
-    def refine(self, i: int, chords, target: float, tol: float):
-        """Tighten piece ``i``'s chords ``chords`` to ``target`` (mm); ToleranceError naming
-        ``tol`` when they stop converging (the curve is not smooth enough there to certify)."""
-        self.ts[i], self.pts[i], self.devs[i], ok = refine(self.fs[i], self.ts[i], self.pts[i], self.devs[i],
-                                                           chords, target)
-        if not ok:
-            raise ToleranceError("tolerance", tol, "a tolerance at which every trimmed corner can be certified",
-                                 f"near a trimmed corner the chords stop converging to the exact curve "
-                                 f"at {target:.2g} mm: its evaluator is not smooth at that scale")
-
-    def max_deviation(self) -> float:
-        """The largest measured chord deviation (mm): every chord was measured when made."""
-        return max(float(d.max(initial=0.0)) for d in self.devs)
-
-
-@dataclass
-class _Trimmed:
-    """What trimming left: the loops, tooth 0's loop, its trimmed corners (point, angle,
-    nearby chords), the exact crossings' parameters per piece, the measured corner errors
-    (mm) and how far notch pruning moved a vertex (mm)."""
-    loops: list
-    corners: list
-    corner_cuts: dict
-    corner_errs: list
-    moved: float
-    corner_pairs: list = field(default_factory=list)
+#: the optional keywords of :func:`build_profile`: name -> what it is
+BUILD_OPTIONS = {
+    "extra_report": "more report entries (dict)",
+    "names": "the pieces' names, for the singular points' report (list of str)",
+    "nominal_tip_radius": "the tip circle the gear is cut for (mm; default: the envelope's own)",
+    "flank_pieces": "indices of the pieces that form the working flank (default: all)",
+}
 
 
 def build_profile(family: str, params: dict, pieces, teeth: int, pitch_radius: float, *,
                   internal: bool, tolerance: float, rim_radius: float | None = None,
-                  clip_radius=None, extra_report: dict | None = None,
-                  names=None, nominal_tip_radius: float | None = None,
-                  flank_pieces=None) -> Profile:
+                  clip_radius=None, **options) -> Profile:
     """Tessellate, pattern, trim and measure one family's tooth period.
 
     ``pieces``: exact evaluators G(t) (mm) of one period, in order, tooth 0 at angle 0.
-    ``flank_pieces``: indices of the pieces that form the working flank (default: all);
-    the undercut depth is how far the cutter went into them.
+    ``options`` (:data:`BUILD_OPTIONS`): ``flank_pieces``, the indices of the pieces that
+    form the working flank (default: all; the undercut depth is how far the cutter went
+    into them), ``names``, ``nominal_tip_radius`` (mm) and ``extra_report``.
     Raises :class:`GearError` naming ``addendum_coeff`` when the trimmed result has no
     proper teeth.
 
-    Stages: :func:`_sample` (tessellate each piece within the budget, singular points as
-    samples) → :func:`_blank` (the turned blank the cutter works on) →
-    :func:`_trim_and_refine` (pattern, trim, tighten the chords at trimmed corners, measure
-    the corners) → :func:`_measured_error` → the report.
+    Stages (:mod:`gear3d.buildsteps`): :func:`~gear3d.buildsteps.generate` (tessellate each
+    piece within the budget, singular points as samples; the turned blank; pattern, trim,
+    tighten the chords at trimmed corners, measure the corners) →
+    :func:`~gear3d.buildsteps.measured_error` → the report (:func:`_report`).
     """
+    for k in options:
+        if k not in BUILD_OPTIONS:
+            raise TypeError(f"build_profile() got an unexpected keyword argument {k!r}")
     stage("profile")
     tol = tolerance
     _budget.check_rim(rim_radius, pitch_radius, RIM_SHARE * tol, pieces=pieces)    # range, circle vertices
-    fs = [_finite(G) for G in pieces]
-    # the share of the tolerance the chords may use: Clipper rounds every vertex to 1e-8 mm
-    # and notch pruning may move a vertex by up to tol * PRUNE_SHARE (envelope.prune_spikes)
-    budget = tol * (1 - PRUNE_SHARE) - CLIPPER_ROUNDING
-    nraw = len(fs)
-    prune = any(getattr(G, "tool_tangent", None) is not None for G in pieces)
-    for share in SLIVER_SHARES:
-        samples, minv = _sample(pieces, fs, teeth, tol, budget * share)
-        if share == SLIVER_SHARES[0]:
-            # the blank is decided from the first tessellation
-            chain, label = _chain(fs, samples.ts, samples.pts)
-            rc = np.hypot(chain[:, 0], chain[:, 1])
-            if nominal_tip_radius is None:
-                # the envelope's own tip: the extreme sample, refined on its exact piece (a
-                # sample-only value can lie well inside the true tip where the chords are
-                # long and flat, and the blank turned at it would cut the tip off)
-                j = int(np.argmin(rc) if internal else np.argmax(rc))
-                nominal_tip_radius = _exact_extreme(fs, samples.ts, label, chain, np.ones(len(chain), bool),
-                                                    float(rc[j]), largest=not internal)
-            blank0, rb, clip_binding = _blank(nominal_tip_radius, clip_radius, internal, tol)
-        blank = blank0
-        if clip_binding:
-            # the turned tip circle joins the corner machinery as one more exact piece
-            arc = _arc_piece(rb, teeth)
-            samples.add(arc, tessellate(arc, budget * share))
-        tr = _trim_and_refine(samples, nraw, teeth, internal, rim_radius, tol, blank, clip_binding, prune)
-        chain, label = _chain(fs, samples.ts[:nraw], samples.pts[:nraw])
-        phys = np.concatenate([_physical(pieces[i], samples.ts[i])[(0 if i == 0 else 1):] for i in range(nraw)])
-        if not prune or not tr.loops or not _backward_survivors(_tooth_loop(tr.loops, internal), chain, label, phys,
-                                                                teeth, tol):
-            break
-    else:
-        raise ToleranceError("tolerance", tol, "a finer tolerance",
-                             "a swallowtail narrower than the chords survived trimming: the trimmed "
-                             "outline still runs along a branch past a singular point")
-    loops, corners, corner_cuts = tr.loops, tr.corners, tr.corner_cuts
-    max_err = _measured_error(samples, tr, internal, rim_radius, tol)
-    arc_piece = samples.fs[nraw] if clip_binding else None
-    arc_t = samples.ts[nraw] if clip_binding else None
-    fs, ts = fs[:nraw], samples.ts[:nraw]
+    gen = generate(pieces, teeth, internal, tol, rim_radius, clip_radius, options.get("nominal_tip_radius"))
+    max_err = measured_error(gen.samples, gen.trimmed, internal, rim_radius, tol)
     if max_err > tol * (1 + 1e-9):
         raise ToleranceError("tolerance", tol, "a coarser value",
                              f"the measured error is {max_err:.3g} mm at a trimmed corner or rim")
+    loops = gen.trimmed.loops
     expected = 2 if internal else 1
     if len(loops) != expected or any(len(l) < 3 for l in loops):
         raise GearError("addendum_coeff", params.get("addendum_coeff"),
                         "a value that leaves separate teeth on a single body",
                         f"trimming gave {len(loops)} loop(s) instead of {expected}")
-    rc = np.hypot(chain[:, 0], chain[:, 1])
-    prof = Profile(family, dict(params), teeth, pitch_radius, internal, tol, loops, {}, list(pieces), chain,
-                   [np.array(t) for t in ts])
-    if arc_piece is not None:
-        prof.tip_arc = (arc_piece, np.array(arc_t))
-    prof.corner_pairs = list(tr.corner_pairs)
-    tl = prof.tooth_loop
+    prof = Profile(family, dict(params), teeth, pitch_radius, internal, tol, loops, {}, list(pieces), gen.chain,
+                   [np.array(t) for t in gen.ts])
+    if gen.arc is not None:
+        prof.tip_arc = (gen.arc[0], np.array(gen.arc[1]))
+    prof.corner_pairs = list(gen.trimmed.corner_pairs)
+    keep = _report(prof, gen, max_err, rim_radius, options)
+    # the raw evaluators (no-contact parameters give NaN, which the distance search skips)
+    prof.boundary = functools.partial(exact_boundary, list(pieces), gen, keep, prof.tooth_loop, tol, rim_radius,
+                                      max_err)
+    return prof
+
+
+def _report(prof: Profile, gen, max_err: float, rim_radius, options: dict) -> np.ndarray:
+    """Measure what trimming left of tooth 0 into ``prof.report`` (mm, deg): tip and root
+    radii of the exact curve, undercut (root side) and pointing (tip side), thickness,
+    singular points. Returns the mask of the period's samples that survived trimming."""
+    tl, teeth, internal, tol, chain, label = prof.tooth_loop, prof.teeth, prof.internal, prof.tolerance, \
+        gen.chain, gen.label
     rr = np.hypot(tl[:, 0], tl[:, 1])
     tip, root = (rr.min(), rr.max()) if internal else (rr.max(), rr.min())
     if tip <= 0 or not np.isfinite(tip):
-        raise GearError("addendum_coeff", params.get("addendum_coeff"), "a smaller value", "no tooth is left")
-    # ---- what trimming removed from tooth 0: undercut (root side) and pointing (tip side)
-    dist = _sector_distance(tl, chain, teeth)
+        raise GearError("addendum_coeff", prof.params.get("addendum_coeff"), "a smaller value", "no tooth is left")
+    dist = sector_distance(tl, chain, teeth)
     # tip and root radii of the exact curve, not of the polygon's vertices: refine the
     # extreme surviving sample on its exact piece (a trimmed corner stays as it is)
     keep = dist <= SURVIVED * tol + 1e-9
-    tip = _exact_extreme(fs, ts, label, chain, keep, tip, largest=not internal)
-    root = _exact_extreme(fs, ts, label, chain, keep, root, largest=internal)
+    tip = exact_extreme(gen.fs, gen.ts, label, chain, keep, tip, largest=not internal)
+    root = exact_extreme(gen.fs, gen.ts, label, chain, keep, root, largest=internal)
+    rc = np.hypot(chain[:, 0], chain[:, 1])
     removed = dist > SURVIVED * tol + 1e-9
-    tip_side = (rc < pitch_radius) if internal else (rc > pitch_radius)
-    cusp_idx = _cusps(chain, tol)
+    tip_side = (rc < prof.pitch_radius) if internal else (rc > prof.pitch_radius)
+    cusp_idx = cusps(chain, tol)
     # undercut: points on regular (physical) branches of the working flank that another
     # part of the tool cut away; branches past singular points never were material
-    on_flank = np.isin(label, list(range(len(pieces)) if flank_pieces is None else list(flank_pieces)))
-    under = removed & ~tip_side & on_flank & phys
+    flank = options.get("flank_pieces")
+    on_flank = np.isin(label, list(range(len(prof.pieces)) if flank is None else list(flank)))
+    under = removed & ~tip_side & on_flank & gen.phys
     root_cusp = bool(np.any(~tip_side[cusp_idx])) if len(cusp_idx) else False
     # pointed: the flanks cross before the tooth reaches the tip circle it was cut for
-    shortfall = (tip - nominal_tip_radius) if internal else (nominal_tip_radius - tip)
+    shortfall = (tip - gen.nominal_tip_radius) if internal else (gen.nominal_tip_radius - tip)
     pointed = bool(shortfall > POINTED_SHORTFALL * tol + 1e-9)
     land = 0.0
     if not pointed:
         land = arc_thickness(tl, tip + (tol if internal else -tol))
         land = 0.0 if not math.isfinite(land) else land
-    s_pitch = arc_thickness(tl, pitch_radius)
+    names = options.get("names")
     rep = ProfileReport(**{
-        "family": family,
-        "teeth": teeth,
-        "module": params.get("module"),
-        "internal": internal,
-        "pitch_radius": pitch_radius,
-        "tip_radius": float(tip),
-        "root_radius": float(root),
-        "rim_radius": rim_radius,
-        "thickness_at_pitch": s_pitch,
-        "space_at_pitch": float(2 * math.pi * pitch_radius / teeth - s_pitch) if math.isfinite(s_pitch) else math.nan,
+        **_sizes(prof, tip, root, rim_radius),
         # undercut (external gears): the flank has a singular point (Litvin) on the root
         # side, or trimming cut into the flank there. Rings report what trimming took
         # off the root side as root_trim_depth instead (a rack-generated ring is defined
@@ -463,374 +321,30 @@ def build_profile(family: str, params: dict, pieces, teeth: int, pitch_radius: f
         "area": float(prof.area),
         "max_error": float(max_err),
         "tolerance": tol,
-        "vertices": int(sum(len(l) for l in loops)),
+        "vertices": int(sum(len(l) for l in prof.loops)),
         "vertices_per_tooth": int(len(chain) - 1),
-        "trimmed_corners": len(corners),
-        "min_vertices_per_tooth": float(minv),
+        "trimmed_corners": len(gen.trimmed.corners),
+        "min_vertices_per_tooth": float(gen.min_vertices),
     })
-    if extra_report:
-        rep.update(extra_report)
+    if options.get("extra_report"):
+        rep.update(options["extra_report"])
     prof.report = rep
-    # the raw evaluators (no-contact parameters give NaN, which the distance search skips)
-    prof.boundary = functools.partial(_boundary, list(pieces), ts, keep, tl, teeth, tol, internal, rim_radius,
-                                      arc_piece, arc_t, max_err, corner_cuts)
-    return prof
+    return keep
 
 
-def _sample(pieces, fs, teeth: int, tol: float, budget: float):
-    """Stage 1: tessellate every piece within ``budget`` (mm, measured); check the
-    resource budget before the period is repeated; add the singular points as samples, so
-    the physical branches end exactly there. Returns (samples, fewest vertices per tooth)."""
-    tess = [tessellate(f, budget) for f in fs]
-    samples = _Samples(list(fs), [x.t for x in tess], [x.points for x in tess], [x.deviation for x in tess])
-    _budget.check_profile(teeth * sum(len(t) - 1 for t in samples.ts), "teeth" if teeth > 1000 else "tolerance",
-                          teeth if teeth > 1000 else tol, info={"teeth": teeth, "points": samples.pts})
-    for i, G in enumerate(pieces):
-        t2 = _with_transitions(G, samples.ts[i])
-        if len(t2) != len(samples.ts[i]):
-            samples.ts[i], samples.pts[i] = t2, fs[i](t2)
-            samples.devs[i] = chord_deviation(fs[i], t2, samples.pts[i])
-    return samples, float(sum(x.min_vertices for x in tess))
-
-
-def _blank(nominal_tip_radius: float, clip_radius, internal: bool, tol: float):
-    """Stage 2: the turned blank (r_min, r_max) the cutter works on (mm): the nominal tip
-    circle, BLANK_MARGIN x tol outside the tip so that its chords never touch the true tip,
-    or the user's turned tip radius (``clip_radius``), which is an exact cut.
-    Returns (blank, its radius, whether the user's radius binds)."""
-    clip_binding = False
-    if internal:
-        rb = nominal_tip_radius - BLANK_MARGIN * tol
-        if clip_radius is not None and clip_radius[0] is not None and clip_radius[0] > rb:
-            rb, clip_binding = clip_radius[0], True
-        return (max(rb, tol), None), rb, clip_binding
-    rb = nominal_tip_radius + BLANK_MARGIN * tol
-    if clip_radius is not None and clip_radius[1] is not None and clip_radius[1] < rb:
-        rb, clip_binding = clip_radius[1], True
-    return (None, rb), rb, clip_binding
-
-
-def _trim_and_refine(samples: _Samples, nraw: int, teeth: int, internal: bool, rim_radius, tol: float,
-                     blank, clip_binding: bool, prune: bool) -> _Trimmed:
-    """Stage 3: pattern the period, trim it (Clipper), and tighten the chords that meet at
-    trimmed corners until the corners' measured errors fit the tolerance.
-
-    A trimmed corner is where two chords cross; each chord lies within d of its curve, so
-    if the curves cross at angle gamma the polygon corner lies within d / sin(gamma / 2)
-    (<= 2 d / sin gamma) of the exact crossing. The chords near a corner are refined to
-    d = CORNER_SHARE x tol x sin(gamma) (at most (2/3) tol at the corner), trimmed again,
-    and the corner is then *measured* (Newton on the exact curves, :func:`_measure_corners`).
-    A corner that still misses shrinks d by CORNER_SHRINK, at most CORNER_ATTEMPTS times."""
-    corners, loops, moved, corner_cuts, corner_errs, corner_pairs = [], [], 0.0, {}, [], []
-    shrink = 1.0
-    fs = samples.fs
-    for _attempt in range(CORNER_ATTEMPTS):
-        for it in range(REFINE_PASSES):
-            # refinement adds vertices: the resource budget again, before patterning
-            _budget.check_profile(teeth * sum(len(t) - 1 for t in samples.ts), "tolerance", tol)
-            chain, _ = _chain(fs[:nraw], samples.ts[:nraw], samples.pts[:nraw])
-            raw = pattern(chain, teeth)
-            if clip_binding:
-                ring = pattern(samples.pts[-1], teeth)
-                blank = (ring, None) if internal else (None, ring)
-                raw_all = np.concatenate([raw, ring])
-            else:
-                raw_all = raw
-            loops, _raw_area, moved = trim(raw, internal, rim_radius, tol, blank, prune=prune)
-            if not loops:
-                return _Trimmed([], [], {}, [], 0.0)
-            tl = _tooth_loop(loops, internal)
-            corners, changed = [], False
-            final = it == REFINE_PASSES - 1
-            nv = new_vertices(tl, raw_all, sector=math.pi / teeth + 1e-9 if teeth > 2 else None)
-            if len(nv):
-                ang = np.arctan2(tl[nv, 1], tl[nv, 0])
-                nv = nv[np.abs(ang) <= math.pi / teeth + 1e-9] if teeth > 1 else nv
-            for i in nv:
-                q = tl[i]
-                theta = corner_angle(tl, i)
-                gamma = min(theta, math.pi - theta)
-                target = shrink * tol * max(math.sin(gamma), MIN_CORNER_SINE) * CORNER_SHARE
-                near = []
-                for pi_, ch in enumerate(chords_near(q, samples.pts, teeth, NEAR_CHORDS * tol + 1e-9)):
-                    near += [(pi_, j, k) for j, k in ch]
-                    idx = [j for j, _ in ch]
-                    if idx:
-                        sub = np.array(sorted({min(max(j + o, 0), len(samples.ts[pi_]) - 2)
-                                               for j in idx for o in (-1, 0, 1)}))
-                        if (samples.devs[pi_][sub] > target).any() and not final:
-                            samples.refine(pi_, idx, target, tol)
-                            changed = True
-                corners.append((q, theta, near))
-            if not changed:
-                break
-        corner_cuts, corner_pairs = {}, []
-        corner_errs = _measure_corners(fs, samples.ts, corners, teeth, corner_cuts, corner_pairs)
-        if not corner_errs or max(corner_errs) <= tol - 2 * CLIPPER_ROUNDING:
-            break
-        shrink /= CORNER_SHRINK
-    return _Trimmed(loops, corners, corner_cuts, corner_errs, moved, corner_pairs)
-
-
-def _measured_error(samples: _Samples, tr: _Trimmed, internal: bool, rim_radius, tol: float) -> float:
-    """Stage 4: the profile's measured error (mm): the largest of every chord's measured
-    deviation and every trimmed corner's measured distance to the exact crossing, plus
-    Clipper's rounding and what notch pruning moved; a ring's rim polygon sags too."""
-    max_err = max([samples.max_deviation(), *tr.corner_errs]) + CLIPPER_ROUNDING + tr.moved
-    if internal:
-        n_rim = len(circle_loop(rim_radius, RIM_SHARE * tol))   # as trim() builds it
-        max_err = max(max_err, rim_radius * (1 - math.cos(math.pi / n_rim)) + CLIPPER_ROUNDING)
-    return max_err
-
-
-def _boundary(fs, ts, keep, tl, teeth, tol, internal, rim_radius, arc_piece, arc_t, max_err, corner_cuts):
-    """The exact boundary of the trimmed profile: every piece with its samples that survived
-    trimming (within 2 tol of the trimmed polygon) and, on a chord that runs into a trimmed
-    corner, the corner's parameter (the exact crossing found by Newton); the turned blank's
-    arc; a ring's rim."""
-    from .exact import ExactBoundary
-    pieces = []
-    start = 0
-    items = [(f, t, corner_cuts.get(i, [])) for i, (f, t) in enumerate(zip(fs, ts))]
-    if arc_piece is not None:
-        items.append((arc_piece, arc_t, corner_cuts.get(len(fs), [])))
-    for i, (f, t, cs) in enumerate(items):
-        n = len(t)
-        if i < len(fs):
-            k = keep[start:start + n] if i == 0 else keep[start - 1:start - 1 + n]
-            start += n if i == 0 else n - 1
-        else:
-            k = _sector_distance(tl, f(t), teeth) <= SURVIVED * tol + 1e-9
-        cuts = {}
-        for c in cs:
-            j = int(np.clip(np.searchsorted(t, c) - 1, 0, n - 2))
-            if t[j] <= c <= t[j + 1] and k[j] != k[j + 1]:
-                cuts[j] = c
-        # a chord whose two ends were trimmed away can still carry boundary in its middle
-        # (an arc clipped at both ends): look at three exact points inside it
-        dead = np.nonzero(~(k[:-1] | k[1:]))[0]
-        mid_alive = np.zeros(n - 1, bool)
-        if len(dead):
-            tm = (t[dead][:, None] + (t[dead + 1] - t[dead])[:, None] * np.array([0.25, 0.5, 0.75])).ravel()
-            with np.errstate(invalid="ignore"):
-                pm = np.asarray(f(tm), float)
-            ok = np.isfinite(pm).all(axis=1)
-            near = np.zeros(len(tm), bool)
-            if ok.any():
-                near[ok] = _sector_distance(tl, pm[ok], teeth) <= SURVIVED * tol + 1e-9
-            mid_alive[dead] = near.reshape(-1, 3).any(axis=1)
-        pieces.append((f, t, k, cuts, mid_alive))
-    circles = [rim_radius] if internal and rim_radius else []
-    a, b = _sector_edges(tl, teeth)
-    return ExactBoundary(pieces, teeth, circles, polygon=(a, b), tol=tol, polygon_error=max_err)
-
-
-def _sector_edges(loop: np.ndarray, teeth: int):
-    """Edges (a, b) of ``loop`` that lie within 1.5 pitches of tooth 0 (all edges for gears
-    of 4 teeth or fewer)."""
-    loop = np.asarray(loop, float)
-    a, b = loop, np.roll(loop, -1, axis=0)
-    if teeth > 4:
-        w = 3 * math.pi / teeth
-        ang = np.abs(np.arctan2(loop[:, 1], loop[:, 0]))
-        sel = (ang <= w) | (np.roll(ang, -1) <= w)
-        a, b = a[sel], b[sel]
-    return a, b
-
-
-def _sector_distance(loop: np.ndarray, pts: np.ndarray, teeth: int) -> np.ndarray:
-    """Distance (mm) from points near tooth 0 to the edges of ``loop`` that lie within 1.5
-    pitches of tooth 0 (all edges for gears of 4 teeth or fewer)."""
-    a, b = _sector_edges(loop, teeth)
-    d = np.empty(len(pts))
-    step = max(1, 400_000 // max(len(a), 1))
-    for s0 in range(0, len(pts), step):
-        dd, _ = segment_foot(pts[s0:s0 + step, None, :], a[None], b[None])
-        d[s0:s0 + step] = dd.min(axis=1)
-    return d
-
-
-def _regularity(piece, t):
-    """dG/dt . (tool tangent) (normalised) at ``t``: > 0 on a regular branch, < 0 past a cusp."""
-    t = np.asarray(t, float)
-    h = 1e-7
-    n = len(t)
-    ev = getattr(piece, "evaluate_with_tangent", None)
-    if ev is not None:                       # one evaluation for the stencil and the tangent
-        G, T3 = ev(np.concatenate([t + h, t - h, t]))
-        dG = (G[:n] - G[n:2 * n]) / (2 * h)
-        T = T3[2 * n:]
-    else:
-        dG = (piece(t + h) - piece(t - h)) / (2 * h)
-        T = piece.tool_tangent(t)
-    scale = np.hypot(*dG.T) * np.hypot(*T.T)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        return np.einsum("ij,ij->i", dG, T) / np.where(scale > 0, scale, 1.0)
-
-
-def _with_transitions(piece, t):
-    """Add the parameters where a piece's envelope turns back (singular points) to ``t``."""
-    if getattr(piece, "tool_tangent", None) is None or not getattr(piece, "smooth", False):
-        return t
-    g = _regularity(piece, t)
-    flips = np.nonzero(np.sign(g[:-1]) * np.sign(g[1:]) < 0)[0]
-    if not len(flips):
-        return t
-    # all sign changes at once: each round evaluates TRANSITION_GRID points per bracket and
-    # keeps the one sub-interval where the sign flips (to the last representable parameter)
-    a, b, ga = t[flips].copy(), t[flips + 1].copy(), g[flips].copy()
-    frac = np.linspace(0.0, 1.0, TRANSITION_GRID + 1)[1:-1]
-    for _ in range(TRANSITION_ROUNDS):
-        x = a[:, None] + (b - a)[:, None] * frac[None, :]
-        gx = _regularity(piece, x.ravel()).reshape(x.shape)
-        same = np.sign(gx) == np.sign(ga)[:, None]
-        # the last grid point on a's side: same sign up to it (the branch is regular there)
-        k = np.where(same.all(axis=1), len(frac), np.argmin(same, axis=1)) - 1
-        rows = np.arange(len(a))
-        has = k >= 0
-        a2 = np.where(has, x[rows, np.maximum(k, 0)], a)
-        ga = np.where(has, gx[rows, np.maximum(k, 0)], ga)
-        b = np.where(k + 1 < len(frac), x[rows, np.minimum(k + 1, len(frac) - 1)], b)
-        a = a2
-        if np.all(b - a <= 4e-16 * np.maximum(1.0, np.abs(a))):
-            break
-    extra = np.where(ga >= 0, a, b)          # the sample on the regular side
-    return unique_sorted(np.sort(np.concatenate([t, extra])))
-
-
-def _physical(piece, t):
-    """Mask of samples on a regular branch: the envelope runs the same way as the tool."""
-    tt = getattr(piece, "tool_tangent", None)
-    if tt is None or not getattr(piece, "smooth", False):
-        return np.ones(len(t), bool)
-    return ~(_regularity(piece, t) < -1e-9)
-
-
-def _chain(fs, ts, pts_list=None):
-    """Concatenate the pieces' samples into one period's open chain, with piece labels."""
-    if pts_list is None:
-        pts_list = [f(t) for f, t in zip(fs, ts)]
-    chains = [p if i == 0 else p[1:] for i, p in enumerate(pts_list)]
-    labels = [np.full(len(c), i) for i, c in enumerate(chains)]
-    return np.concatenate(chains), np.concatenate(labels)
-
-
-def _exact_extreme(fs, ts, label, chain, keep, polygon_value, largest):
-    """Largest (or smallest) radius (mm) of the exact curve near the polygon's extreme.
-
-    Starts from the surviving raw sample with the extreme radius and maximises |G(t)| on
-    its piece between the neighbouring samples (a zooming grid search). Keeps the polygon value
-    when that is more extreme (a trimmed corner) or the sample is not a vertex there.
-    """
-    r = np.hypot(chain[:, 0], chain[:, 1])
-    if not keep.any():
-        return float(polygon_value)
-    idx = np.nonzero(keep)[0]
-    j = idx[np.argmax(r[idx]) if largest else np.argmin(r[idx])]
-    if abs(r[j] - polygon_value) > 1e-6 * max(1.0, abs(polygon_value)):
-        return float(polygon_value)           # the extreme is a trimmed corner
-    pc = int(label[j])
-    t = ts[pc]
-    k = int(np.argmin(np.abs(fs[pc](t) - chain[j]).sum(axis=1)))
-    a, b = t[max(k - 1, 0)], t[min(k + 1, len(t) - 1)]
-    sgn = 1.0 if largest else -1.0
-    # zoom in on the extreme of |G(t)|: each round keeps 2 of 32 intervals
-    best = sgn * polygon_value
-    for _ in range(EXTREME_ROUNDS):
-        x = np.linspace(a, b, 33)
-        r = sgn * np.hypot(*fs[pc](x).T)
-        i = int(np.argmax(r))
-        best = max(best, float(r[i]))
-        a, b = x[max(i - 1, 0)], x[min(i + 1, 32)]
-    return float(sgn * best)
-
-
-def _arc_piece(radius, teeth):
-    """Exact evaluator of the circle ``radius`` (mm) over tooth 0's sector, CCW."""
-    w = 2 * math.pi / teeth
-
-    def f(t):
-        a = (np.asarray(t, float) - 0.5) * w
-        return np.stack([radius * np.cos(a), radius * np.sin(a)], axis=-1)
-    return f
-
-
-def _tooth_loop(loops, internal):
-    if internal:
-        return min(loops, key=lambda l: np.hypot(l[:, 0], l[:, 1]).max())
-    return max(loops, key=lambda l: abs(signed_area(l)))
-
-
-def _measure_corners(fs, ts, corners, teeth, cuts=None, pairs=None):
-    """Distance (mm) from each trimmed corner to the exact crossing of its two curves.
-    ``cuts`` (a dict, filled in): piece index -> parameters of the crossings on it;
-    ``pairs`` (a list, filled in): ((piece, t, copy), (piece, t, copy)) per corner."""
-    errs = []
-    for q, _theta, near in corners:
-        best, best_cut = None, None
-        near = _chords_through(q, near, fs, ts, teeth)
-        for a in range(len(near)):
-            for b in range(a + 1, len(near)):
-                pa, ja, ka = near[a]
-                pb, jb, kb = near[b]
-                if pa == pb and ka == kb and abs(ja - jb) <= 1:
-                    continue
-                ra = 2 * math.pi * ka / teeth
-                fa = fs[pa]
-                ta0, ta1 = ts[pa][ja], ts[pa][ja + 1]
-                tb0, tb1 = ts[pb][jb], ts[pb][jb + 1]
-                # work in the frame of copy ka: rotate q back
-                qa = _rotate_pt(q, -ra)
-                res = exact_crossing(fa, ta0, ta1, fs[pb], tb0, tb1, 2 * math.pi * (kb - ka) / teeth, qa,
-                                     params=True)
-                if res is None:
-                    continue
-                x, sa, ub = res
-                d = float(np.hypot(*(x - qa)))
-                if best is None or d < best:
-                    best, best_cut = d, ((pa, sa, ka), (pb, ub, kb))
-        if best is not None:
-            errs.append(best)
-            if cuts is not None:
-                for pc, t, _k in best_cut:
-                    cuts.setdefault(pc, []).append(t)
-            if pairs is not None:
-                pairs.append(best_cut)
-    return errs
-
-
-#: mm: a trimmed corner is a crossing of two chords; Clipper rounds it to 1e-8 mm, so the
-#: chords it lies on pass within this distance of it
-THROUGH_CORNER = 1e-6
-
-
-def _chords_through(q, near, fs, ts, teeth):
-    """The chords of ``near`` ((piece, chord index, tooth copy)) that pass through the
-    corner ``q`` (within :data:`THROUGH_CORNER`): the two whose crossing the polygon made
-    it. Falls back to all of ``near`` when fewer than two do (a corner on a piece joint).
-    Measuring only these keeps the corner's measured error honest (another pair of nearby
-    curves may cross nearer to q) and the number of exact crossings small."""
-    if len(near) <= 2:
-        return near
-    ends = np.empty((len(near), 2, 2))
-    for i, (pc, j, k) in enumerate(near):
-        ends[i] = rotate(fs[pc](np.array([ts[pc][j], ts[pc][j + 1]])), 2 * math.pi * k / teeth)
-    d = point_segment_distance(np.asarray(q, float)[None, :], ends[:, 0], ends[:, 1]).ravel()
-    keep = [n for n, di in zip(near, d) if di <= THROUGH_CORNER]
-    return keep if len(keep) >= 2 else near
-
-
-def _rotate_pt(p, a):
-    c, s = math.cos(a), math.sin(a)
-    return np.array([c * p[0] - s * p[1], s * p[0] + c * p[1]])
-
-
-def _finite(G):
-    """Wrap an evaluator so that NaN points (no contact) raise a clear error."""
-    def f(t):
-        p = G(t)
-        if not np.all(np.isfinite(p)):
-            raise GearError("tool", "this cutter", "a tool whose every normal meets the pitch line/circle",
-                            "some tool normals never pass through the pitch point (no contact)")
-        return p
-    return f
+def _sizes(prof: Profile, tip: float, root: float, rim_radius) -> dict:
+    """The report's sizes (mm): radii and the arc thickness and space at the pitch circle."""
+    s_pitch = arc_thickness(prof.tooth_loop, prof.pitch_radius)
+    return {
+        "family": prof.family,
+        "teeth": prof.teeth,
+        "module": prof.params.get("module"),
+        "internal": prof.internal,
+        "pitch_radius": prof.pitch_radius,
+        "tip_radius": float(tip),
+        "root_radius": float(root),
+        "rim_radius": rim_radius,
+        "thickness_at_pitch": s_pitch,
+        "space_at_pitch": (float(2 * math.pi * prof.pitch_radius / prof.teeth - s_pitch)
+                           if math.isfinite(s_pitch) else math.nan),
+    }
