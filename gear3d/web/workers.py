@@ -27,7 +27,6 @@ import os
 import queue
 import signal
 import sys
-import threading
 import time
 
 from ..watchdog import GRACE_S, LimitError, child_usage
@@ -116,12 +115,14 @@ class Pool:
     :func:`gear3d.budget.limits`, in force in every worker."""
 
     def __init__(self, n: int, limits: dict):
-        ctx = multiprocessing.get_context("forkserver")
-        ctx.set_forkserver_preload(["gear3d.web.builds", "gear3d.web.svg", "gear3d.web.meshdata",
-                                    "gear3d.solids.body", "gear3d.watchdog"])
+        if "forkserver" in multiprocessing.get_all_start_methods():
+            ctx = multiprocessing.get_context("forkserver")
+            ctx.set_forkserver_preload(["gear3d.web.builds", "gear3d.web.svg", "gear3d.web.meshdata",
+                                        "gear3d.solids.body", "gear3d.watchdog"])
+        else:                                  # no fork server on this platform: each worker starts afresh
+            ctx = multiprocessing.get_context("spawn")
         self.ctx, self.n, self.limits = ctx, n, dict(limits)
         self.idle: queue.SimpleQueue = queue.SimpleQueue()
-        self.lock = threading.Lock()
         workers = [_Worker(ctx, self.limits) for _ in range(n)]
         for w in workers:
             w.wait_ready()
