@@ -579,3 +579,52 @@ def test_drive_harmonic_is_a_deprecated_alias(capsys, tmp_path):
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and err.startswith("gear3d: error: json = ")
     assert list(tmp_path.iterdir()) == []
+
+
+#: files brought within the size limits (#25 item 8): at most 600 lines, and every function at
+#: most 80 lines with at most 10 parameters (``self``/``cls`` not counted; ``*args`` and
+#: ``**kwargs`` count one each). A file joins this list when it is fitted.
+FITTED = ("gear3d.model", "gear3d.buildsteps", "gear3d.spec", "gear3d.solids.body", "gear3d.solids.layers",
+          "gear3d.solids.options", "gear3d.solids.solid", "gear3d.solids.convert")
+MAX_FILE_LINES, MAX_FUNCTION_LINES, MAX_PARAMETERS = 600, 80, 10
+
+
+def _oversized(module: str) -> list:
+    path = MODULES[module][0]
+    out = []
+    n = len(path.read_text(encoding="utf-8").splitlines())
+    if n > MAX_FILE_LINES:
+        out.append(f"{module}: {n} lines")
+    for node in ast.walk(_tree(path)):
+        if not isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):
+            continue
+        a = node.args
+        names = [x.arg for x in a.posonlyargs + a.args + a.kwonlyargs]
+        params = len([x for x in names if x not in ("self", "cls")]) + bool(a.vararg) + bool(a.kwarg)
+        length = node.end_lineno - node.lineno + 1
+        if length > MAX_FUNCTION_LINES or params > MAX_PARAMETERS:
+            out.append(f"{module}.{node.name} (line {node.lineno}): {length} lines, {params} parameters")
+    return out
+
+
+def test_the_size_check_sees_long_functions(tmp_path):
+    # the check on a source written here: 81 lines and 11 parameters are each one too many
+    body = "\n".join(f"    x{i} = {i}" for i in range(79))
+    src = f"def f(a, b, c, d, e, f, g, h, i, j, *k):\n{body}\n    return 0\n"
+    tree = ast.parse(src)
+    fn = tree.body[0]
+    assert fn.end_lineno - fn.lineno + 1 == 81
+    path = tmp_path / "m.py"
+    path.write_text(src)
+    MODULES["gear3d._size_probe"] = (path, False)
+    try:
+        found = _oversized("gear3d._size_probe")
+    finally:
+        del MODULES["gear3d._size_probe"]
+    assert found == ["gear3d._size_probe.f (line 1): 81 lines, 11 parameters"]
+
+
+def test_fitted_files_stay_within_the_limits():
+    bad = [msg for m in FITTED for msg in _oversized(m)]
+    assert not bad, "\n".join(bad)
+
