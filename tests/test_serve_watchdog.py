@@ -28,9 +28,9 @@ _b.check = lambda est, *a, **k: est      # every estimate accepted: only the wat
 
 
 class WatchedServer(Server):
-    """``gear3d serve --port 0 --max-builds 1 --max-seconds 1`` whose estimates all pass."""
+    """``gear3d serve --port 0 --max-builds 1 LIMIT VALUE`` whose estimates all pass."""
 
-    def __init__(self, folder):
+    def __init__(self, folder, limit=("--max-seconds", "1")):
         self.folder = str(folder)
         site, self.tmp = folder / "site", folder / "tmp"
         site.mkdir()
@@ -39,7 +39,7 @@ class WatchedServer(Server):
         env = dict(os.environ, PYTHONPATH=os.pathsep.join([str(site), os.environ.get("PYTHONPATH", "")]),
                    TMPDIR=str(self.tmp))
         self.proc = subprocess.Popen([sys.executable, "-m", "gear3d.cli", "serve", "--port", "0", "--max-builds", "1",
-                                      "--max-seconds", "1"], cwd=self.folder, env=env, stdout=subprocess.PIPE,
+                                      *limit], cwd=self.folder, env=env, stdout=subprocess.PIPE,
                                      stderr=subprocess.PIPE, text=True)
         self.out = _Lines(self.proc.stdout, folder / "serve.out")
         self.log = _Lines(self.proc.stderr, folder / "serve.log")
@@ -50,16 +50,27 @@ class WatchedServer(Server):
         self.port = int(m.group(1))
 
 
+#: (limit flag, value, a request past it, the resource named)
+CASES = [
+    # 3,000 teeth at 1 um, 10 mm wide: far more than 1 s of CPU (the budget would refuse it)
+    (("--max-seconds", "1"), "/api/download?family=involute&teeth=3000&tolerance=0.001&b.width=10&fmt=stl", "time"),
+    # a 1,000-tooth helical body at 2 um, 50 mm wide: far more than 300 MiB (a worker starts near 120 MiB)
+    (("--max-memory", "300MiB", "--max-seconds", "600"),
+     "/api/download?family=involute&teeth=1000&tolerance=0.002&b.width=50&b.kind=helical&b.helix_angle_deg=30"
+     "&fmt=stl", "memory"),
+]
+
+
 @pytest.mark.slow                  # a server of its own: ~10 s on a busy 2-core machine
-def test_a_build_past_max_seconds_is_stopped_and_the_next_one_runs(tmp_path):
-    s = WatchedServer(tmp_path)
+@pytest.mark.parametrize("limit, path, resource", CASES, ids=["time", "memory"])
+def test_a_build_past_its_limit_is_stopped_and_the_next_one_runs(tmp_path, limit, path, resource):
+    s = WatchedServer(tmp_path, limit)
     try:
-        # 3,000 teeth at 1 um, 10 mm wide: far more than 1 s of CPU (the budget would refuse it)
-        st, h, body = s.request("GET", "/api/download?family=involute&teeth=3000&tolerance=0.001&b.width=10&fmt=stl")
+        st, h, body = s.request("GET", path)
         err = _strict(body)
         assert st == 503 and h["content-type"] == "application/json", (st, body[:300])
-        assert err["resource"] == "time" and err["param"] == "max_seconds" and "limit" in err["error"]
-        assert "Traceback" not in body.decode() and s.folder not in body.decode()
+        assert err["resource"] == resource and err["param"] == "max_" + ("seconds" if resource == "time" else resource)
+        assert "limit" in err["error"] and "Traceback" not in body.decode() and s.folder not in body.decode()
         left = [p.name for p in s.tmp.iterdir() if not p.name.startswith("pymp-")]   # pymp-: the fork server's socket
         assert left == []                                   # the download's folder is gone
         for q in ("family=involute&teeth=24", "family=worm"):       # the one slot is free again
