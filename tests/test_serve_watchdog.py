@@ -1,5 +1,5 @@
-"""``gear3d serve``'s per-build watchdog (issue #27): a build that runs past ``--max-seconds``
-is stopped cleanly, the server answers one JSON refusal naming the resource, the build slot
+"""``gear3d serve``'s per-build watchdog: a build that runs past ``--max-seconds`` or
+``--max-memory`` is stopped cleanly, the server answers one JSON refusal naming the resource, the build slot
 is free for the next request and no temporary file is left behind.
 
 An estimate that is wrong is what the watchdog is for, so the server under test is started
