@@ -29,9 +29,9 @@ Example::
 
     >>> import gear3d
     >>> from gear3d.export.step_brep_bevel import bevel_solid
-    >>> bv = gear3d.bevel(teeth=12, mate_teeth=24, module=1.0, tolerance=0.01)
+    >>> bv = gear3d.bevel(teeth=12, mate_teeth=18, module=1.0, tolerance=0.05)
     >>> shape, info = bevel_solid(bv.bodies[0], bv.geometry)
-    >>> info["solids"], info["max_error"] <= 0.01
+    >>> info["solids"], info["max_error"] <= 0.05
     (1, True)
 """
 from __future__ import annotations
