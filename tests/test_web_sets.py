@@ -31,7 +31,7 @@ def test_sets_have_their_tables_as_forms(app):
         sch = _strict(_asgi_get(app, f"/api/schema/{name}")[2])
         assert sch["set"] is True and sch["body"] == [] and sch["pair"] == []
         assert [f["name"] for f in sch["profile"]] == [p.name for p in table]
-    assert _strict(_asgi_get(app, "/api/schema/worm")[2])["downloads"] == ["stl", "3mf", "dxf"]
+    assert _strict(_asgi_get(app, "/api/schema/worm")[2])["downloads"] == ["stl", "3mf", "step", "dxf"]
 
 
 def test_worm_preview_is_the_wheel_midplane_section(app):

@@ -26,7 +26,7 @@ MAX_TEXT = 64
 SECTIONS = ("profile", "body", "pair")
 
 #: sets (not profile families) the page builds, and the downloads each offers
-SET_DOWNLOADS = {"worm": ("stl", "3mf", "dxf"), "bevel": ("stl", "3mf", "step")}
+SET_DOWNLOADS = {"worm": ("stl", "3mf", "step", "dxf"), "bevel": ("stl", "3mf", "step")}
 #: downloads of a profile family (body: stl 3mf step; profile: dxf svg)
 FAMILY_DOWNLOADS = ("stl", "3mf", "step", "dxf", "svg")
 
