@@ -202,6 +202,17 @@ def branch_changes(point_normal) -> np.ndarray:
     return np.sign(np.einsum("ij,ij->i", p, n))
 
 
+def contact_reach(point_normal, r1: float, branch: int) -> float:
+    """The largest distance (mm) from a tool point to its pitch point on root ``branch``
+    (+1 or -1, see :func:`_wheel_roots`) over :data:`BRANCH_SAMPLES` samples of one tool
+    element: small where that root is a contact near the mesh, about the pitch diameter
+    where it is the far one across the tool's pitch circle (inf where it misses)."""
+    p, n = point_normal(np.linspace(0.0, 1.0, BRANCH_SAMPLES))
+    lam = _wheel_roots(p, n, r1, branch)
+    d = np.abs(lam) * np.hypot(n[:, 0], n[:, 1])
+    return float(np.max(np.where(np.isfinite(d), d, np.inf)))
+
+
 def wheel_envelope_pieces(point_normal, r1: float, r2: float, internal: bool, smooth: bool = True,
                           branch: int | None = None) -> list:
     """:func:`wheel_envelope_piece` of one tool element; with ``branch`` (+1 or -1) the

@@ -15,7 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..curves import Chain, Run, untangle
-from ..envelope import branch_changes, wheel_envelope_pieces
+from ..envelope import branch_changes, contact_reach, wheel_envelope_pieces
 from ..errors import GearError, check_number
 from ..geometry import polyline_distance, rotate, signed_area
 from ..spec import GearSpec
@@ -251,7 +251,7 @@ def roll(cutter: Cutter, teeth: int, internal: bool | None = None, tolerance: fl
             return rotate(p, beta0), rotate(nn, beta0)
         return f
     elements = cutter.chain.elements()
-    pieces = [piece for (pn, smooth), br in zip(elements, _branches(elements))
+    pieces = [piece for (pn, smooth), br in zip(elements, _branches(elements, r1))
               for piece in wheel_envelope_pieces(rotated(pn), r1, r2, pair_internal, smooth, br)]
     nominal, rim = _mate_radii(cutter, a, m, gen_internal, pair_internal, rim_radius)
     clip = None
@@ -271,7 +271,7 @@ def roll(cutter: Cutter, teeth: int, internal: bool | None = None, tolerance: fl
     return prof
 
 
-def _branches(elements) -> list:
+def _branches(elements, r1: float) -> list:
     """Per tool element, the fixed root of its envelope (+1, -1) or None (the element's own
     nearer root, split where it switches: :func:`gear3d.envelope.wheel_envelope_pieces`).
 
@@ -281,25 +281,45 @@ def _branches(elements) -> list:
     paths that run out and back side by side: a thin band (0.1 mm wide, up to 0.9 mm long on
     a turned-tip 12-tooth pinion) whose winding is +1, so the trimming kept it as material,
     though every roll-path point lies inside the swept cutter (brute-force cutting removes
-    it), and its length depended on the chords. Both roots are contacts, so an element with
-    a dip stays on the root of its nearest element without one: the raw envelope is then one
-    continuous envelope curve, with no roll path, and what the far root adds is an ordinary
-    swallowtail that the trimming removes (tests/test_certified_mate.py: brute-force cut)."""
+    it), and its length depended on the chords. Both roots are contacts, so the elements of
+    a dip stay on the root of their nearest element without one, when that root stays a
+    contact near the mesh (:func:`gear3d.envelope.contact_reach` within the pitch radius) all
+    through them: the raw envelope is then one continuous envelope curve, with no roll path,
+    and what the far root adds is an ordinary swallowtail that the trimming removes
+    (tests/test_certified_mate.py: brute-force cut). Where it does not (the far root across
+    the pitch circle: an 18-tooth cutter's root corner), the dip keeps the split."""
     signs = [branch_changes(pn) for pn, _smooth in elements]
     changes = [bool(np.any(sg[:-1] * sg[1:] < 0)) for sg in signs]
     steady = [i for i, c in enumerate(changes) if not c and np.any(signs[i] != 0)]
+    out = [None] * len(elements)
     if not any(changes) or not steady:
-        return [None] * len(elements)
+        return out
     n = len(elements)
-    out = []
-    for i, c in enumerate(changes):
-        if not c:
-            out.append(None)
-            continue
-        j = min(steady, key=lambda k: min((k - i) % n, (i - k) % n))
+    for group in _dips(changes):
+        j = min(steady, key=lambda k: min((k - group[0]) % n, (group[0] - k) % n))
         sg = signs[j][signs[j] != 0]
-        out.append(1 if sg[0] > 0 else -1)
+        b = 1 if sg[0] > 0 else -1
+        if all(contact_reach(elements[i][0], r1, b) <= r1 for i in group):
+            for i in group:
+                out[i] = b
     return out
+
+
+def _dips(changes) -> list:
+    """Runs of consecutive (cyclic) element indices whose nearer root switches."""
+    n = len(changes)
+    start = next((i for i in range(n) if not changes[i]), None)
+    if start is None:
+        return [list(range(n))]
+    groups, cur = [], []
+    for k in range(1, n + 1):
+        i = (start + k) % n
+        if changes[i]:
+            cur.append(i)
+        elif cur:
+            groups.append(cur)
+            cur = []
+    return groups
 
 
 def _mate_radii(cutter: Cutter, a: float, m: float, gen_internal: bool, pair_internal: bool, rim_radius):
