@@ -70,7 +70,11 @@ def section(d, h: float, tolerance: float):
                          tolerance=tolerance, clip_radius=(None, tip), names=[n for _, n in pieces],
                          flank_pieces=[i for i, (_, n) in enumerate(pieces) if n == "rack-flank"],
                          nominal_tip_radius=tip)
-    return WheelSection(**{f.name: getattr(prof, f.name) for f in fields(Profile)}, design=d)
+    ws = WheelSection(**{f.name: getattr(prof, f.name) for f in fields(Profile)}, design=d)
+    for k, v in vars(prof).items():          # attributes kept outside the fields (the lazy exact boundary)
+        if k not in vars(ws):
+            object.__setattr__(ws, k, v)
+    return ws
 
 
 # ------------------------------------------------------------------ layer chains
