@@ -94,3 +94,30 @@ def test_nothing_below_the_registry_imports_it():
         assert "gear3d.spec" not in g[low], low
     for low in ("gear3d.model", "gear3d.solids.body", "gear3d.export.dxf"):
         assert "gear3d.profiles" not in g[low], low
+
+
+def test_body_takes_the_tables_keywords_only():
+    import inspect
+    from gear3d.params import BODY_PARAMS
+    p = gear3d.profile("involute", teeth=20, tolerance=0.01)
+    with pytest.raises(GearError) as e:
+        gear3d.body(p, widht=5.0)
+    assert e.value.param == "widht" and "width" in e.value.allowed and "\n" not in str(e.value)
+    sig = inspect.signature(gear3d.body).parameters
+    assert [n for n in sig if n != "profile"] == [q.name for q in BODY_PARAMS]
+
+
+def test_solid_conversions_agree():
+    # one tetrahedron (volume 1/6 mm^3) through arrays -> manifold -> trimesh and back
+    import numpy as np
+    from gear3d.solids import Solid
+    V = np.array([[0, 0, 0], [2, 0, 0], [0, 2, 0], [0, 0, 2]], float)
+    F = np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]])
+    s = Solid("t", {}, arrays=(V, F))
+    assert abs(s.manifold.volume() - 8 / 6) <= 1e-12
+    t = Solid("t", {}, manifold=s.manifold)
+    Vb, Fb = t.arrays()
+    assert Vb.dtype == np.float64 and Fb.dtype == np.int64 and len(Fb) == 4
+    assert abs(t.mesh.volume - 8 / 6) <= 1e-12 and t.mesh is t.mesh           # cached
+    with pytest.raises(GearError):
+        Solid("nothing", {})

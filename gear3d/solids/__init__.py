@@ -3,9 +3,10 @@
 The builder is :func:`gear3d.body` (defined in :mod:`gear3d.solids.body`); it is not
 re-exported here, so that ``gear3d.solids.body`` is the module, not the function.
 """
-from .body import Body, mate_body, measure, place_pair
+from .body import Body, law_body, mate_body, measure, place_pair
+from .solid import Solid
 from .twist import (KINDS, LAWS, ChevronArchLaw, HelicalLaw, HerringboneLaw, SpurLaw, TwistLaw,
                     default_arch_radius, twist_law)
 
-__all__ = ["Body", "mate_body", "place_pair", "measure", "TwistLaw", "KINDS", "LAWS", "SpurLaw",
+__all__ = ["Solid", "Body", "law_body", "mate_body", "place_pair", "measure", "TwistLaw", "KINDS", "LAWS", "SpurLaw",
            "HelicalLaw", "HerringboneLaw", "ChevronArchLaw", "twist_law", "default_arch_radius"]
