@@ -87,6 +87,16 @@ def test_backlash_in_the_report_and_cli(tmp_path):
     with pytest.raises(GearError) as e:
         design(module=2, starts=1, wheel_teeth=30, backlash=0.6)
     assert e.value.param == "backlash" and "0.5" in str(e.value)
+    # thinned to a point at the worm's tip: the largest j_n leaves 0.02 m of half thread there,
+    # ZA at αx: half thread at r_a = px/4 - ha m tan αx, so j_n < 2 (that - 0.02 m) cos αn cos γ
+    kw = dict(module=2, starts=1, wheel_teeth=30, normal_pressure_angle_deg=28, addendum_coeff=1.2, dedendum_coeff=1.2)
+    ax = math.atan(math.tan(math.radians(28)) / math.cos(math.atan(0.1)))
+    room = math.pi * 2 / 4 - 1.2 * 2 * math.tan(ax) - 0.04
+    jmax = 2 * room * math.cos(math.radians(28)) * math.cos(math.atan(0.1))
+    with pytest.raises(GearError) as e:
+        design(backlash=0.49, **kw)
+    assert e.value.param == "backlash" and f"below {jmax:.4g} mm" in str(e.value)
+    design(backlash=0.999 * jmax, **kw)
 
 
 # ------------------------------------------------------------------ rim, web, keyway, shaft

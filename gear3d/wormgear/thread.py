@@ -148,8 +148,8 @@ def virtual_root_rho(d, h):
 
 def check_thread(d) -> None:
     """Refuse a worm whose thread cannot be made: groove closed at the root, thread pointed
-    at the cutting worm's tip, ZI base cylinder above the smallest radius used, a groove
-    that narrows outward."""
+    at the cutting worm's tip (or, thinned for the backlash, at the worm's tip), ZI base
+    cylinder above the smallest radius used, a groove that narrows outward."""
     f = axial_profile(d)
     m = d.module
     rho_lo = min(d.worm_root_radius, float(virtual_root_rho(d, 0.0)))
@@ -164,6 +164,10 @@ def check_thread(d) -> None:
     if d.axial_pitch / 2 - float(f(d.hob_tip_radius)[0]) <= 0.02 * m:
         raise GearError("dedendum_coeff", d.dedendum_coeff, "a smaller value for this pressure angle",
                         "the worm's thread is pointed at the hob tip (worm tip raised by the clearance)")
+    room = d.axial_pitch / 2 - float(f(d.worm_tip_radius)[0]) - 0.02 * m
+    if d.backlash and d.worm_thinning >= room:
+        raise GearError("backlash", d.backlash, f"a number below {2 * room * d.pitch_normal_z:.4g} mm",
+                        "the thinned worm thread would be pointed at its tip")
     rho = np.linspace(rho_lo, d.hob_tip_radius, 257)
     if not np.all(f(rho)[1] > 0):
         raise GearError("worm_type", d.worm_type, "a thread whose groove widens outward for these sizes")
