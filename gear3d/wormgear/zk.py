@@ -108,7 +108,7 @@ def _wrap(a):
 
 
 def _table(disc, rho_lo, rho_hi):
-    """(ρ, r_d) at 65 disc radii covering [rho_lo, rho_hi] (ρ ascending) for Newton's start.
+    """(ρ, r_d) on 129 disc radii covering [rho_lo, rho_hi] (ρ ascending) for Newton's start.
     Refused when the contact line does not reach down to rho_lo one-to-one: as for a ZI
     worm's base cylinder, a steep thread's disc flank turns back above some radius."""
     span = rho_hi - rho_lo
