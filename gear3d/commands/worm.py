@@ -75,8 +75,9 @@ def add_parser(sub):
                    help="mesh file: .stl or .3mf (pair: two named objects), .step; or, with --part wheel, .dxf: "
                         "the wheel's mid-plane section (lines and arcs, certified within --tolerance)")
     p.add_argument("--step", default=None, choices=["faceted", "brep"],
-                   help="STEP flavour: faceted (default) or brep (--part worm: exact surfaces, the thread's "
-                        "section fitted by B-splines and screwed along the axis; needs pip install 'gear3d[cad]')")
+                   help="STEP flavour: faceted (default) or brep (exact surfaces: the worm's section fitted by "
+                        "B-splines and screwed along the axis, the wheel's B-spline surfaces through its stacked "
+                        "certified sections; needs pip install 'gear3d[cad]')")
     p.add_argument("--json", default=None, help="write the report (strict JSON)")
     p.add_argument("--png", default=None, help="figure of the wheel's mid-plane section")
     p.add_argument("--check", action="store_true",
@@ -113,9 +114,12 @@ def _check_outputs(args):
     if args.output is not None:
         check_path(args.output, "output", exts=(".stl", ".3mf", ".dxf", ".step", ".stp"))
         if _brep(args):
-            if args.part != "worm":
-                raise GearError("step", "brep", "faceted with --part " + args.part,
-                                "the B-rep is built for the worm; the wheel's is not built yet")
+            wheel = ("wheel_bore", "hub_diameter", "wheel_keyway", "web_thickness", "rim_diameter")
+            feats = [f for f in (wheel if args.part != "worm" else ()) + (("shaft_diameter",) if args.part != "wheel"
+                                                                          else ()) if getattr(args, f, None)]
+            if feats:
+                raise GearError("step", "brep", "faceted with --" + feats[0].replace("_", "-"),
+                                "the wheel's features and the worm's shaft are not made exact yet")
             from ..export.step_brep import require_occ
             require_occ()
         if args.output.lower().endswith(".dxf") and args.part != "wheel":
@@ -147,7 +151,10 @@ def run(args) -> int:
         info = write(s.midplane_section(), args.output)
         lines.append(f"wrote {args.output}: wheel mid-plane section, {info}")
     elif args.output is not None:
-        info = write(s.parts(), args.output, **({"step": args.step} if args.step and _is_step(args) else {}))
+        opts = {"step": args.step} if args.step and _is_step(args) else {}
+        if _brep(args):
+            opts["geometry"] = s.design
+        info = write(s.parts(), args.output, **opts)
         lines.append(f"wrote {args.output}: {args.part}, max_error={s.report.max_error:.3g} mm "
                      f"(tolerance {s.report.tolerance:g} mm)" + (f" {info}" if info else ""))
     if args.png is not None:

@@ -48,9 +48,10 @@ from .step_brep_fit import (FIT_SHARE, SMOOTH_JOINT, FaceRec, Flank, Group, fit_
 from .step_brep_occ import (SEW_TOL, bspline_curve, bspline_surface, circle_wire, count,
                             cylinder_face, features, plane_face, sew_solid, static_method,
                             transformed, volume, wire_of_curves, write_shape)
+from .step_brep_wheel import is_wheel, wheel_solid
 from .step_brep_runs import ExactSet, Run, exact_set, loop_runs, nearest_on_piece, rot2
 
-__all__ = ["bevel_solid", "solid_of", "FIT_SHARE", "SEW_TOL", "SMOOTH_JOINT", "ExactSet", "FaceRec", "Flank", "Group", "Run",
+__all__ = ["bevel_solid", "wheel_solid", "solid_of", "FIT_SHARE", "SEW_TOL", "SMOOTH_JOINT", "ExactSet", "FaceRec", "Flank", "Group", "Run",
            "brep_solid", "bspline_curve", "bspline_surface", "count", "exact_set", "fit_piece",
            "law_fit", "loop_runs", "nearest_on_piece", "require_occ", "section_wire", "volume",
            "write", "write_shape", "circle_wire", "cylinder_face", "features", "plane_face",
@@ -254,12 +255,13 @@ def _validate(shape, b, tol):
 def solid_of(b, geometry=None):
     """(OCC solid, info) of one body: a bevel member through
     :func:`gear3d.export.step_brep_bevel.bevel_solid` (``geometry``: the bevel pair's, needed
-    for spiral and Zerol members), a gear, ring or worm body through :func:`brep_solid`."""
+    for spiral and Zerol members), a worm wheel through
+    :func:`gear3d.export.step_brep_wheel.wheel_solid` (``geometry``: the worm set's design), a
+    gear, ring or worm body through :func:`brep_solid`."""
     if is_bevel(b):
         return bevel_solid(b, geometry)
-    if getattr(b, "profile", None) is None and (getattr(b, "report", None) or {}).get("part") == "wheel":
-        raise GearError("step", "brep", "'faceted' for a worm wheel",
-                        "the wheel's B-rep (surfaces through its stacked sections) is not built yet")
+    if is_wheel(b):
+        return wheel_solid(b, geometry)
     return brep_solid(b)
 
 
@@ -267,7 +269,8 @@ def write(obj, path, geometry=None, **opts):
     """Write a body (or a list of placed bodies) as exact B-rep STEP; returns a short info
     string with the measured error. Nothing is written when a check fails. ``geometry``:
     a bevel pair's :class:`~gear3d.bevel.geometry.PairGeometry` (``gear3d.bevel(...).geometry``),
-    needed for spiral and Zerol bevel members."""
+    needed for spiral and Zerol bevel members, or a worm set's design
+    (``gear3d.worm(...).design``), needed for the worm wheel."""
     require_occ()
     bodies = as_bodies(obj, **opts)
     shapes, infos = [], []

@@ -1,0 +1,249 @@
+"""Exact B-rep STEP of the worm wheel (:mod:`gear3d.wormgear.wheel_body`): B-spline surfaces
+through the stack of certified sections.
+
+* **Sections.** The wheel's section at height h (mm) is the exact envelope of the worm's
+  section there (:func:`gear3d.wormgear.wheel.section`), cut by the blank's tip circle
+  ``blank_tip_radius(h)`` and turned by ``section_turn(h)``. Its trimmed loop is mapped onto
+  the exact pieces and that tip arc (:func:`gear3d.export.step_brep_runs.loop_runs`): the
+  same runs, in the same order, at every height (otherwise the wheel is refused).
+* **Surfaces.** Each run of tooth 0 becomes one bicubic B-spline surface interpolating the
+  exact run at ``n_u`` parameters (the piece's own, equally spaced between the run's exact
+  end points) on rows at the band's heights: cubic splines in u per row, then cubic splines
+  in z through the rows' control points (z(u, v) = v exactly). The other teeth are its
+  control nets turned by 2πk/z. Bands end at the face and at the throat's kinks (where
+  the throat arc meets the outside cylinder), so no surface spans a kink.
+* **Measured.** Every surface of tooth 0 is evaluated through OpenCascade at its u knots
+  and their quarter points, on every row and at the middle of every pair of rows; each
+  height's points are turned back by -section_turn(h) and measured against the exact
+  section built at that very height (Newton on the run's piece: the in-plane distance, an
+  upper bound of the 3D one). Where a band misses the tolerance its rows (and columns) are
+  doubled and the band measured again; ``max_error`` is the largest distance, and over the
+  tolerance nothing is written. The solid must be one valid solid whose volume matches the
+  mesh wheel's within (mesh bound + tolerance) x area.
+
+Example::
+
+    >>> from gear3d.wormgear.design import design
+    >>> from gear3d.wormgear.wheel_body import wheel_body
+    >>> from gear3d.export.step_brep_wheel import wheel_solid
+    >>> d = design(module=2, starts=1, wheel_teeth=24)
+    >>> shape, info = wheel_solid(wheel_body(d, tolerance=0.05), d)
+    >>> info["solids"], info["max_error"] <= 0.05
+    (1, True)
+"""
+from __future__ import annotations
+
+import math
+import time
+import types
+
+import numpy as np
+
+from ..errors import GearError, ToleranceError
+from .step_brep_occ import bspline_curve, bspline_surface, count, plane_face, sew_solid, volume, wire_of_curves
+from .step_brep_runs import exact_set, loop_runs, nearest_on_piece, rot2
+
+#: share of the tolerance given to the sections' polygons (used only to map the runs)
+SECTION_SHARE = 0.25
+#: rounds of doubling a band's rows and columns before the tolerance is refused
+MAX_ROUNDS = 4
+
+
+def is_wheel(b) -> bool:
+    """True for a worm wheel body (a :class:`gear3d.wormgear.wheel_body.WormPart` with part
+    "wheel" in its report)."""
+    return getattr(b, "profile", None) is None and (getattr(b, "report", None) or {}).get("part") == "wheel"
+
+
+def section_runs(d, h: float, tol_s: float):
+    """(exact set, runs) of the wheel's centred section at height ``h`` (mm): its pieces
+    plus the blank's tip arc, the runs rotated to start at tooth 0's tip."""
+    from ..wormgear.wheel import section
+    rt = float(d.blank_tip_radius(h))
+    for k in (1.0, 0.25, 0.0625):        # a finer polygon where the runs cannot be mapped
+        p = section(d, float(h), k * tol_s)
+        ex = exact_set(types.SimpleNamespace(pieces=p.pieces, piece_params=p.piece_params, teeth=p.teeth,
+                                             params={"tip_radius": rt}, loops=p.loops, tolerance=p.tolerance))
+        try:
+            runs = loop_runs(ex, p.tooth_loop)
+            break
+        except GearError as e:
+            if k == 0.0625:
+                raise GearError("step", "brep", "'faceted' for this wheel",
+                                f"the section at h = {h:.4g} mm: {e.why}") from None
+    tip = len(p.pieces)
+    start = next((i for i, r in enumerate(runs) if r.piece == tip and r.k == 0), None)
+    if start is None:
+        raise GearError("step", "brep", "'faceted' for this wheel", f"the section at h = {h:.4g} mm has no tip")
+    return ex, runs[start:] + runs[:start]
+
+
+def _signature(runs, z):
+    return [(r.piece, r.k) for r in runs[:len(runs) // z]]
+
+
+def _bands(d):
+    """Band limits (mm): the faces and the throat's kinks between them."""
+    B = d.face_width
+    br = [-B / 2, B / 2]
+    kink = d.throat_break()
+    if kink is not None and kink < B / 2 - 1e-9:
+        br += [-kink, kink]
+    return sorted(br)
+
+
+def _rows(ctx, heights):
+    """{h: (exact set, runs)} for every height (built once, shared)."""
+    for h in heights:
+        if h not in ctx["sections"]:
+            ex, runs = section_runs(ctx["d"], h, ctx["tol_s"])
+            if _signature(runs, ex.teeth) != ctx["signature"]:
+                raise GearError("step", "brep", "'faceted' for this wheel",
+                                f"the section at h = {h:.4g} mm has other pieces than the mid-plane's")
+            ctx["sections"][h] = (ex, runs)
+    return [ctx["sections"][h] for h in heights]
+
+
+def _run_points(ex, run, n_u, turn):
+    """(n_u, 2) points of one run of tooth 0 (mm), in place at its height: the exact piece
+    at equally spaced parameters, its exact end points at the ends."""
+    t = run.t0 + (run.t1 - run.t0) * np.linspace(0.0, 1.0, n_u)
+    P = rot2(ex.pieces[run.piece](t), run.k * 2 * math.pi / ex.teeth)
+    P[0], P[-1] = run.p0, run.p1
+    return rot2(P, turn)
+
+
+def _band_nets(ctx, heights, n_u):
+    """For every run of tooth 0: (control net (n, m, 3), u knots, v knots) of the bicubic
+    surface through the band's rows ``heights``."""
+    from scipy.interpolate import make_interp_spline
+    from ..wormgear.wheel import section_turn
+    rows = _rows(ctx, heights)
+    s = np.linspace(0.0, 1.0, n_u)
+    out = []
+    for j in range(len(ctx["signature"])):
+        C = []
+        for h, (ex, runs) in zip(heights, rows):
+            P = _run_points(ex, runs[j], n_u, section_turn(ctx["d"], h))
+            spl = make_interp_spline(s, np.column_stack([P, np.full(n_u, h)]), k=3)
+            C.append(np.asarray(spl.c))
+        uk = spl.t
+        sv = make_interp_spline(np.asarray(heights, float), np.stack(C), k=3)
+        out.append((np.moveaxis(np.asarray(sv.c), 0, 1), uk, sv.t))
+    return out
+
+
+def _measure_band(ctx, nets, heights):
+    """Largest in-plane distance (mm) of tooth 0's surfaces (through OCC) from the exact
+    sections, on the rows and at the middle of every pair of rows (see the module doc)."""
+    from ..wormgear.wheel import section_turn
+    hs = sorted(set(heights) | {0.5 * (a + b) for a, b in zip(heights[:-1], heights[1:])})
+    rows = dict(zip(hs, _rows(ctx, hs)))
+    worst = 0.0
+    for j, (net, uk, vk) in enumerate(nets):
+        surf = bspline_surface(net, uk, vk, 3, 3)
+        ku = np.unique(uk)
+        us = np.unique(np.concatenate([ku, (ku[:-1, None] + np.diff(ku)[:, None] * [0.25, 0.5, 0.75]).ravel()]))
+        for h in hs:
+            ex, runs = rows[h]
+            r = runs[j]
+            P = np.array([[p.X(), p.Y()] for p in (surf.Value(float(u), float(h)) for u in us)])
+            xy = rot2(P, -section_turn(ctx["d"], h) - r.k * 2 * math.pi / ex.teeth)
+            lo, hi = min(r.t0, r.t1), max(r.t0, r.t1)
+            dist, _ = nearest_on_piece(ex.pieces[r.piece], ex.piece_params[r.piece], xy, lo, hi)
+            worst = max(worst, float(dist.max()))
+    return worst
+
+
+def _fit_bands(ctx, tol):
+    """[(heights, nets)] per band, refined until every band measures within ``tol``: a band
+    that misses gets twice the rows, and every band twice the columns (one u-spacing for
+    all bands, so that their rows at the kinks are the same curves)."""
+    br = _bands(ctx["d"])
+    m = ctx["d"].module
+    n_v = [max(4, int(math.ceil((b - a) / m)) + 1) for a, b in zip(br[:-1], br[1:])]
+    n_u = 12
+    for _round in range(MAX_ROUNDS + 1):
+        out, errs = [], []
+        for (a, b), nv in zip(zip(br[:-1], br[1:]), n_v):
+            heights = [float(x) for x in np.linspace(a, b, nv)]
+            nets = _band_nets(ctx, heights, n_u)
+            out.append((heights, nets))
+            errs.append(_measure_band(ctx, nets, heights))
+        if max(errs) <= tol:
+            return out, max(errs)
+        n_v = [2 * nv - 1 if e > tol else nv for nv, e in zip(n_v, errs)]
+        n_u = 2 * n_u
+    raise ToleranceError("tolerance", tol, "a coarser value",
+                         f"the wheel's B-rep surfaces still miss it by {max(errs):.3g} mm")
+
+
+def _faces(bands, z):
+    """Flank faces of every tooth (tooth 0's nets turned) and the two end faces."""
+    from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace
+    faces, bottom, top = [], [], []
+    ang = 2 * math.pi / z
+    for bi, (_heights, nets) in enumerate(bands):
+        for k in range(z):
+            c, s = math.cos(k * ang), math.sin(k * ang)
+            for net, uk, vk in nets:
+                N = net.copy()
+                N[..., 0], N[..., 1] = c * net[..., 0] - s * net[..., 1], s * net[..., 0] + c * net[..., 1]
+                faces.append(BRepBuilderAPI_MakeFace(bspline_surface(N, uk, vk, 3, 3), 1e-9).Face())
+                if bi == 0:
+                    bottom.append(bspline_curve(N[:, 0], uk, 3))
+                if bi == len(bands) - 1:
+                    top.append(bspline_curve(N[:, -1], uk, 3))
+    faces.append(plane_face(bands[0][0][0], wire_of_curves(bottom)))
+    faces.append(plane_face(bands[-1][0][-1], wire_of_curves(top)))
+    return faces
+
+
+def _validate(shape, w, tol) -> dict:
+    from OCP.BRepCheck import BRepCheck_Analyzer
+    ok, ns = BRepCheck_Analyzer(shape).IsValid(), count(shape, "solid")
+    if not ok or ns != 1:
+        raise GearError("step", "brep", "'faceted' for this wheel",
+                        f"the B-rep is {'valid' if ok else 'invalid'} with {ns} solid(s)")
+    V, Vm = volume(shape), float(w.manifold.volume())
+    allowed = (float(w.report["max_error"]) + tol) * float(w.manifold.surface_area())
+    if not abs(V - Vm) <= allowed:
+        raise ToleranceError("tolerance", tol, "a coarser value",
+                             f"B-rep volume {V:.9g} mm^3 differs from the mesh wheel's {Vm:.9g} by more than "
+                             f"(mesh error + tolerance) x area = {allowed:.3g} mm^3")
+    return {"solids": ns, "valid": True, "faces": count(shape, "face"), "volume": V, "mesh_volume": Vm,
+            "volume_difference": V - Vm, "volume_allowed": allowed}
+
+
+def wheel_solid(w, design=None):
+    """The exact B-rep solid (OCC shape, placed by ``w.transform``) of worm wheel ``w``
+    (:func:`gear3d.wormgear.wheel_body.wheel_body`) of worm set ``design``
+    (:class:`gear3d.wormgear.design.WormDesign`; default ``w.design``) and its
+    report: ``max_error`` (mm, measured), ``tolerance``, faces, sections, volume against the
+    mesh's (mm^3), timings (s). Raises GearError for a wheel with features (bore, hub: not
+    made exact yet) or sections of changing shape, ToleranceError when the measured error
+    exceeds the tolerance."""
+    from .step_brep_occ import transformed
+    d = design if design is not None else getattr(w, "design", None)
+    if d is None:
+        raise GearError("step", "brep", "'faceted' for this wheel", "the wheel body does not carry its design")
+    if w.report.get("features"):
+        raise GearError("step", "brep", "'faceted' for a wheel with a bore or hub",
+                        "the wheel's features are not made exact yet")
+    t0 = time.perf_counter()
+    tol = float(w.report["tolerance"])
+    ctx = {"d": d, "tol_s": SECTION_SHARE * tol, "sections": {}}
+    _ex, runs0 = section_runs(d, 0.0, ctx["tol_s"])
+    ctx["signature"] = _signature(runs0, d.wheel_teeth)
+    bands, err = _fit_bands(ctx, tol)
+    t1 = time.perf_counter()
+    shape = sew_solid(_faces(bands, d.wheel_teeth))
+    info = _validate(shape, w, tol)
+    T = np.asarray(w.transform, float)
+    if not np.allclose(T, np.eye(4)):
+        shape = transformed(shape, T)
+    t2 = time.perf_counter()
+    info.update({"max_error": err, "tolerance": tol, "sections": len(ctx["sections"]),
+                 "flank_faces_per_tooth": sum(len(n) for _, n in bands),
+                 "seconds": {"fit": t1 - t0, "build": t2 - t1, "total": t2 - t0}})
+    return shape, info
