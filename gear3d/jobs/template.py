@@ -61,10 +61,10 @@ Scene (``[scene]``, ``[[part]]``, ``[[pair]]``, ``[[assembly]]``)::
     # center_distance = 21.46      # mm; default: the operating one of shifted involutes
     outputs = ["3mf", "json"]      # 3D kinds: the placed bodies; json: the check report
 
-    [[assembly]]                   # harmonic drives (seed 002)
+    [[assembly]]                   # strain-wave (harmonic) drives
     name = "drive"
     kind = "harmonic"
-    design = "seed002"             # or a table of double_harmonic() arguments
+    design = "seed002"             # the paper's worked design, or a table of double_harmonic() arguments
     outputs = ["stl", "3mf", "json"]
 
 Library (``[library]`` with ``part`` and ``sweep`` tables)::
