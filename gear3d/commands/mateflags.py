@@ -1,5 +1,5 @@
 """``gear3d profile mate``: the conjugate of a family's gear (``--tool FAMILY --tool-…``) or
-of a drawn tooth (``--tool-dxf FILE``), rolled as the exact cutter."""
+of a drawn tooth (``--tool-dxf FILE`` or ``--tool-svg FILE``), rolled as the exact cutter."""
 from __future__ import annotations
 
 import argparse
@@ -11,6 +11,8 @@ from ..errors import GearError
 #: flags of the drawn tool
 DRAWING_FLAGS = [
     ("--tool-dxf", str, "mate: the cutter drawn in a DXF file (one closed outline of LINE/ARC/LWPOLYLINE)", "tool_dxf"),
+    ("--tool-svg", str, "mate: the cutter drawn in an SVG file (<path> of M/L/H/V/A/Z; units from its "
+     "width/height/viewBox, px at 96 dpi)", "tool_svg"),
     ("--tool-pitch-radius", number("float", 0, 1e6, lo_open=True, unit="mm"),
      "mate: the drawn cutter's pitch radius (mm)", "tool_pitch_radius"),
     ("--tool-center-x", number("float"), "mate: the drawn cutter's centre x (mm, drawing frame; default 0)", "tool_center_x"),
@@ -33,7 +35,8 @@ def add_mate_flags(p, flag_table) -> None:
 
 def tool_flags_given(args) -> list:
     """The ``--tool…`` flags the user gave (names as typed)."""
-    out = [f"--{k.replace('_', '-')}" for k in ("tool", "tool_dxf", "tool_pitch_radius", "tool_center_x", "tool_center_y")
+    out = [f"--{k.replace('_', '-')}" for k in ("tool", "tool_dxf", "tool_svg", "tool_pitch_radius", "tool_center_x",
+                                                   "tool_center_y")
            if getattr(args, k, None) is not None]
     out += ["--tool-" + k[6:].replace("_", "-") for k, v in vars(args).items()
             if k.startswith("tool__") and v not in (None, False)]
@@ -51,11 +54,17 @@ def build_mate(args, kw: dict):
     extra = sorted(set(kw) - set(rest))
     if extra:
         raise GearError(extra[0], kw[extra[0]], "not a parameter of the mate (give the cutter's as --tool-…)")
-    if (args.tool is None) == (args.tool_dxf is None):
-        raise GearError("tool", args.tool, "exactly one of --tool FAMILY and --tool-dxf FILE")
-    if args.tool_dxf is not None:
+    given = [f for f in ("tool", "tool_dxf", "tool_svg") if getattr(args, f, None) is not None]
+    if len(given) != 1:
+        raise GearError(given[1] if len(given) > 1 else "tool", getattr(args, given[1]) if len(given) > 1 else None,
+                        "exactly one of --tool FAMILY, --tool-dxf FILE and --tool-svg FILE")
+    drawing = args.tool_dxf if args.tool_dxf is not None else getattr(args, "tool_svg", None)
+    if drawing is not None:
         _check_drawn(args)
-        return profile("mate", tool=args.tool_dxf, teeth=teeth, tool_teeth=args.tool__teeth,
+        if (args.tool_dxf is None) != drawing.lower().endswith(".svg"):
+            flag = "tool_dxf" if args.tool_dxf is not None else "tool_svg"
+            raise GearError(flag, drawing, "a file name ending in " + (".dxf" if flag == "tool_dxf" else ".svg"))
+        return profile("mate", tool=drawing, teeth=teeth, tool_teeth=args.tool__teeth,
                        tool_pitch_radius=args.tool_pitch_radius,
                        tool_center=(args.tool_center_x or 0.0, args.tool_center_y or 0.0), **rest)
     tool_kw = {k[6:]: v for k, v in vars(args).items() if k.startswith("tool__") and v not in (None, False)}
@@ -67,8 +76,10 @@ def _check_drawn(args) -> None:
     teeth = getattr(args, "tool__teeth", None)
     if teeth is None or args.tool_pitch_radius is None:
         raise GearError("tool_teeth" if teeth is None else "tool_pitch_radius", None,
-                        "given with --tool-dxf (the drawing's teeth and pitch radius)")
-    others = [f for f in tool_flags_given(args) if f not in ("--tool-dxf", "--tool-teeth", "--tool-pitch-radius",
-                                                              "--tool-center-x", "--tool-center-y")]
+                        "given with --tool-dxf or --tool-svg (the drawing's teeth and pitch radius)")
+    others = [f for f in tool_flags_given(args) if f not in ("--tool-dxf", "--tool-svg", "--tool-teeth",
+                                                              "--tool-pitch-radius", "--tool-center-x",
+                                                              "--tool-center-y")]
     if others:
-        raise GearError(others[0].lstrip("-").replace("-", "_"), True, "not with --tool-dxf (a drawing has no family)")
+        raise GearError(others[0].lstrip("-").replace("-", "_"), True,
+                        "not with --tool-dxf or --tool-svg (a drawing has no family)")

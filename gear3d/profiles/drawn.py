@@ -1,15 +1,21 @@
 """A cutter from a drawing: the closed outline of LINE, ARC and LWPOLYLINE (bulge) entities
-of a DXF file, as exact pieces, so that its rolled mate is certified like any other.
+of a DXF file, or of the M/L/H/V/A/Z commands of an SVG's ``<path>`` elements
+(:mod:`gear3d.profiles.drawnsvg`), as exact pieces, so that its rolled mate is certified
+like any other.
 
-The drawing names its units ($INSUNITS: mm, cm, m, inch, foot); the gear's centre and its
-pitch radius come from the caller. One closed outline, periodic in the given number of
-teeth, is expected; anything else is refused with one line naming what is wrong and where
-(the entity's handle and its coordinates).
+The drawing names its units (DXF: $INSUNITS: mm, cm, m, inch, foot; SVG: its width, height
+and viewBox); the gear's centre and its pitch radius come from the caller. One closed
+outline, periodic in the given number of teeth, is expected; anything else is refused with
+one line naming what is wrong and where (the DXF entity's handle, or the SVG path
+command's index, and its coordinates).
 
 Example
 -------
 >>> import gear3d, os, tempfile                                     # doctest: +SKIP
 >>> d = tempfile.mkdtemp(); f = os.path.join(d, "tool.dxf")         # doctest: +SKIP
+>>> gear3d.write(gear3d.profile("involute", teeth=20, module=1), f)  # doctest: +SKIP
+>>> c = drawn_cutter(f, teeth=20, pitch_radius=10.0)                 # doctest: +SKIP
+>>> f = os.path.join(d, "tool.svg")                                 # doctest: +SKIP
 >>> gear3d.write(gear3d.profile("involute", teeth=20, module=1), f)  # doctest: +SKIP
 >>> c = drawn_cutter(f, teeth=20, pitch_radius=10.0)                 # doctest: +SKIP
 """
@@ -37,13 +43,21 @@ EXTENT_SAMPLES = 4097
 
 
 def drawn_cutter(path, teeth: int, pitch_radius: float, centre=(0.0, 0.0), tolerance: float = 1e-3) -> Cutter:
-    """The :class:`gear3d.profiles.mate.Cutter` drawn in the DXF file ``path``: ``teeth``
-    teeth on ``pitch_radius`` (mm) about ``centre`` (mm, in the drawing's frame). The
-    pieces are exact (lines and arcs), so ``tolerance`` (mm) only sets the mate's default."""
+    """The :class:`gear3d.profiles.mate.Cutter` drawn in the DXF or SVG (``.svg``) file
+    ``path``: ``teeth`` teeth on ``pitch_radius`` (mm) about ``centre`` (mm, in the
+    drawing's frame). The pieces are exact (lines and arcs), so ``tolerance`` (mm) only
+    sets the mate's default."""
     z = int(check_number("tool_teeth", teeth, 1, 10_000, integer=True))
     r1 = check_number("tool_pitch_radius", pitch_radius, 0, 1e6, lo_open=True, unit="mm")
-    pieces, handles = _read_pieces(path, np.asarray(centre, float))
-    loop, hs = _close(pieces, handles)
+    what = f"drawing {Path(path).name}"
+    if str(path).lower().endswith(".svg"):
+        from .drawnsvg import read_svg_pieces
+        pieces, handles, units = read_svg_pieces(path, np.asarray(centre, float))
+        param, what = "tool_svg", what + ("" if units == "mm" else f" ({units})")
+    else:
+        pieces, handles = _read_pieces(path, np.asarray(centre, float))
+        param = "tool_dxf"
+    loop, hs = _close(pieces, handles, param)
     if signed_area(_samples(loop)) < 0:
         loop = [_reverse(p) for p in reversed(loop)]
         hs = hs[::-1]
@@ -52,7 +66,7 @@ def drawn_cutter(path, teeth: int, pitch_radius: float, centre=(0.0, 0.0), toler
     r = np.hypot(pts[:, 0], pts[:, 1])
     runs = [Run(p, 0.0, 1.0) for p in period]
     return Cutter(Chain.from_runs(runs, z, step=1), z, float(r1), False, float(r.min()), float(r.max()),
-                  float(tolerance), f"drawing {Path(path).name}")
+                  float(tolerance), what)
 
 
 def _read_pieces(path, centre):
@@ -72,18 +86,18 @@ def _read_pieces(path, centre):
         if kind == "LINE":
             a, b = (np.array(e.dxf.start)[:2] * k - centre), (np.array(e.dxf.end)[:2] * k - centre)
             pieces.append(Line(tuple(a), tuple(b)))
-            handles.append(h)
+            handles.append(f"entity {h}")
         elif kind == "ARC":
             c = np.array(e.dxf.center)[:2] * k - centre
             a0 = math.radians(e.dxf.start_angle)
             a1 = math.radians(e.dxf.end_angle)
             a1 = a1 + 2 * math.pi if a1 <= a0 else a1
             pieces.append(Arc(tuple(c), e.dxf.radius * k, a0, a1))
-            handles.append(h)
+            handles.append(f"entity {h}")
         elif kind == "LWPOLYLINE":
             for p in _polyline_pieces(e, k, centre):
                 pieces.append(p)
-                handles.append(h)
+                handles.append(f"entity {h}")
         elif kind in ("SPLINE", "ELLIPSE", "POLYLINE", "CIRCLE", "HATCH"):
             at = _where(e)
             raise GearError("tool_dxf", str(path), "a closed outline of LINE, ARC and LWPOLYLINE entities",
@@ -133,8 +147,9 @@ def _reverse(p):
     return Arc(p.centre, p.radius, p.a1, p.a0)
 
 
-def _close(pieces, handles):
-    """The pieces as one closed chain, each oriented to start where the previous ends."""
+def _close(pieces, handles, param="tool_dxf"):
+    """The pieces as one closed chain, each oriented to start where the previous ends;
+    ``handles``: each piece's label for the messages ("entity 2A", "command 7 (L)")."""
     left = list(range(1, len(pieces)))
     loop, hs = [pieces[0]], [handles[0]]
     while left:
@@ -157,8 +172,8 @@ def _close(pieces, handles):
     gap = np.hypot(*(_end(loop[-1], 1.0) - _end(loop[0], 0.0)))
     if left or gap > JOIN:
         end = _end(loop[-1], 1.0)
-        raise GearError("tool_dxf", "the drawing", "one closed outline",
-                        f"it is open after entity {hs[-1]} at ({end[0]:.6g}, {end[1]:.6g})"
+        raise GearError(param, "the drawing", "one closed outline",
+                        f"it is open after {hs[-1]} at ({end[0]:.6g}, {end[1]:.6g})"
                         + (f"; {len(left)} entities left over" if left else ""))
     return loop, hs
 
@@ -193,4 +208,4 @@ def _period(loop, hs, z: int):
             return order[:j]
     raise GearError("tool_teeth", z, "the number of teeth the drawing repeats",
                     f"no piece joint one pitch from ({starts[i0][0]:.6g}, {starts[i0][1]:.6g}) "
-                    f"(entity {hs[i0]})")
+                    f"({hs[i0]})")
