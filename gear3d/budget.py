@@ -115,9 +115,16 @@ COSTS = {
                       "(26 us a triangle + 0.6 s), +95-153 MB"),
     "write.step": Cost(8.0e-5, 3000.0, 0.4, 60e6, "faceted STEP, 10,000-56,000 triangles: 1.0-3.3 s "
                        "(60-95 us a triangle), +65-158 MB"),
-    # a B-rep STEP: per surface sample (profile vertices x law pieces x law knots), OpenCascade
-    "write.brep": Cost(4.0e-4, 20000.0, 1.2, 300e6, "B-spline STEP of helical z=40 and 200 (1,040 and 4,000 "
-                       "profile vertices): 1.57 and 2.67 s (0.37 ms a sample + 1.2 s), +296-336 MB"),
+    # a B-rep STEP (gear3d.plan.brep_estimate): per surface sample measured, plus per face
+    "write.brep": Cost(2.5e-4, 20000.0, 1.2, 300e6, "measured 2026-11-26 in process (CPU): spur z=400 at "
+                       "0.1 / 0.001 mm, 800 faces, 4,000 / 16,000 samples: 2.9 / 6.1 s, so 2.7e-4 s a sample; "
+                       "+1.2 s OpenCascade's import and first call; +296-336 MB (helical z=40, 200)"),
+    "brep.face": Cost(1.5e-3, 50000.0, 0.0, 0.0, "measured 2026-11-26 (CPU): spur z=700 / 1000 / 1500 at 0.1 mm, "
+                      "1,400 / 2,000 / 3,000 flank faces: 4.2 / 6.0 / 11.5 s (3.0-3.8 ms a face, counted 4 a tooth)"),
+    # conjugate contact (gear3d.analysis.contact): per wheel-1 angle of its grid (96 a pitch)
+    "contact": Cost(3e-3, 2000.0, 0.3, 20e6, "measured 2026-11-26 (CPU): involute 20/20..2000/2000 and sine "
+                    "at 1e-4..0.05 mm, 234-3,301 angles: 0.3-3.3 ms an angle; bands over 0.4 pitch up to 15 ms "
+                    "(involute 100/100 and 150/150 at 0.05 mm: 10.8 s for 741 and 901 angles: CONTACT_WIDE_BAND)"),
     # rolling check: per (position x vertex of both polygons), shapely
     "pair": Cost(1.2e-5, 300.0, 0.3, 30e6, "check_pair, 78 positions: involute 20/21 to 1000/1000 at "
                  "1-10 um 4.6-11 us, sine 200/210 internal 10 us a (position x vertex)"),

@@ -50,6 +50,7 @@ class Sketch:
     pitch_radius: float = 0.0
     period: object = None
     rim_vertices: float = 0.0
+    r_min: float = 0.0
 
     @property
     def layer_vertices(self) -> float:
@@ -76,20 +77,22 @@ def probe_profile(family: str, params: dict) -> Sketch | None:
     z = int(info["teeth"])
     per = float(sum(len(a) - 1 for a in pts))
     chain = np.concatenate([np.asarray(a, float) for a in pts])
-    r = float(np.nanmax(np.hypot(chain[:, 0], chain[:, 1]))) if len(chain) else 0.0
+    rr = np.hypot(chain[:, 0], chain[:, 1]) if len(chain) else np.zeros(1)
+    r, r_lo = float(np.nanmax(rr)), float(np.nanmin(rr))
     seg = np.hypot(*np.diff(chain, axis=0).T) if len(chain) > 1 else np.zeros(0)
     length = float(np.nansum(seg)) * z
     est = pre.then(info["estimate"])
     tol = float(params.get("tolerance", 1e-3))
     return Sketch(z, per * z, per, r, length, tol, est, float(info.get("pitch_radius", r)), chain,
-                  float(info.get("rim_vertices", 0.0)))
+                  float(info.get("rim_vertices", 0.0)), r_lo)
+
 
 
 def write_estimate(ext: str, *, vertices: float = 0.0, per_tooth: float = 0.0, triangles: float = 0.0,
-                   brep_samples: float = 0.0) -> Estimate:
+                   brep: Estimate | None = None) -> Estimate:
     """An export's estimate: 2D formats from the profile's ``vertices`` (``per_tooth``: of
     one period; DXF and SVG also build their reference profile 20x finer), 3D formats from
-    the body's ``triangles`` (a B-rep STEP from ``brep_samples``)."""
+    the body's ``triangles`` (a B-rep STEP: its :func:`brep_estimate` ``brep``)."""
     ext = ext.lower()
     if ext in (".dxf", ".svg"):
         k = math.sqrt(REFERENCE_FACTOR)
@@ -102,8 +105,8 @@ def write_estimate(ext: str, *, vertices: float = 0.0, per_tooth: float = 0.0, t
         return estimate("write.png", vertices, 0.0, f"a figure of {vertices:,.0f} vertices")
     if ext == ".json":
         return estimate("write.json", vertices or triangles, 0.0, "a JSON report")
-    if brep_samples:
-        return estimate("write.brep", brep_samples, 0.0, f"a B-rep STEP of {brep_samples:,.0f} surface samples")
+    if brep is not None:
+        return brep
     key = {".stl": "write.stl", ".3mf": "write.3mf", ".step": "write.step", ".stp": "write.step",
            ".png": "write.png"}.get(ext, "write.mesh")
     return estimate(key, triangles, 0.0, f"the {ext[1:].upper()} of {triangles:,.0f} triangles")
@@ -125,16 +128,32 @@ def charge_write(obj, kind: str, ext: str, opts: dict) -> Estimate:
         est = write_estimate(ext, vertices=v, per_tooth=per, triangles=tri)
     else:
         bodies = list(obj) if isinstance(obj, (list, tuple)) else [obj]
-        tri, samples = 0.0, 0.0
+        tri, brep = 0.0, None
         for b in bodies:
             r = _report(b)
             tri += float(r.get("triangles") or 0.0)
             if opts.get("step") == "brep":
-                pr = _report(getattr(b, "profile", None))
-                law = 3 if r.get("kind") == "chevron-arch" else (2 if r.get("kind") == "herringbone" else 1)
-                samples += float(pr.get("vertices") or 0.0) * law * max(1.0, float(r.get("layers") or 1) / 5.0)
-        est = write_estimate(ext, triangles=tri, brep_samples=samples)
+                e = body_brep_estimate(b)
+                brep = e if brep is None else Estimate(brep.seconds + e.seconds - budget.COSTS["write.brep"].fixed_seconds,
+                                                       max(brep.bytes, e.bytes), 0.0, brep.what + "; " + e.what)
+        est = write_estimate(ext, triangles=tri, brep=brep)
     return budget.charge(est, "output", opts.get("_path", ext), key="write")
+
+
+def law_pieces(kind) -> int:
+    """Smooth pieces of a twist law: chevron-arch 3, herringbone 2, others 1."""
+    return 3 if kind == "chevron-arch" else (2 if kind == "herringbone" else 1)
+
+
+def body_brep_estimate(b) -> Estimate:
+    """:func:`brep_estimate` of a built body ``b`` (its profile's tooth period sampled as the
+    plan sampled it: the same counts, so the charge agrees with the plan)."""
+    r, prof = _report(b), getattr(b, "profile", None)
+    pr = _report(prof)
+    teeth = int(getattr(prof, "teeth", 1) or 1)
+    v = float(pr.get("vertices") or 0.0)
+    law = law_pieces(r.get("kind"))
+    return brep_estimate(teeth, law, v * law * max(1.0, float(r.get("layers") or 1) / 5.0))
 
 
 def brep_samples(sk: Sketch, law_pieces: int, layers: float) -> float:
@@ -142,6 +161,26 @@ def brep_samples(sk: Sketch, law_pieces: int, layers: float) -> float:
     (the flank fits' control points follow them) on every piece of the twist law, times
     the law fit's knots (about a fifth of the mesh layers), at least one."""
     return sk.vertices * max(1, law_pieces) * max(1.0, layers / 5.0)
+
+
+#: B-rep flank faces a tooth is counted as (involute and cycloidal teeth give 2, triangular
+#: teeth 4: brep_solid's flank_faces_per_tooth; COSTS["brep.face"] is per counted face)
+BREP_FACES_PER_TOOTH = 4
+#: faces at which OpenCascade's sewing and checks cost twice as much per face (measured:
+#: 1,400 / 2,000 / 3,000 spur flank faces 3.0 / 3.0 / 3.8 ms a face)
+BREP_SEW_FACES = 8000.0
+
+
+def brep_estimate(teeth: int, law_pieces: int, samples: float) -> Estimate:
+    """A B-rep STEP (:mod:`gear3d.export.step_brep`): :data:`BREP_FACES_PER_TOOTH` faces a
+    tooth on each of ``law_pieces`` pieces of the twist law, each built, sewn and checked
+    (COSTS["brep.face"], a face costing more as their number grows), plus ``samples``
+    surface samples measured (COSTS["write.brep"]) and OpenCascade's import."""
+    runs = float(teeth) * BREP_FACES_PER_TOOTH * max(1, int(law_pieces))
+    f, c = budget.COSTS["brep.face"], budget.COSTS["write.brep"]
+    sec = c.fixed_seconds + c.seconds * samples + f.seconds * runs * (1.0 + runs / BREP_SEW_FACES)
+    return Estimate(sec, c.fixed_bytes + c.bytes * samples + f.bytes * runs, 0.0,
+                    f"a B-rep STEP of {runs:,.0f} faces and {samples:,.0f} surface samples")
 
 
 # --------------------------------------------------------------------- rolling checks
@@ -154,16 +193,68 @@ def pair_positions(teeth1: int, r_max: float, tol: float, span_pitches: float = 
     return int(math.ceil(span_pitches * pitch / step)) + 1
 
 
+#: a conjugate-contact reach (REACH x band, gear3d.analysis.contact) wider than this share of
+#: the circular pitch meets the neighbouring teeth: an angle then costs CONTACT_WIDE_FACTOR
+#: times COSTS["contact"] (measured: 8-15 ms an angle against 0.3-3.3 ms)
+CONTACT_WIDE_BAND, CONTACT_WIDE_FACTOR = 0.4, 3.0
+
+
+def contact_angles(teeth1: int, radii1: tuple, radii2: tuple, a: float) -> int:
+    """Wheel-1 angles of the conjugate-contact grid (:func:`gear3d.analysis.contact.window`
+    at 96 a pitch), from the radii (mm, (smallest, largest)) of both wheels' teeth and the
+    centre distance ``a`` (mm): where a circle through tooth 0's radii meets wheel 2's
+    annulus, widened by a pitch and two grid steps; a whole turn when they meet all round.
+
+    >>> contact_angles(20, (8.75, 11.0), (8.75, 11.0), 20.0)
+    368
+    """
+    import numpy as np
+    from .analysis.contact import GRID_PER_PITCH
+    rho = np.linspace(float(radii1[0]), float(radii1[1]), 16)
+    th = np.linspace(-math.pi, math.pi, 721)
+    d = np.hypot(rho[:, None] * np.cos(th)[None] - float(a), rho[:, None] * np.sin(th)[None])
+    hit = ((d >= float(radii2[0])) & (d <= float(radii2[1]))).any(axis=0)
+    p = 2 * math.pi / max(int(teeth1), 1)
+    span = 2 * math.pi
+    if hit.any():
+        span = min(2 * (float(np.abs(th[hit]).max()) + (th[1] - th[0]) + p / 2 + 2 * p / GRID_PER_PITCH), span)
+    return int(math.ceil(span / p * GRID_PER_PITCH)) + 1
+
+
+def contact_estimate(teeth1: int, module: float, radii1: tuple, radii2: tuple, a: float, band: float) -> Estimate:
+    """The conjugate contact of a check (:func:`contact_angles` x COSTS["contact"], more when
+    the band reaches the neighbouring teeth: :data:`CONTACT_WIDE_BAND`)."""
+    from .analysis.contact import REACH
+    n = contact_angles(teeth1, radii1, radii2, a)
+    c = budget.COSTS["contact"]
+    wide = REACH * band > CONTACT_WIDE_BAND * math.pi * max(module, 1e-12)
+    per = c.seconds * (CONTACT_WIDE_FACTOR if wide else 1.0)
+    return Estimate(c.fixed_seconds + per * n, c.fixed_bytes + c.bytes * n, 0.0,
+                    f"conjugate contact at {n:,} angles")
+
+
 def pair_estimate(teeth1: int, r_max: float, v1: float, v2: float, tol: float, checks: float = 1.0,
-                  span_pitches: float = 3.2) -> Estimate:
+                  span_pitches: float = 3.2, contact: Estimate | None = None) -> Estimate:
     """``checks`` rolling checks of polygons of ``v1`` and ``v2`` vertices (positions x
-    vertices), each over ``span_pitches`` pitches."""
+    vertices), each over ``span_pitches`` pitches, each followed by ``contact`` (its
+    :func:`contact_estimate`; None: a roll for interference only)."""
     n = pair_positions(teeth1, r_max, tol, span_pitches)
     items = checks * n * (v1 + v2)
     c = budget.COSTS["pair"]
     what = (f"{checks:g} rolling check(s) of {n:,} positions x {v1 + v2:,.0f} vertices" if checks != 1
             else f"a rolling check of {n:,} positions x {v1 + v2:,.0f} vertices")
-    return Estimate(c.fixed_seconds + c.seconds * items, c.fixed_bytes + c.bytes * (v1 + v2), 0.0, what)
+    sec = c.fixed_seconds + c.seconds * items
+    if contact is not None:
+        sec += checks * contact.seconds
+        what += f" and {contact.what}"
+    return Estimate(sec, c.fixed_bytes + c.bytes * (v1 + v2), 0.0, what)
+
+
+def sketch_contact(a: Sketch, b: Sketch, internal: bool, tol: float) -> Estimate:
+    """:func:`contact_estimate` of two sketched wheels at their standard centre distance."""
+    dist = abs(b.pitch_radius - a.pitch_radius) if internal else a.pitch_radius + b.pitch_radius
+    m = 2 * a.pitch_radius / max(a.teeth, 1)
+    return contact_estimate(a.teeth, m, (a.r_min, a.r_max), (b.r_min, b.r_max), dist, tol)
 
 
 def _profile_counts(p) -> tuple:
@@ -175,8 +266,21 @@ def _profile_counts(p) -> tuple:
     return int(getattr(p, "teeth", 1) or 1), v, r
 
 
-def charge_pair(p1, p2, tolerance=None, checks: float = 1.0, span_pitches: float = 3.2, param="tolerance"):
-    """Charge ``checks`` rolling checks of built profiles ``p1``/``p2`` (refused before)."""
+def _teeth_radii(p) -> tuple:
+    """(smallest, largest) radius (mm) of a built profile's teeth (its report's root and tip
+    radii: a ring's rim is not a tooth)."""
+    r = _report(p)
+    lo, hi = r.get("root_radius"), r.get("tip_radius")
+    if lo is None or hi is None:
+        _, _, hi = _profile_counts(p)
+        return 0.0, hi
+    return min(float(lo), float(hi)), max(float(lo), float(hi))
+
+
+def charge_pair(p1, p2, tolerance=None, checks: float = 1.0, span_pitches: float = 3.2, param="tolerance",
+                contact: bool = True, center_distance=None):
+    """Charge ``checks`` rolling checks of built profiles ``p1``/``p2`` (refused before), each
+    with its conjugate contact when ``contact``."""
     from .model import Profile
     if not (isinstance(p1, Profile) and isinstance(p2, Profile)):
         return None                   # not profiles: the check itself refuses them by name
@@ -184,11 +288,18 @@ def charge_pair(p1, p2, tolerance=None, checks: float = 1.0, span_pitches: float
     _, v2, _ = _profile_counts(p2)
     try:
         tol = float(tolerance if tolerance is not None else max(p1.tolerance, p2.tolerance))
+        cd = None if center_distance is None else float(center_distance)
     except (TypeError, ValueError):
-        return None                   # a bad tolerance: the check refuses it by name
+        return None                   # a bad value: the check refuses it by name
     if not tol > 0:
         return None
-    est = pair_estimate(z1, r1, v1, v2, tol, checks, span_pitches)
+    conj = None
+    if contact:
+        ring = bool(p1.internal or p2.internal)
+        a = cd if cd and cd > 0 else (abs(p2.pitch_radius - p1.pitch_radius) if ring
+                                      else p1.pitch_radius + p2.pitch_radius)
+        conj = contact_estimate(z1, 2 * p1.pitch_radius / max(z1, 1), _teeth_radii(p1), _teeth_radii(p2), a, tol)
+    est = pair_estimate(z1, r1, v1, v2, tol, checks, span_pitches, conj)
     return budget.charge(est, param, tol)
 
 
@@ -202,7 +313,7 @@ def _charged_check_pair():
     @functools.wraps(pairs.check_pair)
     def check_pair(p1, p2, *args, **kwargs):
         with budget.stage():
-            charge_pair(p1, p2, kwargs.get("tolerance"))
+            charge_pair(p1, p2, kwargs.get("tolerance"), center_distance=kwargs.get("center_distance"))
             return pairs.check_pair(p1, p2, *args, **kwargs)
     return check_pair
 
@@ -223,7 +334,7 @@ def working_center_distance(p1, p2, internal=None, precision: float = 0.01, tole
     precision = check_number("precision", precision, 1e-4, 0.5, unit="modules")
     n = 12 + search_iterations(0.25 * 2 ** 12, precision, 0)
     with budget.stage():
-        charge_pair(p1, p2, tolerance, checks=n, span_pitches=1.05, param="precision")
+        charge_pair(p1, p2, tolerance, checks=n, span_pitches=1.05, param="precision", contact=False)
         return pairs.working_center_distance(p1, p2, internal=internal, precision=precision, tolerance=tolerance)
 
 
@@ -235,7 +346,8 @@ def search_estimate(family: str, params: dict, teeth1: int, teeth2: int, interna
     if a is None or b is None:
         return Estimate()
     tol = float(kw.get("tolerance", 1e-3))
-    one = a.estimate.then(b.estimate).then(pair_estimate(teeth1, a.r_max, a.vertices, b.vertices, tol))
+    one = a.estimate.then(b.estimate).then(pair_estimate(teeth1, a.r_max, a.vertices, b.vertices, tol,
+                                                          contact=sketch_contact(a, b, internal, tol)))
     return Estimate(one.seconds * iterations, one.bytes, one.triangles,
                     f"a search of {iterations} steps, each two profiles and {one.what.split('; ')[-1]}")
 
@@ -366,9 +478,11 @@ def plan_body(family: str, params: dict, body_kw: dict, output=None, step=None) 
                                                        f"{layers:,} layers", layer_vertices=nv, teeth=sk.teeth))
     ext = os.path.splitext(str(output))[1].lower() if output else ""
     if ext:
-        law = 3 if body_kw.get("kind") == "chevron-arch" else (2 if body_kw.get("kind") == "herringbone" else 1)
-        samples = sk.vertices * law * max(1.0, layers / 5.0) if step == "brep" and ext in (".step", ".stp") else 0.0
-        est = est.then(write_estimate(ext, triangles=tri, brep_samples=samples))
+        brep = None
+        if step == "brep" and ext in (".step", ".stp"):
+            brep = brep_estimate(sk.teeth, law_pieces(body_kw.get("kind")),
+                                 brep_samples(sk, law_pieces(body_kw.get("kind")), layers))
+        est = est.then(write_estimate(ext, triangles=tri, brep=brep))
     return _decide(est, *(("teeth", sk.teeth) if sk.teeth > 1000 else ("tolerance", tol)))
 
 
@@ -379,6 +493,7 @@ def plan_pair(family: str, kw1: dict, kw2: dict, precision_checks: float = 1.0) 
     if a is None or b is None:
         return None
     tol = max(a.tolerance, b.tolerance)
+    internal = bool(kw1.get("internal") or kw2.get("internal"))
     est = a.estimate.then(b.estimate).then(pair_estimate(a.teeth, a.r_max, a.vertices, b.vertices, tol,
-                                                          precision_checks))
+                                                          precision_checks, contact=sketch_contact(a, b, internal, tol)))
     return _decide(est, *(("teeth", max(a.teeth, b.teeth)) if max(a.teeth, b.teeth) > 1000 else ("tolerance", tol)))

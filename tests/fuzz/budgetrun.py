@@ -82,15 +82,28 @@ def _cap(seconds: float) -> None:
     resource.setrlimit(resource.RLIMIT_CPU, (int(seconds), int(seconds) + 5))
 
 
+def budget_refusal(err: str) -> bool:
+    """Whether stderr holds the budget's refusal (:class:`gear3d.budget.BudgetError`: "...
+    within the <resource> budget of ..."), as opposed to a finding of the work itself (a
+    B-rep that OpenCascade finds invalid, a fit that misses its tolerance)."""
+    return " budget of " in err and "exceeded" not in err
+
+
 def verdict(r: Result) -> str:
-    """'' when ``r`` keeps the promise, else what it broke."""
+    """'' when ``r`` keeps the promise, else what it broke.
+
+    A refusal by the budget must come within :data:`REFUSE_CPU` s (before the work). A
+    refusal that is a finding of the work (exit 2 with one line and no file, but not the
+    budget's: the B-rep found invalid after it was built) is held to the promise of a run
+    that finished: within twice its estimate."""
     lines = r.err.strip().splitlines()
     if r.rc == 2:
         bad = []
         if len(lines) != 1 or not lines[0].startswith("gear3d: error:"):
             bad.append(f"{len(lines)} stderr lines")
-        if r.cpu > REFUSE_CPU and "exceeded" not in r.err:
-            bad.append(f"refused after {r.cpu:.2f} s of CPU")
+        late = r.cpu > REFUSE_CPU if budget_refusal(r.err) or not r.estimate else r.cpu > 2 * r.estimate + STARTUP_CPU
+        if late and "exceeded" not in r.err:
+            bad.append(f"refused after {r.cpu:.2f} s of CPU (estimate {r.estimate:.3g} s)")
         if "exceeded" in r.err:
             bad.append(f"stopped by the watchdog after {r.cpu:.2f} s (estimate {r.estimate:.3g} s)")
         if r.new_files:

@@ -58,6 +58,14 @@ SLOW_REGRESSIONS = [
     "profile cycloidal --teeth 1000 --rolling-radius-coeff 100 -o g.json",
     "body involute --teeth 2000 --kind helical --helix-angle-deg 30 --width 20 --tolerance 0.001 -o g.step "
     "--step brep",
+    # found by the full property run (2026-11-25): the conjugate contact of a band wider than
+    # 0.4 pitch (6.9-10.8 s) was not in the estimate (2.68 s); a B-rep of 1,000 teeth at 0.1 mm
+    # (6 s for 2,000 faces) was planned from its samples only (5.9 s with the import)
+    "--max-seconds 10 check pair involute --teeth 100 --mate-teeth 100 --tolerance 0.05",
+    "body involute --teeth 1000 --kind spur --width 0.5 --tolerance 0.1 -o g.step --step brep",
+    # a B-rep that OpenCascade finds invalid (an undercut 12-tooth spur) is a finding of the
+    # work, not a budget refusal: one line, no file, within twice its estimate
+    "--max-seconds 10 body involute --teeth 12 --kind spur --width 5 --tolerance 0.1 -o g.step --step brep",
 ]
 
 
@@ -186,16 +194,8 @@ def test_property_sample(kind, tmp_path_factory):
     _property(kind, 3, ("--max-seconds", "3"), tmp_path_factory)
 
 
-#: counterexamples the full run found at the session's end, not yet fixed (closing note):
-#: a 100/100 check pair used 6.91 s of CPU against an estimate of 2.68 s; a spur body's
-#: --step brep was refused only after 1.39 s (the B-rep found invalid, not planned)
-OPEN = {"pair": "check pair 100/100: 6.91 s CPU > 2 x its estimate 2.68 s",
-        "body": "body --step brep refused after 1.39 s of CPU (invalid B-rep found late)"}
-
-
 @pytest.mark.slow
-@pytest.mark.parametrize("kind", [pytest.param(k, marks=pytest.mark.xfail(reason=OPEN[k], strict=False))
-                                  if k in OPEN else k for k in sorted(CASES)])
+@pytest.mark.parametrize("kind", sorted(CASES))
 def test_property_full(kind, tmp_path_factory):
     n = int(os.environ.get("GEAR3D_FUZZ_EXAMPLES", "300"))
     _property(kind, n, ("--max-seconds", "10"), tmp_path_factory)
