@@ -1,18 +1,20 @@
 """What the exporters take: bodies from whatever was given (:func:`as_bodies`), a body's
-mesh arrays in place (:func:`body_mesh`) and its name in a multi-body file (:func:`body_name`)."""
+mesh arrays in place (:func:`body_mesh`) and its name in a multi-body file (:func:`body_name`).
+The exporters import this module at their top (``gear3d --help`` reads their options), so
+the profile and body builders are imported only inside :func:`as_bodies`."""
 from __future__ import annotations
 
 import numpy as np
 
 from ..errors import GearError
-from ..model import Profile
-from .body import body
 
 
 def as_bodies(obj, width=None, **body_opts) -> list:
     """The bodies to write: a body, a list of bodies, or a profile or rack part extruded
     (spur, ``width`` mm; a 2D outline that is not a gear profile, a rack part, extrudes
     itself)."""
+    from ..model import Profile          # the builders load only when a profile is extruded
+    from .body import body
     outline = not isinstance(obj, Profile) and callable(getattr(obj, "extrude", None)) and hasattr(obj, "loops")
     if isinstance(obj, Profile) or outline:
         if width is None:
