@@ -45,7 +45,7 @@ import time
 from ..errors import GearError, check_number
 from . import budget, builds, formargs, strict
 from .schema import FAMILY_DOWNLOADS, SET_DOWNLOADS, form_schema, parse_form
-from .workers import Busy, Stopped, log_line
+from .workers import Busy, log_line, run_job
 
 STATIC = os.path.join(os.path.dirname(__file__), "static")
 
@@ -138,6 +138,48 @@ def _response(reply):
     return Response(body, status_code=status, media_type=media, headers=headers)
 
 
+def _build(job, pool, slots, log):
+    """A job's reply: in a worker of ``pool`` (a download's folder made here and removed
+    here, whatever happened to the worker), or in a thread under ``slots``."""
+    name, args = job
+    folder = None
+    if name in ("download", "set_download"):
+        folder = tempfile.mkdtemp(prefix="gear3d-web-")
+        args = args[:-1] + (folder,)
+    try:
+        if pool is not None:
+            out = pool.run((name, args), log)
+        else:
+            fmt = args[-2] if folder else None
+            with slots, (_UNSHARED if fmt in UNSHARED else _NO_LOCK):
+                out = run_job((name, args))
+    finally:
+        if folder is not None:
+            shutil.rmtree(folder, ignore_errors=True)
+    if out[0] == "error":
+        log_line(log, f"error: {out[1]}: {out[2]}")
+    return out[-1]
+
+
+def _endpoint(what: str, pool, slots, log):
+    """The handler of ``/api/{what}``: the query -> a job -> its reply (or the refusal)."""
+    from starlette.concurrency import run_in_threadpool
+
+    async def handler(request):
+        try:
+            q = request.query_params
+            form = _request(q)
+            job = job_of(what, form, q.get("fmt", "") if what == "download" else None)
+            return _response(await run_in_threadpool(_build, job, pool, slots, log))
+        except GearError as e:            # a refusal, or a build the watchdog stopped (Stopped)
+            return _response(builds.error_reply(e))
+        except Busy as e:
+            return _json({"error": str(e)}, 503)
+        except Exception as e:      # never a traceback nor a path: the kind, details in the log
+            return _internal_error(e, log)
+    return handler
+
+
 # ------------------------------------------------------------------ the app
 
 def create_app(max_builds: int = 2, log=None, workers: bool = False):
@@ -145,7 +187,6 @@ def create_app(max_builds: int = 2, log=None, workers: bool = False):
     the one-line request log (default stderr); ``workers``: build in worker processes under
     the watchdog (``gear3d serve``), else in threads."""
     from starlette.applications import Starlette
-    from starlette.concurrency import run_in_threadpool
     from starlette.responses import FileResponse
     from starlette.routing import Mount, Route
     from starlette.staticfiles import StaticFiles
@@ -158,45 +199,6 @@ def create_app(max_builds: int = 2, log=None, workers: bool = False):
         b = core.current()
         pool = Pool(n, {"max_triangles": b.max_triangles, "max_memory": b.max_memory,
                         "max_seconds": b.max_seconds})
-
-    def build(job):
-        """A job's reply: in a worker (a download's folder made here and removed here), or in a thread."""
-        name, args = job
-        folder = None
-        if name in ("download", "set_download"):
-            folder = tempfile.mkdtemp(prefix="gear3d-web-")
-            args = args[:-1] + (folder,)
-        try:
-            if pool is not None:
-                out = pool.run((name, args), log)
-            else:
-                from .workers import run_job
-                fmt = args[-2] if folder else None
-                with slots, (_UNSHARED if fmt in UNSHARED else _NO_LOCK):
-                    out = run_job((name, args))
-        finally:
-            if folder is not None:
-                shutil.rmtree(folder, ignore_errors=True)
-        if out[0] == "error":
-            log_line(log, f"error: {out[1]}: {out[2]}")
-        return out[-1]
-
-    def endpoint(what):
-        async def handler(request):
-            try:
-                q = request.query_params
-                form = _request(q)
-                job = job_of(what, form, q.get("fmt", "") if what == "download" else None)
-                return _response(await run_in_threadpool(build, job))
-            except Stopped as e:
-                return _response(builds.error_reply(e))
-            except GearError as e:
-                return _response(builds.error_reply(e))
-            except Busy as e:
-                return _json({"error": str(e)}, 503)
-            except Exception as e:      # never a traceback nor a path: the kind, details in the log
-                return _internal_error(e, log)
-        return handler
 
     async def families(request):
         from .schema import families as names
@@ -218,10 +220,8 @@ def create_app(max_builds: int = 2, log=None, workers: bool = False):
         Route("/", index),
         Route("/api/families", families),
         Route("/api/schema/{family}", schema),
-        Route("/api/profile", endpoint("profile")),
-        Route("/api/body", endpoint("body")),
-        Route("/api/pair", endpoint("pair")),
-        Route("/api/download", endpoint("download")),
+        *(Route(f"/api/{what}", _endpoint(what, pool, slots, log))
+          for what in ("profile", "body", "pair", "download")),
         Mount("/static", StaticFiles(directory=STATIC), name="static"),
     ]
 
