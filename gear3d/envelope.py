@@ -223,7 +223,7 @@ def wheel_envelope_pieces(point_normal, r1: float, r2: float, internal: bool, sm
 
     Without the split the evaluator jumps between the two roots inside one piece; the
     tessellation then bridges the jump with a chord whose position depends on the
-    tolerance, and a coarse and a fine build disagree by up to a module (issue #13's
+    tolerance, and a coarse and a fine build disagree by up to a module (found by the
     stability benchmark). Returns the list of pieces in boundary order."""
     if branch is not None:
         return [wheel_envelope_piece(point_normal, r1, r2, internal, smooth, branch)]
