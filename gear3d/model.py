@@ -119,9 +119,10 @@ class Profile:
         return float(sum(signed_area(l) for l in self.loops))
 
     def at_tolerance(self, tolerance: float) -> "Profile":
-        """The same gear at another tolerance (mm). Deprecated alias of
-        ``self.spec.profile(tolerance)``; a profile subclass that rebuilds itself otherwise
-        (a worm wheel's section) overrides it."""
+        """The same gear at another tolerance (mm): ``self.spec.profile(tolerance)``. Prefer
+        the spec in new code; this stays as the one hook that :meth:`reference` and the
+        exporters call, which a profile subclass that rebuilds itself otherwise (a worm
+        wheel's section) overrides. The profile itself never calls the family registry."""
         if self.spec is None:
             raise GearError("profile", f"a {self.family} profile without a spec",
                             "a profile made by gear3d.profile (its spec rebuilds it at another tolerance)")
