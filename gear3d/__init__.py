@@ -27,6 +27,7 @@ _LAZY = {
     "check_rack_pair": "gear3d.analysis.rack_mesh",
     "worm": "gear3d.wormgear",
     "bevel": "gear3d.bevel",
+    "face_gear": "gear3d.facegear",
 }
 
 __all__ = ["GearError", "ToleranceError", "GearSpec", "profile", "families", *_LAZY]

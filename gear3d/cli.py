@@ -32,7 +32,7 @@ for _v in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ.setdefault(_v, "1")
 
 #: sub-command modules, in help order; each defines ``add_parser(subparsers)`` and ``run(args)``
-COMMANDS = ["profile", "inspect", "body", "pair", "check", "planetary", "harmonic", "bevel", "worm", "drive", "build", "batch", "bench", "families", "serve"]
+COMMANDS = ["profile", "inspect", "body", "pair", "check", "planetary", "harmonic", "bevel", "face-gear", "worm", "drive", "build", "batch", "bench", "families", "serve"]
 
 #: exit codes of the signals the CLI handles
 SIGNAL_EXIT = {signal.SIGINT: 130, signal.SIGTERM: 143}
@@ -95,7 +95,7 @@ def build_parser(only=None) -> argparse.ArgumentParser:
                     "and OpenCascade (when installed)")
     sub = ap.add_subparsers(dest="command", parser_class=_Parser, metavar="COMMAND")
     for name in (only or COMMANDS):
-        mod = importlib.import_module(f"gear3d.commands.{name}")  # a broken command fails loudly
+        mod = importlib.import_module(f"gear3d.commands.{name.replace('-', '')}")  # a broken command fails loudly
         p = mod.add_parser(sub)
         p.set_defaults(_run=mod.run)
         from .commands.examples import apply

@@ -38,6 +38,8 @@ EXAMPLES = {
                        "gear3d harmonic check --seed002 --stage 1 --png stage1.png --json stage1.json"],
     "drive": ["gear3d harmonic design --seed002",
               "gear3d harmonic build --seed002 --3mf -o harmonic-parts"],
+    "face-gear": ["gear3d face-gear --teeth 60 --shaper-teeth 20 --module 1 -o face.stl",
+                  "gear3d face-gear --teeth 40 --pinion-teeth 14 --module 1.5 --json face.json -o face.3mf"],
     "bevel": ["gear3d bevel --teeth 20 --mate-teeth 30 --module 2 -o bevel.stl",
               "gear3d bevel --teeth 16 --mate-teeth 16 --module 1.5 --part pair -o bevel-pair.3mf --json bevel.json"],
     "worm": ["gear3d worm --module 2 --starts 1 --wheel-teeth 30 --part wheel -o wheel.stl",

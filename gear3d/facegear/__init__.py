@@ -1,0 +1,174 @@
+"""Face (crown) gears cut by an involute spur shaper, 90° shaft angle (issue #24).
+
+``gear3d.face_gear(...)`` (:func:`build`) returns a :class:`FaceGear`: the body (a watertight
+mesh within the tolerance, measured) and a frozen :class:`FaceGearReport` whose
+``to_dict()`` is strict JSON. Lengths in mm, angles in degrees at the interface.
+
+* :mod:`.geometry`: the shaper, the frames, the contact condition and the radius limits in
+  closed form (base circle, Litvin's undercut, pointing);
+* :mod:`.section`: one cylinder section (r = const) in closed form, with its state flags;
+* :mod:`.body`: the loft of the sections, its error measured against the exact sections.
+
+Limits: each is reported from its formula (``*_formula``) and measured on the sections
+(``*_measured``: a bisection on the sections' own state flags, no formula used). The
+default inner radius is the larger measured inner limit; the default outer radius is where
+the tip land (both halves, arc on the cylinder) has narrowed to ``DEFAULT_TIP_LAND`` × m.
+
+Example::
+
+    >>> import gear3d
+    >>> f = gear3d.face_gear(teeth=60, shaper_teeth=20, module=1.0, tolerance=0.02)
+    >>> round(f.report.inner_radius, 2), f.report.max_error <= 0.02
+    (29.56, True)
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import asdict, dataclass
+
+from ..errors import GearError, check_number
+from .geometry import FaceGeometry, face_geometry
+from .section import section
+
+#: mm: default tolerance (the body is a mesh)
+DEFAULT_TOLERANCE = 0.01
+#: the default outer radius leaves this tip land (× module, both halves)
+DEFAULT_TIP_LAND = 0.25
+
+
+@dataclass(frozen=True)
+class FaceGearReport:
+    """What was built and measured (mm, degrees). ``limits``: the radius limits, each from
+    its formula and measured on the sections; ``tip_land_inner``/``_outer``: the tip land's
+    arc width at the inner and outer radius."""
+    teeth: int
+    shaper_teeth: int
+    pinion_teeth: int | None
+    module: float
+    pressure_angle_deg: float
+    pitch_radius: float
+    shaper_pitch_radius: float
+    addendum: float
+    dedendum: float
+    rim: float
+    inner_radius: float
+    outer_radius: float
+    face_width: float
+    limits: dict
+    tip_land_inner: float
+    tip_land_outer: float
+    tolerance: float
+    max_error: float
+    chord_error: float
+    loft_error: float
+    wall_error: float
+    sections: int
+    volume: float
+    triangles: int
+    genus: int
+
+    def to_dict(self) -> dict:
+        """Plain, strict-JSON-ready keys."""
+        from ..export.json_format import clean
+        return clean(asdict(self))
+
+
+@dataclass(frozen=True)
+class FaceGear:
+    """The built body (tuple of one), the report and the geometry."""
+    bodies: tuple
+    report: FaceGearReport
+    geometry: FaceGeometry
+
+
+def _bisect_flag(g, flag, lo, hi, tol=1e-9, scan=64):
+    """The radius (mm) where ``flag(section)`` last changes between ``lo`` and ``hi``: a scan
+    of ``scan`` steps brackets the outermost change, a bisection refines it; None if none."""
+    import numpy as np
+    rs = np.linspace(lo, hi, scan + 1)
+    fs = [flag(section(g, float(r))) for r in rs]
+    ch = [i for i in range(scan) if fs[i] != fs[i + 1]]
+    if not ch:
+        return None
+    i = ch[-1]
+    lo, hi, f_lo = float(rs[i]), float(rs[i + 1]), fs[i]
+    while hi - lo > tol * hi:
+        mid = 0.5 * (lo + hi)
+        if flag(section(g, mid)) == f_lo:
+            lo = mid
+        else:
+            hi = mid
+    return 0.5 * (lo + hi)
+
+
+def measured_limits(g: FaceGeometry) -> dict:
+    """The radius limits (mm) measured on the sections' state flags (bisection): the base
+    circle (``base``), the undercut (``undercut``) and the pointing (``pointed``) limits."""
+    rp = g.pitch_radius
+    lo = rp * math.cos(g.pressure_angle) * (1 + 1e-9)
+    hi = rp
+    while section(g, hi).pointed is False and hi < 10 * rp:
+        hi *= 1.05
+    # the base-circle state is read only where the flank is not undercut (there the flank
+    # turns back, and where it reaches the tip height says nothing)
+    base = _bisect_flag(g, lambda s: s.base and not s.undercut, lo, hi)
+    under = _bisect_flag(g, lambda s: s.undercut, lo, hi)
+    if base is not None and under is not None and base <= under:
+        base = None            # hidden: inside the undercut limit the flank is not regular
+    return {"inner_base_measured": base, "inner_undercut_measured": under,
+            "outer_pointing_measured": _bisect_flag(g, lambda s: s.pointed, lo, hi)}
+
+
+def _limits(g):
+    lim = {**g.limits(), **measured_limits(g)}
+    inner = max(v for k, v in lim.items() if k.startswith("inner") and k.endswith("measured") and v is not None)
+    lim["inner"] = inner
+    lim["outer"] = lim["outer_pointing_measured"]
+    return lim
+
+
+def _default_outer(g, inner, outer):
+    """The radius (mm) where the tip land has narrowed to DEFAULT_TIP_LAND × m."""
+    want = DEFAULT_TIP_LAND * g.module
+    lo, hi = inner, outer * (1 - 1e-9)
+    if section(g, lo).top_land <= want:
+        return hi
+    while hi - lo > 1e-9 * hi:
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if section(g, mid).top_land > want else (lo, mid)
+    return lo
+
+
+def build(teeth, shaper_teeth=None, module=1.0, pressure_angle_deg=20.0, pinion_teeth=None,
+          inner_radius=None, outer_radius=None, tolerance=DEFAULT_TOLERANCE, rim=None,
+          addendum_coeff=1.0, dedendum_coeff=1.25) -> FaceGear:
+    """A face gear of ``teeth`` teeth cut by a spur shaper of ``shaper_teeth`` teeth (or
+    ``pinion_teeth`` + 2), module (mm) and pressure angle (deg), between ``inner_radius`` and
+    ``outer_radius`` (mm; defaults: see the package doc; each refused beyond its limit).
+    Raises :class:`GearError` naming the bad parameter before any work."""
+    from .body import face_body
+    g = face_geometry(teeth, shaper_teeth, module, pressure_angle_deg, pinion_teeth, addendum_coeff,
+                      dedendum_coeff, rim)
+    tol = check_number("tolerance", tolerance, 1e-5, 1.0, unit="mm")
+    lim = _limits(g)
+    r_in = math.ceil(lim["inner"] * 1e6) / 1e6
+    r_out_max = math.floor(lim["outer"] * 1e6) / 1e6
+    r1 = r_in if inner_radius is None else check_number("inner_radius", inner_radius, r_in, r_out_max, unit="mm")
+    r2 = _default_outer(g, r1, lim["outer"]) if outer_radius is None else \
+        check_number("outer_radius", outer_radius, r1, r_out_max, lo_open=True, unit="mm")
+    if r2 <= r1:
+        raise GearError("inner_radius", r1, f"below the outer radius {r2:.6g} mm")
+    b = face_body(g, r1, r2, tol)
+    r = b.report
+    b.report["params"] = {"teeth": g.teeth, "shaper_teeth": g.shaper_teeth, "module": g.module,
+                          "pressure_angle_deg": math.degrees(g.pressure_angle), "inner_radius": r1,
+                          "outer_radius": r2, "tolerance": tol}
+    rep = FaceGearReport(g.teeth, g.shaper_teeth, g.pinion_teeth, g.module, math.degrees(g.pressure_angle),
+                         g.pitch_radius, g.shaper_pitch_radius, g.addendum, g.dedendum, g.rim, r1, r2, r2 - r1,
+                         lim, section(g, r1).top_land, section(g, r2).top_land, tol, r["max_error"],
+                         r["chord_error"], r["loft_error"], r["wall_error"], r["sections"], r["volume"],
+                         r["triangles"], r["genus"])
+    return FaceGear((b,), rep, g)
+
+
+face_gear = build
