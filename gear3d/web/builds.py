@@ -29,6 +29,7 @@ import time
 from .. import plan, profile
 from ..errors import GearError
 from ..params import DEFAULT_TOLERANCE, MESH_TOLERANCE
+from ..spec import GearSpec
 from ..watchdog import LimitError
 from . import strict
 
@@ -84,8 +85,8 @@ def profile_preview(family: str, pk: dict) -> Reply:
 
 def build_body(family: str, pk: dict, bk: dict, output=None):
     """``gear3d body FAMILY ...``'s body: the body tolerance (default the profile's), the
-    profile built at the share of it the body plan gives the profile, planned first."""
-    from ..spec import GearSpec
+    profile built at the share of it the body plan gives the profile
+    (:meth:`gear3d.spec.GearSpec.body`), planned first."""
     bk = dict(bk)
     bk.setdefault("tolerance", pk["tolerance"])
     spec = GearSpec(family, {k: v for k, v in pk.items() if k != "tolerance"})
@@ -116,7 +117,6 @@ def pair_check(family: str, kw: dict, z2: int, internal: bool, mate: str) -> Rep
     """Roll wheel 1 (``kw``) with its mate (``z2`` teeth, same family, or rolled with wheel 1
     as the cutter): ``{"report", "summary", "animation"}``."""
     from ..analysis.pairs import summary
-    from ..plan import check_pair
     from ..profiles.mate import mate as rolled
     from .pairview import pair_animation
     kw2 = dict(kw, teeth=z2, **({"internal": True} if internal else {}))
@@ -124,7 +124,7 @@ def pair_check(family: str, kw: dict, z2: int, internal: bool, mate: str) -> Rep
         plan.plan_pair(family, kw, kw2)
     p1 = profile(family, **kw)
     p2 = rolled(p1, z2, internal=internal) if mate == "rolled" else profile(family, **kw2)
-    rep = check_pair(p1, p2, internal=internal)
+    rep = plan.check_pair(p1, p2, internal=internal)
     return json_reply({"report": rep, "summary": summary(rep), "animation": pair_animation(p1, p2, rep)})
 
 
