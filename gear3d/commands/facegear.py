@@ -13,6 +13,7 @@ from __future__ import annotations
 import sys
 
 from ..cliargs import number
+from ..errors import GearError
 from ..export import atomic_path, check_output, check_path, write
 
 
@@ -44,7 +45,6 @@ def add_parser(sub):
 
 
 def run(args) -> int:
-    from ..errors import GearError
     from ..facegear import build
     out = args.output
     check_output(out, kinds="body")

@@ -28,8 +28,11 @@ import math
 
 import numpy as np
 
+from .. import budget
+from ..errors import GearError, ToleranceError
+from ..progress import stage
 from .geometry import FaceGeometry
-from .section import half_profile, section
+from .section import corner_points, flank_points, half_profile, section
 
 #: shares of the tolerance: a section's chords, and between sections (which includes them)
 CHORD_SHARE = 0.45
@@ -74,7 +77,6 @@ def _probe_params(grid):
 def _exact_piece(g, s, p, t):
     """Exact points (θ, z), (N, 2), of piece ``p`` (0 root, 1 corner, 2 flank, 3 top) of
     section ``s`` at normalised parameters ``t``."""
-    from .section import corner_points, flank_points
     t = np.asarray(t, float)
     if p == 0:
         return np.stack([s.theta_root * t, np.full_like(t, -g.dedendum)], 1)
@@ -150,7 +152,6 @@ def _refine(grid, bad):
 
 def _sections(g, radii, cache):
     """The sections at ``radii`` (cached by radius); a flagged one is refused."""
-    from ..errors import GearError
     out = []
     for r in radii:
         key = float(r)
@@ -196,7 +197,6 @@ def plan(g: FaceGeometry, r1: float, r2: float, tolerance: float):
             sag = max(float(np.max(np.concatenate(_wall_sag(g, s, grids)))) for s in (secs[0], secs[-1]))
             return radii, grids, {"chord_error": chord, "loft_error": float(loft.max()), "wall_error": sag}
         radii = np.unique(np.concatenate([radii, mids[bad]]))
-    from ..errors import ToleranceError
     raise ToleranceError("tolerance", tolerance, "a coarser tolerance", "the loft did not converge")
 
 
@@ -239,9 +239,7 @@ def face_body(g: FaceGeometry, r1: float, r2: float, tolerance: float, name: str
     """The face gear's body between radii ``r1`` and ``r2`` (mm) within ``tolerance`` (mm,
     measured as the module doc says), a :class:`gear3d.bevel.body.BevelBody`."""
     from manifold3d import Manifold, Mesh64
-    from .. import budget
     from ..bevel.body import BevelBody
-    from ..progress import stage
     stage("profile")
     radii, grids, errs = plan(g, r1, r2, tolerance)
     nh = sum(len(x) for x in grids) - 3
@@ -253,8 +251,7 @@ def face_body(g: FaceGeometry, r1: float, r2: float, tolerance: float, name: str
     if man.volume() < 0 or man.is_empty():
         man = Manifold(Mesh64(vert_properties=V, tri_verts=F[:, ::-1].astype(np.uint64)))
     if man.is_empty() or man.status().name != "NoError":
-        from ..errors import GearError
-        raise GearError("tolerance", tolerance, "another tolerance", f"the face gear mesh is not manifold ({man.status()})")
+            raise GearError("tolerance", tolerance, "another tolerance", f"the face gear mesh is not manifold ({man.status()})")
     max_err = max(errs.values())
     rep = {"name": name, **errs, "max_error": float(max_err), "tolerance": float(tolerance),
            "sections": int(len(radii)), "section_vertices": int(nh), "volume": float(man.volume()),
