@@ -10,6 +10,9 @@ own STEP reader (STEPControl_Reader) and checked against closed forms written he
   mean point at the spiral angle), against the same spherical involute;
 * a ZA worm's flank points against its helicoid: z - s p ψ ∓ e(ρ) is one constant on each
   flank (e the straight axial profile px/4 + (ρ - r1) tan αx), whatever the phase;
+* the worm wheel's mid-plane section (OCC's own intersection of the read-back solid with
+  z = 0) against the involute gear (z2, m, αx) that the ZA worm's straight-sided axial
+  rack cuts;
 * one valid solid per member, and its volume against the mesh body's within (the mesh's
   error bound + the tolerance) x its area.
 """
@@ -52,12 +55,12 @@ def is_valid(shape):
     return BRepCheck_Analyzer(shape).IsValid()
 
 
-def occ_volume(shape):
+def occ_volume(shape, eps=1e-7):
     from OCP.BRepGProp import BRepGProp
     from OCP.GProp import GProp_GProps
     p = GProp_GProps()
     f = getattr(BRepGProp, "VolumeProperties_s", None) or BRepGProp.VolumeProperties
-    f(shape, p, 1e-7, True)
+    f(shape, p, eps, True)
     return p.Mass()
 
 
@@ -111,9 +114,9 @@ def in_band(P, r_in, r_out, delta):
     return (c > r_in + 1e-3) & (c < r_out - 1e-3), beta
 
 
-def check_solid(shape, body, tol):
+def check_solid(shape, body, tol, eps=1e-7):
     assert len(sub_shapes(shape, "solid")) == 1 and is_valid(shape)
-    V, Vm = occ_volume(shape), body.manifold.volume()
+    V, Vm = occ_volume(shape, eps), body.manifold.volume()
     assert abs(V - Vm) <= (body.report["max_error"] + tol) * body.manifold.surface_area()
     return V
 
@@ -275,10 +278,66 @@ def test_worm_thread_is_the_helicoid(tmp_path, capsys):
     assert max(bad) > 3 * tol
 
 
-def test_worm_wheel_brep_is_refused_before_any_work(tmp_path, capsys):
+def involute_distance(xy, z, m, alpha):
+    """Closed-form distance (mm) from points (N, 2), folded onto tooth 0 (on +x), to the
+    flanks of a standard involute gear (no shift, no backlash; α rad): r_b |roll difference|."""
+    r = np.hypot(xy[:, 0], xy[:, 1])
+    ang = 2 * math.pi / z
+    phi = np.arctan2(xy[:, 1], xy[:, 0])
+    phi = np.abs(phi - np.round(phi / ang) * ang)
+    rb = z * m / 2 * math.cos(alpha)
+    c = math.pi / (2 * z) + math.tan(alpha) - alpha
+    al = np.arccos(np.clip(rb / r, -1, 1))
+    return rb * np.abs(phi + np.tan(al) - al - c)
+
+
+def midplane_points(shape, n=60):
+    """(N, 3) points of the solid's section by the plane z = 0 (OCC's section edges, each
+    sampled at n parameters)."""
+    from OCP.BRepAdaptor import BRepAdaptor_Curve
+    from OCP.BRepAlgoAPI import BRepAlgoAPI_Section
+    from OCP.gp import gp_Dir, gp_Pln, gp_Pnt
+    from OCP.TopoDS import TopoDS
+    as_edge = getattr(TopoDS, "Edge_s", None) or TopoDS.Edge
+    sec = BRepAlgoAPI_Section(shape, gp_Pln(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)))
+    out = []
+    for e in sub_shapes(sec.Shape(), "edge"):
+        c = BRepAdaptor_Curve(as_edge(e))
+        for u in np.linspace(c.FirstParameter(), c.LastParameter(), n):
+            p = c.Value(float(u))
+            out.append((p.X(), p.Y(), p.Z()))
+    return np.array(out)
+
+
+@pytest.mark.slow
+def test_worm_wheel_midplane_is_the_involute(tmp_path):
+    """The ZA worm's axial section is a straight-sided rack (m, αx), so the wheel's
+    mid-plane section is the involute gear (z2, m, αx) it cuts: the B-rep's section by
+    z = 0 (OCC's own intersection) lies on that involute within the tolerance."""
+    tol = 0.05
+    s = gear3d.worm(part="wheel", module=2, starts=1, wheel_teeth=30, axial_pressure_angle_deg=20,
+                    tolerance=tol)
+    w = s.parts()[0]
+    out = tmp_path / "wheel.step"
+    info = gear3d.write(s.parts(), out, step="brep", geometry=s.design)
+    assert "B-rep measured max_error=" in info
+    shape = read_step(out)
+    check_solid(shape, w, tol, eps=1e-5)        # 1e-5 of 54 cm^3: far below the bound
+    P = midplane_points(shape)
+    assert np.abs(P[:, 2]).max() < 1e-6
+    r = np.hypot(P[:, 0], P[:, 1])
+    flank = (r > 30 - 0.8 * 2) & (r < 30 + 0.9 * 2)
+    d = involute_distance(P[flank, :2], 30, 2.0, math.radians(20))
+    assert flank.sum() > 1000 and d.max() <= tol
+    assert 0 < w.report["brep"]["max_error"] <= tol
+    # sharp: half a degree off in the pressure angle is seen
+    assert involute_distance(P[flank, :2], 30, 2.0, math.radians(20.5)).max() > 2 * d.max()
+
+
+def test_worm_wheel_features_are_refused_before_any_work(tmp_path, capsys):
     from gear3d.cli import main
     rc = main(["worm", "--module", "2", "--starts", "1", "--wheel-teeth", "30", "--part", "wheel",
-               "-o", str(tmp_path / "w.step"), "--step", "brep"])
+               "--wheel-bore", "10", "-o", str(tmp_path / "w.step"), "--step", "brep"])
     err = capsys.readouterr().err
-    assert rc == 2 and err.count("\n") == 1 and "step" in err
+    assert rc == 2 and err.count("\n") == 1 and "step" in err and "wheel-bore" in err
     assert list(tmp_path.iterdir()) == []

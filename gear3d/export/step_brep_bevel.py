@@ -49,6 +49,8 @@ from .step_brep_runs import exact_set, loop_runs, nearest_on_piece, rot2
 
 #: most t-rows of a spiral flank's interpolation grid before the tolerance is refused
 MAX_ROWS = 400
+#: relative precision of the volume check (1e-5 of a volume: far below the bound checked)
+VOLUME_EPS = 1e-5
 
 
 def is_bevel(b) -> bool:
@@ -242,7 +244,7 @@ def _validate(shape, b, tol) -> dict:
     if not ok or ns != 1:
         raise GearError("step", "brep", "'faceted' for this body",
                         f"the B-rep is {'valid' if ok else 'invalid'} with {ns} solid(s)")
-    V, Vm = volume(shape), float(b.manifold.volume())
+    V, Vm = volume(shape, VOLUME_EPS), float(b.manifold.volume())
     allowed = (float(b.report["max_error"]) + tol) * float(b.manifold.surface_area())
     if not abs(V - Vm) <= allowed:
         raise ToleranceError("tolerance", tol, "a coarser value",

@@ -245,12 +245,12 @@ def count(shape, what: str) -> int:
     return n
 
 
-def volume(shape) -> float:
-    """Volume (mm^3) of an OCC shape."""
+def volume(shape, eps: float = 1e-7) -> float:
+    """Volume (mm^3) of an OCC shape (adaptive Gauss integration to relative precision ``eps``)."""
     from OCP.BRepGProp import BRepGProp
     from OCP.GProp import GProp_GProps
     p = GProp_GProps()
-    static_method(BRepGProp, "VolumeProperties")(shape, p, 1e-7, True)   # adaptive Gauss integration
+    static_method(BRepGProp, "VolumeProperties")(shape, p, eps, True)
     return float(p.Mass())
 
 

@@ -47,6 +47,8 @@ from .step_brep_runs import exact_set, loop_runs, nearest_on_piece, rot2
 SECTION_SHARE = 0.25
 #: rounds of doubling a band's rows and columns before the tolerance is refused
 MAX_ROUNDS = 4
+#: relative precision of the volume check (1e-5 of a volume: far below the bound checked)
+VOLUME_EPS = 1e-5
 
 
 def is_wheel(b) -> bool:
@@ -179,21 +181,24 @@ def _fit_bands(ctx, tol):
 
 
 def _faces(bands, z):
-    """Flank faces of every tooth (tooth 0's nets turned) and the two end faces."""
+    """Flank faces of every tooth (tooth 0's surfaces turned by 2πk/z about z, in OCC) and
+    the two end faces."""
     from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace
+    from OCP.gp import gp_Ax1, gp_Dir, gp_Pnt
+    axis = gp_Ax1(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1))
     faces, bottom, top = [], [], []
-    ang = 2 * math.pi / z
     for bi, (_heights, nets) in enumerate(bands):
+        surfs = [bspline_surface(net, uk, vk, 3, 3) for net, uk, vk in nets]
+        ends = {0: [bspline_curve(net[:, 0], uk, 3) for net, uk, _ in nets],
+                -1: [bspline_curve(net[:, -1], uk, 3) for net, uk, _ in nets]}
         for k in range(z):
-            c, s = math.cos(k * ang), math.sin(k * ang)
-            for net, uk, vk in nets:
-                N = net.copy()
-                N[..., 0], N[..., 1] = c * net[..., 0] - s * net[..., 1], s * net[..., 0] + c * net[..., 1]
-                faces.append(BRepBuilderAPI_MakeFace(bspline_surface(N, uk, vk, 3, 3), 1e-9).Face())
-                if bi == 0:
-                    bottom.append(bspline_curve(N[:, 0], uk, 3))
-                if bi == len(bands) - 1:
-                    top.append(bspline_curve(N[:, -1], uk, 3))
+            a = k * 2 * math.pi / z
+            for s in surfs:
+                faces.append(BRepBuilderAPI_MakeFace(s.Rotated(axis, a) if k else s, 1e-9).Face())
+            if bi == 0:
+                bottom += [c.Rotated(axis, a) if k else c for c in ends[0]]
+            if bi == len(bands) - 1:
+                top += [c.Rotated(axis, a) if k else c for c in ends[-1]]
     faces.append(plane_face(bands[0][0][0], wire_of_curves(bottom)))
     faces.append(plane_face(bands[-1][0][-1], wire_of_curves(top)))
     return faces
@@ -205,7 +210,7 @@ def _validate(shape, w, tol) -> dict:
     if not ok or ns != 1:
         raise GearError("step", "brep", "'faceted' for this wheel",
                         f"the B-rep is {'valid' if ok else 'invalid'} with {ns} solid(s)")
-    V, Vm = volume(shape), float(w.manifold.volume())
+    V, Vm = volume(shape, VOLUME_EPS), float(w.manifold.volume())
     allowed = (float(w.report["max_error"]) + tol) * float(w.manifold.surface_area())
     if not abs(V - Vm) <= allowed:
         raise ToleranceError("tolerance", tol, "a coarser value",
