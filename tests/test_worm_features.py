@@ -145,25 +145,29 @@ def test_wheel_web_bore_keyway_volumes_against_formulas():
 def test_worm_shaft_and_bore_volumes_against_formulas():
     kw = dict(module=2, starts=1, wheel_teeth=30, tolerance=TOL, worm_length=30)
     plain = gear3d.worm(part="worm", **kw)
-    s = gear3d.worm(part="pair", worm_bore=6, shaft_diameter=12, shaft_length=10, **kw)
-    L, rs, Ls, rb = 30.0, 6.0, 10.0, 3.0
-    added = 2 * math.pi * rs * rs * Ls - math.pi * rb * rb * (L + 2 * Ls)
+    s = gear3d.worm(part="pair", worm_bore=6, shaft_diameter=12, shaft_length=(10, 16), **kw)
+    L, rs, La, Lb, rb = 30.0, 6.0, 10.0, 16.0, 3.0
+    added = math.pi * rs * rs * (La + Lb) - math.pi * rb * rb * (L + La + Lb)
     V0, V1 = _volume(*plain.worm.arrays()), _volume(*s.worm.arrays())
-    slack = 2 * _circle_slack(rs, TOL, Ls) + _circle_slack(rb, TOL, L + 2 * Ls)
+    slack = _circle_slack(rs, TOL, La + Lb) + _circle_slack(rb, TOL, L + La + Lb)
     assert abs((V1 - V0) - added) <= slack, (V1 - V0, added, slack)
     V, F = s.worm.arrays()
     assert _closed(V, F) and s.worm.report["genus"] == 1
     z = V[:, 2] + s.worm.transform[2, 3]                 # the part's frame: centred on z = 0
-    assert z.min() == pytest.approx(-L / 2 - Ls, abs=1e-9) and z.max() == pytest.approx(L / 2 + Ls, abs=1e-9)
-    # in the pair the shafts lie along the worm's axis (x) through (0, a, 0)
+    assert z.min() == pytest.approx(-L / 2 - La, abs=1e-9) and z.max() == pytest.approx(L / 2 + Lb, abs=1e-9)
+    # in the pair the shafts lie along the worm's axis (x) through (0, a, 0): -z -> -x
     worm = s.parts()[1]
     Vw = np.asarray(worm.arrays()[0]) @ worm.transform[:3, :3].T + worm.transform[:3, 3]
-    assert Vw[:, 0].max() == pytest.approx(L / 2 + Ls, abs=1e-9)
+    assert Vw[:, 0].min() == pytest.approx(-L / 2 - La, abs=1e-9)
+    assert Vw[:, 0].max() == pytest.approx(L / 2 + Lb, abs=1e-9)
+    assert np.abs(Vw[:, 1] - s.design.center_distance).max() <= s.design.worm_tip_radius + 1e-9
 
 
 REFUSED = [
     (dict(part="worm", shaft_diameter=15.2, shaft_length=5), "shaft_diameter", "15.2"),
     (dict(part="worm", shaft_diameter=10), "shaft_length", "None"),
+    (dict(part="worm", shaft_diameter=10, shaft_length=(1, 2, 3)), "shaft_length", "two"),
+    (dict(part="worm", shaft_diameter=10, shaft_length=(5, -1)), "shaft_length", "-1"),
     (dict(part="worm", worm_bore=8, shaft_diameter=8.5, shaft_length=5), "shaft_diameter", "(10, 15.2)"),
     (dict(part="wheel", web_thickness=4, rim_diameter=56), "rim_diameter", "53.2"),
     (dict(part="wheel", rim_diameter=40), "rim_diameter", "web_thickness"),
@@ -186,7 +190,7 @@ def test_cli_features_and_template(tmp_path, capsys):
     out = tmp_path / "p.stl"
     rc = main(["worm", "--module", "2", "--starts", "1", "--wheel-teeth", "30", "--part", "pair", "--tolerance",
                "0.02", "--wheel-bore", "12", "--wheel-keyway", "--web-thickness", "6", "--shaft-diameter", "12",
-               "--shaft-length", "8", "-o", str(out)])
+               "--shaft-length", "8", "12", "-o", str(out)])
     assert rc == 0 and out.stat().st_size > 0
     rc = main(["worm", "--module", "2", "--starts", "1", "--wheel-teeth", "30", "--part", "worm",
                "--shaft-diameter", "17", "--shaft-length", "5", "-o", str(tmp_path / "no.stl")])

@@ -68,8 +68,9 @@ def add_parser(sub):
                         "the smallest root diameter less 4 modules)")
     p.add_argument("--shaft-diameter", type=float, default=None,
                    help="worm shaft diameter, mm, below the root diameter (with --shaft-length)")
-    p.add_argument("--shaft-length", type=float, default=None,
-                   help="worm shaft length at each end of the thread, mm (with --shaft-diameter)")
+    p.add_argument("--shaft-length", type=float, nargs="+", default=None, metavar="L",
+                   help="worm shaft length at each end of the thread, mm (with --shaft-diameter); two values: "
+                        "the -x end and the +x end of the pair (-z, +z of the worm alone)")
     p.add_argument("--part", required=True, choices=["worm", "wheel", "pair"], help="what to build")
     p.add_argument("-o", "--output", default=None,
                    help="mesh file: .stl or .3mf (pair: two named objects), .step; or, with --part wheel, .dxf: "
@@ -103,7 +104,7 @@ def _params(args) -> dict:
               "worm_length", "face_width", "tolerance", "friction", "disc_radius", "backlash", *FEATURES):
         v = getattr(args, k)
         if v is not None:
-            kw[k] = v
+            kw[k] = v[0] if isinstance(v, list) and len(v) == 1 else v
     return kw
 
 

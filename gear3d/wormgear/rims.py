@@ -9,8 +9,9 @@ manifold3d cuts) rather than a second one.
   cuts the DIN 6885-1 hub groove in the wheel's bore. Walls are half a module
   (:func:`gear3d.solids.features.min_wall`), as on the other bodies.
 * **Worm.** ``shaft_diameter`` and ``shaft_length``: a shaft of that diameter and length at
-  each end of the thread (below the root diameter); ``worm_bore`` then goes through the
-  thread and both shafts.
+  each end of the thread (below the root diameter); ``shaft_length`` is one length for both
+  ends or two, ``(at -z, at +z)`` in the worm's own frame (``-x``, ``+x`` in the pair);
+  ``worm_bore`` then goes through the thread and both shafts.
 
 Every refusal is one :class:`GearError` line naming the parameter, its value and the range.
 
@@ -86,7 +87,8 @@ def apply_wheel(man, d, feats: dict, tol: float):
 
 def check_worm(d, bore=None, shaft_diameter=None, shaft_length=None) -> dict:
     """The worm's shaft (mm): diameter below the root diameter (and above the bore plus two
-    walls), length up to 20 thread lengths; both or neither. A dict (empty without a shaft)."""
+    walls), length (one for both ends, or two: at -z, at +z) up to 20 thread lengths; both
+    or neither. A dict (empty without a shaft), ``shaft_length`` always a pair."""
     if shaft_diameter is None and shaft_length is None:
         return {}
     if shaft_diameter is None or shaft_length is None:
@@ -97,8 +99,11 @@ def check_worm(d, bore=None, shaft_diameter=None, shaft_length=None) -> dict:
     ds = check_number("shaft_diameter", shaft_diameter, lo, dr, lo_open=True, hi_open=True,
                       unit=f"mm (below the worm's root diameter {dr:.6g}"
                            + (f", above the bore plus two walls {lo:.6g})" if bore is not None else ")"))
-    Ls = check_number("shaft_length", shaft_length, 0, 20 * d.worm_length, lo_open=True,
-                      unit=f"mm (each end, up to 20 thread lengths, {20 * d.worm_length:.6g})")
+    pair = shaft_length if isinstance(shaft_length, (list, tuple)) else (shaft_length, shaft_length)
+    if len(pair) != 2:
+        raise GearError("shaft_length", list(shaft_length), "one length, or two (at -z, at +z)")
+    Ls = tuple(check_number("shaft_length", v, 0, 20 * d.worm_length, lo_open=True,
+                            unit=f"mm (each end, up to 20 thread lengths, {20 * d.worm_length:.6g})") for v in pair)
     return {"shaft_diameter": ds, "shaft_length": Ls}
 
 
@@ -107,10 +112,10 @@ def apply_worm(man, feats: dict, L: float, tol: float, bore=None):
     inscribed within ``tol``) and the ``bore`` (diameter) through all, cut by the feature
     system."""
     from manifold3d import CrossSection, FillRule, Manifold, OpType
-    ds, Ls = feats["shaft_diameter"], feats["shaft_length"]
-    shaft = Manifold.extrude(CrossSection([circle_loop(ds / 2, tol)], FillRule.Positive), Ls)
-    ends = [shaft.translate((0, 0, -Ls)), shaft.translate((0, 0, L))]
+    ds, (La, Lb) = feats["shaft_diameter"], feats["shaft_length"]
+    disc = CrossSection([circle_loop(ds / 2, tol)], FillRule.Positive)
+    ends = [Manifold.extrude(disc, La).translate((0, 0, -La)), Manifold.extrude(disc, Lb).translate((0, 0, L))]
     man = Manifold.batch_boolean([man, *ends], OpType.Add)
     if bore is not None:
-        man = apply_features(man.translate((0, 0, Ls)), Features(bore=bore), L + 2 * Ls, tol).translate((0, 0, -Ls))
+        man = apply_features(man.translate((0, 0, La)), Features(bore=bore), L + La + Lb, tol).translate((0, 0, -La))
     return man
