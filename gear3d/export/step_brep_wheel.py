@@ -21,15 +21,16 @@ through the stack of certified sections.
   tolerance nothing is written. The solid must be one valid solid whose volume matches the
   mesh wheel's within (mesh bound + tolerance) x area.
 
-Example::
+Example (the runs of a section: tip arc, flank, fillets and root, flank)::
 
     >>> from gear3d.wormgear.design import design
-    >>> from gear3d.wormgear.wheel_body import wheel_body
-    >>> from gear3d.export.step_brep_wheel import wheel_solid
-    >>> d = design(module=2, starts=1, wheel_teeth=24)
-    >>> shape, info = wheel_solid(wheel_body(d, tolerance=0.05), d)
-    >>> info["solids"], info["max_error"] <= 0.05
-    (1, True)
+    >>> from gear3d.export.step_brep_wheel import section_runs
+    >>> ex, runs = section_runs(design(module=2, starts=1, wheel_teeth=40), 0.0, 0.01)
+    >>> len(runs) // ex.teeth, runs[0].piece == len(ex.pieces) - 1      # starts at tooth 0's tip
+    (7, True)
+
+:func:`wheel_solid` builds the solid (``gear3d.write(parts, "x.step", step="brep",
+geometry=design)`` writes it).
 """
 from __future__ import annotations
 
@@ -72,7 +73,9 @@ def section_runs(d, h: float, tol_s: float):
         except GearError as e:
             if k == 0.0625:
                 raise GearError("step", "brep", "'faceted' for this wheel",
-                                f"the section at h = {h:.4g} mm: {e.why}") from None
+                                f"the section at h = {h:.4g} mm does not map onto its exact pieces ({e.why}); "
+                                "a wheel whose teeth point or lose their tip land across the face width "
+                                "stays faceted") from None
     tip = len(p.pieces)
     start = next((i for i, r in enumerate(runs) if r.piece == tip and r.k == 0), None)
     if start is None:
@@ -231,7 +234,8 @@ def wheel_solid(w, design=None):
     from .step_brep_occ import transformed
     d = design if design is not None else getattr(w, "design", None)
     if d is None:
-        raise GearError("step", "brep", "'faceted' for this wheel", "the wheel body does not carry its design")
+        raise GearError("step", "brep", "'faceted' for a worm wheel on its own",
+                        "pass the worm set's design (gear3d.worm(...).design) as geometry=")
     if w.report.get("features"):
         raise GearError("step", "brep", "'faceted' for a wheel with a bore or hub",
                         "the wheel's features are not made exact yet")
