@@ -68,6 +68,23 @@ def test_issue_case_reported_error_is_the_real_one():
     assert d <= m.report["max_error"] + 2e-4 + 1e-6
 
 
+def test_far_root_at_a_root_corner_is_not_followed():
+    """Stability seed 7, case 3670: an 18-tooth cutter's root corner has a dip of the nearer
+    contact root whose other root lies across the pitch circle; following it made the mate a
+    bare circle. The mate is a toothed wheel: tip and root radii from the centre distance and
+    the cutter's root and tip circles (a - (r1 - 1.25 m), a - (r1 + m)), and within its
+    tolerance of its 10x finer build (not 50x: below about 0.5 um this cutter's mate is
+    refused, docs/limits.md)."""
+    m, tol = 1.052316767533611, 0.00972054033819996
+    mt = mate(gear3d.profile("involute", teeth=18, module=m, tolerance=tol), 27, tolerance=tol)
+    fine = mate(gear3d.profile("involute", teeth=18, module=m, tolerance=tol / 10), 27, tolerance=tol / 10)
+    a = m * (18 + 27) / 2
+    r = np.hypot(*np.concatenate(mt.loops).T)
+    assert abs(r.max() - (a - (9 * m - 1.25 * m))) <= tol
+    assert abs(r.min() - (a - (9 * m + m))) <= tol
+    assert _both_ways(mt.loops, fine.loops) <= tol + tol / 10
+
+
 @pytest.mark.parametrize("family, kw, z, internal", CHAIN_TOOLS)
 def test_exact_chain_lies_on_the_cutters_outline(family, kw, z, internal):
     tol = 0.01
