@@ -79,8 +79,10 @@ BUDGET = 0.9
 def write(profile, path, **opts) -> str:
     """Plug-in entry point: write ``profile`` to ``path``; return a one-line summary."""
     r = write_dxf(profile, path, **opts)
-    return (f"dxf {r['dxf_version']}: {r['segments']} segments ({r['arcs']} arcs + {r['lines']} lines; "
-            f"polyline at the same tolerance: {r['polyline_vertices']} vertices), "
+    what = (f"{r['contours']} SPLINE{'s' if r['contours'] != 1 else ''} (exact rational quadratic through "
+            f"{r['arcs']} arcs + {r['lines']} lines" if r["spline"] else
+            f"{r['segments']} segments ({r['arcs']} arcs + {r['lines']} lines")
+    return (f"dxf {r['dxf_version']}: {what}; polyline at the same tolerance: {r['polyline_vertices']} vertices), "
             f"measured max error {r['max_error']:.3g} mm (curve->dxf {r['max_error_curve_to_dxf']:.3g} mm), "
             f"max tangent jump {r['max_tangent_jump_deg']:.2g} deg, {r['corners']} true corners")
 
