@@ -63,7 +63,7 @@ def section_runs(d, h: float, tol_s: float):
     plus the blank's tip arc, the runs rotated to start at tooth 0's tip."""
     from ..wormgear.wheel import section
     rt = float(d.blank_tip_radius(h))
-    for k in (1.0, 0.25, 0.0625):        # a finer polygon where the runs cannot be mapped
+    for k in (1.0, 0.25, 1 / 16, 1 / 64, 1 / 256):      # finer polygons where the runs cannot be mapped
         p = section(d, float(h), k * tol_s)
         ex = exact_set(types.SimpleNamespace(pieces=p.pieces, piece_params=p.piece_params, teeth=p.teeth,
                                              params={"tip_radius": rt}, loops=p.loops, tolerance=p.tolerance))
@@ -71,7 +71,7 @@ def section_runs(d, h: float, tol_s: float):
             runs = loop_runs(ex, p.tooth_loop)
             break
         except GearError as e:
-            if k == 0.0625:
+            if k == 1 / 256:
                 raise GearError("step", "brep", "'faceted' for this wheel",
                                 f"the section at h = {h:.4g} mm does not map onto its exact pieces ({e.why}); "
                                 "a wheel whose teeth point or lose their tip land across the face width "
