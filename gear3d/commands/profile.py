@@ -243,8 +243,10 @@ def add_parser(sub):
         p.add_argument(flag, type=typ, dest=dest, default=None, help=hlp)
     p.add_argument("--spline", action="store_true", help="DXF: SPLINE entities (control points) instead of arcs")
     p.add_argument("--construction", action="store_true",
-                   help="DXF: also write the centre cross and pitch circle (layer CONSTRUCTION); default: cut geometry only")
-    p.add_argument("--no-pitch-circle", action="store_true", help="DXF with --construction: leave the pitch circle off")
+                   help="DXF: also write the centre cross and pitch circle (layer CONSTRUCTION; a rack: a cross at "
+                        "tooth 0's centre and the pitch line); default: cut geometry only")
+    p.add_argument("--no-pitch-circle", action="store_true",
+                   help="DXF with --construction: leave the pitch circle (a rack's pitch line) off")
     p.add_argument("-o", "--output", default=None,
                    help="output file; extension picks the format (.svg: 1:1 cut outline in mm, .png: figure)")
     p.add_argument("--figure", default=None, metavar="FILE",

@@ -16,8 +16,9 @@ from ..params import BODY
 
 def add_rack_flags(p, pair: bool = False):
     """``--rack`` and its flags (``gear3d profile|body|pair``)."""
-    p.add_argument("--rack", action="store_true", help="a linear rack of the family: "
-                   "--teeth rack teeth" + (" ; the pinion has --teeth, the rack --rack-teeth" if pair else ""))
+    p.add_argument("--rack", action="store_true", help="a linear rack of the family: --teeth rack teeth"
+                   + (" ; the pinion has --teeth, the rack --rack-teeth" if pair else
+                      "; its DXF takes every DXF option, its SVG is the same certified fit"))
     p.add_argument("--back-height", type=number("float", 0, None, lo_open=True, unit="mm"), default=None,
                    help="rack: back height below the root line (mm), default 2 module")
     p.add_argument("--clearance-coeff", type=number("float", 0, None, unit="modules"), default=None,
