@@ -252,7 +252,7 @@ def add_parser(sub):
     p.add_argument("--figure", default=None, metavar="FILE",
                    help="also write the annotated figure (circles, undercut and pointing marks): .svg .png or .pdf")
     from .rackflags import add_rack_flags
-    add_rack_flags(p)
+    add_rack_flags(p, outline=True)
     add_mate_flags(p, flag_table(helix=True))
     return p
 

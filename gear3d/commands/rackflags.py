@@ -14,11 +14,12 @@ from ..export import atomic_path, check_output, check_path, write
 from ..params import BODY
 
 
-def add_rack_flags(p, pair: bool = False):
-    """``--rack`` and its flags (``gear3d profile|body|pair``)."""
+def add_rack_flags(p, pair: bool = False, outline: bool = False):
+    """``--rack`` and its flags (``gear3d profile|body|pair``; ``outline``: the command
+    writes the rack's outline, ``gear3d profile``)."""
     p.add_argument("--rack", action="store_true", help="a linear rack of the family: --teeth rack teeth"
-                   + (" ; the pinion has --teeth, the rack --rack-teeth" if pair else
-                      "; its DXF takes every DXF option, its SVG is the same certified fit"))
+                   + (" ; the pinion has --teeth, the rack --rack-teeth" if pair else "")
+                   + ("; its DXF takes every DXF option, its SVG is the same certified fit" if outline else ""))
     p.add_argument("--back-height", type=number("float", 0, None, lo_open=True, unit="mm"), default=None,
                    help="rack: back height below the root line (mm), default 2 module")
     p.add_argument("--clearance-coeff", type=number("float", 0, None, unit="modules"), default=None,
