@@ -43,6 +43,8 @@ TEETH_FROM = 10
 #: the issue 12 figures this benchmark is compared with (160 spur parts, quiet machine)
 BEFORE = {1: 6.6, 2: 13.1}
 TARGET_RATE, TARGET_EFFICIENCY = 30.0, 0.9
+#: issue 28: parts/s a core (1,000 spur parts at 0.01 mm)
+TARGET_PER_CORE = 40.0
 BEGIN, END = "<!-- batch:begin -->", "<!-- batch:end -->"
 
 LIBRARY = """
@@ -90,18 +92,21 @@ def load1() -> float | None:
         return None
 
 
-def timed_run(lib, out, workers, progress) -> dict:
-    """One batch from an empty folder; wall time, rate, load before/after, worker facts."""
+def timed_run(lib, out, workers, progress, scheduler=None) -> dict:
+    """One batch from an empty folder; wall time, rate, load before/after, worker facts.
+    ``scheduler``: the address of a running Dask scheduler (engine dask), else the local pool."""
     from gear3d.jobs.batch import run_library
     shutil.rmtree(out, ignore_errors=True)
     la0 = load1()
     t, c = time.perf_counter(), time.process_time()
-    r = run_library(lib, str(out), workers=workers, progress=progress)
+    kw = {"engine": "dask", "scheduler": scheduler} if scheduler else {}
+    r = run_library(lib, str(out), workers=workers, progress=progress, **kw)
     dt, cpu = time.perf_counter() - t, time.process_time() - c
     la1 = load1()
     timings = json.loads((out / "timings.json").read_text())
     n = r["built"]
-    return {"workers": workers, "parts": n, "failed": r["failed"], "seconds": dt, "parts_per_s": n / dt,
+    return {"workers": workers, "engine": "dask" if scheduler else "local", "parts": n, "failed": r["failed"],
+            "seconds": dt, "parts_per_s": n / dt,
             "load_before": la0, "load_after": la1, "parent_cpu_s": cpu,
             "part_seconds_median": sorted(timings["parts"].values())[len(timings["parts"]) // 2],
             "worker_cpu_s": timings.get("last_run_cpu_seconds"),
@@ -109,41 +114,64 @@ def timed_run(lib, out, workers, progress) -> dict:
             "processes": len(timings.get("last_run_workers", {}))}
 
 
+def dask_cluster(workers: int):
+    """A real Dask scheduler and ``workers`` worker processes (1 thread each) listening on
+    127.0.0.1 (``distributed.LocalCluster``); gear3d connects to it by address over TCP, as
+    to any cluster (``run_library(engine="dask", scheduler=...)``)."""
+    from gear3d.jobs.batch import quiet_local_cluster
+    quiet_local_cluster()
+    from dask.distributed import LocalCluster
+    return LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, host="127.0.0.1",
+                        dashboard_address=None, protocol="tcp")
+
+
 def markdown(res) -> str:
     rows, base = res["runs"], res["baseline"]
-    r1 = next((r for r in rows if r["workers"] == 1), rows[0])
+    local = [r for r in rows if r.get("engine", "local") == "local"] or rows
+    r1 = next((r for r in local if r["workers"] == 1), local[0])
     unit = r1["parts_per_s"] / r1["workers"]
     lines = [
-        "## Batch throughput (`gear3d batch`, local process pool)", "",
+        "## Batch throughput (`gear3d batch`: local process pool, and Dask over TCP)", "",
         f"{res['parts']:,} involute spur gears (module 0.5-2.4 mm x {res['tooth_counts']} tooth counts "
         f"from {TEETH_FROM}), width 4 mm, STL at {res['tolerance'] * 1000:g} µm; {res['cpu']}, "
         f"{res['cores']} cores, Python {res['python']}; gear3d {res.get('commit', '?')}; "
         f"`python benchmarks/bench_batch.py` ({res['date']}). Wall time from an empty folder, "
-        "pool start-up included.", "",
-        "| workers | parts | failed | wall time (s) | parts/s | efficiency | vs issue 12 before | "
+        "pool start-up included. *dask*: a real scheduler and worker processes (1 thread each) on "
+        "127.0.0.1, started before the run (`distributed.LocalCluster`), reached by address "
+        "(`gear3d batch --engine dask --scheduler tcp://...`).", "",
+        "| engine | workers | parts | failed | wall time (s) | parts/s | efficiency | vs issue 12 before | "
         "median s/part | parent CPU / wall | load avg before / after |",
-        "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
+        "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
     for r in rows:
         eff = r["parts_per_s"] / (r["workers"] * unit)
         before = BEFORE.get(r["workers"])
         vs = "-" if before is None else f"{r['parts_per_s'] / before:.2f}x"
-        lines.append(f"| {r['workers']} | {r['parts']:,} | {r['failed']} | {r['seconds']:.1f} | "
+        lines.append(f"| {r.get('engine', 'local')} | {r['workers']} | {r['parts']:,} | {r['failed']} | {r['seconds']:.1f} | "
                      f"{r['parts_per_s']:.1f} | {eff:.2f} | "
                      f"{vs} | "
                      f"{r['part_seconds_median']:.3f} | {r['parent_cpu_s'] / r['seconds']:.3f} | "
                      f"{r['load_before']} / {r['load_after']} |")
-    two = next((r for r in rows if r["workers"] == 2), None)
+    two = next((r for r in local if r["workers"] == 2), None)
     lines += ["", "CPU view (the workers' own CPU time, nearly independent of other load on the machine): "
               "*CPU-bound rate* = workers / (worker CPU s per part), the rate when each worker has a core "
               "to itself; *measured / CPU-bound* below 1 is time lost waiting for a core.", "",
-              "| workers | worker CPU s per part | CPU-bound parts/s | measured / CPU-bound | CPU efficiency |",
-              "|---:|---:|---:|---:|---:|"]
+              "| engine | workers | worker CPU s per part | CPU-bound parts/s | measured / CPU-bound | CPU efficiency |",
+              "|---|---:|---:|---:|---:|---:|"]
     c1 = r1["worker_cpu_s"] / r1["parts"]
     for r in rows:
         c = r["worker_cpu_s"] / r["parts"]
         bound = r["workers"] / c
-        lines.append(f"| {r['workers']} | {c:.4f} | {bound:.1f} | {r['parts_per_s'] / bound:.2f} | {c1 / c:.2f} |")
+        lines.append(f"| {r.get('engine', 'local')} | {r['workers']} | {c:.4f} | {bound:.1f} | "
+                     f"{r['parts_per_s'] / bound:.2f} | {c1 / c:.2f} |")
     lines += [""]
+    lines.append(f"- A core: 1 worker's CPU-bound rate is {1 / c1:.1f} parts/s against the issue-28 target of "
+                 f"{TARGET_PER_CORE:g} ({'meets' if 1 / c1 >= TARGET_PER_CORE else 'below'}); measured wall rate "
+                 f"{r1['parts_per_s']:.1f} parts/s at load {r1['load_before']}.")
+    dk = next((r for r in rows if r.get("engine") == "dask"), None)
+    if dk is not None:
+        lines.append(f"- Dask, {dk['workers']} workers on 127.0.0.1: {dk['parts_per_s']:.1f} parts/s "
+                     f"(load {dk['load_before']} -> {dk['load_after']}), {dk['parts_per_s'] / (dk['workers'] * unit):.2f} "
+                     "of the local 1-worker rate per worker.")
     if two is not None:
         eff2 = two["parts_per_s"] / (2 * unit)
         lines.append(f"- 2 workers: {two['parts_per_s']:.1f} parts/s = {two['parts_per_s'] / TARGET_RATE:.2f}x "
@@ -155,7 +183,7 @@ def markdown(res) -> str:
                      f"({base['parts_per_s']:.1f} parts/s, load {base['load_before']}).")
     heavy = sorted({m for r in rows for m in r["heavy_imports"]})
     lines.append(f"- Heavy libraries imported by the workers: {', '.join(heavy) if heavy else 'none'}.")
-    lines.append(f"- Manifests identical across worker counts: {'yes' if res['manifests_identical'] else 'NO'}.")
+    lines.append(f"- Manifests identical across worker counts and engines: {'yes' if res['manifests_identical'] else 'NO'}.")
     lines.append("- The load average is the machine's 1-minute figure; other jobs on the machine "
                  "lower every rate and the efficiency.")
     return "\n".join(lines) + "\n"
@@ -166,7 +194,8 @@ def plot(res, path: Path):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    rows = res["runs"]
+    rows = [r for r in res["runs"] if r.get("engine", "local") == "local"] or res["runs"]
+    dask = [r for r in res["runs"] if r.get("engine") == "dask"]
     r1 = next((r for r in rows if r["workers"] == 1), rows[0])
     unit = r1["parts_per_s"] / r1["workers"]
     w = [r["workers"] for r in rows]
@@ -177,6 +206,10 @@ def plot(res, path: Path):
         ax.plot(w, [r["workers"] * r["parts"] / r["worker_cpu_s"] for r in rows], "^--", color="tab:green",
                 label="CPU-bound (workers / CPU s per part)")
     ax.plot(list(BEFORE), list(BEFORE.values()), "s--", color="grey", label="issue 12, before")
+    for r in dask:
+        ax.plot([r["workers"]], [r["parts_per_s"]], "D", color="tab:purple", label="Dask, TCP on 127.0.0.1")
+        ax.annotate(f"load {r['load_before']}", (r["workers"], r["parts_per_s"]), textcoords="offset points",
+                    xytext=(6, 4), fontsize=7)
     ax.axhline(TARGET_RATE, color="tab:red", lw=0.8, label=f"target {TARGET_RATE:g} parts/s on 2")
     for r in rows:
         ax.annotate(f"load {r['load_before']}", (r["workers"], r["parts_per_s"]), textcoords="offset points",
@@ -212,6 +245,8 @@ def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--parts", type=int, default=1000, help="about this many parts (20 modules x N teeth)")
     ap.add_argument("--workers", type=int, nargs="+", default=[1, 2])
+    ap.add_argument("--dask", type=int, default=2, help="also run through a Dask scheduler with this many "
+                    "workers on 127.0.0.1 (0: skip)")
     ap.add_argument("--tolerance", type=float, default=0.01, help="mm (default 0.01 = 10 µm)")
     ap.add_argument("--baseline", type=int, default=100, help="parts built in-process for the overhead ratio (0: skip)")
     ap.add_argument("--out", default=str(ROOT / "out" / "bench" / "batch.md"))
@@ -250,6 +285,17 @@ def main(argv=None):
             runs.append(r)
             print(f"{w} worker(s): {r['parts']} parts in {r['seconds']:.1f} s = {r['parts_per_s']:.1f} parts/s, "
                   f"{r['failed']} failed (load {r['load_before']} -> {r['load_after']})", flush=True)
+        if a.dask:
+            cluster = dask_cluster(a.dask)
+            try:
+                out = tmp / "dask"
+                r = timed_run(lib, out, a.dask, progress, scheduler=cluster.scheduler_address)
+            finally:
+                cluster.close()
+            manifests.append((out / "manifest.json").read_bytes())
+            runs.append(r)
+            print(f"dask {a.dask} worker(s) at {cluster.scheduler_address}: {r['parts']} parts in {r['seconds']:.1f} s = "
+                  f"{r['parts_per_s']:.1f} parts/s (load {r['load_before']} -> {r['load_after']})", flush=True)
         res = {"parts": n, "tooth_counts": n_teeth, "tolerance": a.tolerance, "cpu": cpu_model(),
                "cores": os.cpu_count(), "python": platform.python_version(),
                "date": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()), "baseline": base, "runs": runs,

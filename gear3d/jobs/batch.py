@@ -93,9 +93,8 @@ def build_part(job: Job, part: LibraryPart, out_dir: str) -> dict:
     except Exception as e:  # noqa: BLE001 -- a failed part is recorded, the batch goes on
         rec.update(status="failed", error=f"{type(e).__name__}: {e}", files=[], volume=None,
                    triangles=None, max_error=None)
-    os.makedirs(os.path.join(out_dir, RECORDS), exist_ok=True)
-    write_json(os.path.join(out_dir, RECORDS, part.name + ".json"), rec)
-    return {"record": _jsonable(rec), "seconds": time.perf_counter() - t0,
+    rec = write_record(out_dir, part.name, rec)
+    return {"record": rec, "seconds": time.perf_counter() - t0,
             "cpu_seconds": time.process_time() - c0, "stages": dict(g.counts),
             "cache_hits": dict(g.cache_hits), "worker": worker_id(),
             "heavy_imports": [m for m in HEAVY_MODULES if m in sys.modules]}
@@ -105,10 +104,48 @@ def build_part(job: Job, part: LibraryPart, out_dir: str) -> dict:
 HEAVY_MODULES = ("trimesh", "scipy", "shapely", "matplotlib", "ezdxf", "lxml")
 
 
+_HOST = []
+
+
 def worker_id() -> str:
     """``host:pid`` of the process building a part (timings.json counts parts per worker)."""
-    import socket
-    return f"{socket.gethostname()}:{os.getpid()}"
+    if not _HOST:
+        import socket
+        _HOST.append(socket.gethostname())
+    return f"{_HOST[0]}:{os.getpid()}"
+
+
+def write_record(out_dir, name: str, rec: dict) -> dict:
+    """Write part ``name``'s record to ``out_dir/.records/NAME.json`` (strict JSON, the bytes
+    of :func:`gear3d.jobs.scene.write_json`) and return it cleaned.
+
+    Atomic as every file here (a temporary file renamed into place; a kill leaves at most
+    ``.NAME.json.PID.tmp``, removed by the next run; both announced as file events, see
+    :func:`gear3d.export.file_event`), but without the destination probe of
+    :func:`gear3d.export.atomic_path`: the folder was checked when the batch started, and a
+    probe costs two more file creations a part."""
+    from ..export import LIVE_TEMPS, file_event
+    clean = _jsonable(rec)
+    text = json.dumps(clean, indent=1, allow_nan=False) + "\n"
+    folder = os.path.join(out_dir, RECORDS)
+    path, tmp = os.path.join(folder, name + ".json"), os.path.join(folder, f".{name}.json.{os.getpid()}.tmp")
+    LIVE_TEMPS.add(tmp)
+    try:
+        try:
+            f = open(tmp, "w", encoding="utf-8")
+        except FileNotFoundError:
+            os.makedirs(folder, exist_ok=True)
+            f = open(tmp, "w", encoding="utf-8")
+        file_event("tmp", tmp)
+        with f:
+            f.write(text)
+        os.replace(tmp, path)
+        file_event("done", path)
+    finally:
+        if os.path.lexists(tmp):
+            os.remove(tmp)
+        LIVE_TEMPS.discard(tmp)
+    return clean
 
 
 def _jsonable(rec):
@@ -220,7 +257,8 @@ def worker_modules(lib: Library) -> list:
     mods = ["numpy", "gear3d.jobs.batch", "gear3d.jobs.scene", "gear3d.export", "gear3d.export.json_format"]
     mods += [f"gear3d.profiles.{m}" for m in FAMILY_MODULES]
     if kinds & set(MESH_KINDS) and any(p.body is not None for p in lib.parts):
-        mods += ["manifold3d", "gear3d.solids"]
+        # gear3d.solids loads its names on first use: the builders by name
+        mods += ["manifold3d", "gear3d.solids", "gear3d.solids.body", "gear3d.exact"]
     for k in sorted(kinds):
         fmt = FORMATS.get(EXT[k])
         if fmt is not None:
