@@ -21,19 +21,34 @@ def run(quick=False, json_path=None, out_dir="out/bench") -> list:
     return bench_run(quick=quick, json_path=json_path, out_dir=out_dir)
 
 
+#: the BENCHMARKS.md section that comes first (gear3d against its peers), kept above the rest
+HEADLINE = "headline"
+
+
 def publish(out_dir="out/bench"):
-    """Copy the latest table and plot to BENCHMARKS.md and benchmarks/speed_vs_error.png."""
+    """Copy the latest table and plot to BENCHMARKS.md and benchmarks/speed_vs_error.png.
+
+    The page keeps its order: the title, the peers headline (the ``headline`` marker
+    section, kept as it is), then speed against error (this table, its headings one level
+    down), then everything from the first other marked section on, as it was (the other
+    benchmarks' sections and the headings between them)."""
     out = Path(out_dir)
     md = (out / "speed_vs_error.md").read_text().replace("](speed_vs_error.png)",
                                                          "](benchmarks/speed_vs_error.png)")
-    md = md.replace("# Speed against error", "# Benchmarks: speed against error", 1)
+    md = "\n".join("#" + line if line.startswith("## ") else line for line in md.splitlines()) + "\n"
+    md = md.replace("# Speed against error", "## Speed against error", 1)
     md += ("\nRegenerate with `python benchmarks/speed_vs_error.py --publish` "
            "(or `gear3d bench`, which writes `out/bench/` only).\n")
     # sections other benchmarks own (between <!-- NAME:begin --> and <!-- NAME:end -->) are kept
     import re
     old = (ROOT / "BENCHMARKS.md").read_text() if (ROOT / "BENCHMARKS.md").exists() else ""
+    head, tail = "", ""
     for m in re.finditer(r"(?ms)^<!-- ([\w-]+):begin -->$.*?^<!-- \1:end -->$", old):
-        md += "\n" + m.group(0) + "\n"
+        if m.group(1) == HEADLINE:
+            head = m.group(0) + "\n\n"
+        elif not tail:
+            tail = old[m.start():]
+    md = "# Benchmarks\n\n" + head + md + ("\n" + tail if tail else "")
     tmp = ROOT / "BENCHMARKS.md.tmp"
     tmp.write_text(md)
     os.replace(tmp, ROOT / "BENCHMARKS.md")
