@@ -269,7 +269,7 @@ def test_dxf_option_read_back(family, kw, flags, kerf, tmp_path, capsys):
     lines_out = out.splitlines()
     assert len(lines_out) == 1 and lines_out[0].startswith(f"wrote {path}: {family} rack {N} teeth")
     version = flags[flags.index("--dxf-version") + 1] if "--dxf-version" in flags else "R2000"
-    assert f"dxf {version}: " + ("1 SPLINE (" if "--spline" in flags else "") in lines_out[0]
+    assert f"dxf {version}: " + ("1 SPLINE(s) (" if "--spline" in flags else "") in lines_out[0]
     doc = ezdxf.readfile(str(path))
     assert doc.dxfversion == ezdxf.const.acad_release_to_dxf_version[version]
     lines, arcs, types, on_spline = read_dxf(str(path))

@@ -60,7 +60,7 @@ import math
 import numpy as np
 
 from ..errors import GearError, ToleranceError, check_choice, check_number
-from . import arccert, biarcfit
+from . import arccert, biarcfit, is_rack
 from .arcfit import ArcSpline, fit_arcs, segments_distance, tangent_jumps
 from .dxfread import joint_jumps, measure, measure_segments, read_back, read_segments, sample_segments  # noqa: F401
 from .outline import profile_outline, start_point
@@ -79,9 +79,8 @@ BUDGET = 0.9
 def write(profile, path, **opts) -> str:
     """Plug-in entry point: write ``profile`` to ``path``; return a one-line summary."""
     r = write_dxf(profile, path, **opts)
-    what = (f"{r['contours']} SPLINE{'s' if r['contours'] != 1 else ''} (exact rational quadratic through "
-            f"{r['arcs']} arcs + {r['lines']} lines" if r["spline"] else
-            f"{r['segments']} segments ({r['arcs']} arcs + {r['lines']} lines")
+    what = (f"{r['contours']} SPLINE(s) (exact rational quadratic through {r['arcs']} arcs + {r['lines']} lines"
+            if r["spline"] else f"{r['segments']} segments ({r['arcs']} arcs + {r['lines']} lines")
     return (f"dxf {r['dxf_version']}: {what}; polyline at the same tolerance: {r['polyline_vertices']} vertices), "
             f"measured max error {r['max_error']:.3g} mm (curve->dxf {r['max_error_curve_to_dxf']:.3g} mm), "
             f"max tangent jump {r['max_tangent_jump_deg']:.2g} deg, {r['corners']} true corners")
@@ -101,10 +100,9 @@ def write_dxf(profile, path, tolerance=None, kerf: float = 0.0, lead_in=None,
     holes). ``dxf_version``: R2000 (default) ... R2018, or R12 (LINE/ARC entities in
     cutting order). ``spline``: one exact rational SPLINE per contour (R2000+).
     ``construction``: also write the centre cross and (``pitch_circle``) the pitch circle
-    on the non-plotting CONSTRUCTION layer (a rack: the cross at tooth 0's centre on the
-    pitch line, and the pitch line from end to end); by default the file holds the cut
-    geometry only. A rack takes every option: its start point is where the ray from tooth
-    0's centre on the pitch line meets its outline.
+    on the non-plotting CONSTRUCTION layer; by default the cut geometry only. A rack takes
+    every option; its centre is tooth 0's centre on the pitch line, its pitch circle the
+    pitch line from end to end.
     """
     if extra:
         k = sorted(extra)[0]
@@ -157,10 +155,6 @@ def rebuilt(profile, tolerance: float):
     (:class:`gear3d.spec.GearSpec`); a rack part or a worm wheel's section rebuilds itself."""
     spec = getattr(profile, "spec", None)
     return spec.profile(tolerance) if spec is not None else profile.at_tolerance(tolerance)
-
-
-def _is_rack(profile) -> bool:
-    return hasattr(profile, "straight_edges") and not hasattr(profile, "pitch_radius")
 
 
 def fit_profile(profile, tolerance=None, kerf: float = 0.0, start_angle_deg: float = 0.0,
@@ -219,7 +213,7 @@ def _exact_fits(profile, tol: float, start: float, max_arc_deg: float, kerf: flo
     """(fits, report) from the exact outline (offset by ``kerf``) and its certificate, or
     None when the outline cannot be walked or offset, a span cannot be certified within
     the tolerance, or the checks against the polygon fail."""
-    contours = rack_outline(profile, start) if _is_rack(profile) else profile_outline(profile, start)
+    contours = rack_outline(profile, start) if is_rack(profile) else profile_outline(profile, start)
     if contours is None:
         return None
     if kerf != 0.0:
@@ -587,10 +581,10 @@ def _make_doc(fits, profile, version, spline, pitch_circle, construction, leads,
         msp.add_line((-mark, 0), (mark, 0), dxfattribs=cat)
         msp.add_line((0, -mark), (0, mark), dxfattribs=cat)
         boxes.append(np.array([[-mark, -mark], [mark, mark]]))
-        if pitch_circle and _is_rack(profile):          # a rack's pitch line, end to end
-            x0, x1 = profile.report["x_range"]
-            msp.add_line((x0, 0), (x1, 0), dxfattribs=cat)
-            boxes.append(np.array([[x0, 0.0], [x1, 0.0]]))
+        if pitch_circle and is_rack(profile):          # a rack's pitch line, end to end
+            x = profile.report["x_range"]
+            msp.add_line((x[0], 0), (x[1], 0), dxfattribs=cat)
+            boxes.append(np.array([[x[0], 0.0], [x[1], 0.0]]))
         elif pitch_circle:
             rp = profile.pitch_radius
             msp.add_circle((0, 0), rp, dxfattribs=cat)
