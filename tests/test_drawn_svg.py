@@ -166,6 +166,15 @@ def test_h_v_and_transforms():
     assert [p.b for p, _ in a] == [(4.0, 0.0), (4.0, 3.0), (0.0, 3.0), (0.0, 0.0)]
 
 
+def test_definitions_are_not_read(tmp_path):
+    """Paths under <defs> or a clip path (not drawn where they stand) are not part of the
+    outline; comments are skipped."""
+    body = (f'<!-- a comment --><defs><path d="M 0 0 L 1 0 L 1 1 Z"/></defs><clipPath id="c"><path d="M 0 0 '
+            f'L 2 0 L 2 2 Z"/></clipPath><path d="{star_path()}"/>')
+    pieces, _labels, _note = read_svg_pieces(star_svg(tmp_path / "d.svg", body=body), (0.0, 0.0))
+    assert len(pieces) == 4 * Z
+
+
 def test_group_transform_is_followed(tmp_path):
     """A star drawn at half size, shifted, turned by a tooth pitch in a group whose
     transform undoes it, reads as the plain star."""

@@ -13,7 +13,7 @@ library's ``xml.etree``; the path data tokenizer is written here.
   closes the subpath with a line when its end is not its start. Curves (``C S Q T``), an
   elliptical arc (rx != ry), other shapes (``<circle>``, ``<rect>``, ...) and transforms
   that are not a similarity (a shear, unequal scales: a circle would become an ellipse)
-  are refused in one line naming the command (its index in the path data, counting
+  are refused (what ``<defs>``, clip paths, masks, symbols and markers hold is not read) in one line naming the command (its index in the path data, counting
   implicit repeats) and where it starts.
 * **Units.** The root's ``width``/``height`` and ``viewBox`` give the millimetres per user
   unit: ``mm``, ``cm``, ``in``, ``pt``, ``pc``, ``q``, or ``px`` (or a bare number) at the
@@ -121,12 +121,18 @@ def _scale(root, path):
     return kx, note
 
 
+#: elements whose content is not drawn where it stands (definitions, clips, masks, ...)
+HIDDEN = ("defs", "clipPath", "mask", "symbol", "marker", "pattern", "metadata", "title", "desc")
+
+
 def _walk(el, T, path):
-    """(element, transform to the root's user space) of ``el`` and everything below it."""
+    """(element, transform to the root's user space) of ``el`` and everything drawn below
+    it (not the content of ``<defs>``, clip paths, masks, symbols, markers, patterns)."""
     T = T @ _transform(el.get("transform"), path)
     yield el, T
     for ch in el:
-        yield from _walk(ch, T, path)
+        if isinstance(ch.tag, str) and ch.tag.removeprefix(SVG) not in HIDDEN:
+            yield from _walk(ch, T, path)
 
 
 def _transform(text, path):
