@@ -17,7 +17,7 @@ from . import register
 def conjugate(tool=None, teeth=None, internal=False, tolerance=None, tip_radius=None, rim_radius=None,
               tool_teeth=None, tool_pitch_radius=None, tool_center=(0.0, 0.0)):
     """The wheel with ``teeth`` teeth conjugate to ``tool``: a Profile, or the path of a DXF
-    drawing of the cutter with ``tool_teeth`` teeth on ``tool_pitch_radius`` (mm) about
+    or SVG (``.svg``) drawing of the cutter with ``tool_teeth`` teeth on ``tool_pitch_radius`` (mm) about
     ``tool_center`` (mm); see gear3d.mate and :mod:`gear3d.profiles.drawn`."""
     from .mate import mate
     from ..model import Profile
