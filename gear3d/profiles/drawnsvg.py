@@ -117,7 +117,7 @@ def _scale(root, path):
                         f"x {kx:.9g} mm and y {ky:.9g} mm per user unit")
     unit = w[1] if vb is not None else "px"
     note = "mm" if abs(kx - 1.0) <= SAME else f"{kx:.9g} mm per user unit" + \
-        (" (px at 96 dpi: 25.4/96 mm)" if unit in ("px", "") else "")
+        ("; px at 96 dpi, 1 px = 25.4/96 mm" if unit in ("px", "") else "")
     return kx, note
 
 
