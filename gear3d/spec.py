@@ -20,8 +20,8 @@ from . import profiles
 class GearSpec:
     """A gear's design without its tolerance: the family name and its keywords (mm, deg).
 
-    Frozen: ``params`` is kept as the tuple of (keyword, value) pairs given, in order; the
-    :attr:`params` property hands out a fresh dict.
+    Frozen: the keywords are kept as the tuple ``items`` of (keyword, value) pairs, in the
+    order given; the :attr:`params` property hands out a fresh dict.
 
     Parameters
     ----------
