@@ -40,6 +40,8 @@ from .errors import GearError, ToleranceError, check_choice, check_number
 from .export import write
 from .geometry import check_points, rotate, segment_foot, signed_area
 from .params import DEFAULT_TOLERANCE, MAX_TOLERANCE_TEXT, MIN_TOLERANCE, max_tolerance
+from .rackpieces import flat_piece, involute_half, mirror_piece, mirror_points, newton_distance, pitch_thickness, \
+    smooth_piece
 from .profiles import reject_unknown
 from .solids.solid import Solid
 from .spec import profile
@@ -59,9 +61,6 @@ RACK_KEYS = {
 }
 #: default back height below the root line, in modules
 BACK_HEIGHT_COEFF = 2.0
-#: zooms of nine exact points around a foot before Newton's method, and Newton steps
-ZOOMS = 3
-NEWTON_STEPS = 4
 
 
 @dataclass(eq=False)
@@ -187,103 +186,6 @@ class RackPart:
         return rack_figure(self, path, pinion, pinion_place, title)
 
 
-# ----------------------------------------------------------------------------- pieces
-
-def newton_distance(f, t0, t1, q) -> np.ndarray:
-    """Distance (mm) from points ``q`` (M, 2) to the exact curve ``f`` (t in [0, 1]) near
-    the parameter intervals [t0, t1] (one per point): nine exact points over the interval
-    widened by its own width, three zooms on the nearest, then Newton's method on
-    (f(t) - q).f'(t) = 0 (central differences). The result is the nearest of the exact
-    points found, so it never understates the distance (a parametrisation whose speed
-    vanishes, like a cycloid's at the pitch line, only slows Newton down)."""
-    t0, t1 = np.asarray(t0, float), np.asarray(t1, float)
-    w = t1 - t0
-    lo, hi = np.maximum(t0 - w, 0.0), np.minimum(t1 + w, 1.0)
-    n = len(q)
-    fr = np.linspace(0.0, 1.0, 9)
-    best_t = t0.copy()
-    best_d = np.full(n, np.inf)
-    for _ in range(ZOOMS + 1):
-        T = lo[:, None] + (hi - lo)[:, None] * fr[None, :]
-        G = f(T.ravel()).reshape(n, len(fr), 2)
-        D = np.hypot(G[..., 0] - q[:, None, 0], G[..., 1] - q[:, None, 1])
-        k = np.argmin(D, axis=1)
-        rows = np.arange(n)
-        better = D[rows, k] < best_d
-        best_d = np.where(better, D[rows, k], best_d)
-        best_t = np.where(better, T[rows, k], best_t)
-        span = (hi - lo) / 8
-        lo, hi = np.maximum(best_t - span, 0.0), np.minimum(best_t + span, 1.0)
-    tt = best_t.copy()
-    h = 1e-7
-    for _ in range(NEWTON_STEPS):
-        tp, tm = np.minimum(tt + h, 1.0), np.maximum(tt - h, 0.0)
-        g = f(np.concatenate([tt, tp, tm]))
-        G0, Gp, Gm = g[:n], g[n:2 * n], g[2 * n:]
-        hp = (tp - tm)[:, None]
-        d1 = (Gp - Gm) / hp
-        d2 = (Gp - 2 * G0 + Gm) / (hp / 2) ** 2
-        r = G0 - q
-        num = np.einsum("ij,ij->i", r, d1)
-        den = np.einsum("ij,ij->i", d1, d1) + np.einsum("ij,ij->i", r, d2)
-        tt = np.clip(tt - np.where(den > 0, num / np.where(den > 0, den, 1.0), 0.0), lo, hi)
-    return np.minimum(np.hypot(*(f(tt) - q).T), best_d)
-
-
-def _smooth_piece(el, t0, t1, dx):
-    """Evaluator of tool element ``el`` (a :class:`gear3d.racks.Smooth`) over [t0, t1] in the
-    rack frame: x = u + dx, y = v."""
-    def f(t):
-        u, v, _du, _dv = el.uv(t0 + (t1 - t0) * np.asarray(t, float))
-        return np.stack([u + dx, v], axis=-1)
-    return f
-
-
-def _mirror(f):
-    """The evaluator mirrored about x = 0 and reversed (left flank from the right one)."""
-    def g(t):
-        p = f(1.0 - np.asarray(t, float))
-        return np.stack([-p[..., 0], p[..., 1]], axis=-1)
-    return g
-
-
-def _flat(x0, x1, y):
-    def f(t):
-        t = np.asarray(t, float)
-        return np.stack([x0 + (x1 - x0) * t, np.full_like(t, y)], axis=-1)
-    return f
-
-
-# ----------------------------------------------------------------------------- families
-
-def _involute_half(m, a_deg, ha, hf, rho, b, name_a="addendum_coeff", name_f="dedendum_coeff"):
-    """Right half (x from 0 to p/2) of a trapezoid rack tooth from the ISO 53 tool rack."""
-    from .racks import Corner, involute_rack
-    p = math.pi * m
-    ta = math.tan(math.radians(a_deg))
-    half_top = p / 4 - b / 2 - ha * m * ta      # half width of the tooth's tip land
-    half_root = p / 4 - b / 2 + hf * m * ta     # half width at the root line
-    if half_top <= 0:
-        lim = (p / 4 - b / 2) / (m * ta)
-        raise GearError(name_a, ha, f"a number in (0, {lim:.6g}) for this flank angle and thickness",
-                        "the rack tooth would be pointed")
-    if half_root >= p / 2:
-        lim = (p / 4 + b / 2) / (m * ta)
-        raise GearError(name_f, hf, f"a number in (0, {lim:.6g}) for this flank angle and thickness",
-                        "the flanks of neighbouring teeth would meet above the root line")
-    # the cutter whose tooth is this rack's tooth: its height is our addendum, its depth
-    # our dedendum, its backlash thins our tooth (u = x - p/2)
-    try:
-        tool = involute_rack(m, a_deg, addendum_coeff=hf, dedendum_coeff=ha, tip_radius_coeff=rho,
-                             backlash=-b)
-    except GearError as e:
-        if e.param == "tip_radius_coeff":
-            raise
-        raise GearError(name_a, ha, "a smaller value", e.why) from None
-    els = tool.elements[:len(tool.elements) // 2]
-    return [_smooth_piece(e, 0.0, 1.0, p / 2) for e in els if not isinstance(e, Corner)], tool
-
-
 def rack_params(family, kw):
     """Validated parameters of a rack part of ``family`` (mm, deg)."""
     fam = check_choice("family", family, RACK_FAMILIES)
@@ -406,14 +308,14 @@ def rack(family: str, teeth: int = 10, module: float = 1.0, tolerance: float = D
     phase_x = p / 2
     info = {}
     if fam == "involute":
-        half, _tool = _involute_half(m, P["pressure_angle_deg"], P["addendum_coeff"], P["dedendum_coeff"],
+        half, _tool = involute_half(m, P["pressure_angle_deg"], P["addendum_coeff"], P["dedendum_coeff"],
                                      P["tip_radius_coeff"], P["backlash"])
         ha, hf = P["addendum_coeff"] * m, P["dedendum_coeff"] * m
         s_nom = p / 2 - P["backlash"]
         info = {"pressure_angle_deg": P["pressure_angle_deg"], "flank_angle_deg": P["pressure_angle_deg"]}
     elif fam == "triangular":
         b = p / 2 - P["thickness_coeff"] * p
-        half, _tool = _involute_half(m, P["half_angle_deg"], P["addendum_coeff"], P["dedendum_coeff"], 0.0, b)
+        half, _tool = involute_half(m, P["half_angle_deg"], P["addendum_coeff"], P["dedendum_coeff"], 0.0, b)
         ha, hf = P["addendum_coeff"] * m, P["dedendum_coeff"] * m
         s_nom = P["thickness_coeff"] * p
         info = {"half_angle_deg": P["half_angle_deg"], "flank_angle_deg": P["half_angle_deg"]}
@@ -424,9 +326,9 @@ def rack(family: str, teeth: int = 10, module: float = 1.0, tolerance: float = D
         el = sine_rack(m, h).elements[0]          # v = -h cos(2u/m), u = (t - 1/2) p
         # tooth 0 centred at x = 0: u = x - p/2; the right half is t in [0, 1/2]
         xc = (m / 2) * math.acos(1 - c / h) if c > 0 else 0.0
-        half = [_smooth_piece(el, xc / p, 0.5, p / 2)]
+        half = [smooth_piece(el, xc / p, 0.5, p / 2)]
         if c > 0:
-            half = [_flat(0.0, xc, h - c)] + half
+            half = [flat_piece(0.0, xc, h - c)] + half
         ha, hf = h - c, h
         s_nom = p / 2
         phase_x = p / 2 if P["form"] == "epi" else 0.0
@@ -441,15 +343,15 @@ def rack(family: str, teeth: int = 10, module: float = 1.0, tolerance: float = D
         except GearError as e:
             raise GearError(e.param, e.value, e.allowed, e.why) from None
         els = tool.elements[:len(tool.elements) // 2]
-        half = [_smooth_piece(e, 0.0, 1.0, p / 2) for e in els if not isinstance(e, Corner)]
+        half = [smooth_piece(e, 0.0, 1.0, p / 2) for e in els if not isinstance(e, Corner)]
         s_nom = p / 2
         info = {"rolling_radius": rho}
     # tessellate the right half within the tolerance, every chord measured; the left half is
     # its exact mirror image
     tess = [tessellate(f, 0.98 * tol) for f in half]
     _budget.check_profile(2 * z * sum(len(x.t) for x in tess), "teeth", z)
-    pieces = [_mirror(f) for f in reversed(half)] + half
-    samples = [(1.0 - x.t[::-1], _mirror_pts(x.points[::-1])) for x in reversed(tess)] + \
+    pieces = [mirror_piece(f) for f in reversed(half)] + half
+    samples = [(1.0 - x.t[::-1], mirror_points(x.points[::-1])) for x in reversed(tess)] + \
               [(x.t, x.points) for x in tess]
     max_err = max(float(x.max_error) for x in tess)
     chain = np.concatenate([pts if i == 0 else pts[1:] for i, (_t, pts) in enumerate(samples)])
@@ -464,7 +366,7 @@ def rack(family: str, teeth: int = 10, module: float = 1.0, tolerance: float = D
     straight = [x.max_error <= 1e-12 * m for x in tess]
     straight = straight[::-1] + straight
     part = RackPart(fam, P, z, m, tol, [loop], {}, pieces, samples, phase_x, yb, chain, straight)
-    s_meas = _pitch_thickness(chain)
+    s_meas = pitch_thickness(chain)
     # the measured error: every chord of one period at nine interior points, against the
     # exact pieces (Newton), and the chords' own probes (the tessellation's measurement)
     fr = np.linspace(0.0, 1.0, 11)[1:-1]
@@ -491,23 +393,6 @@ def rack(family: str, teeth: int = 10, module: float = 1.0, tolerance: float = D
         **info,
     }
     return part
-
-
-def _mirror_pts(pts):
-    return np.stack([-pts[:, 0], pts[:, 1]], axis=1)
-
-
-def _pitch_thickness(chain) -> float:
-    """Tooth thickness (mm) of tooth 0 on y = 0, from the polygon's exact-per-edge crossings."""
-    y = chain[:, 1]
-    xs = []
-    for i in np.nonzero(np.sign(y[:-1]) != np.sign(y[1:]))[0]:
-        f = y[i] / (y[i] - y[i + 1])
-        xs.append(chain[i, 0] + f * (chain[i + 1, 0] - chain[i, 0]))
-    xs = np.array(xs)
-    if len(xs) < 2:
-        return math.nan
-    return float(xs[xs >= 0].min() - xs[xs < 0].max())
 
 
 # ----------------------------------------------------------------------------- pairs
