@@ -25,9 +25,9 @@ _LAZY = {
     "rack_body": "gear3d.rack_part",
     "rack_pair": "gear3d.analysis.rack_mesh",
     "check_rack_pair": "gear3d.analysis.rack_mesh",
-    "worm": "gear3d.wormgear",
-    "bevel": "gear3d.bevel",
-    "face_gear": "gear3d.facegear",
+    "worm": "gear3d.plan_sets",           # the builders, each planned against the budget first
+    "bevel": "gear3d.bevel",              # a callable package: its __call__ plans first
+    "face_gear": "gear3d.plan_sets",
 }
 
 __all__ = ["GearError", "ToleranceError", "GearSpec", "profile", "families", *_LAZY]

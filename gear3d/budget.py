@@ -135,6 +135,24 @@ COSTS = {
     "cut": Cost(6e-6, 200.0, 0.3, 30e6, "involute z=20, 2000 positions x 200 samples x 4: 7.8 s (4.9 us)"),
     # figures (matplotlib), per profile vertex drawn
     "figure": Cost(5e-5, 3000.0, 1.2, 60e6, "annotated involute figure, 20,000 vertices: 1.1 s"),
+    # the set commands (gear3d.plan_sets), measured 2026-11-26 in a subprocess (CPU, ru_maxrss)
+    "worm.body": Cost(1.6e-6, 280.0, 0.4, 60e6, "measured 2026-11-26 (CPU, peak RSS): worm pairs m 2, z2 = "
+                      "30 / 100 / 300 at 10 / 2 / 0.5 um, 0.2-10.7 M triangles: 1.26-1.45 us and 240-250 B a "
+                      "triangle (z2 = 300 at 0.5 um: 13.5 s, 2.55 GB); per estimated triangle (plan_sets.worm_counts)"),
+    "worm.rolling": Cost(5e-3, 2e5, 0.5, 60e6, "measured 2026-11-26: rolling check of z2 = 30 / 60 (24 positions "
+                         "x 81 sections): 0.4-0.7 s, per wheel tooth an upper bound"),
+    "bevel.body": Cost(1.3e-7, 1000.0, 0.4, 60e6, "measured 2026-11-26 (CPU): straight bevels 20/30, 100/100, "
+                       "200/200 at 10-0.1 um: per (section vertex x cap segment) 1.25e-7 s split in layers "
+                       "(200/200 at 0.1 um: 12,800 x 9,970 in 16 s), 2.2e-7 unsplit (counted twice); "
+                       "400-735 B per estimated triangle (+40 MB)"),
+    "bevel.rolling": Cost(2e-2, 1e5, 1.0, 60e6, "estimated 2026-11-26 from 20/40 m 2 pair checks (about 1 s); per "
+                          "tooth of the larger member an upper bound"),
+    "facegear.plan": Cost(2.5e-4, 0.0, 0.4, 40e6, "measured 2026-11-26 (CPU): z2 = 60, z0 = 20 at 0.1 um: 177 "
+                          "sections x 93 vertices, about 4 s beyond the body (2.4e-4 s an item); the limits' scan "
+                          "0.3 s"),
+    "facegear.body": Cost(3e-6, 400.0, 0.0, 40e6, "measured 2026-11-26 (CPU): z2 = 300 / 1000 at 1 um, 1.26 / "
+                          "4.2 M triangles: 3.6 / 11.7 s (2.8 us a triangle, plan included); 260 B a triangle "
+                          "charged by the builder, 400 B kept"),
 }
 
 

@@ -1,0 +1,296 @@
+"""Plans of the set commands: ``gear3d worm``, ``gear3d bevel`` and ``gear3d face-gear``
+(and their Python API, :func:`worm`, :func:`bevel`, :func:`face_gear`), estimated whole and
+refused before any work, as :mod:`gear3d.plan` does for ``profile``, ``body`` and ``check pair``.
+
+The builders charge their stages as they reach them (a worm wheel's triangles, a bevel
+member's cone, a face gear's loft once its sections are planned); a set that is too big
+would be refused only after the work before that stage. Here the whole command is
+estimated from counts known before any work:
+
+* **worm**: the wheel's layers x teeth x vertices a tooth at the tolerance and the worm's
+  layers x vertices a layer (the builder's own formulas, :func:`worm_counts`, scaled to
+  bound the measured counts), times COSTS["worm.body"]; the bores, hubs, web and shaft as
+  manifold3d booleans (COSTS["body.manifold"]); the rolling check (COSTS["worm.rolling"]);
+  the export (:func:`gear3d.plan.write_estimate`: a DXF from the mid-plane section's
+  vertices, a B-rep STEP from faces x samples);
+* **bevel**: each member's section sampled on one tooth period (``budget.probing``: the
+  builder stopped at its first sample, milliseconds), its cap segments, and the cone
+  intersection's cost per (section vertex x cap segment) (COSTS["bevel.body"]); the
+  rolling check (COSTS["bevel.rolling"]); the export;
+* **face gear**: the sections and vertices a section the loft needs at the tolerance (a
+  power law in tolerance / module fitted to the builder's plans, :func:`face_counts`), the
+  plan's cost per (section x vertex) (COSTS["facegear.plan"]) and the body's per triangle
+  (COSTS["facegear.body"]); the export.
+
+Each plan is logged (``budget.log_plan``) and checked (:func:`gear3d.budget.check`): one
+line naming the parameter (the tolerance, or the teeth beyond 1000 vertices' worth), the
+resource, the estimate, the limit and the flag that raises it.
+
+    >>> est = plan_worm({"module": 2, "starts": 1, "wheel_teeth": 30, "part": "pair"})
+    >>> 0 < est.seconds < 60
+    True
+"""
+from __future__ import annotations
+
+import math
+import os
+
+from . import budget
+from .budget import Estimate, estimate
+from .plan import brep_estimate, write_estimate
+
+#: the builder's triangle formulas (gear3d.wormgear._check_budget) bound the measured
+#: triangles from above (measured 2026-11-26, m 2, z2 = 30..300, 1-4 starts, 0.5-10 um:
+#: wheel 0.17-0.33 of its formula, worm 0.40-0.49): these factors keep both upper bounds
+WHEEL_FACTOR, WORM_FACTOR = 0.4, 0.55
+
+
+def _ext(path) -> str:
+    return os.path.splitext(str(path))[1].lower() if path else ""
+
+
+def _decide(est: Estimate, param: str, value) -> Estimate:
+    budget.log_plan(est)
+    return budget.check(est, param, value)
+
+
+# ------------------------------------------------------------------ worm sets
+
+def worm_counts(d, part: str) -> dict:
+    """Estimated counts of a worm set of design ``d`` (:class:`gear3d.wormgear.design.WormDesign`):
+    ``wheel`` and ``worm`` triangles, the wheel's ``layers`` and ``per_tooth`` vertices a
+    section's tooth, the worm's ``per_layer`` vertices (see the module doc).
+
+    >>> from gear3d.wormgear.design import design
+    >>> c = worm_counts(design(module=2, starts=1, wheel_teeth=30), "wheel")
+    >>> c["worm"], c["wheel"] > 0
+    (0.0, True)
+    """
+    tol, m = d.tolerance, d.module
+    per_tooth = 3 * math.pi * m / math.sqrt(8 * tol / m) + 20
+    layers = d.face_width / max(math.sqrt(8 * tol * m), 1e-3) + 3
+    wheel = WHEEL_FACTOR * 2 * d.wheel_teeth * per_tooth * layers if part in ("wheel", "pair") else 0.0
+    turns = d.worm_length / d.p
+    dth = math.sqrt(8 * 0.2 * tol / d.worm_tip_radius)
+    per_layer = 2 * math.pi * d.worm_tip_radius / math.sqrt(8 * tol * m) + 8 * d.starts
+    worm = WORM_FACTOR * 2 * per_layer * turns / dth if part in ("worm", "pair") else 0.0
+    return {"wheel": wheel, "worm": worm, "layers": layers, "per_tooth": per_tooth, "per_layer": per_layer,
+            "worm_layers": turns / dth}
+
+
+def _worm_export(d, c: dict, ext: str, step, tri: float, part: str) -> Estimate:
+    """The export of a worm set: the DXF of the wheel's mid-plane section, a B-rep STEP
+    (the wheel's teeth x 4 faces on its sections, the worm's starts x 4 on its layers), or
+    a mesh of ``tri`` triangles."""
+    if ext == ".dxf":
+        v = d.wheel_teeth * c["per_tooth"]
+        return budget.profile_estimate(v, c["per_tooth"]).then(write_estimate(".dxf", vertices=v,
+                                                                              per_tooth=c["per_tooth"]))
+    if step == "brep" and ext in (".step", ".stp"):
+        est = Estimate()
+        if part != "worm":
+            est = brep_estimate(d.wheel_teeth, 1, c["layers"] * c["per_tooth"] * d.wheel_teeth / 4)
+        if part != "wheel":
+            w = brep_estimate(d.starts, 1, c["per_layer"] * c["worm_layers"] / 4)
+            est = w if part == "worm" else Estimate(est.seconds + w.seconds, est.bytes + w.bytes, 0.0,
+                                                     est.what + "; " + w.what)
+        return est
+    return write_estimate(ext, triangles=tri) if ext else Estimate()
+
+
+def plan_worm(kw: dict, output=None, step=None, png=None, json=None) -> Estimate:
+    """``gear3d worm ...`` / ``gear3d.worm(**kw)``: the wheel and worm bodies, their
+    features, the rolling check (``kw["check"]``), the export ``output`` (``step``: its STEP
+    flavour), the figure ``png`` and the report ``json``; refused before any work
+    (BudgetError). ``kw``: the keywords of :func:`gear3d.wormgear.worm` (validated here as
+    the builder validates them)."""
+    from .wormgear import validate
+    d = validate(**kw)
+    part = kw.get("part", "pair")
+    c = worm_counts(d, part)
+    tri = c["wheel"] + c["worm"]
+    cost = budget.COSTS["worm.body"]
+    est = Estimate(cost.fixed_seconds + cost.seconds * tri, cost.fixed_bytes + cost.bytes * tri, tri,
+                   f"a worm set of {tri:,.0f} triangles ({c['wheel']:,.0f} wheel, {c['worm']:,.0f} worm)")
+    wheel_feats = any(kw.get(k) for k in ("wheel_bore", "hub_diameter", "wheel_keyway", "web_thickness"))
+    worm_feats = any(kw.get(k) for k in ("worm_bore", "shaft_diameter"))
+    cut = (c["wheel"] if wheel_feats else 0.0) + (c["worm"] if worm_feats else 0.0)
+    if cut:
+        est = est.then(budget.body_estimate(cut, True, f"bores and hubs on {cut:,.0f} triangles"))
+    if kw.get("check"):
+        est = est.then(estimate("worm.rolling", d.wheel_teeth, 0.0, "the rolling check"))
+    est = est.then(_worm_export(d, c, _ext(output), step, tri, part))
+    if png:
+        v = d.wheel_teeth * c["per_tooth"]
+        est = est.then(budget.profile_estimate(v, c["per_tooth"])).then(
+            estimate("figure", v, 0.0, f"a figure of {v:,.0f} vertices"))
+    if json:
+        est = est.then(estimate("write.json", 1000, 0.0, "a JSON report"))
+    return _decide(est, "tolerance", d.tolerance)
+
+
+# ------------------------------------------------------------------ bevel sets
+
+def _probe_section(geo, which: str, zs: float, tol: float) -> float:
+    """Vertices of member ``which``'s section at the tolerance ``tol`` (mm), from one tooth
+    period sampled by the builder (stopped at its first sample: ``budget.probing``)."""
+    from .bevel.section import member, section
+    with budget.probing():
+        try:
+            section(geo, which, zs, tol)
+        except budget.Probe as p:
+            info = p.info
+        else:                                 # never sampled: count it coarsely
+            return 64.0 * member(geo, which).teeth
+    per = float(sum(len(a) - 1 for a in info["points"]))
+    return per * int(info["teeth"])
+
+
+def bevel_member_counts(geo, which: str, tol: float) -> tuple:
+    """(section vertices, cap segments, cone layers) of member ``which`` at ``tol`` (mm), as
+    :func:`gear3d.bevel.body.member_body` / :func:`gear3d.bevel.spiral.spiral_body` plan them."""
+    import numpy as np
+
+    from .bevel import body as B
+    from .bevel.section import member
+    c, cp = member(geo, which), B.caps(geo, which)
+    tilt = max(c.addendum_angle, c.dedendum_angle)
+    if geo.line is not None:
+        psi = max(abs(geo.line.spiral_angle(r)) for r in np.linspace(geo.inner_cone_distance, geo.cone_distance, 9))
+        worst = math.cos(min(psi + tilt, math.radians(89.0)))
+    else:
+        worst = math.cos(tilt)
+    n_seg = B.cap_segments(cp.r_max, B.CAP_SHARE * tol * worst)
+    nv = _probe_section(geo, which, cp.z_hi, B.SECTION_SHARE * tol * worst)
+    layers = B.LAYERS if nv * n_seg > B.SPLIT_WORK else 0
+    return nv, n_seg, layers
+
+
+def _bevel_geometry(kw: dict):
+    from .bevel.geometry import pair_geometry
+    from .bevel.spiral import with_tooth_line
+    geo = pair_geometry(kw["teeth"], kw["mate_teeth"], kw["module"], kw.get("face_width"),
+                        kw.get("pressure_angle_deg", 20.0), kw.get("shaft_angle_deg", 90.0),
+                        kw.get("shift_coeff", 0.0), kw.get("form", "spherical-involute"))
+    return with_tooth_line(geo, kw.get("spiral_angle_deg"), kw.get("cutter_radius"), kw.get("hand"))
+
+
+def plan_bevel(kw: dict, output=None, step=None, png=None, json=None, preview=None) -> Estimate:
+    """``gear3d bevel ...`` / ``gear3d.bevel(**kw)``: each member's body (its section's
+    vertices x cap segments, COSTS["bevel.body"]), the rolling check, the export and the
+    figures; refused before any work (BudgetError)."""
+    from .bevel import DEFAULT_TOLERANCE
+    from .errors import check_choice, check_number
+    tol = check_number("tolerance", kw.get("tolerance", DEFAULT_TOLERANCE), 1e-6, 1.0, unit="mm")
+    part = check_choice("part", kw.get("part", "gear"), ("gear", "mate", "pair"))
+    geo = _bevel_geometry(kw)
+    est, tri, parts = Estimate(), 0.0, []
+    cost = budget.COSTS["bevel.body"]
+    for which in (("gear", "mate") if part == "pair" else (part,)):
+        nv, n_seg, layers = bevel_member_counts(geo, which, tol)
+        t = 2.0 * (2 * nv * (layers + 2) + 2 * n_seg * (4 + 2 * layers))
+        work = nv * n_seg * (1 if layers else 2)          # unsplit: twice the cost a pair (COSTS)
+        est = est.then(Estimate(cost.fixed_seconds + cost.seconds * (work + t), cost.fixed_bytes + cost.bytes * t,
+                                t, f"the {which}'s cone of {nv:,.0f} section vertices x {n_seg:,} cap segments"))
+        tri += t
+        parts.append(nv)
+    est = Estimate(est.seconds, est.bytes, tri, est.what)          # a pair's file holds both members
+    if kw.get("check"):
+        est = est.then(estimate("bevel.rolling", max(kw["teeth"], kw["mate_teeth"]), 0.0, "the rolling check"))
+    ext = _ext(output)
+    if step == "brep" and ext in (".step", ".stp"):
+        for nv, z in zip(parts, (kw["teeth"], kw["mate_teeth"])):
+            est = est.then(brep_estimate(z, 1, nv * 4))
+    elif ext:
+        est = est.then(write_estimate(ext, triangles=tri))
+    if png:
+        est = est.then(estimate("figure", sum(parts), 0.0, "the back-cone figure"))
+    if preview:
+        est = est.then(estimate("write.png", tri, 0.0, "the 3D preview"))
+    if json:
+        est = est.then(estimate("write.json", 1000, 0.0, "a JSON report"))
+    z = max(kw["teeth"], kw["mate_teeth"]) if part == "pair" else kw["teeth" if part == "gear" else "mate_teeth"]
+    return _decide(est, "tolerance", tol) if z <= 1000 else _decide(est, "teeth", z)
+
+
+# ------------------------------------------------------------------ face gears
+
+#: the face gear's loft plan (gear3d.facegear.body.plan), measured (z2 = 60..300,
+#: z0 = 10..50, m = 1, 0.3-10 um): sections 5 / 33 / 177 at 10 / 1 / 0.1 um per module,
+#: vertices a half tooth 20 / 31 / 93: power laws through the largest, with a floor
+FACE_SECTIONS = (33.0, 0.8)        # sections at 1e-3 modules, exponent of (1e-3 m / tol)
+FACE_VERTICES = (31.0, 0.5)        # vertices a half tooth at 1e-3 modules, exponent
+
+
+def face_counts(teeth: int, module: float, tol: float) -> tuple:
+    """(sections, vertices a half tooth, triangles) the face gear's loft needs at ``tol``
+    (mm); see :data:`FACE_SECTIONS`.
+
+    >>> s, v, t = face_counts(60, 1.0, 1e-3)
+    >>> round(s), round(v), t > 60 * 2 * v * s
+    (40, 37, True)
+    """
+    k = 1e-3 * module / tol
+    sec = max(5.0, 1.2 * FACE_SECTIONS[0] * k ** FACE_SECTIONS[1])
+    nh = max(20.0, 1.2 * FACE_VERTICES[0] * k ** FACE_VERTICES[1])
+    return sec, nh, 2.0 * teeth * (2 * nh - 2) * (sec + 3)
+
+
+def plan_face_gear(kw: dict, output=None, png=None, json=None) -> Estimate:
+    """``gear3d face-gear ...`` / ``gear3d.face_gear(**kw)``: the radius limits (a fixed
+    scan of sections), the loft plan (sections x vertices, COSTS["facegear.plan"]), the body
+    (triangles, COSTS["facegear.body"]) and the export; refused before any work."""
+    from .errors import check_number
+    from .facegear import DEFAULT_TOLERANCE
+    from .facegear.geometry import face_geometry
+    g = face_geometry(kw["teeth"], kw.get("shaper_teeth"), kw.get("module", 1.0), kw.get("pressure_angle_deg", 20.0),
+                      kw.get("pinion_teeth"), kw.get("addendum_coeff", 1.0), kw.get("dedendum_coeff", 1.25),
+                      kw.get("rim"))
+    tol = check_number("tolerance", kw.get("tolerance", DEFAULT_TOLERANCE), 1e-5, 1.0, unit="mm")
+    sec, nh, tri = face_counts(g.teeth, g.module, tol)
+    p, b = budget.COSTS["facegear.plan"], budget.COSTS["facegear.body"]
+    est = Estimate(p.fixed_seconds + p.seconds * sec * nh, p.fixed_bytes, 0.0,
+                   f"a loft plan of {sec:,.0f} sections x {nh:,.0f} vertices")
+    est = est.then(Estimate(b.fixed_seconds + b.seconds * tri, b.fixed_bytes + b.bytes * tri, tri,
+                            f"a face gear of {tri:,.0f} triangles"))
+    ext = _ext(output)
+    if ext:
+        est = est.then(write_estimate(ext, triangles=tri))
+    if png:
+        est = est.then(estimate("figure", 3 * g.teeth * nh, 0.0, "the sections figure"))
+    if json:
+        est = est.then(estimate("write.json", 1000, 0.0, "a JSON report"))
+    return _decide(est, "teeth", g.teeth) if g.teeth > 1000 else _decide(est, "tolerance", tol)
+
+
+# ------------------------------------------------------------------ the planned API
+
+def worm(**kw):
+    """:func:`gear3d.wormgear.worm`, planned first (:func:`plan_worm`): a set over the
+    budget is refused before any work."""
+    import importlib
+    wormgear = importlib.import_module("gear3d.wormgear")
+    plan_worm(kw)
+    return wormgear.worm(**kw)
+
+
+def bevel(*args, **kw):
+    """:func:`gear3d.bevel.build`, planned first (:func:`plan_bevel`)."""
+    import importlib
+    B = importlib.import_module("gear3d.bevel")     # the package (gear3d.bevel is also this function)
+    names = ("teeth", "mate_teeth", "module", "face_width", "pressure_angle_deg", "shaft_angle_deg", "form",
+             "shift_coeff", "tolerance", "part")
+    full = dict(zip(names, args), **kw)
+    plan_bevel(full)
+    return B.build(**full)
+
+
+def face_gear(*args, **kw):
+    """:func:`gear3d.facegear.build`, planned first (:func:`plan_face_gear`)."""
+    import importlib
+    facegear = importlib.import_module("gear3d.facegear")
+    names = ("teeth", "shaper_teeth", "module", "pressure_angle_deg", "pinion_teeth", "inner_radius",
+             "outer_radius", "tolerance", "rim")
+    full = dict(zip(names, args), **kw)
+    plan_face_gear(full)
+    return facegear.build(**full)
