@@ -34,6 +34,8 @@ import sys
 import types
 from dataclasses import asdict, dataclass
 
+import numpy as np
+
 from ..errors import GearError, check_choice, check_number
 
 PARTS = ("gear", "mate", "pair")
@@ -70,6 +72,9 @@ class MemberReport:
     genus: int
     warp_error: float | None = None
     twist_deg: tuple | None = None
+    #: mm along the axis from the apex to the back mounting face (the flat face closing the
+    #: back cone below the root; with a hub, the hub's end)
+    mounting_distance: float | None = None
 
 
 @dataclass(frozen=True)
@@ -92,6 +97,7 @@ class BevelReport:
     mate_form: str | None = None
     check: dict | None = None
     spiral: dict | None = None
+    clearance: str = "standard"
 
     def to_dict(self) -> dict:
         """Plain, strict-JSON-ready keys (NaN/inf become null through
@@ -111,15 +117,20 @@ class Bevel:
 
 def build(teeth, mate_teeth, module, face_width=None, pressure_angle_deg=20.0, shaft_angle_deg=90.0,
           form="spherical-involute", shift_coeff=0.0, tolerance=DEFAULT_TOLERANCE, part="gear",
-          mate_form=None, check=False, spiral_angle_deg=None, cutter_radius=None, hand=None) -> Bevel:
+          mate_form=None, check=False, spiral_angle_deg=None, cutter_radius=None, hand=None,
+          clearance="standard", mounting_distance=None, mate_mounting_distance=None) -> Bevel:
     """Straight bevel member(s) (mm, degrees); see the package doc. ``part``: gear | mate |
     pair (the mate placed on its axis at the shaft angle, in mesh). ``mate_form``: the
     mate's tooth form (default ``form``; an octoid and a spherical involute are not
     conjugate). ``check`` (pair only): roll the pair (:func:`gear3d.bevel.rolling.check_pair`)
     into ``report.check``. ``spiral_angle_deg`` (at mid-face), ``cutter_radius`` (mm) and
     ``hand`` (of the gear: "left" | "right"; the mate gets the other) make a spiral bevel, a
-    Zerol one with a cutter radius and no spiral angle (:mod:`gear3d.bevel.spiral`). Raises
-    :class:`GearError` naming a bad parameter before any work."""
+    Zerol one with a cutter radius and no spiral angle (:mod:`gear3d.bevel.spiral`).
+    ``clearance``: "standard" or "uniform" (:func:`gear3d.bevel.geometry.pair_geometry`).
+    ``mounting_distance`` / ``mate_mounting_distance`` (mm, apex to the back mounting face
+    along each axis): a hub from the body's own back face out to that distance (refused
+    below the body's own, which the report gives). Raises :class:`GearError` naming a bad
+    parameter before any work."""
     from dataclasses import replace
     from .geometry import FORMS, pair_geometry
     from .spiral import with_tooth_line
@@ -128,16 +139,20 @@ def build(teeth, mate_teeth, module, face_width=None, pressure_angle_deg=20.0, s
     if check and part != "pair":
         raise GearError("check", check, "only with part='pair' (the check rolls the pair)")
     geo = pair_geometry(teeth, mate_teeth, module, face_width, pressure_angle_deg, shaft_angle_deg,
-                        shift_coeff, form)
+                        shift_coeff, form, clearance=clearance)
     geo = with_tooth_line(geo, spiral_angle_deg, cutter_radius, hand)
     mform = geo.form if mate_form is None else check_choice("mate_form", mate_form, FORMS)
     geo_m = geo if mform == geo.form else replace(geo, form=mform)
     if geo_m is not geo:
-        pair_geometry(teeth, mate_teeth, module, face_width, pressure_angle_deg, shaft_angle_deg, shift_coeff, mform)
+        pair_geometry(teeth, mate_teeth, module, face_width, pressure_angle_deg, shaft_angle_deg, shift_coeff, mform,
+                      clearance=clearance)
     from .body import mate_transform
     from .spiral import body
     which = ("gear", "mate") if part == "pair" else (part,)
+    mounts = {"gear": mounting_distance, "mate": mate_mounting_distance}
+    _check_mounts(geo, mounts, which)
     bodies = [body(geo if w == "gear" else geo_m, w, tol) for w in which]
+    bodies = [_add_hub(geo, w, b, mounts[w], tol) for w, b in zip(which, bodies)]
     overlap = None
     if part == "pair":
         bodies[1].transform = mate_transform(geo)
@@ -154,8 +169,40 @@ def build(teeth, mate_teeth, module, face_width=None, pressure_angle_deg=20.0, s
     rep = BevelReport(geo.form, part, geo.module, math.degrees(geo.pressure_angle), math.degrees(geo.shaft_angle),
                       geo.face_width, geo.cone_distance, geo.inner_cone_distance, geo.crown_teeth, tol,
                       max(r.max_error for r in members), members, overlap, pairing(geo.form, mform), mform, checked,
-                      _spiral_report(geo))
+                      _spiral_report(geo), geo.clearance)
     return Bevel(tuple(bodies), rep, geo)
+
+
+def _check_mounts(geo, mounts, which):
+    """Refuse a mounting distance below the body's own back face (before any work)."""
+    from .body import caps
+    for w, name in (("gear", "mounting_distance"), ("mate", "mate_mounting_distance")):
+        v = mounts[w]
+        if v is None:
+            continue
+        if w not in which:
+            raise GearError(name, v, f"only with part={w!r} or part='pair'")
+        z_b = float(caps(geo, w).outline[-1, 1])
+        check_number(name, v, math.ceil(z_b * 1e6) / 1e6, 100 * geo.cone_distance, unit="mm")
+
+
+def _add_hub(geo, which, body, distance, tol):
+    """``body`` extended by a hub (a cylinder of the back face's radius) from its back face
+    to ``distance`` (mm from the apex); the mounting distance recorded either way."""
+    from manifold3d import CrossSection, FillRule, Manifold
+    from .body import CAP_SHARE, cap_segments, caps
+    out = caps(geo, which).outline
+    r_b, z_b = float(out[-2, 0]), float(out[-1, 1])
+    body.report["mounting_distance"] = z_b if distance is None else float(distance)
+    if distance is None or distance <= z_b:
+        return body
+    n = cap_segments(r_b, CAP_SHARE * tol)
+    hub = Manifold.revolve(CrossSection([np.array([[0.0, z_b - 1e-3 * (distance - z_b)], [r_b, z_b - 1e-3 * (distance - z_b)],
+                                                   [r_b, distance], [0.0, distance]])], FillRule.Positive), n)
+    from .body import BevelBody
+    man = body.manifold + hub
+    body.report.update(volume=float(man.volume()), triangles=int(man.num_tri()), genus=int(man.genus()))
+    return BevelBody(man, body.name, body.report, body.transform, body.profile)
 
 
 def _spiral_report(geo) -> dict | None:
@@ -178,7 +225,7 @@ def _params(geo, tol, w) -> dict:
     return {"teeth": geo.gear.teeth, "mate_teeth": geo.mate.teeth, "module": geo.module,
             "pressure_angle_deg": math.degrees(geo.pressure_angle), "shaft_angle_deg": math.degrees(geo.shaft_angle),
             "face_width": geo.face_width, "form": geo.form, "shift_coeff": geo.gear.shift_coeff,
-            "tolerance": tol, "member": w}
+            "tolerance": tol, "member": w, "clearance": geo.clearance}
 
 
 def _member_report(geo, which, body) -> MemberReport:
@@ -195,19 +242,20 @@ def _member_report(geo, which, body) -> MemberReport:
         from .spiral import law
         th = law(geo, which)
         twist = (deg(float(th(geo.inner_cone_distance))), deg(float(th(geo.cone_distance))))
-    return MemberReport(which, c.teeth, deg(d), deg(c.face_angle), deg(c.root_angle), deg(c.addendum_angle),
+    return MemberReport(which, c.teeth, deg(d), deg(c.face_cone_angle), deg(c.root_angle), deg(c.addendum_angle),
                         deg(c.dedendum_angle), c.addendum, c.dedendum, c.shift_coeff, geo.module * c.teeth,
                         geo.module * c.teeth + 2 * c.addendum * math.cos(d), c.teeth / math.cos(d), base,
                         float(thick), bool(sec.report["undercut"]), bool(sec.report["pointed"]),
                         r["section_error"], r["cap_error"], r["max_error"], r["volume"], r["triangles"], r["genus"],
-                        r.get("warp_error"), twist)
+                        r.get("warp_error"), twist, r.get("mounting_distance"))
 
 
 class _CallableModule(types.ModuleType):
     """``gear3d.bevel(...)`` calls :func:`build` (the package is also a namespace)."""
 
     def __call__(self, *args, **kwargs) -> Bevel:
-        return build(*args, **kwargs)
+        from ..plan_sets import bevel as planned      # build, planned against the budget first
+        return planned(*args, **kwargs)
 
 
 sys.modules[__name__].__class__ = _CallableModule

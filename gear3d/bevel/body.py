@@ -76,9 +76,33 @@ def caps(geo: PairGeometry, which: str) -> Caps:
     r_out = r_tip + 0.05 * re
     td = math.tan(d)
     back0, front0 = re / math.cos(d), ri / math.cos(d)
+    if c.uniform_face_angle is not None:
+        # uniform clearance: the face cone through the heel tip H, parallel to the mate's root
+        # cone, cut where it meets the front cone ((r, z) . (sin δ, cos δ) = R_e - b)
+        H = np.array(_ray_point(re, c.face_angle, d))
+        e_g = np.array([math.sin(c.uniform_face_angle), math.cos(c.uniform_face_angle)])
+        e_d = np.array([math.sin(d), math.cos(d)])
+        F = H + (ri - H @ e_d) / (e_g @ e_d) * e_g
+        outline = np.array([[0.0, z_f], [r_ft, z_f], F, H, [r_bt, z_b], [0.0, z_b]])
+        return Caps(outline, 0.98 * z_toe_tip, z_b * (1 + 1e-3), r_tip)
     outline = np.array([[0.0, z_f], [r_ft, z_f], [r_out, front0 - r_out * td],
                         [r_out, back0 - r_out * td], [r_bt, z_b], [0.0, z_b]])
     return Caps(outline, 0.98 * z_toe_tip, z_b * (1 + 1e-3), r_tip)
+
+
+def edge_sine(geo: PairGeometry, which: str) -> float:
+    """A lower bound of the sine of the angle where a tooth face meets a cap: the back and
+    front cones are normal to the pitch element and the tooth faces hold the rays within
+    θ_a, θ_f of it, so cos(max(θ_a, θ_f)); with uniform clearance the face cone also cuts
+    the flanks, at least at 90° - (α_t + θ_f(mate)) (α_t: the profile angle at the tip of
+    the heel's virtual spur gear, z/cos δ teeth, Tredgold)."""
+    c = member(geo, which)
+    worst = math.cos(max(c.addendum_angle, c.dedendum_angle))
+    if c.uniform_face_angle is not None:
+        rv = geo.cone_distance * math.tan(c.pitch_angle)
+        a_t = math.acos(min(rv * math.cos(geo.pressure_angle) / (rv + c.addendum), 1.0))
+        worst = min(worst, math.cos(min(a_t + c.uniform_face_angle - c.pitch_angle, math.radians(89.0))))
+    return worst
 
 
 def cap_segments(r_max: float, sag: float) -> int:
@@ -130,7 +154,7 @@ def member_body(geo: PairGeometry, which: str, tolerance: float, name: str | Non
     from ..progress import stage
     c = member(geo, which)
     cp = caps(geo, which)
-    worst = math.cos(max(c.addendum_angle, c.dedendum_angle))
+    worst = edge_sine(geo, which)
     n_seg = cap_segments(cp.r_max, CAP_SHARE * tolerance * worst)
     budget.check_body(24 * n_seg, "tolerance", tolerance)
     zs = cp.z_hi

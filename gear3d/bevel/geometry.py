@@ -28,6 +28,7 @@ from dataclasses import dataclass
 from ..errors import GearError, check_choice, check_number
 
 FORMS = ("spherical-involute", "octoid")
+CLEARANCES = ("standard", "uniform")
 #: degrees: the largest face (tip) cone angle built (the section is a central projection
 #: onto a plane normal to the axis, which needs every tooth point short of 90°)
 MAX_FACE_ANGLE_DEG = 87.0
@@ -46,11 +47,20 @@ class GearCone:
     addendum: float
     dedendum: float
     shift_coeff: float
+    #: uniform clearance: the face cone's angle δ + θ_f(mate) (rad), parallel to the mate's
+    #: root cone, through the heel tip; None: standard (the face cone δ + θ_a through the apex)
+    uniform_face_angle: float | None = None
 
     @property
     def face_angle(self) -> float:
-        """Tip (face) cone angle δ + θ_a (rad)."""
+        """Tip cone angle δ + θ_a (rad) of the generated section (through the apex); with
+        uniform clearance the body is cut by :attr:`face_cone_angle` as well."""
         return self.pitch_angle + self.addendum_angle
+
+    @property
+    def face_cone_angle(self) -> float:
+        """The body's face cone angle (rad): δ + θ_a (standard) or δ + θ_f(mate) (uniform)."""
+        return self.face_angle if self.uniform_face_angle is None else self.uniform_face_angle
 
     @property
     def root_angle(self) -> float:
@@ -75,6 +85,8 @@ class PairGeometry:
     #: the crown's circular tooth line (:class:`gear3d.bevel.spiral.ToothLine`) of a spiral
     #: or Zerol bevel; None: straight
     line: object = None
+    #: "standard" (tapered: the face cone through the apex) or "uniform" clearance
+    clearance: str = "standard"
 
     @property
     def inner_cone_distance(self) -> float:
@@ -90,9 +102,12 @@ def pitch_angles(z1: int, z2: int, shaft_angle: float) -> tuple:
 
 def pair_geometry(teeth, mate_teeth, module, face_width=None, pressure_angle_deg=20.0,
                   shaft_angle_deg=90.0, shift_coeff=0.0, form="spherical-involute",
-                  addendum_coeff=1.0, dedendum_coeff=1.25) -> PairGeometry:
+                  addendum_coeff=1.0, dedendum_coeff=1.25, clearance="standard") -> PairGeometry:
     """Validated pair geometry (see the module doc). ``face_width`` (mm) defaults to R_e/3
-    and is refused beyond it. Raises :class:`GearError` naming the bad parameter."""
+    and is refused beyond it. ``clearance``: "standard" (the tip tapers to the apex) or
+    "uniform" (each face cone parallel to the mate's root cone, through the heel tip: the
+    clearance is the heel's all along the face). Raises :class:`GearError` naming the bad
+    parameter."""
     z1 = int(check_number("teeth", teeth, 3, 1000, integer=True))
     z2 = int(check_number("mate_teeth", mate_teeth, 3, 1000, integer=True))
     m = check_number("module", module, 0, 1000, lo_open=True, unit="mm")
@@ -105,6 +120,7 @@ def pair_geometry(teeth, mate_teeth, module, face_width=None, pressure_angle_deg
     form = check_choice("form", form, FORMS)
     lim = min(ha, hf) - 0.05
     x = check_number("shift_coeff", shift_coeff, -lim, lim)
+    clearance = check_choice("clearance", clearance, CLEARANCES)
     d1, d2 = pitch_angles(z1, z2, sig)
     re = m * z1 / (2 * math.sin(d1))
     b = re / 3 if face_width is None else check_number("face_width", face_width, 0, re / 3, lo_open=True,
@@ -115,7 +131,16 @@ def pair_geometry(teeth, mate_teeth, module, face_width=None, pressure_angle_deg
         cone = GearCone(z, d, math.atan(h_a / re), math.atan(h_f / re), h_a, h_f, xs)
         _check_cone(name, z, cone, sig, a, form)
         cones.append(cone)
-    return PairGeometry(m, a, sig, b, re, z1 / math.sin(d1), form, cones[0], cones[1])
+    if clearance == "uniform":
+        from dataclasses import replace
+        cones = [replace(c, uniform_face_angle=c.pitch_angle + o.dedendum_angle)
+                 for c, o in (cones, cones[::-1])]
+        for name, c in zip(("teeth", "mate_teeth"), cones):
+            if math.degrees(c.face_cone_angle) >= MAX_FACE_ANGLE_DEG:
+                raise GearError("clearance", clearance, "standard for this pair",
+                                f"the uniform face cone of the member with {c.teeth} teeth would reach "
+                                f"{math.degrees(c.face_cone_angle):.4g} deg")
+    return PairGeometry(m, a, sig, b, re, z1 / math.sin(d1), form, cones[0], cones[1], clearance=clearance)
 
 
 def _check_cone(name, z, cone: GearCone, sig, a, form):

@@ -45,7 +45,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ..errors import GearError, ToleranceError, check_choice, check_number
-from .body import CLIPPER_ROUNDING, BevelBody, cap_segments, caps, member_body
+from .body import CLIPPER_ROUNDING, BevelBody, cap_segments, caps, edge_sine, member_body
 from .section import member, section
 
 HANDS = ("left", "right")
@@ -252,6 +252,8 @@ def spiral_body(geo, which: str, tolerance: float, name=None):
     c, cp = member(geo, which), caps(geo, which)
     psi = max(abs(geo.line.spiral_angle(r)) for r in np.linspace(geo.inner_cone_distance, geo.cone_distance, 33))
     worst = math.cos(min(psi + max(c.addendum_angle, c.dedendum_angle), math.radians(89.0)))
+    if c.uniform_face_angle is not None:
+        worst = min(worst, edge_sine(geo, which) * math.cos(psi))
     n_seg = cap_segments(cp.r_max, CAP_SHARE * tolerance * worst)
     zs = cp.z_hi
     sec = section(geo, which, zs, SECTION_SHARE * tolerance * worst)

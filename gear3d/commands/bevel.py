@@ -1,7 +1,7 @@
 """``gear3d bevel --teeth Z1 --mate-teeth Z2 --module M --face-width B [--pressure-angle-deg A]
 [--shaft-angle-deg S] [--form spherical-involute|octoid] [--mate-form F] [--shift-coeff X]
-[--tolerance T] --part gear|mate|pair -o FILE [--json FILE] [--png FILE] [--check]``: straight
-bevel gears.
+[--tolerance T] [--clearance standard|uniform] [--mounting-distance D] [--mate-mounting-distance D]
+--part gear|mate|pair -o FILE [--json FILE] [--png FILE] [--check]``: straight bevel gears.
 
 ``-o``'s extension picks the mesh format (.stl .3mf .step .obj .ply .vtu; .json for the
 bodies' reports); ``--part pair`` places the mate on its own axis at the shaft angle, in mesh;
@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import sys
 
+from ..cliargs import number
 from ..errors import GearError
 from ..export import atomic_path, check_output, check_path, write
 from ..params import BEVEL_PARAMS
@@ -39,6 +40,14 @@ def add_parser(sub):
             p.add_argument("--mate-form", default=None, choices=list(FORMS),
                            help="the mate's tooth form (default --form; an octoid is not conjugate to a "
                                 "spherical involute)")
+    p.add_argument("--clearance", default="standard", choices=["standard", "uniform"],
+                   help="standard: the tip tapers to the apex (default); uniform: each face cone parallel to "
+                        "the mate's root cone, through the heel tip (the heel's clearance all along the face)")
+    p.add_argument("--mounting-distance", type=number("float", 0, None, lo_open=True, unit="mm"), default=None,
+                   help="apex to the gear's back mounting face along its axis (mm): a hub out to it; default "
+                        "the body's own back face (in the report)")
+    p.add_argument("--mate-mounting-distance", type=number("float", 0, None, lo_open=True, unit="mm"),
+                   default=None, help="the same for the mate (mm)")
     p.add_argument("-o", "--output", required=True, help="output file; extension picks the format")
     p.add_argument("--step", default=None, choices=["faceted", "brep"],
                    help="STEP flavour: faceted (default) or brep (exact surfaces: the flanks are cones through the "
@@ -65,6 +74,10 @@ def run(args) -> int:
     if args.step == "brep" and out.lower().endswith((".step", ".stp")):
         from ..export.step_brep import require_occ
         require_occ()                       # before any work: one line naming what to install
+    if args.step == "brep" and (args.clearance == "uniform" or args.mounting_distance is not None
+                                or args.mate_mounting_distance is not None):
+        raise GearError("step", "brep", "faceted with --clearance uniform or a mounting distance (the B-rep "
+                        "has neither the uniform face cone nor the hub yet)")
     if args.json is not None:
         check_path(args.json, "json", (".json",))
     for name in ("png", "preview_png", "contact_png"):
@@ -75,7 +88,8 @@ def run(args) -> int:
     b = build(args.teeth, args.mate_teeth, args.module, args.face_width, args.pressure_angle_deg,
               args.shaft_angle_deg, args.form, args.shift_coeff, args.tolerance, args.part,
               mate_form=args.mate_form, check=args.check, spiral_angle_deg=args.spiral_angle_deg,
-              cutter_radius=args.cutter_radius, hand=args.hand)
+              cutter_radius=args.cutter_radius, hand=args.hand, clearance=args.clearance,
+              mounting_distance=args.mounting_distance, mate_mounting_distance=args.mate_mounting_distance)
     brep = args.step == "brep" and out.lower().endswith((".step", ".stp"))
     step_opts = {"step": args.step} if args.step and out.lower().endswith((".step", ".stp")) else {}
     info = write(list(b.bodies), out, **step_opts, **({"geometry": b.geometry} if brep else {}))
