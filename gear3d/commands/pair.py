@@ -17,6 +17,8 @@ import sys
 
 from ..cliargs import number
 from ..errors import GearError
+from ..export import atomic_path, check_path
+from ..export.json_format import dumps
 from .check import add_check_pair_flags
 
 
@@ -51,8 +53,6 @@ def run(args) -> int:
 def _crossed(args) -> int:
     """``--crossed``: the crossed helical report (see the module doc)."""
     from ..analysis.crossed import crossed_pair, summary
-    from ..export import atomic_path, check_path
-    from ..export.json_format import dumps
     if args.family != "involute":
         raise GearError("family", args.family, "involute with --crossed")
     for n in ("shift_coeff", "mate_shift_coeff", "center_distance", "png", "internal"):

@@ -19,8 +19,8 @@ Example::
 
     >>> from gear3d.facegear.geometry import face_geometry
     >>> b = face_body(face_geometry(60, 20, 1.0), 30.0, 33.0, tolerance=0.02)
-    >>> b.report["max_error"] <= 0.02, b.report["genus"]
-    (True, 0)
+    >>> b.report["max_error"] <= 0.02, b.report["genus"]            # an annulus: genus 1
+    (True, 1)
 """
 from __future__ import annotations
 

@@ -27,7 +27,7 @@ Example::
     >>> from gear3d.facegear.geometry import face_geometry
     >>> s = section(face_geometry(60, 20, 1.0), 30.0)
     >>> s.ok, round(s.top_land, 3)
-    (True, 1.703)
+    (True, 0.85)
 """
 from __future__ import annotations
 
