@@ -98,16 +98,19 @@ def _worm_export(d, c: dict, ext: str, step, tri: float, part: str) -> Estimate:
     return write_estimate(ext, triangles=tri) if ext else Estimate()
 
 
-def plan_worm(kw: dict, output=None, step=None, png=None, json=None) -> Estimate:
+def plan_worm(kw: dict, output=None, step=None, png=None, json=None, bodies: bool = True) -> Estimate:
     """``gear3d worm ...`` / ``gear3d.worm(**kw)``: the wheel and worm bodies, their
     features, the rolling check (``kw["check"]``), the export ``output`` (``step``: its STEP
     flavour), the figure ``png`` and the report ``json``; refused before any work
     (BudgetError). ``kw``: the keywords of :func:`gear3d.wormgear.worm` (validated here as
-    the builder validates them)."""
+    the builder validates them); ``bodies`` False: only the wheel's mid-plane section is
+    built (a DXF download)."""
     from .wormgear import validate
     d = validate(**kw)
     part = kw.get("part", "pair")
     c = worm_counts(d, part)
+    if not bodies:
+        c = dict(c, wheel=0.0, worm=0.0)
     tri = c["wheel"] + c["worm"]
     cost = budget.COSTS["worm.body"]
     est = Estimate(cost.fixed_seconds + cost.seconds * tri, cost.fixed_bytes + cost.bytes * tri, tri,

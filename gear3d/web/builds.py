@@ -195,8 +195,11 @@ def set_preview(family: str, kw: dict) -> Reply:
                        "ms": round(1000 * (time.perf_counter() - t0), 1)})
 
 
-def _set_bodies(family: str, kw: dict) -> tuple:
-    """(bodies placed, report dict) of ``gear3d.worm(**kw)`` / ``gear3d.bevel(**kw)``."""
+def _set_bodies(family: str, kw: dict, output=None) -> tuple:
+    """(bodies placed, report dict) of ``gear3d.worm(**kw)`` / ``gear3d.bevel(**kw)``, the
+    whole build (and its export to ``output``) planned first (:mod:`gear3d.plan_sets`)."""
+    from ..plan_sets import plan_bevel, plan_worm
+    (plan_worm if family == "worm" else plan_bevel)(kw, output)
     if family == "worm":
         from ..wormgear import worm
         s = worm(**kw)
@@ -223,10 +226,12 @@ def set_download(family: str, kw: dict, fmt: str, folder: str) -> Reply:
     from ..export import write
     path = os.path.join(folder, "download." + fmt)
     if family == "worm" and fmt == "dxf":
+        from ..plan_sets import plan_worm
+        plan_worm(kw, path, bodies=False)            # the mid-plane section and its DXF
         write(set_section(family, kw, kw["tolerance"]), path)
         part = "wheel-midplane"
     else:
-        bodies, _ = _set_bodies(family, kw)
+        bodies, _ = _set_bodies(family, kw, path)
         write(bodies, path)
         part = kw.get("part")
     teeth = kw.get("wheel_teeth", 30) if family == "worm" else kw.get("teeth")
