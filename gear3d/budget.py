@@ -100,12 +100,16 @@ COSTS = {
                           "450-550 B a triangle"),
     # exporters, per profile vertex (2D) or per triangle (3D)
     "write.json": Cost(4e-6, 400.0, 0.05, 0.0, "triangular z=4000, 20,000 vertices: 0.25 s"),
-    "write.dxf": Cost(5e-4, 4000.0, 1.0, 30e6, "triangular z=4000, 20,000 vertices: 3.4 s, +68 MB "
-                      "(biarc fit + a reference profile 20x finer + read-back); z=20,000: 18 s; the fit is "
-                      "retried up to 3 times at smaller budgets: cycloidal z=1000, rolling radius 100 m, "
-                      "30,000 vertices: 52 s for 3 tries (upper end: 5e-4 s a vertex)"),
-    "write.svg": Cost(4e-4, 3000.0, 0.5, 20e6, "triangular z=4000, 20,000 vertices: 2.9 s, +48 MB; the "
-                      "same biarc fit as the DXF (retries included)"),
+    "write.dxf": Cost(1.2e-5, 450.0, 0.05, 30e6, "measured 2026-11-26 (CPU, after the profile; arcs certified on "
+                      "the exact curve): involute z=20..2000, triangular z=4000 / 20,000, cycloidal z=200 and z=1000 "
+                      "rc 100, sine, cycloid disc, gerotor, Moineau: 2.4-9.8 us a vertex + 10 ms; 100,000 vertices: "
+                      "0.56 s, +41 MB"),
+    "write.svg": Cost(1.2e-5, 450.0, 0.05, 30e6, "measured 2026-11-26, the same 13 parts: 3.6-9.8 us a vertex; "
+                      "triangular z=20,000: 0.76 s"),
+    # the sampled fallback (a reference 20x finer, shapely, up to 3 budgets): per profile vertex
+    "write.dxf.sampled": Cost(1.5e-3, 4000.0, 0.1, 30e6, "measured 2026-11-26, forced: involute z=20 / 200 0.37 / "
+                              "0.32 ms, triangular z=4000 0.11 ms, sine z=300 0.32 ms, cycloidal z=1000 rc 100 "
+                              "1.4 ms a vertex (3 tries, 43 s); taken unforced by gears of 5 teeth or fewer"),
     "write.png": Cost(5e-5, 3000.0, 1.0, 70e6, "profile figure, triangular z=4000 (20,000 vertices): 0.8 s "
                       "with matplotlib's import; body preview, 10,000-56,000 triangles: 0.65-0.82 s, +47-68 MB"),
     "write.stl": Cost(1.0e-6, 130.0, 0.05, 0.0, "binary STL, helical z=40..1000 (10,000-56,000 triangles): "
@@ -145,6 +149,9 @@ COSTS = {
                        "200/200 at 10-0.1 um: per (section vertex x cap segment) 1.25e-7 s split in layers "
                        "(200/200 at 0.1 um: 12,800 x 9,970 in 16 s), 2.2e-7 unsplit (counted twice); "
                        "400-735 B per estimated triangle (+40 MB)"),
+    "bevel.spiral": Cost(1.2e-5, 1500.0, 0.4, 60e6, "measured 2026-11-26 (CPU, peak RSS): spiral bevel 20/40 m 2, "
+                         "35 deg, gear at 10 / 3 um, 136k / 399k triangles: 1.2 / 4.6 s (1.05e-5 s a triangle), "
+                         "131 / 318 MB; per planned triangle (layers x warped vertices, plan_sets)"),
     "bevel.rolling": Cost(2e-2, 1e5, 1.0, 60e6, "estimated 2026-11-26 from 20/40 m 2 pair checks (about 1 s); per "
                           "tooth of the larger member an upper bound"),
     "facegear.plan": Cost(2.5e-4, 0.0, 0.4, 40e6, "measured 2026-11-26 (CPU): z2 = 60, z0 = 20 at 0.1 um: 177 "

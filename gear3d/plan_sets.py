@@ -134,9 +134,10 @@ def plan_worm(kw: dict, output=None, step=None, png=None, json=None, bodies: boo
 
 # ------------------------------------------------------------------ bevel sets
 
-def _probe_section(geo, which: str, zs: float, tol: float) -> float:
-    """Vertices of member ``which``'s section at the tolerance ``tol`` (mm), from one tooth
-    period sampled by the builder (stopped at its first sample: ``budget.probing``)."""
+def _probe_section(geo, which: str, zs: float, tol: float) -> tuple:
+    """(vertices, outline length in mm) of member ``which``'s section at the tolerance ``tol``
+    (mm), from one tooth period sampled by the builder (stopped at its first sample:
+    ``budget.probing``)."""
     from .bevel.section import member, section
     with budget.probing():
         try:
@@ -144,14 +145,18 @@ def _probe_section(geo, which: str, zs: float, tol: float) -> float:
         except budget.Probe as p:
             info = p.info
         else:                                 # never sampled: count it coarsely
-            return 64.0 * member(geo, which).teeth
+            return 64.0 * member(geo, which).teeth, 0.0
+    import numpy as np
     per = float(sum(len(a) - 1 for a in info["points"]))
-    return per * int(info["teeth"])
+    length = sum(float(np.hypot(*np.diff(np.asarray(a, float), axis=0).T).sum()) for a in info["points"])
+    return per * int(info["teeth"]), length * int(info["teeth"])
 
 
 def bevel_member_counts(geo, which: str, tol: float) -> tuple:
     """(section vertices, cap segments, cone layers) of member ``which`` at ``tol`` (mm), as
-    :func:`gear3d.bevel.body.member_body` / :func:`gear3d.bevel.spiral.spiral_body` plan them."""
+    :func:`gear3d.bevel.body.member_body` plans them; for a spiral or Zerol member
+    (:func:`gear3d.bevel.spiral.spiral_body`) the vertices of a warped layer and minus the
+    number of its layers."""
     import numpy as np
 
     from .bevel import body as B
@@ -164,7 +169,14 @@ def bevel_member_counts(geo, which: str, tol: float) -> tuple:
     else:
         worst = math.cos(tilt)
     n_seg = B.cap_segments(cp.r_max, B.CAP_SHARE * tol * worst)
-    nv = _probe_section(geo, which, cp.z_hi, B.SECTION_SHARE * tol * worst)
+    nv, length = _probe_section(geo, which, cp.z_hi, B.SECTION_SHARE * tol * worst)
+    if geo.line is not None:              # spiral / Zerol: the warped layers (spiral.spiral_body's plan)
+        from .bevel import spiral as S
+        e_w = S.WARP_SHARE * tol * worst
+        r_in, r_out = geo.inner_cone_distance, geo.cone_distance
+        pad = max(0.02 * geo.face_width, 4 * e_w, 1.5 * r_out * (1 / math.cos(tilt + 0.02) - 1))
+        layers, longest = S.plan(S.law(geo, which), r_in - pad, r_out + pad, c.face_angle, cp.r_max, e_w)
+        return nv + length / max(longest, 1e-12), n_seg, -layers
     layers = B.LAYERS if nv * n_seg > B.SPLIT_WORK else 0
     return nv, n_seg, layers
 
@@ -191,10 +203,16 @@ def plan_bevel(kw: dict, output=None, step=None, png=None, json=None, preview=No
     cost = budget.COSTS["bevel.body"]
     for which in (("gear", "mate") if part == "pair" else (part,)):
         nv, n_seg, layers = bevel_member_counts(geo, which, tol)
-        t = 2.0 * (2 * nv * (layers + 2) + 2 * n_seg * (4 + 2 * layers))
-        work = nv * n_seg * (1 if layers else 2)          # unsplit: twice the cost a pair (COSTS)
-        est = est.then(Estimate(cost.fixed_seconds + cost.seconds * (work + t), cost.fixed_bytes + cost.bytes * t,
-                                t, f"the {which}'s cone of {nv:,.0f} section vertices x {n_seg:,} cap segments"))
+        if layers < 0:                    # spiral / Zerol: a warped layered mesh cut by the caps
+            t = 2.0 * nv * (4 - layers) + 4 * n_seg
+            sp = budget.COSTS["bevel.spiral"]
+            est = est.then(Estimate(sp.fixed_seconds + sp.seconds * t, sp.fixed_bytes + sp.bytes * t, t,
+                                    f"the {which}'s warped teeth of {nv:,.0f} vertices x {-layers:,} layers"))
+        else:
+            t = 2.0 * (2 * nv * (layers + 2) + 2 * n_seg * (4 + 2 * layers))
+            work = nv * n_seg * (1 if layers else 2)          # unsplit: twice the cost a pair (COSTS)
+            est = est.then(Estimate(cost.fixed_seconds + cost.seconds * (work + t), cost.fixed_bytes + cost.bytes * t,
+                                    t, f"the {which}'s cone of {nv:,.0f} section vertices x {n_seg:,} cap segments"))
         tri += t
         parts.append(nv)
     est = Estimate(est.seconds, est.bytes, tri, est.what)          # a pair's file holds both members

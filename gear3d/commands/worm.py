@@ -23,55 +23,48 @@ from ..errors import GearError
 from ..export import atomic_path, check_path, write
 
 
+#: flags the command needs (the table's defaults serve the web form and the Python API)
+REQUIRED = ("module", "starts", "wheel_teeth", "part")
+#: the CLI's own words for a few of the table's keys (the rest read off WORM_PARAMS as they are)
+HELP = {"tolerance": "max deviation from the exact surfaces, mm (default 0.01; at most module/10)",
+        "wheel_keyway": "DIN 6885-1 keyway groove in the wheel's bore (needs --wheel-bore)",
+        "shaft_length": "worm shaft length at each end of the thread, mm (with --shaft-diameter); two values: "
+                        "the -x end and the +x end of the pair (-z, +z of the worm alone)"}
+
+
+def _flag(p, groups, prm):
+    """One flag of WORM_PARAMS: its range at parse time, no default (the builder's applies,
+    and the command passes only what was given), required for :data:`REQUIRED`."""
+    from .profile import arg_type
+    target = p
+    for names, g in groups:
+        if prm.name in names:
+            target = g
+    need = prm.name in REQUIRED
+    text = HELP.get(prm.name) or prm.help_text(default_text="" if need else None)
+    if prm.kind is bool and prm.name == "throat":
+        target.add_argument("--throat", dest="throat", action="store_true", default=None, help=text)
+        target.add_argument("--no-throat", dest="throat", action="store_false", help="cylindrical wheel blank")
+    elif prm.kind is bool:
+        target.add_argument(prm.flag, action="store_true", default=None, help=text)
+    elif prm.choices and prm.name != "worm_type":     # a worm type is refused by the design, named
+        target.add_argument(prm.flag, default=None, choices=list(prm.choices), required=need, help=text)
+    elif prm.name == "shaft_length":
+        target.add_argument(prm.flag, type=arg_type(prm), nargs="+", default=None, metavar="L", help=text)
+    else:
+        target.add_argument(prm.flag, type=arg_type(prm), default=None, required=need, help=text)
+
+
 def add_parser(sub):
+    from ..params import WORM_PARAMS
     p = sub.add_parser("worm", help="a worm and its throated wheel (exact envelope) -> .stl .3mf .step .dxf .json .png")
-    p.add_argument("--module", type=float, required=True, help="axial module m_x (= the wheel's transverse module), mm")
-    p.add_argument("--starts", type=int, required=True, help="worm starts z1, 1..8")
-    p.add_argument("--wheel-teeth", type=int, required=True, help="wheel teeth z2, 8..1000")
-    g = p.add_mutually_exclusive_group()
-    g.add_argument("--diameter-quotient", type=float, default=None, help="q = d1/m, 5..40 (default 10)")
-    g.add_argument("--worm-pitch-diameter", type=float, default=None, help="d1, mm (5 to 40 modules)")
-    a = p.add_mutually_exclusive_group()
-    a.add_argument("--axial-pressure-angle-deg", type=float, default=None, help="αx, 5..35 deg")
-    a.add_argument("--normal-pressure-angle-deg", type=float, default=None,
-                   help="αn, 5..35 deg (default 20); tan αn = tan αx cos γ")
-    p.add_argument("--worm-type", default="ZA", help="ZA (straight axial section), ZN (straight normal "
-                   "section), ZI (involute helicoid), ZK (ground by a biconical disc) (default ZA)")
-    p.add_argument("--disc-radius", type=float, default=None,
-                   help="ZK only: the grinding disc's outside radius, mm (default max(125, 25 m): a 250 mm disc)")
-    p.add_argument("--backlash", type=float, default=None,
-                   help="normal backlash j_n at the pitch point, mm (default 0): the worm's thread is thinned, "
-                        "the wheel stays the envelope of the nominal worm (the hob)")
-    p.add_argument("--hand", default="right", choices=["right", "left"], help="hand of worm and wheel (default right)")
-    p.add_argument("--addendum-coeff", type=float, default=1.0, help="worm addendum and wheel throat addendum, in modules (default 1)")
-    p.add_argument("--dedendum-coeff", type=float, default=1.2,
-                   help="worm and wheel dedendum in modules, >= addendum (default 1.2: clearance 0.2 m)")
-    p.add_argument("--worm-length", type=float, default=None, help="worm thread length, mm (default (11 + 0.06 z2) m)")
-    p.add_argument("--face-width", type=float, default=None, help="wheel face width, mm (default 0.75 d_a1, at most what the worm cuts)")
-    t = p.add_mutually_exclusive_group()
-    t.add_argument("--throat", dest="throat", action="store_true", default=True,
-                   help="throated (enveloping) wheel blank: torus about the worm axis (default)")
-    t.add_argument("--no-throat", dest="throat", action="store_false", help="cylindrical wheel blank")
-    p.add_argument("--shift-coeff", type=float, default=0.0, help="wheel profile shift x, -1..1: a = (d1 + d2)/2 + x m")
-    p.add_argument("--tolerance", type=float, default=None, help="max deviation from the exact surfaces, mm (default 0.01)")
-    p.add_argument("--friction", type=float, default=None, help="μ for the self-locking flag tan γ < μ (default 0.05)")
-    p.add_argument("--worm-bore", type=float, default=None, help="worm bore diameter, mm")
-    p.add_argument("--wheel-bore", type=float, default=None, help="wheel bore diameter, mm")
-    p.add_argument("--hub-diameter", type=float, default=None, help="wheel hub diameter, mm (with --hub-length)")
-    p.add_argument("--hub-length", type=float, default=None, help="wheel hub length, mm, centred on the mid-plane")
-    p.add_argument("--wheel-keyway", action="store_true", default=None,
-                   help="DIN 6885-1 keyway groove in the wheel's bore (needs --wheel-bore)")
-    p.add_argument("--web-thickness", type=float, default=None,
-                   help="thin the wheel between hub and rim to a web this thick, mm, centred on the mid-plane")
-    p.add_argument("--rim-diameter", type=float, default=None,
-                   help="the rim's inside diameter, where the web meets it, mm (with --web-thickness; default "
-                        "the smallest root diameter less 4 modules)")
-    p.add_argument("--shaft-diameter", type=float, default=None,
-                   help="worm shaft diameter, mm, below the root diameter (with --shaft-length)")
-    p.add_argument("--shaft-length", type=float, nargs="+", default=None, metavar="L",
-                   help="worm shaft length at each end of the thread, mm (with --shaft-diameter); two values: "
-                        "the -x end and the +x end of the pair (-z, +z of the worm alone)")
-    p.add_argument("--part", required=True, choices=["worm", "wheel", "pair"], help="what to build")
+    groups = []
+    for prm in WORM_PARAMS:           # the set's table (gear3d.params): flags, ranges, help
+        if prm.excludes and not any(prm.name in names for names, _ in groups):
+            groups.append(((prm.name, *prm.excludes), p.add_mutually_exclusive_group()))
+        if prm.name == "throat":
+            groups.append((("throat",), p.add_mutually_exclusive_group()))
+        _flag(p, groups, prm)
     p.add_argument("-o", "--output", default=None,
                    help="mesh file: .stl or .3mf (pair: two named objects), .step; or, with --part wheel, .dxf: "
                         "the wheel's mid-plane section (lines and arcs, certified within --tolerance)")
@@ -97,14 +90,13 @@ FEATURES = ("worm_bore", "wheel_bore", "hub_diameter", "hub_length", "wheel_keyw
 
 
 def _params(args) -> dict:
-    kw = {"module": args.module, "starts": args.starts, "wheel_teeth": args.wheel_teeth,
-          "worm_type": args.worm_type, "hand": args.hand, "addendum_coeff": args.addendum_coeff,
-          "dedendum_coeff": args.dedendum_coeff, "throat": args.throat, "shift_coeff": args.shift_coeff}
-    for k in ("diameter_quotient", "worm_pitch_diameter", "axial_pressure_angle_deg", "normal_pressure_angle_deg",
-              "worm_length", "face_width", "tolerance", "friction", "disc_radius", "backlash", *FEATURES):
-        v = getattr(args, k)
+    """The keywords of gear3d.worm the command was given (the builder's defaults for the rest)."""
+    from ..params import WORM_PARAMS
+    kw = {}
+    for prm in WORM_PARAMS:
+        v = getattr(args, prm.name, None)
         if v is not None:
-            kw[k] = v[0] if isinstance(v, list) and len(v) == 1 else v
+            kw[prm.name] = v[0] if isinstance(v, list) and len(v) == 1 else v
     return kw
 
 
@@ -143,9 +135,14 @@ def run(args) -> int:
     _check_outputs(args)
     from ..wormgear import worm
     from ..wormgear.design import design
+    from ..plan_sets import plan_worm
     kw = _params(args)
-    d = design(**{k: v for k, v in kw.items() if k not in FEATURES})
+    kw.pop("part", None)
     check = bool(args.check or args.contact_png)
+    # the whole command planned first (bodies, features, check, export, figure): refused before any work
+    plan_worm(dict(kw, part=args.part, check=check), args.output, args.step if _is_step(args) else None,
+              args.png, args.json)
+    d = design(**{k: v for k, v in kw.items() if k not in FEATURES})
     s = worm(part=args.part, check=check, **kw)
     lines = []
     if args.output is not None and args.output.lower().endswith(".dxf"):
