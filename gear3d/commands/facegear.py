@@ -54,6 +54,10 @@ def run(args) -> int:
         check_path(args.png, "png", (".png", ".svg"))
     if args.shaper_teeth is None and args.pinion_teeth is None:
         raise GearError("shaper_teeth", None, "an integer 8..200 (or give --pinion-teeth)")
+    from ..plan_sets import plan_face_gear        # the whole command planned first: refused before any work
+    plan_face_gear({"teeth": args.teeth, "shaper_teeth": args.shaper_teeth, "module": args.module,
+                    "pressure_angle_deg": args.pressure_angle_deg, "pinion_teeth": args.pinion_teeth,
+                    "tolerance": args.tolerance, "rim": args.rim}, out, args.png, args.json)
     f = build(args.teeth, args.shaper_teeth, args.module, args.pressure_angle_deg, args.pinion_teeth,
               args.inner_radius, args.outer_radius, args.tolerance, args.rim)
     info = write(list(f.bodies), out)
