@@ -141,6 +141,8 @@ def build(teeth, mate_teeth, module, face_width=None, pressure_angle_deg=20.0, s
     geo = pair_geometry(teeth, mate_teeth, module, face_width, pressure_angle_deg, shaft_angle_deg,
                         shift_coeff, form, clearance=clearance)
     geo = with_tooth_line(geo, spiral_angle_deg, cutter_radius, hand)
+    if check and (geo.gear.internal or geo.mate.internal):
+        raise GearError("check", check, "an external pair (the rolling check of internal bevels is not built)")
     mform = geo.form if mate_form is None else check_choice("mate_form", mate_form, FORMS)
     geo_m = geo if mform == geo.form else replace(geo, form=mform)
     if geo_m is not geo:

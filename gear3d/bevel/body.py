@@ -68,6 +68,8 @@ def caps(geo: PairGeometry, which: str) -> Caps:
     """The cap outline of member ``which`` (see the module doc)."""
     c = member(geo, which)
     d, re, ri = c.pitch_angle, geo.cone_distance, geo.inner_cone_distance
+    if c.internal:
+        return _internal_caps(geo, c)
     beta_j = c.root_angle - min(c.dedendum_angle, 0.5 * c.root_angle)    # below the root cone
     r_bt, z_b = _ray_point(re, beta_j, d)
     r_ft, z_f = _ray_point(ri, beta_j, d)
@@ -88,6 +90,28 @@ def caps(geo: PairGeometry, which: str) -> Caps:
     outline = np.array([[0.0, z_f], [r_ft, z_f], [r_out, front0 - r_out * td],
                         [r_out, back0 - r_out * td], [r_bt, z_b], [0.0, z_b]])
     return Caps(outline, 0.98 * z_toe_tip, z_b * (1 + 1e-3), r_tip)
+
+
+def _internal_caps(geo: PairGeometry, c) -> Caps:
+    """An internal member (own frame turned by π about x, pitch angle π - δ): the ring
+    between the back and front cones (normal to the pitch element at R_e and R_e - b) from
+    inside the tip cone out past the rim cone; the teeth cone bounds it radially."""
+    from .section import rim_polar
+    d, re, ri = math.pi - c.pitch_angle, geo.cone_distance, geo.inner_cone_distance
+    b_lo = max(d - c.addendum_angle - 0.5 * (d - c.addendum_angle), 0.01)
+    b_hi = min(rim_polar(c) + 0.02, math.radians(89.0))
+    pts = [_ray_point(ri, b_lo, d), _ray_point(ri, b_hi, d), _ray_point(re, b_hi, d), _ray_point(re, b_lo, d)]
+    outline = np.array(pts)
+    z_lo = min(_ray_point(ri, b, d)[1] for b in (d - c.addendum_angle, rim_polar(c)))
+    z_hi = max(_ray_point(re, b, d)[1] for b in (d - c.addendum_angle, rim_polar(c)))
+    r_max = _ray_point(re, rim_polar(c), d)[0]
+    if _area(outline) < 0:
+        outline = outline[::-1]
+    return Caps(outline, 0.98 * z_lo, z_hi * (1 + 1e-3), r_max)
+
+
+def _area(p) -> float:
+    return 0.5 * float(np.sum(p[:, 0] * np.roll(p[:, 1], -1) - np.roll(p[:, 0], -1) * p[:, 1]))
 
 
 def edge_sine(geo: PairGeometry, which: str) -> float:
@@ -191,4 +215,6 @@ def mate_transform(geo: PairGeometry) -> np.ndarray:
     Ry = np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]])
     T = np.eye(4)
     T[:3, :3] = Ry @ Rz
+    if geo.mate.internal:                  # built in its own frame turned by π about x
+        T[:3, :3] = T[:3, :3] @ np.diag([1.0, -1.0, -1.0])
     return T

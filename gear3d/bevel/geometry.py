@@ -58,6 +58,12 @@ class GearCone:
         return self.pitch_angle + self.addendum_angle
 
     @property
+    def internal(self) -> bool:
+        """An internal bevel: pitch cone angle beyond 90° (built in its own frame turned by π
+        about x, where the pitch cone angle is π - δ and the teeth point inwards)."""
+        return self.pitch_angle > math.pi / 2
+
+    @property
     def face_cone_angle(self) -> float:
         """The body's face cone angle (rad): δ + θ_a (standard) or δ + θ_f(mate) (uniform)."""
         return self.face_angle if self.uniform_face_angle is None else self.uniform_face_angle
@@ -131,6 +137,8 @@ def pair_geometry(teeth, mate_teeth, module, face_width=None, pressure_angle_deg
         cone = GearCone(z, d, math.atan(h_a / re), math.atan(h_f / re), h_a, h_f, xs)
         _check_cone(name, z, cone, sig, a, form)
         cones.append(cone)
+    if clearance == "uniform" and any(c.internal for c in cones):
+        raise GearError("clearance", clearance, "standard for an internal bevel pair")
     if clearance == "uniform":
         from dataclasses import replace
         cones = [replace(c, uniform_face_angle=c.pitch_angle + o.dedendum_angle)
@@ -144,18 +152,24 @@ def pair_geometry(teeth, mate_teeth, module, face_width=None, pressure_angle_deg
 
 
 def _check_cone(name, z, cone: GearCone, sig, a, form):
-    """Refuse what is not built: internal bevels and near-crown gears (face cone >= 87°),
-    root cones through the axis, and a spherical-involute crown whose root reaches its
-    base circle (θ_a >= α)."""
+    """Refuse what is not built: near-crown gears (a tooth reaching within 3° of 90° from
+    the axis: the central projection needs every tooth point short of it), root (external)
+    or tip (internal) cones through the axis, and a spherical-involute crown whose root
+    reaches its base circle (θ_a >= α)."""
     deg = math.degrees
-    if deg(cone.face_angle) >= MAX_FACE_ANGLE_DEG:
+    lo, hi = cone.root_angle, cone.face_angle
+    far = MAX_FACE_ANGLE_DEG
+    if deg(hi) >= far and deg(lo) <= 180.0 - far:
+        what = cone.face_angle if deg(cone.pitch_angle) < 90 else cone.root_angle
         raise GearError("shaft_angle_deg", round(deg(sig), 6),
-                        f"a shaft angle that keeps each face cone below {MAX_FACE_ANGLE_DEG:g} deg",
-                        f"the member with {z} teeth would have a face cone of {deg(cone.face_angle):.4g} deg: "
-                        "crown gears and internal bevels are not built")
-    if cone.root_angle <= math.radians(1.0):
+                        f"a shaft angle that keeps each member's teeth more than {90 - far:g} deg off 90 deg "
+                        "from its axis",
+                        f"the member with {z} teeth would have a {'face' if deg(cone.pitch_angle) < 90 else 'root'} "
+                        f"cone of {deg(what):.4g} deg: crown gears are built by gear3d face-gear")
+    near_axis = cone.root_angle if not cone.internal else math.pi - cone.face_angle
+    if near_axis <= math.radians(1.0):
         raise GearError(name, z, "more teeth (the root cone must stay at least 1 deg off the axis)",
-                        f"root cone angle {deg(cone.root_angle):.4g} deg")
+                        f"{'root' if not cone.internal else 'tip'} cone angle {deg(near_axis):.4g} deg from the axis")
     if form == "spherical-involute" and max(cone.addendum_angle, cone.dedendum_angle) >= a:
         raise GearError(name, z, "more teeth, or the octoid form",
                         f"the spherical-involute crown's depth ({deg(max(cone.addendum_angle, cone.dedendum_angle)):.4g}"

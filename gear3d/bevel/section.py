@@ -43,8 +43,24 @@ def section(geo: PairGeometry, which: str, zs: float, tolerance: float):
     params = dict(teeth=cone.teeth, module=m, pressure_angle_deg=math.degrees(a), shift_coeff=cone.shift_coeff,
                   form=geo.form, pitch_angle_deg=math.degrees(d), section_z=zs, tolerance=tolerance,
                   addendum_coeff=cone.addendum / m - cone.shift_coeff)
-    tip = zs * math.tan(cone.face_angle)
-    return build_profile(f"bevel-{geo.form}", params, [p for p, _ in pieces], cone.teeth, zs * math.tan(d),
-                         internal=False, tolerance=tolerance, names=[n for _, n in pieces],
+    if cone.internal:
+        # its own frame is turned by π about x: pitch angle π - δ, teeth pointing inwards, a rim
+        dp = math.pi - d
+        tip, rim = zs * math.tan(dp - cone.addendum_angle), rim_radius(cone, zs)
+    else:
+        dp, tip, rim = d, zs * math.tan(cone.face_angle), None
+    return build_profile(f"bevel-{geo.form}", params, [p for p, _ in pieces], cone.teeth, zs * math.tan(dp),
+                         internal=cone.internal, tolerance=tolerance, rim_radius=rim, names=[n for _, n in pieces],
                          flank_pieces=[i for i, (_, n) in enumerate(pieces) if n == "crown-flank"],
                          nominal_tip_radius=tip)
+
+
+def rim_polar(cone) -> float:
+    """An internal member's rim: the polar angle (rad, own frame) of its outer cone, a
+    little beyond the root cone (π - δ + θ_f)."""
+    return math.atan(1.15 * math.tan(math.pi - cone.pitch_angle + cone.dedendum_angle))
+
+
+def rim_radius(cone, zs: float) -> float:
+    """The rim circle's radius (mm) in the plane z = ``zs`` (own frame) of an internal member."""
+    return zs * math.tan(rim_polar(cone))

@@ -97,6 +97,10 @@ def gnomonic_tangent(G, T, zs: float):
         return zs * (T[:, :2] * z - G[:, :2] * T[:, 2:3]) / (z * z)
 
 
+#: an internal member's own frame: turned by π about x (its pitch cone opens towards +z)
+FLIP = np.array([1.0, -1.0, -1.0])
+
+
 def sphere_envelope_piece(el, delta: float, zs: float) -> EnvelopePiece:
     """Exact evaluator ``G(t) -> (N, 2)`` (mm, plane z = zs of the gear frame) of the
     envelope of one crown element rolling on the pitch cone of angle ``delta`` (rad), with
@@ -106,6 +110,8 @@ def sphere_envelope_piece(el, delta: float, zs: float) -> EnvelopePiece:
         X, T = element_xt(el, t)
         lam_p = contact_roll(X, T)
         G, Tg = generated_points(X, T, lam_p, delta)
+        if delta > math.pi / 2:                  # internal: its own frame, turned by π about x
+            G, Tg = G * FLIP, Tg * FLIP
         g = gnomonic(G, zs)
         if not tangent:
             return g, None

@@ -111,6 +111,9 @@ def with_tooth_line(geo, spiral_angle_deg, cutter_radius, hand):
         if hand is not None:
             raise GearError("hand", hand, "only for a spiral or Zerol bevel (--spiral-angle-deg or --cutter-radius)")
         return geo
+    if geo.gear.internal or geo.mate.internal:
+        raise GearError("spiral_angle_deg" if psi else "cutter_radius", spiral_angle_deg if psi else cutter_radius,
+                        "none for an internal bevel pair (straight only)")
     h = 1.0 if check_choice("hand", "right" if hand is None else hand, HANDS) == "right" else -1.0
     re, ri = geo.cone_distance, geo.inner_cone_distance
     rm = re - geo.face_width / 2

@@ -85,6 +85,12 @@ def run(args) -> int:
             check_path(getattr(args, name), name, (".png", ".svg") if name != "preview_png" else (".png",))
     if args.contact_png is not None and args.part != "pair":
         raise GearError("contact_png", args.contact_png, "only with --part pair")
+    _refuse_internal_figures(args)
+    from ..plan_sets import plan_bevel          # the whole command planned first: refused before any work
+    plan_bevel({k: getattr(args, k) for k in ("teeth", "mate_teeth", "module", "face_width", "pressure_angle_deg",
+                                              "shaft_angle_deg", "form", "shift_coeff", "tolerance", "part",
+                                              "check", "spiral_angle_deg", "cutter_radius", "hand")},
+               out, args.step, args.png, args.json, args.preview_png)
     b = build(args.teeth, args.mate_teeth, args.module, args.face_width, args.pressure_angle_deg,
               args.shaft_angle_deg, args.form, args.shift_coeff, args.tolerance, args.part,
               mate_form=args.mate_form, check=args.check, spiral_angle_deg=args.spiral_angle_deg,
@@ -111,6 +117,18 @@ def run(args) -> int:
     from ..bevel.rolling import finding_code, summary
     sys.stdout.write(summary(r.check) + "\n")
     return finding_code(r.check)
+
+
+def _refuse_internal_figures(args):
+    """The figures of an internal bevel pair are not drawn yet: refused before any work."""
+    if args.png is None and args.contact_png is None:
+        return
+    import math
+    from ..bevel.geometry import pitch_angles
+    d1, d2 = pitch_angles(args.teeth, args.mate_teeth, math.radians(args.shaft_angle_deg))
+    if max(d1, d2) > math.pi / 2:
+        name = "png" if args.png is not None else "contact_png"
+        raise GearError(name, getattr(args, name), "none for an internal bevel pair (the figures are not drawn yet)")
 
 
 def _figures(args, b):
