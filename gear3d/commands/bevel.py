@@ -75,9 +75,9 @@ def run(args) -> int:
         from ..export.step_brep import require_occ
         require_occ()                       # before any work: one line naming what to install
     if args.step == "brep" and (args.clearance == "uniform" or args.mounting_distance is not None
-                                or args.mate_mounting_distance is not None):
-        raise GearError("step", "brep", "faceted with --clearance uniform or a mounting distance (the B-rep "
-                        "has neither the uniform face cone nor the hub yet)")
+                                or args.mate_mounting_distance is not None or _internal(args)):
+        raise GearError("step", "brep", "faceted with --clearance uniform, a mounting distance or an internal "
+                        "bevel (the B-rep has neither the uniform face cone, the hub nor internal teeth yet)")
     if args.json is not None:
         check_path(args.json, "json", (".json",))
     for name in ("png", "preview_png", "contact_png"):
@@ -119,14 +119,18 @@ def run(args) -> int:
     return finding_code(r.check)
 
 
+def _internal(args) -> bool:
+    """True when the pair has an internal member (a pitch cone beyond 90°)."""
+    import math
+    from ..bevel.geometry import pitch_angles
+    return max(pitch_angles(args.teeth, args.mate_teeth, math.radians(args.shaft_angle_deg))) > math.pi / 2
+
+
 def _refuse_internal_figures(args):
     """The figures of an internal bevel pair are not drawn yet: refused before any work."""
     if args.png is None and args.contact_png is None:
         return
-    import math
-    from ..bevel.geometry import pitch_angles
-    d1, d2 = pitch_angles(args.teeth, args.mate_teeth, math.radians(args.shaft_angle_deg))
-    if max(d1, d2) > math.pi / 2:
+    if _internal(args):
         name = "png" if args.png is not None else "contact_png"
         raise GearError(name, getattr(args, name), "none for an internal bevel pair (the figures are not drawn yet)")
 
