@@ -16,7 +16,8 @@ fitted for each mesh; the tooth thickness is the theoretical one, not fitted.
 gear3d's sources are byte-compiled first (``compileall``), as an installed package is.
 
 Run:  python benchmarks/peers.py [--runs 5] [--publish] [--case worm]
-(``--case worm``: the worm pair against BOSL2's worm() + worm_gear(), benchmarks/peers_worm.py)
+(``--case worm``: the worm pair against BOSL2's worm() + worm_gear(), benchmarks/peers_worm.py;
+``--case brep``: the B-rep STEP against cq_gears (CadQuery), benchmarks/peers_brep.py)
 ``--dxf``: gear3d's 2D DXF against BOSL2's spur20_2d.scad (benchmarks/peers_dxf.py).
 ``--publish`` writes the table into BENCHMARKS.md (between the peers markers) and the plot
 benchmarks/peers.png. Needs ``openscad`` (apt-get install -y openscad).
@@ -72,8 +73,15 @@ def flank_error(path: str) -> dict:
     bary = np.array([[1, 0, 0], [0, 1, 0], [0, 0, 1], [.5, .5, 0], [0, .5, .5], [.5, 0, .5],
                      [1 / 3, 1 / 3, 1 / 3]])
     pts = np.einsum("bk,tkj->tbj", bary, tri).reshape(-1, 3)
+    res = points_flank_error(pts, V[:, 2].min(), V[:, 2].max())
+    res.update(triangles=int(len(F)), vertices=int(len(np.unique(V.round(9), axis=0))))
+    return res
+
+
+def points_flank_error(pts, zmin: float, zmax: float) -> dict:
+    """Flank error (mm) of surface points ``pts`` (n, 3) of the reference gear between the
+    end planes ``zmin``/``zmax``: the helix hand and the tooth phase fitted (see the module doc)."""
     z = pts[:, 2]
-    zmin, zmax = V[:, 2].min(), V[:, 2].max()
     inside = (z > zmin + 1e-6) & (z < zmax - 1e-6)
     best = None
     for hand in (1.0, -1.0):
@@ -106,8 +114,7 @@ def flank_error(path: str) -> dict:
                 lo = a
         d = dist(0.5 * (lo + hi))
         res = {"flank_error": float(d.max()), "flank_p99": float(np.percentile(d, 99)),
-               "samples": int(sel.sum()), "triangles": int(len(F)),
-               "vertices": int(len(np.unique(V.round(9), axis=0)))}
+               "samples": int(sel.sum())}
         if best is None or res["flank_error"] < best["flank_error"]:
             best = res
     return best
@@ -119,13 +126,18 @@ def main(argv=None) -> int:
     ap.add_argument("--publish", action="store_true")
     ap.add_argument("--dxf", action="store_true",
                     help="the 2D DXF against BOSL2's spur20_2d.scad instead (benchmarks/peers_dxf.py)")
-    ap.add_argument("--case", choices=["helical", "worm"], default="helical",
-                    help="helical: the reference helical gear (default); worm: the worm pair (peers_worm.py)")
+    ap.add_argument("--case", choices=["helical", "worm", "brep"], default="helical",
+                    help="helical: the reference helical gear (default); worm: the worm pair (peers_worm.py); "
+                         "brep: the B-rep STEP against cq_gears (peers_brep.py)")
     args = ap.parse_args(argv)
     if args.dxf:                                   # the DXF rows live in peers_dxf.py
         sys.path.insert(0, str(Path(__file__).resolve().parent))
         from peers_dxf import main as dxf_main
         return dxf_main(["--runs", str(args.runs)] + (["--publish"] if args.publish else []))
+    if args.case == "brep":
+        sys.path.insert(0, str(Path(__file__).resolve().parent))
+        from peers_brep import main as brep_main
+        return brep_main(["--runs", str(args.runs)])
     if args.case == "worm":
         sys.path.insert(0, str(Path(__file__).resolve().parent))
         from peers_worm import main as worm_main
