@@ -169,6 +169,7 @@ def _point_mesh_distance(P, V, F):
     return out
 
 
+@pytest.mark.slow
 def test_section_and_body_against_brute_force_shaping():
     from gear3d.facegear.section import half_profile, section
     tol = 0.01
@@ -258,5 +259,8 @@ def test_refusals_one_line_exit_2_no_file(tmp_path, capsys, argv, name):
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and name in err[0]
     assert not os.listdir(tmp_path)
-    with pytest.raises(GearError):
+
+
+def test_api_refusal_names_the_parameter():
+    with pytest.raises(GearError, match="inner_radius"):
         gear3d.face_gear(teeth=60, shaper_teeth=20, module=1.0, inner_radius=25.0)
