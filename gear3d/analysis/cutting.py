@@ -90,6 +90,31 @@ def simulate_cut(rack: Rack, teeth: int, module: float, shift_coeff: float = 0.0
     11.0
     """
     import shapely
+    teeth, module, shift_coeff, internal, positions, samples, rolls, window = _checked(
+        rack, teeth, module, shift_coeff, internal, positions, samples, rolls, window)
+    budget.charge(budget.estimate("cut", float(positions) * samples * 4, 0.0,
+                                  f"{positions:,} rack positions x {samples:,} outline points"), "positions", positions)
+    r = module * teeth / 2
+    xm = shift_coeff * module
+    if rolls is None:
+        rolls = _default_rolls(rack, teeth, r, xm, internal)
+    per = int(math.ceil(rolls)) + 2
+    uv = rack_outline(rack, per, samples)
+    if window is None and internal:
+        window = 0.75
+    ds = np.linspace(-rolls * rack.pitch, rolls * rack.pitch, positions)
+    cut = _swept(rack, uv, ds, r, xm, module, internal, window)
+    if internal:
+        outer = r - xm + rack.addendum + 2 * module
+        blank = shapely.Point(0, 0).buffer(outer, quad_segs=2048)
+    else:
+        outer = r + xm + rack.dedendum + module
+        blank = shapely.Point(0, 0).buffer(outer, quad_segs=2048)
+    return blank.difference(cut), outer
+
+
+def _checked(rack, teeth, module, shift_coeff, internal, positions, samples, rolls, window):
+    """:func:`simulate_cut`'s arguments, checked (one line naming a bad one)."""
     if not isinstance(rack, Rack):
         raise GearError("rack", type(rack).__name__, "a basic rack (gear3d.racks.involute_rack(...) and others)")
     teeth = check_number("teeth", teeth, 1, 100_000, integer=True)
@@ -102,30 +127,32 @@ def simulate_cut(rack: Rack, teeth: int, module: float, shift_coeff: float = 0.0
         rolls = check_number("rolls", rolls, 0, 1000, lo_open=True, unit="pitches")
     if window is not None:
         window = check_number("window", window, 0, 1000, lo_open=True, unit="pitches")
-    budget.charge(budget.estimate("cut", float(positions) * samples * 4, 0.0,
-                                  f"{positions:,} rack positions x {samples:,} outline points"), "positions", positions)
-    r = module * teeth / 2
-    xm = shift_coeff * module
+    return teeth, module, shift_coeff, internal, positions, samples, rolls, window
+
+
+def _default_rolls(rack, teeth, r, xm, internal):
+    """Travel (pitches each way) that finishes tooth 0 and its neighbours."""
+    # tooth 0 (angle within +-pi/z) is within the rack's reach only while
+    # rho cos(theta) >= r + xm - h_tool for some rho <= blank radius: a geometric bound
+    blank_r = r + xm + rack.dedendum if not internal else r - xm + rack.addendum
+    inner = (r + xm - rack.addendum) if not internal else (r - xm - rack.dedendum)
+    c = max(min(inner / blank_r, 1.0), -1.0) if not internal else 1.0
+    theta = math.acos(c) + math.pi / teeth
+    rolls = max(theta * r / rack.pitch, 1.0) + 0.25
+    if internal:
+        rolls = 1.6
+    return rolls
+
+
+def _swept(rack, uv, ds, r, xm, module, internal, window):
+    """The union (shapely) of the rack outline ``uv`` placed at the travels ``ds`` (mm)."""
+    import shapely
     sigma = -1.0 if internal else 1.0
-    if rolls is None:
-        # tooth 0 (angle within +-pi/z) is within the rack's reach only while
-        # rho cos(theta) >= r + xm - h_tool for some rho <= blank radius: a geometric bound
-        blank_r = r + xm + rack.dedendum if not internal else r - xm + rack.addendum
-        inner = (r + xm - rack.addendum) if not internal else (r - xm - rack.dedendum)
-        c = max(min(inner / blank_r, 1.0), -1.0) if not internal else 1.0
-        theta = math.acos(c) + math.pi / teeth
-        rolls = max(theta * r / rack.pitch, 1.0) + 0.25
-        if internal:
-            rolls = 1.6
-    per = int(math.ceil(rolls)) + 2
-    uv = rack_outline(rack, per, samples)
     # rack body behind its root line; a ring's rack also covers the centre
     back = -(r + 2 * module) if internal else -(rack.dedendum + 3 * module)
-    if window is None and internal:
-        window = 0.75
     # the union is taken in chunks of rack positions: GEOS then never holds more than
     # one chunk's polygons (thousands of dense rack outlines at once took gigabytes)
-    ds = np.linspace(-rolls * rack.pitch, rolls * rack.pitch, positions)
+    positions = len(ds)
     cut = None
     for c0 in range(0, positions, CHUNK):
         polys = []
@@ -139,13 +166,7 @@ def simulate_cut(rack: Rack, teeth: int, module: float, shift_coeff: float = 0.0
             polys.append(shapely.Polygon(np.stack([c * X - s * Y, s * X + c * Y], axis=1)))
         part = shapely.union_all(shapely.make_valid(np.array(polys, dtype=object)))
         cut = part if cut is None else shapely.union(cut, part)
-    if internal:
-        outer = r - xm + rack.addendum + 2 * module
-        blank = shapely.Point(0, 0).buffer(outer, quad_segs=2048)
-    else:
-        outer = r + xm + rack.dedendum + module
-        blank = shapely.Point(0, 0).buffer(outer, quad_segs=2048)
-    return blank.difference(cut), outer
+    return cut
 
 
 def compare_tooth(region, loop: np.ndarray, pitch_angle: float, window: float = 0.45,

@@ -148,7 +148,6 @@ def check_pair(p1, p2, internal=None, tolerance=None, center_distance=None, cycl
         >>> round(r["contact_ratio"], 4), r["continuous"]
         (1.5568, True)
     """
-    import shapely
     internal, a, c2, phase2, ratio = setup(p1, p2, internal, center_distance)
     tol = max(p1.tolerance, p2.tolerance) if tolerance is None else check_number(
         "tolerance", tolerance, 1e-7, None, lo_open=True, unit="mm")
@@ -164,51 +163,18 @@ def check_pair(p1, p2, internal=None, tolerance=None, center_distance=None, cycl
     span = max(cycles, 3.2) * pitch_ang
     n = int(math.ceil(span / step)) + 1
     phis = np.linspace(-span / 2, span / 2, n)
-    # both polygons are inscribed within their tolerance: touching flanks show gaps up to 2 tol
-    contact_tol = 2.5 * tol
-    pen_max, pen_at, gap_min = 0.0, None, math.inf
-    contact_pts = []
-    b_lo, b_hi = sorted((float(p2.report["tip_radius"]), float(p2.report["root_radius"])))
-    for ph in phis:
-        PA = A.polygon(ph)
-        PB = B.polygon(phase2 + ratio * ph)
-        pen, where, gap = _penetration(PA, PB)
-        if pen > pen_max:
-            pen_max, pen_at = pen, (float(ph), where)
-        gap_min = min(gap_min, gap)
-        # near points: boundary vertices of A within contact_tol of B's boundary
-        bA = shapely.get_coordinates(PA.boundary)
-        # only A's points in the annulus of B's teeth (about B's centre) can touch them
-        rc = np.hypot(bA[:, 0] - c2[0], bA[:, 1] - c2[1])
-        bA = bA[(rc >= b_lo - contact_tol) & (rc <= b_hi + contact_tol)]
-        # (an R-tree of A's points queried with B's boundary: ~10x faster than testing
-        # every point against the whole boundary)
-        hit = np.zeros(len(bA), bool)
-        hit[shapely.STRtree(shapely.points(bA)).query(PB.boundary, predicate="dwithin", distance=contact_tol)] = True
-        contact_pts.append(bA[hit])
+    pen_max, pen_at, gap_min, n_contact = _roll(A, B, p2, c2, phase2, ratio, phis, tol)
     # inscribed polygons bulge by up to their tolerance at concave flanks: a penetration
     # counts as interference once it exceeds what the two tolerances can explain
     interference = pen_max > 2 * tol
-    where = None
-    if pen_at is not None and pen_at[1] is not None:
-        ph, pt = pen_at
-        w1 = rotate(np.asarray(pt)[None, :], -ph)[0]
-        w2 = rotate((np.asarray(pt) - np.asarray(c2))[None, :], -(phase2 + ratio * ph))[0]
-        where = {"phi1_deg": math.degrees(ph), "point": [float(pt[0]), float(pt[1])],
-                 "radius1": float(np.hypot(*w1)), "angle1_deg": math.degrees(math.atan2(w1[1], w1[0])),
-                 "radius2": float(np.hypot(*w2)), "angle2_deg": math.degrees(math.atan2(w2[1], w2[0])),
-                 "opposite_pitch_point": bool(pt[0] < (c2[0] if internal else 0.0))}
+    where = _interference_at(pen_at, c2, phase2, ratio, internal)
     # contact: conjugate action of tooth 0's drive flank on the exact pieces (contact.py)
     conj = _conjugate(p1, p2, a, c2, phase2, ratio, internal, tol, interference)
     # clearance on each flank: how far wheel 2 may turn each way before touching (mm on r2)
-    drive, coast, te = [], [], []
+    drive, coast = [], []
     for ph in np.linspace(-pitch_ang / 2, pitch_ang / 2, backlash_phases, endpoint=False):
-        PA = A.polygon(ph)
-        g_plus = _play(A, B, ph, phase2 + ratio * ph, +1, p2.pitch_radius, tol)
-        g_minus = _play(A, B, ph, phase2 + ratio * ph, -1, p2.pitch_radius, tol)
-        drive.append(g_plus)
-        coast.append(g_minus)
-        del PA
+        drive.append(_play(A, B, ph, phase2 + ratio * ph, +1, p2.pitch_radius, tol))
+        coast.append(_play(A, B, ph, phase2 + ratio * ph, -1, p2.pitch_radius, tol))
     drive, coast = np.array(drive), np.array(coast)
     # transmission error: the drive-side play turns wheel 2 through (signed, mm on r2);
     # meaningful while the pair stays in contact (contact ratio >= 1)
@@ -234,19 +200,61 @@ def check_pair(p1, p2, internal=None, tolerance=None, center_distance=None, cycl
         "tip_root_clearance": _tip_root(p1, p2, a, internal),
         "contact_ratio": conj["contact_ratio"],
         "transmission_error_pp": (None if np.isnan(te).any() else float(te.max() - te.min())),
-        "contact_points": int(sum(len(c) for c in contact_pts)),
-        "path_of_contact": conj["path_of_contact"],
-        "path_length": conj["path_length"],
-        "sliding_start": conj["sliding_start"],
-        "sliding_end": conj["sliding_end"],
-        "contact_ratio_uncertainty": conj["contact_ratio_uncertainty"],
-        "continuous": conj["continuous"],
-        "edge_contact": conj["edge_contact"],
-        "contact_band": conj["contact_band"],
-        "contact_take_up": conj["contact_take_up"],
-        "mean_contact_points": conj["mean_contact_points"],
+        "contact_points": n_contact,
+        **{k: conj[k] for k in _CONJ_KEYS},
     })
     return rep
+
+
+#: the report fields copied from :func:`_conjugate`'s result, in the report's order
+_CONJ_KEYS = ("path_of_contact", "path_length", "sliding_start", "sliding_end",
+              "contact_ratio_uncertainty", "continuous", "edge_contact", "contact_band",
+              "contact_take_up", "mean_contact_points")
+
+
+def _roll(A, B, p2, c2, phase2, ratio, phis, tol):
+    """Roll wheel 1 through the angles ``phis`` (rad), wheel 2 following at ``ratio``.
+
+    Returns (deepest penetration mm, (phi, point) where it happens or None, smallest gap mm,
+    number of A's boundary points within the contact band of B's boundary over all steps).
+    """
+    import shapely
+    # both polygons are inscribed within their tolerance: touching flanks show gaps up to 2 tol
+    contact_tol = 2.5 * tol
+    pen_max, pen_at, gap_min = 0.0, None, math.inf
+    n_contact = 0
+    b_lo, b_hi = sorted((float(p2.report["tip_radius"]), float(p2.report["root_radius"])))
+    for ph in phis:
+        PA = A.polygon(ph)
+        PB = B.polygon(phase2 + ratio * ph)
+        pen, where, gap = _penetration(PA, PB)
+        if pen > pen_max:
+            pen_max, pen_at = pen, (float(ph), where)
+        gap_min = min(gap_min, gap)
+        # near points: boundary vertices of A within contact_tol of B's boundary
+        bA = shapely.get_coordinates(PA.boundary)
+        # only A's points in the annulus of B's teeth (about B's centre) can touch them
+        rc = np.hypot(bA[:, 0] - c2[0], bA[:, 1] - c2[1])
+        bA = bA[(rc >= b_lo - contact_tol) & (rc <= b_hi + contact_tol)]
+        # (an R-tree of A's points queried with B's boundary: ~10x faster than testing
+        # every point against the whole boundary)
+        hit = np.zeros(len(bA), bool)
+        hit[shapely.STRtree(shapely.points(bA)).query(PB.boundary, predicate="dwithin", distance=contact_tol)] = True
+        n_contact += int(hit.sum())
+    return pen_max, pen_at, gap_min, n_contact
+
+
+def _interference_at(pen_at, c2, phase2, ratio, internal):
+    """Where the deepest penetration sits, in the fixed frame and on each wheel (mm, deg)."""
+    if pen_at is None or pen_at[1] is None:
+        return None
+    ph, pt = pen_at
+    w1 = rotate(np.asarray(pt)[None, :], -ph)[0]
+    w2 = rotate((np.asarray(pt) - np.asarray(c2))[None, :], -(phase2 + ratio * ph))[0]
+    return {"phi1_deg": math.degrees(ph), "point": [float(pt[0]), float(pt[1])],
+            "radius1": float(np.hypot(*w1)), "angle1_deg": math.degrees(math.atan2(w1[1], w1[0])),
+            "radius2": float(np.hypot(*w2)), "angle2_deg": math.degrees(math.atan2(w2[1], w2[0])),
+            "opposite_pitch_point": bool(pt[0] < (c2[0] if internal else 0.0))}
 
 
 def _conjugate(p1, p2, a, c2, phase2, ratio, internal, tol, interference=False) -> dict:

@@ -139,17 +139,7 @@ def check_rack_pair(pinion, rack, shift: float | None = None, x0: float | None =
     >>> rep["interference"], round(rep["tip_root_clearance"]["pinion_tip_rack_root"], 6)   # c = 0.25 m
     (False, 0.25)
     """
-    from ..model import Profile
-    from ..rack_part import RackPart
-    if not isinstance(pinion, Profile):
-        raise GearError("pinion", type(pinion).__name__, "a gear3d Profile (gear3d.profile(...))")
-    if not isinstance(rack, RackPart):
-        raise GearError("rack", type(rack).__name__, "a gear3d RackPart (gear3d.rack(...))")
-    if pinion.internal:
-        raise GearError("pinion.internal", True, "False: a ring cannot mesh with a straight rack")
-    m1 = 2 * pinion.pitch_radius / pinion.teeth
-    if abs(m1 - rack.module) > 1e-9 * rack.module:
-        raise GearError("pinion.module", m1, f"the rack's module ({rack.module:g} mm)")
+    m1 = _check_parts(pinion, rack)
     if shift is None:
         shift = float(pinion.params.get("shift_coeff", 0.0) or 0.0) * m1
     shift = check_number("shift", shift, -10 * m1, 10 * m1, unit="mm")
@@ -163,7 +153,32 @@ def check_rack_pair(pinion, rack, shift: float | None = None, x0: float | None =
     span = 3.2 * pitch_ang
     n = int(math.ceil(span / step)) + 1
     phis = np.linspace(-span / 2, span / 2, n)
-    contact_tol = 2.5 * tol
+    pen_max, at, gaps = _roll(M, phis)
+    interference = bool(pen_max > 2 * tol)
+    contact_ratio = _rolled_contact_ratio(M, phis, gaps, tol, pitch_ang)
+    # backlash: how far the rack can move either way along x before the teeth overlap
+    backlash = None if interference else _rack_backlash(M, pitch_ang, backlash_phases, tol)
+    rp, rk = pinion.report, rack.report
+    return {
+        "family": rack.family, "pinion_teeth": pinion.teeth, "rack_teeth": rack.teeth,
+        "module": rack.module, "pitch_radius": r, "shift": shift,
+        "centre": [float(x0), float(r + shift)],
+        "tolerance": tol, "steps": int(n), "step_deg": math.degrees(phis[1] - phis[0]),
+        "interference": interference,
+        "max_penetration": pen_max,
+        "interference_at": at,
+        "backlash": backlash,
+        "contact_ratio": willis_contact_ratio(rack, pinion, shift) if rack.family != "triangular" else None,
+        "contact_ratio_rolled": contact_ratio,
+        "tip_root_clearance": {
+            "pinion_tip_rack_root": (r + shift - rp["tip_radius"]) - rk["root_y"],
+            "rack_tip_pinion_root": (r + shift - rp["root_radius"]) - rk["tip_y"]},
+    }
+
+
+def _roll(M, phis):
+    """Roll through ``phis`` (rad): (deepest penetration mm, where it is or None, the lead
+    flank's gap at each angle mm)."""
     pens, gaps, wheres = [], [], []
     for ph in phis:
         pen, where, gl = M.state(ph)
@@ -173,48 +188,55 @@ def check_rack_pair(pinion, rack, shift: float | None = None, x0: float | None =
     pens = np.array(pens)
     gaps = np.array(gaps)
     i = int(np.argmax(pens))
-    interference = bool(pens[i] > 2 * tol)
     at = None
     if wheres[i] is not None and pens[i] > 0:
         w = wheres[i]
         wp = M.to_pinion(np.asarray(w)[None], phis[i])[0]
         at = {"phi_deg": math.degrees(phis[i]), "point": [float(w[0]), float(w[1])],
               "pinion_radius": float(np.hypot(*wp)), "rack_height": float(w[1])}
-    # contact ratio as rolled: the roll during which tooth 0's leading flank is within
-    # contact_tol of the rack (an upper estimate: flanks part tangentially)
+    return float(pens[i]), at, gaps
+
+
+def _check_parts(pinion, rack) -> float:
+    """Refuse a pair that cannot mesh (one line naming the part); return the pinion's module."""
+    from ..model import Profile
+    from ..rack_part import RackPart
+    if not isinstance(pinion, Profile):
+        raise GearError("pinion", type(pinion).__name__, "a gear3d Profile (gear3d.profile(...))")
+    if not isinstance(rack, RackPart):
+        raise GearError("rack", type(rack).__name__, "a gear3d RackPart (gear3d.rack(...))")
+    if pinion.internal:
+        raise GearError("pinion.internal", True, "False: a ring cannot mesh with a straight rack")
+    m1 = 2 * pinion.pitch_radius / pinion.teeth
+    if abs(m1 - rack.module) > 1e-9 * rack.module:
+        raise GearError("pinion.module", m1, f"the rack's module ({rack.module:g} mm)")
+    return m1
+
+
+def _rolled_contact_ratio(M, phis, gaps, tol, pitch_ang):
+    """Contact ratio as rolled (pitches): the roll during which tooth 0's leading flank is
+    within the contact band 2.5 ``tol`` of the rack (an upper estimate: flanks part
+    tangentially); None when the contact is not seen start to end."""
+    contact_tol = 2.5 * tol
     touch = gaps <= contact_tol
-    contact_ratio = None
-    if touch.any() and not (touch[0] or touch[-1]):
-        idx = np.nonzero(touch)[0]
-        lo = _edge(lambda ph: M.state(ph)[2] <= contact_tol, phis[idx[0]], phis[idx[0] - 1], tol / r / 8)
-        hi = _edge(lambda ph: M.state(ph)[2] <= contact_tol, phis[idx[-1]], phis[idx[-1] + 1], tol / r / 8)
-        contact_ratio = (hi - lo) / pitch_ang
-    # backlash: how far the rack can move either way along x before the teeth overlap
-    backlash = None
-    if not interference:
-        plays = []
-        for ph in np.linspace(0, pitch_ang, backlash_phases, endpoint=False):
-            both = []
-            for sgn in (1.0, -1.0):
-                both.append(_play(M, ph, sgn, tol, rack.pitch / 2))
-            plays.append(sum(both))
-        backlash = float(min(plays))
-    rp, rk = pinion.report, rack.report
-    return {
-        "family": rack.family, "pinion_teeth": pinion.teeth, "rack_teeth": rack.teeth,
-        "module": rack.module, "pitch_radius": r, "shift": shift,
-        "centre": [float(x0), float(r + shift)],
-        "tolerance": tol, "steps": int(n), "step_deg": math.degrees(phis[1] - phis[0]),
-        "interference": interference,
-        "max_penetration": float(pens[i]),
-        "interference_at": at,
-        "backlash": backlash,
-        "contact_ratio": willis_contact_ratio(rack, pinion, shift) if rack.family != "triangular" else None,
-        "contact_ratio_rolled": contact_ratio,
-        "tip_root_clearance": {
-            "pinion_tip_rack_root": (r + shift - rp["tip_radius"]) - rk["root_y"],
-            "rack_tip_pinion_root": (r + shift - rp["root_radius"]) - rk["tip_y"]},
-    }
+    if not touch.any() or touch[0] or touch[-1]:
+        return None
+    r = M.r
+    idx = np.nonzero(touch)[0]
+    lo = _edge(lambda ph: M.state(ph)[2] <= contact_tol, phis[idx[0]], phis[idx[0] - 1], tol / r / 8)
+    hi = _edge(lambda ph: M.state(ph)[2] <= contact_tol, phis[idx[-1]], phis[idx[-1] + 1], tol / r / 8)
+    return (hi - lo) / pitch_ang
+
+
+def _rack_backlash(M, pitch_ang, backlash_phases, tol):
+    """The rack's play along x (mm): both ways summed, the least over the roll positions."""
+    plays = []
+    for ph in np.linspace(0, pitch_ang, backlash_phases, endpoint=False):
+        both = []
+        for sgn in (1.0, -1.0):
+            both.append(_play(M, ph, sgn, tol, M.rack.pitch / 2))
+        plays.append(sum(both))
+    return float(min(plays))
 
 
 def willis_contact_ratio(rack, pinion, shift: float, samples: int = 4001):

@@ -23,6 +23,7 @@ contact, and the clearance elsewhere. All lengths mm, angles degrees at the inte
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -132,11 +133,7 @@ def mesh_check(design: HarmonicDesign, stage=0, *, tooth="triangular", tolerance
     rot0 = space_phase(zr, axis, th_near, zf)
     sgn_depth = -1.0 if st.flex.internal else 1.0
     states = []
-    worst = {"penetration": 0.0}
-    engaged_counts, contact_counts = [], []
-    max_depth, max_depth_at = -math.inf, None
-    min_clear_free = math.inf
-    min_flank_clear, min_flank_at = math.inf, None
+    t = _Tally()
     for j in range(npos):
         u = -pitch_f * j / npos
         verts, tips, th = _place_teeth(ring, tip, zf, u, w, r_n)
@@ -146,6 +143,58 @@ def mesh_check(design: HarmonicDesign, stage=0, *, tooth="triangular", tolerance
         teeth = shapely.polygons(verts)
         depth = sgn_depth * (np.hypot(tips[:, 0], tips[:, 1]) - r_tip_rigid)
         clear = shapely.distance(teeth, rigid)
+        pen, area = t.overlaps(teeth, rigid, axis, j, u)
+        rel = np.degrees(_wrap(th - axis))
+        t.add(depth, clear, rel, gap)
+        if keep_states or j == 0:
+            states.append({"flex_rotation_deg": math.degrees(u), "rigid_rotation_deg": math.degrees(rot),
+                           "tooth_angle_deg": rel.tolist(), "engagement_depth": depth.tolist(),
+                           "clearance": clear.tolist(), "overlap_area": area.tolist(),
+                           "penetration": pen.tolist()})
+    interference = t.worst["penetration"] > 2 * tol
+    return {
+        "stage": st.name, "tooth": tooth, "tolerance": tol, "w0": w, "w0_design": st.w0,
+        "neutral_radius": r_n, "positions": npos, "axis_deg": st.axis_deg,
+        "interference": bool(interference),
+        "max_penetration": t.worst["penetration"], "worst": t.worst,
+        "max_engagement_depth": t.max_depth, "max_engagement_angle_deg": t.max_depth_at,
+        "nominal_engagement_depth": st.engagement_depth,
+        "teeth_engaged_min": min(t.engaged), "teeth_engaged_max": max(t.engaged),
+        "teeth_in_contact_max": max(t.contact),
+        "min_flank_clearance_engaged": t.min_flank_clear, "min_flank_clearance_angle_deg": t.min_flank_at,
+        "min_clearance_disengaged": t.min_clear_free,
+        "radial_gap_off_axis": _off_axis_gap(states[0], zf),
+        "contact_gap": gap,
+        "states": states,
+        "_geometry": {"ring": ring, "tip": tip, "rigid_loops": pr.loops, "rot0": rot0, "r_n": r_n,
+                      "zf": zf, "zr": zr, "axis": axis},
+    }
+
+
+def _off_axis_gap(s0, zf):
+    """The radial clearance of the tips on the opposite axis (90 deg away), mm (NaN: none)."""
+    rel0 = np.abs(np.asarray(s0["tooth_angle_deg"]))
+    off = np.abs(rel0 - 90) < 360 / zf
+    return float(-np.max(np.asarray(s0["engagement_depth"])[off])) if off.any() else math.nan
+
+
+@dataclass
+class _Tally:
+    """The running extremes of :func:`mesh_check` over the flex positions (mm, degrees)."""
+    worst: dict = field(default_factory=lambda: {"penetration": 0.0})
+    engaged: list = field(default_factory=list)
+    contact: list = field(default_factory=list)
+    max_depth: float = -math.inf
+    max_depth_at: float | None = None
+    min_clear_free: float = math.inf
+    min_flank_clear: float = math.inf
+    min_flank_at: float | None = None
+
+    def overlaps(self, teeth, rigid, axis, j, u):
+        """Each flex tooth's penetration and overlap area with the rigid wheel (mm, mm^2) at
+        position ``j`` (flex rotation ``u`` rad); keeps the deepest as ``worst``."""
+        import shapely
+        zf = len(teeth)
         hit = np.nonzero(shapely.intersects(teeth, rigid))[0]
         pen = np.zeros(zf)
         area = np.zeros(zf)
@@ -160,53 +209,30 @@ def mesh_check(design: HarmonicDesign, stage=0, *, tooth="triangular", tolerance
                 d = np.maximum(shapely.distance(p, rigid.boundary), shapely.distance(p, teeth[i].boundary))
                 k = int(np.argmax(d))
                 pen[i] = d[k]
-                if d[k] > worst["penetration"]:
+                if d[k] > self.worst["penetration"]:
                     q = pts[k]
-                    worst = {"penetration": float(d[k]), "area": float(area[i]), "tooth": int(i),
-                             "angle_deg": math.degrees(_wrap(math.atan2(q[1], q[0]) - axis)),
-                             "radius": float(np.hypot(*q)), "position": j, "flex_rotation_deg": math.degrees(u)}
-        rel = np.degrees(_wrap(th - axis))
+                    self.worst = {"penetration": float(d[k]), "area": float(area[i]), "tooth": int(i),
+                                  "angle_deg": math.degrees(_wrap(math.atan2(q[1], q[0]) - axis)),
+                                  "radius": float(np.hypot(*q)), "position": j,
+                                  "flex_rotation_deg": math.degrees(u)}
+        return pen, area
+
+    def add(self, depth, clear, rel, gap):
+        """Count the engaged teeth and those in contact (clearance <= ``gap`` mm) and keep
+        the deepest engagement and the smallest clearances, engaged and free."""
         eng = depth > 0
-        engaged_counts.append(int(eng.sum()))
-        contact_counts.append(int((clear <= gap).sum()))
+        self.engaged.append(int(eng.sum()))
+        self.contact.append(int((clear <= gap).sum()))
         k = int(np.argmax(depth))
-        if depth[k] > max_depth:
-            max_depth, max_depth_at = float(depth[k]), float(rel[k])
+        if depth[k] > self.max_depth:
+            self.max_depth, self.max_depth_at = float(depth[k]), float(rel[k])
         if (~eng).any():
-            min_clear_free = min(min_clear_free, float(clear[~eng].min()))
+            self.min_clear_free = min(self.min_clear_free, float(clear[~eng].min()))
         if eng.any():
             ie = np.nonzero(eng)[0]
             kk = ie[int(np.argmin(clear[ie]))]
-            if clear[kk] < min_flank_clear:
-                min_flank_clear, min_flank_at = float(clear[kk]), float(rel[kk])
-        if keep_states or j == 0:
-            states.append({"flex_rotation_deg": math.degrees(u), "rigid_rotation_deg": math.degrees(rot),
-                           "tooth_angle_deg": rel.tolist(), "engagement_depth": depth.tolist(),
-                           "clearance": clear.tolist(), "overlap_area": area.tolist(),
-                           "penetration": pen.tolist()})
-    interference = worst["penetration"] > 2 * tol
-    # the opposite axis (90 deg away): radial clearance of the tips there
-    s0 = states[0]
-    rel0 = np.abs(np.asarray(s0["tooth_angle_deg"]))
-    off = np.abs(rel0 - 90) < 360 / zf
-    radial_gap_off_axis = float(-np.max(np.asarray(s0["engagement_depth"])[off])) if off.any() else math.nan
-    return {
-        "stage": st.name, "tooth": tooth, "tolerance": tol, "w0": w, "w0_design": st.w0,
-        "neutral_radius": r_n, "positions": npos, "axis_deg": st.axis_deg,
-        "interference": bool(interference),
-        "max_penetration": worst["penetration"], "worst": worst,
-        "max_engagement_depth": max_depth, "max_engagement_angle_deg": max_depth_at,
-        "nominal_engagement_depth": st.engagement_depth,
-        "teeth_engaged_min": min(engaged_counts), "teeth_engaged_max": max(engaged_counts),
-        "teeth_in_contact_max": max(contact_counts),
-        "min_flank_clearance_engaged": min_flank_clear, "min_flank_clearance_angle_deg": min_flank_at,
-        "min_clearance_disengaged": min_clear_free,
-        "radial_gap_off_axis": radial_gap_off_axis,
-        "contact_gap": gap,
-        "states": states,
-        "_geometry": {"ring": ring, "tip": tip, "rigid_loops": pr.loops, "rot0": rot0, "r_n": r_n,
-                      "zf": zf, "zr": zr, "axis": axis},
-    }
+            if clear[kk] < self.min_flank_clear:
+                self.min_flank_clear, self.min_flank_at = float(clear[kk]), float(rel[kk])
 
 
 def mesh_figure(check: dict, path, *, window_deg=6.0, dpi=150):

@@ -52,8 +52,9 @@ Table 2 prints p = 0.9424 mm where pi * 0.3 = 0.94248 (truncated, not rounded).
 """
 from __future__ import annotations
 
+import inspect
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields
 
 from ..errors import GearError, check_choice, check_number
 
@@ -73,6 +74,76 @@ LENGTH_RANGE = (0.02, 0.03)    # s / l
 #: made that Table 1 does not determine (rigid wheel lengths, w'0, Table 2's c0)
 SEED002 = dict(module=0.3, z2=200, z3=202, z2_inner=192, z4=190, w0_inner=0.27,
                length_fixed=16.0, length_mobile=12.0, c0_coeff=0.2)
+
+
+@dataclass(frozen=True)
+class ToothForm:
+    """The straight-flank tooth form every wheel of a drive shares (Table 1).
+
+    Coefficients are multiples of the module m; ``half_angle_deg`` (deg, default
+    arctg(pi/5.76)) is the tooth's half-angle and ``dalpha_coeff`` sets the space's extra
+    half-angle d_alpha = arctg(dalpha_coeff m / d_rigid).
+
+    >>> ToothForm().c0_coeff
+    0.3
+    """
+    addendum_coeff: float = ADDENDUM
+    dedendum_coeff: float = DEDENDUM
+    c0_coeff: float = 0.3
+    thickness_coeff: float = THICKNESS
+    half_angle_deg: float | None = None
+    dalpha_coeff: float = DALPHA_COEFF
+
+
+@dataclass(frozen=True)
+class TubeRules:
+    """The flexspline tube's sizes (mm), or Table 1's proportional rules and roundings.
+
+    ``wall``, ``face_width``, ``length`` (mm; None: from ``wall_coeff`` x d_i,
+    ``face_coeff`` x d_i and wall / ``length_coeff``, rounded to ``wall_step`` (up),
+    ``face_step`` and ``length_step`` (nearest), mm; 0 = no rounding).
+
+    >>> TubeRules().wall_step
+    0.1
+    """
+    wall: float | None = None
+    wall_coeff: float = 0.01
+    face_width: float | None = None
+    face_coeff: float = 0.2
+    length: float | None = None
+    length_coeff: float = 0.02
+    wall_step: float = 0.1
+    face_step: float = 1.0
+    length_step: float = 1.0
+
+
+#: the keyword options of :func:`double_harmonic` and :func:`single_harmonic` beyond the
+#: tooth numbers: each is a field of one of these frozen values
+OPTIONS = {f.name: (cls, f.default) for cls in (ToothForm, TubeRules) for f in fields(cls)}
+
+
+def _split_options(func: str, options: dict) -> tuple:
+    """(ToothForm, TubeRules) from a synthesis function's keyword options; an unknown one is
+    refused as Python refuses it."""
+    for k in options:
+        if k not in OPTIONS:
+            raise TypeError(f"{func}() got an unexpected keyword argument '{k}'")
+    return tuple(cls(**{k: v for k, v in options.items() if OPTIONS[k][0] is cls})
+                 for cls in (ToothForm, TubeRules))
+
+
+def _with_options(before: str):
+    """Give the decorated function the signature it accepts: its own parameters with the
+    :data:`OPTIONS` inserted as keyword-only ones ahead of ``before`` (the docs, the
+    template reader and ``help()`` see every name)."""
+    def deco(fn):
+        sig = inspect.signature(fn)
+        own = [q for q in sig.parameters.values() if q.kind is not inspect.Parameter.VAR_KEYWORD]
+        at = [q.name for q in own].index(before)
+        opts = [inspect.Parameter(k, inspect.Parameter.KEYWORD_ONLY, default=d) for k, (_, d) in OPTIONS.items()]
+        fn.__signature__ = sig.replace(parameters=own[:at] + opts + own[at:])
+        return fn
+    return deco
 
 
 def dms(deg: float) -> str:
@@ -208,13 +279,13 @@ def _wheel(name, role, z, internal, m, ha, hf, half, b, l):
     return Wheel(name, role, z, internal, m, d, d + sg * 2 * ha, d - sg * 2 * hf, half, b, l)
 
 
-def _common(module, addendum_coeff, dedendum_coeff, c0_coeff, thickness_coeff, half_angle_deg):
+def _common(module, form: ToothForm):
     m = check_number("module", module, 0, 100, lo_open=True, unit="mm")
-    ha = check_number("addendum_coeff", addendum_coeff, 0, 3, lo_open=True) * m
-    hf = check_number("dedendum_coeff", dedendum_coeff, 0, 3, lo_open=True) * m
-    c0 = check_number("c0_coeff", c0_coeff, 0, 3) * m
-    kt = check_number("thickness_coeff", thickness_coeff, 0, 1, lo_open=True, hi_open=True)
-    a = HALF_ANGLE_DEG if half_angle_deg is None else half_angle_deg
+    ha = check_number("addendum_coeff", form.addendum_coeff, 0, 3, lo_open=True) * m
+    hf = check_number("dedendum_coeff", form.dedendum_coeff, 0, 3, lo_open=True) * m
+    c0 = check_number("c0_coeff", form.c0_coeff, 0, 3) * m
+    kt = check_number("thickness_coeff", form.thickness_coeff, 0, 1, lo_open=True, hi_open=True)
+    a = HALF_ANGLE_DEG if form.half_angle_deg is None else form.half_angle_deg
     a = check_number("half_angle_deg", a, 0, 80, lo_open=True, unit="deg")
     p = math.pi * m
     return m, {"pitch": p, "addendum": ha, "dedendum": hf, "depth": ha + hf, "c0": c0,
@@ -222,9 +293,11 @@ def _common(module, addendum_coeff, dedendum_coeff, c0_coeff, thickness_coeff, h
                "thickness_coeff": kt, "half_angle_deg": a, "half_angle_dms": dms(a)}
 
 
-def _flex_body(df_outer, m, wall, wall_coeff, face_width, face_coeff, length, length_coeff,
-               wall_step, face_step, length_step):
+def _flex_body(df_outer, rules: TubeRules):
     """Wall s, bore d_i = df - 2 s, face width b, length l (mm) by Table 1's rules."""
+    wall, wall_coeff, face_width, face_coeff = rules.wall, rules.wall_coeff, rules.face_width, rules.face_coeff
+    length, length_coeff = rules.length, rules.length_coeff
+    wall_step, face_step, length_step = rules.wall_step, rules.face_step, rules.length_step
     kw = _coeff("wall_coeff", wall_coeff, WALL_RANGE)
     kb = _coeff("face_coeff", face_coeff, FACE_RANGE)
     kl = _coeff("length_coeff", length_coeff, LENGTH_RANGE)
@@ -281,12 +354,9 @@ def _stage(name, flex, rigid, m, common, w0, axis_deg, dalpha_coeff):
 
 # ----------------------------------------------------------------------------- public API
 
+@_with_options("length_fixed")
 def double_harmonic(module, z2, z3, z2_inner, z4, *, w0=None, w0_inner=None,
-                    addendum_coeff=ADDENDUM, dedendum_coeff=DEDENDUM, c0_coeff=0.3,
-                    thickness_coeff=THICKNESS, half_angle_deg=None, dalpha_coeff=DALPHA_COEFF,
-                    wall=None, wall_coeff=0.01, face_width=None, face_coeff=0.2,
-                    length=None, length_coeff=0.02, wall_step=0.1, face_step=1.0, length_step=1.0,
-                    length_fixed=None, length_mobile=None) -> HarmonicDesign:
+                    length_fixed=None, length_mobile=None, **options) -> HarmonicDesign:
     """Table 1 synthesis of a double harmonic drive (seed 002; mm, degrees).
 
     ``z2``: outer teeth of the flexspline (mesh with the fixed ring ``z3`` > z2 on the
@@ -296,8 +366,17 @@ def double_harmonic(module, z2, z3, z2_inner, z4, *, w0=None, w0_inner=None,
     width. The ratio is i_14 = z2 z4 / (z2 z4 - z3 z'2) (wave generator in, mobile wheel
     out; negative = opposite sense). Raises :class:`GearError` for tooth numbers that do
     not make a two-wave drive or inner teeth that do not fit in the tube wall.
+
+    ``options``: the fields of :class:`ToothForm` (``addendum_coeff``, ``dedendum_coeff``,
+    ``c0_coeff``, ``thickness_coeff``, ``half_angle_deg``, ``dalpha_coeff``) and of
+    :class:`TubeRules` (``wall``, ``wall_coeff``, ``face_width``, ``face_coeff``,
+    ``length``, ``length_coeff``, ``wall_step``, ``face_step``, ``length_step``).
+
+    >>> round(double_harmonic(0.3, 200, 202, 192, 190).ratio, 4)
+    -48.4694
     """
-    m, com = _common(module, addendum_coeff, dedendum_coeff, c0_coeff, thickness_coeff, half_angle_deg)
+    form, rules = _split_options("double_harmonic", options)
+    m, com = _common(module, form)
     z2, z3 = _teeth("z2", z2), _teeth("z3", z3)
     z2i, z4 = _teeth("z2_inner", z2_inner), _teeth("z4", z4)
     if z3 <= z2:
@@ -308,8 +387,7 @@ def double_harmonic(module, z2, z3, z2_inner, z4, *, w0=None, w0_inner=None,
     _diff("z4", z4, z2i, "z2_inner")
     ha, hf, a = com["addendum"], com["dedendum"], com["half_angle_deg"]
     df2 = m * z2 - 2 * hf
-    flex = _flex_body(df2, m, wall, wall_coeff, face_width, face_coeff, length, length_coeff,
-                      wall_step, face_step, length_step)
+    flex = _flex_body(df2, rules)
     di, b, l = flex["inner_diameter"], flex["face_width"], flex["length"]
     # inner teeth: tips inside the bore, roots inside the tube's outer surface
     d2i_root = m * z2i + 2 * hf
@@ -326,53 +404,56 @@ def double_harmonic(module, z2, z3, z2_inner, z4, *, w0=None, w0_inner=None,
     w_fixed = _wheel("z3", "fixed", z3, True, m, ha, hf, a, b, lf)
     w_flex_i = _wheel("z'2", "flexspline-inner", z2i, True, m, ha, hf, a, b, l)
     w_mob = _wheel("z4", "mobile", z4, False, m, ha, hf, a, b, lm)
-    st1 = _stage("stage 1", w_flex, w_fixed, m, com, w0, 0.0, dalpha_coeff)
-    st2 = _stage("stage 2", w_flex_i, w_mob, m, com, w0_inner, 90.0, dalpha_coeff)
+    st1 = _stage("stage 1", w_flex, w_fixed, m, com, w0, 0.0, form.dalpha_coeff)
+    st2 = _stage("stage 2", w_flex_i, w_mob, m, com, w0_inner, 90.0, form.dalpha_coeff)
     for st in (st1, st2):
         st.rigid.half_angle_deg = _rigid_tooth_half_angle(st)
     ratio = z2 * z4 / (z2 * z4 - z3 * z2i)
     inputs = dict(module=m, z2=z2, z3=z3, z2_inner=z2i, z4=z4, w0=w0, w0_inner=w0_inner,
-                  c0_coeff=c0_coeff, wall=wall, face_width=face_width, length=length,
+                  c0_coeff=form.c0_coeff, wall=rules.wall, face_width=rules.face_width, length=rules.length,
                   length_fixed=length_fixed, length_mobile=length_mobile)
     return HarmonicDesign("double", m, com, flex, [st1, st2], ratio,
                           "i = z2*z4/(z2*z4 - z3*z2') (wave generator in, mobile wheel z4 out, "
                           "z3 fixed; negative = output turns against the input)", inputs)
 
 
+@_with_options("length_circular")
 def single_harmonic(module, z_flex, z_circular, *, fixed="circular", w0=None,
-                    addendum_coeff=ADDENDUM, dedendum_coeff=DEDENDUM, c0_coeff=0.3,
-                    thickness_coeff=THICKNESS, half_angle_deg=None, dalpha_coeff=DALPHA_COEFF,
-                    wall=None, wall_coeff=0.01, face_width=None, face_coeff=0.2,
-                    length=None, length_coeff=0.02, wall_step=0.1, face_step=1.0, length_step=1.0,
-                    length_circular=None) -> HarmonicDesign:
+                    length_circular=None, **options) -> HarmonicDesign:
     """Table 1 synthesis of a single (cup-type) harmonic drive (mm, degrees).
 
     External flexspline ``z_flex`` inside the circular spline ``z_circular`` > z_flex.
     ``fixed='circular'``: flexspline is the output, i = z_f/(z_f - z_c) (< 0);
     ``fixed='flexspline'``: circular spline is the output, i = z_c/(z_c - z_f) (> 0).
+    ``options``: the fields of :class:`ToothForm` and :class:`TubeRules`, as for
+    :func:`double_harmonic`.
+
+    >>> single_harmonic(0.5, 100, 102).ratio
+    -50.0
     """
+    form, rules = _split_options("single_harmonic", options)
     fixed = check_choice("fixed", fixed, ("circular", "flexspline"))
-    m, com = _common(module, addendum_coeff, dedendum_coeff, c0_coeff, thickness_coeff, half_angle_deg)
+    m, com = _common(module, form)
     zf, zc = _teeth("z_flex", z_flex), _teeth("z_circular", z_circular)
     if zc <= zf:
         raise GearError("z_circular", zc, f"an integer > z_flex = {zf}")
     _diff("z_circular", zc, zf, "z_flex")
     ha, hf, a = com["addendum"], com["dedendum"], com["half_angle_deg"]
-    flex = _flex_body(m * zf - 2 * hf, m, wall, wall_coeff, face_width, face_coeff, length,
-                      length_coeff, wall_step, face_step, length_step)
+    flex = _flex_body(m * zf - 2 * hf, rules)
     b, l = flex["face_width"], flex["length"]
     lc = b if length_circular is None else check_number("length_circular", length_circular, 0, None,
                                                         lo_open=True, unit="mm")
     w_f = _wheel("z_f", "flexspline", zf, False, m, ha, hf, a, b, l)
     w_c = _wheel("z_c", "circular", zc, True, m, ha, hf, a, b, lc)
-    st = _stage("stage 1", w_f, w_c, m, com, w0, 0.0, dalpha_coeff)
+    st = _stage("stage 1", w_f, w_c, m, com, w0, 0.0, form.dalpha_coeff)
     st.rigid.half_angle_deg = _rigid_tooth_half_angle(st)
     if fixed == "circular":
         ratio, formula = zf / (zf - zc), "i = z_f/(z_f - z_c) (circular spline fixed, flexspline out)"
     else:
         ratio, formula = zc / (zc - zf), "i = z_c/(z_c - z_f) (flexspline fixed, circular spline out)"
-    inputs = dict(module=m, z_flex=zf, z_circular=zc, fixed=fixed, w0=w0, c0_coeff=c0_coeff,
-                  wall=wall, face_width=face_width, length=length, length_circular=length_circular)
+    inputs = dict(module=m, z_flex=zf, z_circular=zc, fixed=fixed, w0=w0, c0_coeff=form.c0_coeff,
+                  wall=rules.wall, face_width=rules.face_width, length=rules.length,
+                  length_circular=length_circular)
     return HarmonicDesign("single", m, com, flex, [st], ratio,
                           formula + "; negative = output turns against the input", inputs)
 
