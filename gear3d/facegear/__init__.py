@@ -142,10 +142,49 @@ def _default_outer(g, inner, outer):
 def build(teeth, shaper_teeth=None, module=1.0, pressure_angle_deg=20.0, pinion_teeth=None,
           inner_radius=None, outer_radius=None, tolerance=DEFAULT_TOLERANCE, rim=None,
           addendum_coeff=1.0, dedendum_coeff=1.25) -> FaceGear:
-    """A face gear of ``teeth`` teeth cut by a spur shaper of ``shaper_teeth`` teeth (or
-    ``pinion_teeth`` + 2), module (mm) and pressure angle (deg), between ``inner_radius`` and
-    ``outer_radius`` (mm; defaults: see the package doc; each refused beyond its limit).
-    Raises :class:`GearError` naming the bad parameter before any work."""
+    """A face gear cut by an involute spur shaper at a 90° shaft angle, its body within the
+    tolerance (measured) and its radius limits.
+
+    Parameters
+    ----------
+    teeth : int
+        Teeth of the face gear z2 (10..1000).
+    shaper_teeth : int, optional
+        Teeth of the shaper z0 (8..200, at most z2/2); default ``pinion_teeth`` + 2.
+    module : float
+        Module m (mm).
+    pressure_angle_deg : float
+        The shaper's pressure angle (deg, 14..30).
+    pinion_teeth : int, optional
+        Teeth of the mating pinion z1 (z1 <= z0 <= z1 + 5).
+    inner_radius, outer_radius : float, optional
+        The band of radii (mm). Defaults: the inner limit, and where the tip land has
+        narrowed to ``DEFAULT_TIP_LAND`` m; each refused beyond its limit.
+    tolerance : float
+        Largest distance of the mesh from the exact tooth surfaces (mm).
+    rim : float, optional
+        Thickness below the root plane (mm), default 2 m.
+    addendum_coeff, dedendum_coeff : float
+        Tip and root plane heights over the pitch plane, in modules (1 and 1.25).
+
+    Returns
+    -------
+    FaceGear
+        ``bodies`` (one watertight body), ``report`` (:class:`FaceGearReport`: the limits
+        from their formulas and measured on the sections, tip lands, measured errors) and
+        ``geometry``.
+
+    Raises
+    ------
+    GearError
+        A bad parameter (named, with its allowed range), before any work.
+
+    Examples
+    --------
+    >>> f = build(60, 20, 1.0, tolerance=0.02)
+    >>> round(f.report.limits["outer_pointing_formula"], 3), f.report.max_error <= 0.02
+    (34.713, True)
+    """
     from .body import face_body
     g = face_geometry(teeth, shaper_teeth, module, pressure_angle_deg, pinion_teeth, addendum_coeff,
                       dedendum_coeff, rim)
