@@ -37,6 +37,8 @@ import os
 
 from . import budget
 from .budget import Estimate, estimate
+from .errors import check_choice, check_number
+from .params import MESH_TOLERANCE
 from .plan import brep_estimate, write_estimate
 
 #: the builder's triangle formulas (gear3d.wormgear._check_budget) bound the measured
@@ -194,9 +196,7 @@ def plan_bevel(kw: dict, output=None, step=None, png=None, json=None, preview=No
     """``gear3d bevel ...`` / ``gear3d.bevel(**kw)``: each member's body (its section's
     vertices x cap segments, COSTS["bevel.body"]), the rolling check, the export and the
     figures; refused before any work (BudgetError)."""
-    from .bevel import DEFAULT_TOLERANCE
-    from .errors import check_choice, check_number
-    tol = check_number("tolerance", kw.get("tolerance", DEFAULT_TOLERANCE), 1e-6, 1.0, unit="mm")
+    tol = check_number("tolerance", kw.get("tolerance", MESH_TOLERANCE), 1e-6, 1.0, unit="mm")
     part = check_choice("part", kw.get("part", "gear"), ("gear", "mate", "pair"))
     geo = _bevel_geometry(kw)
     est, tri, parts = Estimate(), 0.0, []
@@ -261,7 +261,6 @@ def plan_face_gear(kw: dict, output=None, png=None, json=None) -> Estimate:
     """``gear3d face-gear ...`` / ``gear3d.face_gear(**kw)``: the radius limits (a fixed
     scan of sections), the loft plan (sections x vertices, COSTS["facegear.plan"]), the body
     (triangles, COSTS["facegear.body"]) and the export; refused before any work."""
-    from .errors import check_number
     from .facegear import DEFAULT_TOLERANCE
     from .facegear.geometry import face_geometry
     g = face_geometry(kw["teeth"], kw.get("shaper_teeth"), kw.get("module", 1.0), kw.get("pressure_angle_deg", 20.0),
@@ -295,15 +294,14 @@ def worm(**kw):
     return wormgear.worm(**kw)
 
 
-def bevel(*args, **kw):
-    """:func:`gear3d.bevel.build`, planned first (:func:`plan_bevel`)."""
-    import importlib
-    B = importlib.import_module("gear3d.bevel")     # the package (gear3d.bevel is also this function)
+def bevel(build, *args, **kw):
+    """``build(*args, **kw)`` (:func:`gear3d.bevel.build`, which ``gear3d.bevel(...)`` passes
+    here), planned first (:func:`plan_bevel`)."""
     names = ("teeth", "mate_teeth", "module", "face_width", "pressure_angle_deg", "shaft_angle_deg", "form",
              "shift_coeff", "tolerance", "part")
     full = dict(zip(names, args), **kw)
     plan_bevel(full)
-    return B.build(**full)
+    return build(**full)
 
 
 def face_gear(*args, **kw):

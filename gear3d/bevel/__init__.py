@@ -257,7 +257,7 @@ class _CallableModule(types.ModuleType):
 
     def __call__(self, *args, **kwargs) -> Bevel:
         from ..plan_sets import bevel as planned      # build, planned against the budget first
-        return planned(*args, **kwargs)
+        return planned(build, *args, **kwargs)
 
 
 sys.modules[__name__].__class__ = _CallableModule

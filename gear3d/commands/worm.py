@@ -21,6 +21,7 @@ import sys
 
 from ..errors import GearError
 from ..export import atomic_path, check_path, write
+from ..params import WORM_PARAMS
 
 
 #: flags the command needs (the table's defaults serve the web form and the Python API)
@@ -56,7 +57,6 @@ def _flag(p, groups, prm):
 
 
 def add_parser(sub):
-    from ..params import WORM_PARAMS
     p = sub.add_parser("worm", help="a worm and its throated wheel (exact envelope) -> .stl .3mf .step .dxf .json .png")
     groups = []
     for prm in WORM_PARAMS:           # the set's table (gear3d.params): flags, ranges, help
@@ -91,7 +91,6 @@ FEATURES = ("worm_bore", "wheel_bore", "hub_diameter", "hub_length", "wheel_keyw
 
 def _params(args) -> dict:
     """The keywords of gear3d.worm the command was given (the builder's defaults for the rest)."""
-    from ..params import WORM_PARAMS
     kw = {}
     for prm in WORM_PARAMS:
         v = getattr(args, prm.name, None)
