@@ -245,7 +245,11 @@ def wheel_envelope_pieces(point_normal, r1: float, r2: float, internal: bool, sm
                 b = m
         cuts.append(0.5 * (a + b))
     if not cuts:
-        return [wheel_envelope_piece(point_normal, r1, r2, internal, smooth)]
+        # one fixed root, not the nearer one point by point: where p.n only touches zero (an
+        # involute flank that starts at its base circle) rounding flips its sign between
+        # samples, and a per-point choice would jump between the roots
+        major = 1 if np.sum(s > 0) >= np.sum(s < 0) else -1
+        return [wheel_envelope_piece(point_normal, r1, r2, internal, smooth, major)]
     bounds = [0.0] + cuts + [1.0]
     out = []
     for j in range(len(bounds) - 1):

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..curves import Chain, Run, untangle
+from ..curves import Chain, Run, cusp_stubs, untangle
 from ..envelope import branch_changes, contact_reach, wheel_envelope_pieces
 from ..errors import GearError, check_number
 from ..geometry import polyline_distance, rotate, signed_area
@@ -169,7 +169,7 @@ def tool_chain(prof) -> Chain:
         runs = [Run(r.G, r.tb, r.ta, r.rot) for r in reversed(runs)]
         dk = -dk
     # a swallowtail thinner than the cutter's chords holds no polygon corner: cut it here
-    return Chain.from_runs(untangle(runs, z, dk), z, step=dk)
+    return Chain.from_runs(cusp_stubs(untangle(runs, z, dk)), z, step=dk)
 
 
 def tool_elements(prof):
