@@ -114,3 +114,19 @@ def test_cli_crossed_json_and_refusals(tmp_path, capsys):
         assert len(err) == 1 and name in err[0] and not out.exists()
     with pytest.raises(GearError):
         crossed_pair(20, 30, 2.0, 45.0, 180.0)
+
+
+def test_check_pair_crossed_prints_one_line_and_the_alias_its_json(tmp_path, capsys):
+    argv = ["involute", "--crossed", "--teeth", "20", "--mate-teeth", "30", "--module", "2", "--helix-angle-deg", "45"]
+    assert main(["check", "pair", *argv]) == 0
+    out = capsys.readouterr().out.strip().splitlines()
+    a = (20 + 30) * 2 / (2 * math.cos(math.radians(45)))              # r1 + r2 with m_t = m_n / cos b
+    assert len(out) == 1 and f"a = {a:.4f} mm" in out[0]
+    assert main(["pair", *argv]) == 0
+    assert json.loads(capsys.readouterr().out)["center_distance"] == pytest.approx(a, rel=1e-12)
+    js = tmp_path / "c.json"
+    assert main(["check", "pair", *argv, "--json", str(js)]) == 0
+    assert json.loads(js.read_text())["center_distance"] == pytest.approx(a, rel=1e-12)
+    assert main(["check", "pair", "involute", "--teeth", "20", "--mate-teeth", "30", "--shaft-angle-deg", "30"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "shaft_angle_deg" in err[0] and "--crossed" in err[0]

@@ -23,6 +23,7 @@ from .profile import add_profile_flags, family_params
 from .. import profile
 from ..errors import GearError, check_number
 from ..export import atomic_path, check_path
+from .crossedflags import add_crossed_flags, refuse_crossed_flags, run_crossed
 
 #: families whose builder takes ``center_distance`` itself (not a pair placement)
 CENTER_DISTANCE_FAMILIES = ("ec-pinion", "ec-wheel")
@@ -187,6 +188,7 @@ def add_parser(sub):
     c = what.add_parser("pair", help="roll a pair: interference, clearance, contact ratio",
                         description=EXIT_CODES)
     add_check_pair_flags(c)
+    add_crossed_flags(c, helix=True)
     return p
 
 
@@ -215,6 +217,10 @@ def run(args, alias: bool = False) -> int:
     from ..plan import check_pair, largest_addendum, tip_correction     # charged to the budget first
     if not alias and getattr(args, "check_what", None) != "pair":
         raise GearError("check", getattr(args, "check_what", None), "`pair` (see gear3d check pair --help)")
+    if getattr(args, "crossed", False) and not alias:
+        return run_crossed(args)
+    if not alias:
+        refuse_crossed_flags(args, ("shaft_angle_deg", "helix_angle_deg", "speed_rpm"))
     if getattr(args, "rack", False):
         return _rack_pair(args, alias)
     if getattr(args, "width", None) is not None:

@@ -1,0 +1,75 @@
+"""``--crossed`` of ``gear3d check pair`` (and of its deprecated alias ``gear3d pair``): a
+crossed helical pair (:mod:`gear3d.analysis.crossed`).
+
+``gear3d check pair involute --crossed --teeth N --mate-teeth M --normal-module MN
+--helix-angle-deg B1 [--shaft-angle-deg S] [--speed-rpm N] [--json FILE]``: the centre
+distance, helix angles and hands, the path of point contact, the contact ratio and the
+sliding velocity. ``check pair`` prints one summary line (and writes the JSON report only
+with ``--json`` / ``-o FILE.json``); the alias prints the JSON on stdout when no file is
+asked for, as it always did. Exit 1 when the contact ratio is below 1.
+
+Example::
+
+    gear3d check pair involute --crossed --teeth 20 --mate-teeth 30 --module 2 --helix-angle-deg 45
+"""
+from __future__ import annotations
+
+import sys
+
+from ..analysis.crossed import crossed_pair, summary
+from ..cliargs import number
+from ..errors import GearError
+from ..export import atomic_path, check_path
+from ..export.json_format import dumps
+
+#: the flags that only --crossed takes (``dest`` names)
+CROSSED_ONLY = ("shaft_angle_deg", "speed_rpm")
+
+
+def add_crossed_flags(c, *, helix: bool = True) -> None:
+    """Add ``--crossed`` and its flags to a pair parser ``c`` (``helix``: also add
+    ``--helix-angle-deg``, where the parser has none)."""
+    c.add_argument("--crossed", action="store_true",
+                   help="crossed helical pair (involute): shaft angle S = beta1 + beta2 (signed helix angles, "
+                        "right hand > 0); --module is the normal module")
+    c.add_argument("--shaft-angle-deg", type=number("float", 0, 180, lo_open=True, hi_open=True, unit="deg"),
+                   default=None, help="--crossed: shaft angle S (deg), default 90")
+    if helix:
+        c.add_argument("--helix-angle-deg", type=number("float", -80, 80, unit="deg"), default=None,
+                       help="--crossed: helix angle beta1 of wheel 1 (deg, right hand > 0); wheel 2 gets S - beta1")
+    c.add_argument("--speed-rpm", type=number("float", 0, 1e6, lo_open=True), default=None,
+                   help="--crossed: speed of wheel 1 (rpm), for the sliding velocity in m/s")
+
+
+def refuse_crossed_flags(args, names=CROSSED_ONLY) -> None:
+    """One line for a --crossed flag given without --crossed."""
+    for n in names:
+        if getattr(args, n, None) is not None:
+            raise GearError(n, getattr(args, n), "only with --crossed")
+
+
+def run_crossed(args, alias: bool = False) -> int:
+    """The crossed helical report (see the module doc); exit 1 when the contact ratio is < 1."""
+    if args.family != "involute":
+        raise GearError("family", args.family, "involute with --crossed")
+    for n in ("shift_coeff", "mate_shift_coeff", "center_distance", "png", "internal", "rack"):
+        v = getattr(args, n, None)
+        if v not in (None, False, 0, 0.0):
+            raise GearError(n, v, "not given with --crossed (unshifted gears at the centre distance r1 + r2)")
+    if args.helix_angle_deg is None:
+        raise GearError("helix_angle_deg", None, "a number in [-80, 80] deg with --crossed")
+    js = args.json if args.json is not None else args.output
+    if js is not None:
+        check_path(js, "json" if args.json is not None else "output", (".json",))
+    mn = next((v for v in (getattr(args, "normal_module", None), getattr(args, "module", None)) if v is not None), 1.0)
+    an = next((v for v in (getattr(args, "normal_pressure_angle_deg", None), getattr(args, "pressure_angle_deg", None))
+               if v is not None), 20.0)
+    ha = getattr(args, "addendum_coeff", None)
+    rep = crossed_pair(args.teeth if args.teeth is not None else 20, args.mate_teeth, mn, args.helix_angle_deg,
+                       90.0 if args.shaft_angle_deg is None else args.shaft_angle_deg, an,
+                       1.0 if ha is None else ha, args.speed_rpm)
+    if js is not None:
+        with atomic_path(js, "json") as tmp, open(tmp, "w", encoding="utf-8") as f:
+            f.write(dumps(rep) + "\n")
+    sys.stdout.write((dumps(rep) if alias and js is None else summary(rep)) + "\n")
+    return 0 if rep["contact_ratio"] >= 1 else 1
