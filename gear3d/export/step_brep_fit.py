@@ -24,6 +24,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..bspline import evaluate, interpolate
 from ..errors import ToleranceError
 from .step_brep_runs import nearest_on_piece, rot2
 
@@ -35,8 +36,7 @@ def fit_piece(G, samples_t, t0, t1, p0, p1, e_fit):
     """Cubic B-spline (knots t, coefficients (n,2)) interpolating the exact piece G on
     [min(t0,t1), max(t0,t1)] in its own parameter, ends pinned to the exact points p0/p1
     (mm). Refined until the parametric deviation |C(t) - G(t)| at the quarter points of
-    every span is at most ``e_fit`` (mm). Returns (BSpline, measured deviation)."""
-    from scipy.interpolate import make_interp_spline
+    every span is at most ``e_fit`` (mm). Returns ((knots, coefficients (n,2)), measured deviation)."""
     lo, hi = min(t0, t1), max(t0, t1)
     plo, phi = (p0, p1) if t0 <= t1 else (p1, p0)
     st = np.asarray(samples_t, float)
@@ -47,9 +47,9 @@ def fit_piece(G, samples_t, t0, t1, p0, p1, e_fit):
     for _ in range(30):
         P = G(ts)
         P[0], P[-1] = plo, phi
-        spl = make_interp_spline(ts, P, k=3)
+        spl = interpolate(ts, P, 3)
         q = (ts[:-1, None] + np.diff(ts)[:, None] * np.array([0.25, 0.5, 0.75])[None]).reshape(-1)
-        dev = np.hypot(*(spl(q) - G(q)).T).reshape(-1, 3).max(1)
+        dev = np.hypot(*(evaluate(*spl, 3, q) - G(q)).T).reshape(-1, 3).max(1)
         worst = float(dev.max())
         if worst <= e_fit:
             return spl, worst
@@ -64,7 +64,6 @@ def law_fit(law, za, zb, rho, e_v):
     degree, bound) of the splines interpolating cos θ, sin θ and z, with enough sections
     that a point at radius ``rho`` (mm) turned by them stays within ``e_v`` (mm) of the
     exact turn (checked on a fine z grid)."""
-    from scipy.interpolate import make_interp_spline
     th = law(np.array([za, zb]))
     if abs(th[1] - th[0]) < 1e-15 and np.allclose(law(np.linspace(za, zb, 9)), th[0], rtol=0, atol=1e-15):
         zs = np.array([za, zb])
@@ -74,9 +73,9 @@ def law_fit(law, za, zb, rho, e_v):
     while True:
         zs = np.linspace(za, zb, n + 1)
         t = law(zs)
-        spl = make_interp_spline(zs, np.stack([np.cos(t), np.sin(t), zs], axis=1), k=3)
+        kn, cf = interpolate(zs, np.stack([np.cos(t), np.sin(t), zs], axis=1), 3)
         zf = np.linspace(za, zb, 40 * n + 1)
-        V = spl(zf)
+        V = evaluate(kn, cf, 3, zf)
         tf = law(zf)
         err = float(np.hypot(V[:, 0] - np.cos(tf), V[:, 1] - np.sin(tf)).max()) * rho
         zerr = float(np.abs(V[:, 2] - zf).max())
@@ -84,7 +83,7 @@ def law_fit(law, za, zb, rho, e_v):
             if err + zerr > e_v:
                 raise ToleranceError("tolerance", e_v / FIT_SHARE, "a coarser value",
                                      "the twist cannot be interpolated within it")
-            return spl.t, spl.c[:, 0], spl.c[:, 1], spl.c[:, 2], 3, err + zerr
+            return kn, cf[:, 0], cf[:, 1], cf[:, 2], 3, err + zerr
         n = max(n + 1, int(n * 1.6))
 
 
@@ -113,7 +112,7 @@ def fit_runs(profile, runs, e_fit):
             p1 = rot2(r.p1, -r.k * ang)
             spl, err = fit_piece(G, profile.piece_params[r.piece], r.t0, r.t1, p0, p1, e_fit)
             cache[key] = len(flanks)
-            flanks.append(Flank(r.piece, lo, hi, spl.t, np.asarray(spl.c, float), err))
+            flanks.append(Flank(r.piece, lo, hi, spl[0], np.asarray(spl[1], float), err))
         which.append(cache[key])
     return flanks, which
 

@@ -51,11 +51,22 @@ def _deriv(G, t, h=1e-6):
     return P[1], (P[2] - P[0]) / (2 * h), (P[2] - 2 * P[1] + P[0]) / (h * h)
 
 
+def _nearest_index(S, pts, block: int = 1 << 21):
+    """Index into S (M,2) of the nearest sample to every point (N,2): brute force in
+    blocks of about ``block`` distances (a piece has a few thousand samples at most)."""
+    j = np.empty(len(pts), dtype=np.intp)
+    step = max(1, block // max(len(S), 1))
+    for a in range(0, len(pts), step):
+        q = pts[a:a + step]
+        d2 = (q[:, None, 0] - S[None, :, 0]) ** 2 + (q[:, None, 1] - S[None, :, 1]) ** 2
+        j[a:a + step] = np.argmin(d2, axis=1)
+    return j
+
+
 def nearest_on_piece(G, samples_t, pts, lo, hi, iters=8):
     """Distance (mm) from points (N,2) to the exact piece G on [lo, hi] (parameter):
     start at the nearest of ``samples_t`` (sorted), then Newton on (G - p)·G' = 0,
     clipped to the interval. Returns (distance, t)."""
-    from scipy.spatial import cKDTree
     pts = np.asarray(pts, float)
     st = np.asarray(samples_t, float)
     st = np.unique(np.concatenate([[lo, hi], st[(st >= lo) & (st <= hi)]]))
@@ -63,7 +74,7 @@ def nearest_on_piece(G, samples_t, pts, lo, hi, iters=8):
     st = np.unique(np.concatenate([(st[:-1, None] + np.diff(st)[:, None] * np.arange(8) / 8).ravel(),
                                    np.linspace(lo, hi, 513), [hi]]))
     S = G(st)
-    _, j = cKDTree(S).query(pts)
+    j = _nearest_index(S, pts)
     # project on the two chords at the nearest sample; keep the nearer
     t = st[j].copy()
     bestd = np.hypot(*(S[j] - pts).T)
@@ -192,14 +203,26 @@ def exact_set(profile) -> ExactSet:
     return ExactSet(pieces, params, z, float(profile.tolerance))
 
 
+def _within(P, Q, tol):
+    """Index pairs (query i, point h) with |P[h] - Q[i]| <= tol (mm): the points sorted by
+    x, each query's x window found by bisection, then the distance checked."""
+    order = np.argsort(P[:, 0], kind="stable")
+    xs = P[order, 0]
+    lo = np.searchsorted(xs, Q[:, 0] - tol, side="left")
+    cnt = np.searchsorted(xs, Q[:, 0] + tol, side="right") - lo
+    qi = np.repeat(np.arange(len(Q)), cnt)
+    off = np.arange(int(cnt.sum())) - np.repeat(np.cumsum(cnt) - cnt, cnt)
+    h = order[np.repeat(lo, cnt) + off]
+    keep = np.hypot(*(P[h] - Q[qi]).T) <= tol
+    return qi[keep], h[keep]
+
+
 def _vertex_candidates(S, L, z, ang):
     """For every loop vertex (L, mm), the sorted exact samples it coincides with:
     (piece, sample index, tooth copy) within a few 1e-7 mm."""
-    from scipy.spatial import cKDTree
     allS = np.concatenate(S)
     lab = np.concatenate([np.full(len(s), j) for j, s in enumerate(S)])
     idx = np.concatenate([np.arange(len(s)) for s in S])
-    tree = cKDTree(allS)
     M = len(L)
     k0 = np.rint(np.arctan2(L[:, 1], L[:, 0]) / ang).astype(int)
     match_tol = 1e-7 + 1e-12 * float(np.abs(L).max())
@@ -211,9 +234,8 @@ def _vertex_candidates(S, L, z, ang):
             continue
         c, s_ = np.cos(-k * ang), np.sin(-k * ang)
         Q = np.stack([c * L[:, 0] - s_ * L[:, 1], s_ * L[:, 0] + c * L[:, 1]], axis=1)
-        for i, hits in enumerate(tree.query_ball_point(Q, match_tol)):
-            for h in hits:
-                cands[i].append((int(lab[h]), int(idx[h]), int(k[i] % z if z > 1 else 0)))
+        for i, h in zip(*_within(allS, Q, match_tol)):
+            cands[i].append((int(lab[h]), int(idx[h]), int(k[i] % z if z > 1 else 0)))
     return [sorted(set(c)) for c in cands]
 
 
