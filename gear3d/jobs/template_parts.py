@@ -1,0 +1,349 @@
+"""Template parts: a family's keys checked against its parameter table, a part's
+``[part.body]``, tolerances and ``[part.options]``, and the part kinds (a gear, a rack, a
+worm pair) read into frozen :class:`gear3d.jobs.specs.PartSpec` values (mm, degrees).
+The schema is described in :mod:`gear3d.jobs.template`."""
+
+from __future__ import annotations
+
+import functools
+import inspect
+
+from ..errors import GearError
+from .specs import PartSpec
+from ..conventions import to_transverse
+from ..params import (BODY, BODY_PARAMS, DEFAULT_TOLERANCE, FAMILY_PARAMS, MESH_TOLERANCE, by_name,
+                      check_excludes, family_table)
+from ..profiles import FAMILIES, families
+
+from .template_values import (MESH_KINDS, PROFILE_KINDS, TOL_RANGE, TOLERANCE_KEYS, fail, safe_name,
+                              bool_at, kinds_at, number_at, str_at, table_at, refuse_unknown)
+
+# ---------------------------------------------------------------- families, bodies
+
+def family_signature(family):
+    """{parameter: default} of a registered family builder (tolerance excluded)."""
+    return dict(_family_signature(family))
+
+
+@functools.lru_cache(maxsize=None)
+def _family_signature(family):
+    """Read once per family: a scene of 100,000 parts asked 200,000 times (10 s of a dry run)."""
+    families()                  # imports every family module
+    sig = inspect.signature(FAMILIES[family])
+    return tuple((n, p.default) for n, p in sig.parameters.items()
+                 if p.kind not in (p.VAR_KEYWORD, p.VAR_POSITIONAL) and n != "tolerance")
+
+
+def check_family(file, key, family):
+    fams = families()
+    if family is None:
+        fail(file, key, None, "required: one of " + ", ".join(fams))
+    return str_at(file, key, family, fams)
+
+
+#: sweep keys ranged before any build (the others: by each part's build)
+SWEEP_RANGED = ("teeth", "module", "normal_module", "diametral_pitch")
+
+
+def typed(file, key, param, value, ranged: bool = True):
+    """``value`` checked against ``param`` (gear3d.params.Param): the TOML type (an integer
+    for an int, a number but never a string or a boolean, true/false, a string or one of
+    the choices) and, when ``ranged``, the table's range (a library sweep checks types up
+    front and leaves ranges to each part's build, so one bad part fails alone and is
+    recorded in the manifest)."""
+    if param.kind is bool:
+        return bool_at(file, key, value)
+    if param.kind is str:
+        return str_at(file, key, value, param.choices)
+    if param.auto and isinstance(value, str) and value == "auto":
+        return value
+    if value is None or (param.kind is int and isinstance(value, float)):
+        fail(file, key, value, param.allowed())
+    try:
+        if not ranged:
+            return _unranged(param).check(value)
+        return param.check(value)
+    except GearError:
+        fail(file, key, value, param.allowed())
+
+
+@functools.lru_cache(maxsize=None)
+def _unranged(param):
+    """``param`` without its static range (made once per parameter: a sweep asks per value)."""
+    from dataclasses import replace
+    return replace(param, lo=None, hi=None)
+
+
+@functools.lru_cache(maxsize=None)
+def _family_tab(family) -> dict:
+    """The family's table by name, read once (a sweep of 10^6 values asked 10^6 times)."""
+    return by_name(family)
+
+
+def check_param(file, key, family, name, value, sig, ranged: bool = True):
+    """One family parameter: a key of the family's table (gear3d.params, the normal/inch
+    alternatives included), its type and (``ranged``) range."""
+    if name == "tolerance":
+        fail(file, key, value, "not a part key: set [scene] tolerance / [scene.tolerances] "
+             "([library] tolerance / [library.tolerances])")
+    if family in FAMILY_PARAMS:
+        tab = _family_tab(family)
+        if name not in tab:
+            fail(file, key, value, f"a parameter of the {family} family: " + ", ".join(sorted(tab)) +
+                 ", or name, family, outputs, body")
+        return typed(file, key, tab[name], value, ranged)
+    if name not in sig:
+        fail(file, key, value, f"a parameter of the {family} family: " + ", ".join(sorted(sig)) +
+             ", or name, family, outputs, body")
+    d = sig[name]
+    if name == "teeth":
+        return number_at(file, key, value, 1, 100_000, integer=True)
+    if name == "module":
+        return number_at(file, key, value, 0, 1000, lo_open=True, unit="mm")
+    if isinstance(d, bool):
+        return bool_at(file, key, value)
+    if isinstance(d, int):
+        return number_at(file, key, value, integer=True)
+    if isinstance(d, str):
+        return str_at(file, key, value)
+    return number_at(file, key, value)
+
+
+def body_signature():
+    """{key: default} of a ``[part.body]`` table: the body table (gear3d.params) but the
+    tolerance and name (the scene's), plus ``mate``."""
+    out = {p.name: p.default for p in BODY_PARAMS if p.name not in ("tolerance", "name")}
+    out["mate"] = None
+    return out
+
+
+def check_body(file, key, table, *, names=None):
+    """A ``[part.body]`` table (gear3d.solids.body keywords plus ``mate``), typed and ranged
+    by the body table (gear3d.params.BODY_PARAMS)."""
+    table_at(file, key, table)
+    sig = body_signature()
+    refuse_unknown(file, key, table, sig)
+    out = {}
+    for k, v in table.items():
+        kk = f"{key}.{k}"
+        if k == "mate":
+            out[k] = str_at(file, kk, v, names) if names is not None else str_at(file, kk, v)
+        else:
+            out[k] = typed(file, kk, BODY[k], v)
+    if "width" not in out and "mate" not in out:
+        fail(file, f"{key}.width", None, "required: a number > 0 mm")
+    return out
+
+
+def check_tolerances(file, key, top):
+    """(default tolerance, {kind: tolerance}) in mm. Without an explicit ``tolerance`` the
+    mesh kinds default to :data:`MESH_TOLERANCE` (printing), the others to
+    :data:`DEFAULT_TOLERANCE`; ``tolerances`` overrides per kind."""
+    tol = number_at(file, f"{key}.tolerance", top.get("tolerance", DEFAULT_TOLERANCE), *TOL_RANGE, unit="mm")
+    tols = {} if "tolerance" in top else {k: MESH_TOLERANCE for k in MESH_KINDS}
+    t = table_at(file, f"{key}.tolerances", top.get("tolerances", {}))
+    for k, v in t.items():
+        str_at(file, f"{key}.tolerances.{k}", k, TOLERANCE_KEYS)
+        if k not in TOLERANCE_KEYS:
+            fail(file, f"{key}.tolerances.{k}", v, "a key among " + ", ".join(TOLERANCE_KEYS))
+        tols[k] = number_at(file, f"{key}.tolerances.{k}", v, *TOL_RANGE, unit="mm")
+    return tol, tols
+
+
+@functools.lru_cache(maxsize=1)
+def _dxf_keys() -> tuple:
+    """The DXF writer's options (read once: every part of a scene asks)."""
+    from ..export.dxf import write_dxf
+    return tuple(n for n in inspect.signature(write_dxf).parameters
+                 if n not in ("profile", "path", "tolerance", "extra"))
+
+
+def check_options(file, key, table):
+    """Exporter options per kind: ``dxf`` (kerf, lead_in, ...), ``step`` (``kind`` =
+    faceted | brep: planar facets, or exact B-rep surfaces through OpenCascade, which needs
+    ``pip install 'gear3d[cad]'``) and ``3mf`` (``arrange`` = true: the parts laid flat and
+    side by side on the bed, ``gap`` mm apart). Returns the writers' keyword arguments per kind."""
+    table_at(file, key, table)
+    out = {}
+    dxf_keys = _dxf_keys()
+    for kind, opts in table.items():
+        if kind not in ("dxf", "step", "3mf"):
+            fail(file, f"{key}.{kind}", opts, "dxf, step or 3mf (the exporters with options)")
+        table_at(file, f"{key}.{kind}", opts)
+        if kind == "3mf":
+            from ..export.threemf import MAX_GAP
+            refuse_unknown(file, f"{key}.3mf", opts, ["arrange", "gap"])
+            o = {k: bool_at(file, f"{key}.3mf.arrange", v) if k == "arrange" else
+                 number_at(file, f"{key}.3mf.gap", v, 0, MAX_GAP, unit="mm") for k, v in opts.items()}
+            out["3mf"] = o
+            continue
+        if kind == "step":
+            from ..export.step import STEP_KINDS
+            refuse_unknown(file, f"{key}.step", opts, ["kind"])
+            flavour = str_at(file, f"{key}.step.kind", opts.get("kind", "faceted"), STEP_KINDS)
+            if flavour == "brep":
+                import importlib.util
+                if importlib.util.find_spec("OCP") is None:
+                    fail(file, f"{key}.step.kind", flavour,
+                         "faceted, or brep after `pip install 'gear3d[cad]'` (OpenCascade is not installed)")
+            out["step"] = {"step": flavour}
+            continue
+        refuse_unknown(file, f"{key}.dxf", opts, dxf_keys)
+        out["dxf"] = {k: _dxf_option(file, f"{key}.dxf.{k}", k, v) for k, v in opts.items()}
+    return out
+
+
+def _dxf_option(file, key, name, v):
+    """One DXF exporter option, typed and ranged (the exporter checks module-relative limits)."""
+    from ..export.dxf import VERSIONS
+    if name in ("spline", "pitch_circle"):
+        return bool_at(file, key, v)
+    if name == "dxf_version":
+        return str_at(file, key, v, VERSIONS)
+    if name == "lead_in":
+        return number_at(file, key, v, 0, None, lo_open=True, unit="mm")
+    if name == "start_angle_deg":
+        return number_at(file, key, v, -360, 360, unit="deg")
+    if name == "max_arc_deg":
+        return number_at(file, key, v, 1, 180, unit="deg")
+    return number_at(file, key, v, unit="mm")
+
+
+def check_part(file, key, raw, *, default_outputs, names=None, require_name=True) -> PartSpec:
+    """A part table -> :class:`~gear3d.jobs.specs.PartSpec`."""
+    table_at(file, key, raw)
+    raw = dict(raw)
+    if "kind" in raw:
+        return _worm_part(file, key, raw, default_outputs, require_name)
+    name = raw.pop("name", None)
+    if require_name:
+        if name is None:
+            fail(file, f"{key}.name", None, "required: a file name (letters, digits, ._+=@,-)")
+        name = safe_name(file, f"{key}.name", name)
+    fam = check_family(file, f"{key}.family", raw.pop("family", None))
+    is_rack = bool_at(file, f"{key}.rack", raw.pop("rack", False))
+    body = raw.pop("body", None)
+    outs = raw.pop("outputs", None)
+    options = check_options(file, f"{key}.options", raw.pop("options", {}))
+    if is_rack:
+        params, b = _rack_part(file, key, fam, raw, body)
+        return PartSpec(name=name, family=fam, rack=True, params=params, body=b,
+                        outputs=_outputs(file, key, outs, b, default_outputs), options=options)
+    sig = family_signature(fam)
+    # helical / inch conventions: normal_module, normal_pressure_angle_deg, diametral_pitch
+    # (keys of the family's table, which excludes them against module / pressure_angle_deg)
+    params = {k: check_param(file, f"{key}.{k}", fam, k, v, sig) for k, v in raw.items()}
+    if fam in FAMILY_PARAMS:
+        try:
+            check_excludes(params, family_table(fam))
+        except GearError as e:
+            fail(file, f"{key}.{e.param}", e.value, e.allowed)
+    conv = {k: params.pop(k) for k in ("normal_module", "normal_pressure_angle_deg", "diametral_pitch")
+            if k in params}
+    b = check_body(file, f"{key}.body", body, names=names) if body is not None else None
+    if conv:
+        try:
+            params = to_transverse({**params, **conv}, (b or {}).get("helix_angle_deg", 0.0) or 0.0)
+        except GearError as e:
+            fail(file, f"{key}.{e.param}", e.value, e.allowed)
+        for k in ("module", "pressure_angle_deg"):
+            if k in params:
+                params[k] = check_param(file, f"{key}.{k}", fam, k, params[k], sig)
+    return PartSpec(name=name, family=fam, params=params, body=b,
+                    outputs=_outputs(file, key, outs, b, default_outputs), options=options)
+
+
+def _outputs(file, key, outs, b, default_outputs):
+    """A part's output kinds (mesh kinds only with a body)."""
+    if outs is None:
+        return tuple(k for k in default_outputs if b is not None or k in PROFILE_KINDS)
+    outs = kinds_at(file, f"{key}.outputs", outs)
+    if b is None:
+        for k in outs:
+            if k in MESH_KINDS:
+                fail(file, f"{key}.outputs", outs, "profile kinds (" + ", ".join(PROFILE_KINDS) +
+                     ") for a part without a [part.body] table")
+    return tuple(outs)
+
+
+#: the output kinds of a ``kind = "worm"`` part: its bodies, its report, the wheel's mid-plane
+WORM_KINDS = ("stl", "3mf", "json", "dxf", "png")
+
+
+def _worm_part(file, key, raw, default_outputs, require_name):
+    """A ``kind = "worm"`` part: a worm set, the keywords of :func:`gear3d.worm` (``part``
+    worm|wheel|pair, the design, bores, hub, ``check``) but ``tolerance`` (the scene's per
+    kind), checked by the builder's own rules before any work (:func:`gear3d.wormgear.validate`).
+    Outputs: stl/3mf (the bodies; the pair as two named objects in 3MF), json (the report),
+    dxf/png (the wheel's mid-plane section; wheel or pair)."""
+    from ..wormgear import FEATURE_KEYS, validate
+    from ..wormgear.design import design
+    str_at(file, f"{key}.kind", raw.pop("kind"), ("worm",))
+    if not require_name:
+        fail(file, f"{key}.kind", "worm", "no kind in a library (a worm set is a scene's [[part]])")
+    name = safe_name(file, f"{key}.name", raw.pop("name", None) or fail(file, f"{key}.name", None, "required"))
+    outs = raw.pop("outputs", None)
+    if "tolerance" in raw:
+        fail(file, f"{key}.tolerance", raw["tolerance"], "not a part key: set [scene] tolerance / [scene.tolerances]")
+    keys = [k for k in inspect.signature(design).parameters if k != "tolerance"] + list(FEATURE_KEYS)
+    refuse_unknown(file, key, raw, keys)
+    try:
+        validate(**raw)
+    except GearError as e:
+        fail(file, f"{key}.{e.param}", e.value, e.allowed, e.why)
+    part = raw.get("part", "pair")
+    kinds = WORM_KINDS if part != "worm" else ("stl", "3mf", "json")
+    outs = [k for k in default_outputs if k in kinds] if outs is None else kinds_at(file, f"{key}.outputs", outs, kinds)
+    return PartSpec(name=name, family="worm", params=dict(raw), body=None, outputs=tuple(outs), options={})
+
+
+#: the keys of a rack part's body table (gear3d.rack_body)
+RACK_BODY_KEYS = ("kind", "width", "helix_angle_deg", "hand")
+
+
+def _rack_part(file, key, fam, raw, body):
+    """A ``rack = true`` part: (params, body) checked by the rack builder's own rules
+    (:func:`gear3d.rack_part.rack`; its keys :data:`gear3d.rack_part.RACK_KEYS` and
+    ``back_height``), the body a straight or helical rack (width, helix_angle_deg, hand)."""
+    from ..rack_part import RACK_FAMILIES, RACK_KEYS, rack_params
+    if fam not in RACK_FAMILIES:
+        fail(file, f"{key}.family", fam, "a family with a rack: " + ", ".join(RACK_FAMILIES))
+    allowed = RACK_KEYS[fam] + ("back_height",)
+    tab = by_name(fam) if fam in FAMILY_PARAMS else {}
+    params = {}
+    for k, v in raw.items():
+        kk = f"{key}.{k}"
+        if k == "tolerance":
+            fail(file, kk, v, "not a part key: set [scene] tolerance / [scene.tolerances]")
+        if k not in allowed:
+            fail(file, kk, v, f"a key of the {fam} rack: " + ", ".join(allowed) + ", or name, family, rack, "
+                 "outputs, body, options")
+        if k in tab:
+            params[k] = typed(file, kk, tab[k], v)
+        elif k == "back_height":
+            params[k] = number_at(file, kk, v, 0, None, lo_open=True, unit="mm")
+        else:
+            params[k] = number_at(file, kk, v, 0, None, unit="modules")
+    try:
+        rack_params(fam, params)          # the builder's own ranges and shapes (at its default tolerance)
+    except GearError as e:
+        if e.param != "tolerance":
+            fail(file, f"{key}.{e.param}", e.value, e.allowed, e.why)
+    b = None
+    if body is not None:
+        table_at(file, f"{key}.body", body)
+        refuse_unknown(file, f"{key}.body", body, RACK_BODY_KEYS)
+        b = {}
+        for k, v in body.items():
+            kk = f"{key}.body.{k}"
+            if k == "kind":
+                b[k] = str_at(file, kk, v, ("spur", "helical"))
+            elif k == "helix_angle_deg":
+                b[k] = number_at(file, kk, v, 0, 60, unit="deg")
+            else:
+                b[k] = typed(file, kk, BODY[k], v)
+        if "width" not in b:
+            fail(file, f"{key}.body.width", None, "required: a number > 0 mm")
+        if b.get("kind") == "helical" and not b.get("helix_angle_deg"):
+            fail(file, f"{key}.body.helix_angle_deg", b.get("helix_angle_deg"), "a number in (0, 60] deg for kind helical")
+    return params, b
