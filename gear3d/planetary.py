@@ -34,10 +34,11 @@ it stands (shapely, every planet against the sun, the ring and its neighbours):
 """
 from __future__ import annotations
 
+import inspect
 import math
 
 import numpy as np
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields
 
 from .errors import GearError, check_bool, check_choice, check_number
 from .params import BODY, MESH_TOLERANCE, TOLERANCE, Param, check_family
@@ -209,32 +210,44 @@ def _list(ns) -> str:
 
 # ---------------------------------------------------------------------- the set
 
+@dataclass(frozen=True)
+class SetChoices:
+    """How a planetary set is placed and what is built: ``spacing`` (``equal`` or
+    ``nearest``, see :data:`PLANETARY_PARAMS`), ``check`` (run the rolling checks),
+    ``bodies`` (build the 3D bodies).
+
+    >>> SetChoices().spacing
+    'equal'
+    """
+    spacing: str = "equal"
+    check: bool = True
+    bodies: bool = True
+
+    @classmethod
+    def take(cls, options: dict, carrier) -> tuple:
+        """Pop the choices out of ``options`` (the rest are family parameters): (the
+        choices, ``carrier``), checked in the order the flags are documented."""
+        c = cls(**{f: options.pop(f) for f in ("spacing", "check", "bodies") if f in options})
+        spacing = check_choice("spacing", c.spacing, SPACINGS)
+        carrier = check_bool("carrier", carrier)
+        return cls(spacing, check_bool("check", c.check), check_bool("bodies", c.bodies)), carrier
+
+
 def planetary_set(family: str, sun: int, planet: int, ring: int, planets: int = 3, module=None,
-                  width: float = 10.0, tolerance: float = MESH_TOLERANCE, carrier: bool = False, *,
-                  spacing: str = "equal", check: bool = True, bodies: bool = True,
-                  **family_params) -> PlanetarySet:
+                  width: float = 10.0, tolerance: float = MESH_TOLERANCE, carrier: bool = False,
+                  **options) -> PlanetarySet:
     """Build and check a standard planetary set of ``family`` (see the module doc).
 
-    ``module`` (mm, default 1; or ``diametral_pitch=`` in ``family_params``), ``width``
+    ``module`` (mm, default 1; or ``diametral_pitch=`` in the options), ``width``
     (mm, the bodies' face width), ``tolerance`` (mm: profiles, bodies and the rolling
-    checks). ``check=False`` skips the rolling checks, ``bodies=False`` the 3D bodies.
-    ``family_params``: the family's other parameters (pressure angle, addendum, ...), the
-    same for all wheels. Returns a :class:`PlanetarySet`.
+    checks). Keyword options: ``spacing`` (default ``equal``), ``check=False`` skips the
+    rolling checks, ``bodies=False`` the 3D bodies (:class:`SetChoices`); the others are
+    the family's parameters (pressure angle, addendum, ...), the same for all wheels.
+    Returns a :class:`PlanetarySet`.
     """
-    if not isinstance(family, str) or family not in PLANETARY_FAMILIES:
-        raise GearError("family", family, "one of " + ", ".join(PLANETARY_FAMILIES)
-                        + " (rack-generated families with a module)")
-    zs = PLANETARY["sun"].check(sun) if sun is not None else _required("sun")
-    zp = PLANETARY["planet"].check(planet) if planet is not None else _required("planet")
-    zr = PLANETARY["ring"].check(ring) if ring is not None else _required("ring")
-    n = PLANETARY["planets"].check(planets)
-    if zr != zs + 2 * zp:
-        raise GearError("ring", zr, f"{zs + 2 * zp} (= sun + 2 planet: {zs} + 2 x {zp}) for a standard set",
-                        "the planets must touch sun and ring on their pitch circles")
-    spacing = check_choice("spacing", spacing, SPACINGS)
-    carrier = check_bool("carrier", carrier)
-    check = check_bool("check", check)
-    bodies = check_bool("bodies", bodies)
+    zs, zp, zr, n = _set_teeth(family, sun, planet, ring, planets)
+    family_params = dict(options)
+    how, carrier = SetChoices.take(family_params, carrier)
     width = BODY["width"].check(width)
     tol = TOLERANCE.check(tolerance)
     fp = _family_params(family, module, family_params)
@@ -246,46 +259,13 @@ def planetary_set(family: str, sun: int, planet: int, ring: int, planets: int = 
     m = float(p_sun.module)                        # the module the wheels were built with (mm)
     a = standard_center_distance(zs, zp, m)
     r_tip = float(p_pl.report["tip_radius"])
-
-    # ---- assembly condition and planet clearance
-    s = zs + zr
-    if spacing == "equal" and s % n:
-        ok = _allowed_planets(zs, zr, a, r_tip, "equal")
-        raise GearError("planets", n, f"one of {_list(ok)} (divisors of z_sun + z_ring = {s} whose planets "
-                        "clear each other)",
-                        f"(z_sun + z_ring)/planets = {s}/{n} = {s / n:.4g} is not an integer: equally spaced "
-                        "planets cannot all mesh; --spacing nearest (spacing='nearest') places them unequally")
-    angles = planet_angles(zs, zr, n, spacing)
-    clearance = tip_clearance(a, r_tip, angles)
-    if clearance is not None and clearance <= 0:
-        ok = _allowed_planets(zs, zr, a, r_tip, spacing)
-        what = f"divisors of z_sun + z_ring = {s}" if spacing == "equal" else "counts placed by spacing nearest"
-        raise GearError("planets", n, f"one of {_list(ok)} ({what} whose planets clear each other)",
-                        f"neighbouring planet tips overlap: 2a sin(dtheta/2) - 2 r_tip = {clearance:.4f} mm "
-                        f"(a = {a:g} mm, r_tip = {r_tip:.4f} mm)")
-
-    # ---- placement in phase
-    placements = [{"name": "sun", "center": (0.0, 0.0), "turn": 0.0}]
-    ring_turns = []
-    for k, th in enumerate(angles):
-        f_sun = _phase(th, 0.0, zs)                              # the sun at the sun-planet pitch point
-        t_pl = _mate_turn(zp, th + math.pi, f_sun, internal=False)
-        placements.append({"name": f"planet-{k + 1}", "center": (a * math.cos(th), a * math.sin(th)),
-                           "turn": t_pl})
-        f_pl = _phase(th, t_pl, zp)                              # the planet at the planet-ring pitch point
-        ring_turns.append(_mate_turn(zr, th, f_pl, internal=True))
-    t_ring = ring_turns[0]
-    pitch_r = 2 * math.pi / zr
-    phase_err = max(abs(((t - t_ring) / pitch_r + 0.5) % 1.0 - 0.5) for t in ring_turns)
-    placements.append({"name": "ring", "center": (0.0, 0.0), "turn": t_ring})
-    if phase_err > 1e-6:     # cannot happen past the assembly condition; a guard, not a check
-        raise GearError("planets", n, "a count that assembles", f"ring phase error {phase_err:.3g} pitches")
-
+    angles, clearance = _planet_angles_checked(zs, zr, n, a, r_tip, how.spacing)
+    placements, phase_err = _place(zs, zp, zr, angles, a)
     placed_pen, gap = _placed_check(p_sun, p_pl, p_ring, placements)
 
     # ---- rolling checks, one per distinct mesh
     meshes, interference, pen_max = None, None, None
-    if check:
+    if how.check:
         from .analysis.pairs import check_pair
         sp = check_pair(p_sun, p_pl, tolerance=tol)
         pr = check_pair(p_pl, p_ring, internal=True, tolerance=tol)
@@ -301,34 +281,101 @@ def planetary_set(family: str, sun: int, planet: int, ring: int, planets: int = 
         dims = carrier_dimensions(a, m, width, float(p_pl.report["root_radius"]),
                                   float(p_sun.report["root_radius"]), float(p_ring.report["tip_radius"]))
         carrier_rep = dict(dims)
-    if bodies:
+    if how.bodies:
         out_bodies, body_reps, carrier_rep = _bodies(p_sun, p_pl, p_ring, placements, width, tol, dims)
         errs += [float(r["max_error"]) for r in body_reps.values() if r.get("max_error") is not None]
-
-    rats = ratios(zs, zr)
-    # the same ratios from the built wheels' pitch radii (Willis): a cross-check of the formulas
-    rs, rp, rr = (float(p.report["pitch_radius"]) for p in (p_sun, p_pl, p_ring))
-    willis = {"ring_fixed": 1 + rr / rs, "carrier_fixed": -rr / rs, "sun_fixed": 1 + rs / rr}
+    wheels = {"sun": p_sun, "planet": p_pl, "ring": p_ring}
     rep = PlanetaryReport(
         family=family, teeth={"sun": zs, "planet": zp, "ring": zr}, planets=n, module=m, width=width,
-        tolerance=tol, spacing=spacing, assembly_quotient=s / n, assembly_condition=s % n == 0,
+        tolerance=tol, spacing=how.spacing, assembly_quotient=(zs + zr) / n,
+        assembly_condition=(zs + zr) % n == 0,
         center_distance=a, planet_angles_deg=[math.degrees(t) for t in angles],
         placements=[{"name": q["name"], "center": [float(q["center"][0]), float(q["center"][1])],
                      "turn_deg": math.degrees(q["turn"])} for q in placements],
-        ratios=rats, ratio_definitions=dict(RATIO_DEFINITIONS),
+        ratios=ratios(zs, zr), ratio_definitions=dict(RATIO_DEFINITIONS),
         planet_tip_radius=r_tip, planet_clearance=clearance, planet_gap_measured=gap,
         ring_phase_error=phase_err, placed_penetration=placed_pen,
-        meshes=meshes,
-        meshes_note=("one rolling check per distinct mesh (sun-planet, planet-ring): the planets are "
-                     "identical and each is placed in the same mesh phase, so every sun-planet (planet-ring) "
-                     "mesh is the checked one at another roll angle") if check else "rolling checks not run",
+        meshes=meshes, meshes_note=MESHES_NOTE if how.check else "rolling checks not run",
         interference=interference, max_penetration=pen_max,
         profiles={name: {k: p.report[k] for k in ("teeth", "pitch_radius", "tip_radius", "root_radius",
                                                    "undercut", "pointed", "max_error", "tolerance")}
-                  for name, p in (("sun", p_sun), ("planet", p_pl), ("ring", p_ring))},
-        bodies=body_reps, carrier=carrier_rep, max_error=max(errs),
-        extra={"ratios_from_pitch_radii": willis, "pitch_radii": {"sun": rs, "planet": rp, "ring": rr}})
-    return PlanetarySet({"sun": p_sun, "planet": p_pl, "ring": p_ring}, placements, out_bodies, rep)
+                  for name, p in wheels.items()},
+        bodies=body_reps, carrier=carrier_rep, max_error=max(errs), extra=_willis(wheels))
+    return PlanetarySet(wheels, placements, out_bodies, rep)
+
+
+# the signature help() and the docs show: the choices by name, then the family's parameters
+planetary_set.__signature__ = inspect.signature(planetary_set).replace(parameters=[
+    *list(inspect.signature(planetary_set).parameters.values())[:-1],
+    *(inspect.Parameter(f.name, inspect.Parameter.KEYWORD_ONLY, default=f.default) for f in fields(SetChoices)),
+    inspect.Parameter("family_params", inspect.Parameter.VAR_KEYWORD)])
+
+MESHES_NOTE = ("one rolling check per distinct mesh (sun-planet, planet-ring): the planets are "
+               "identical and each is placed in the same mesh phase, so every sun-planet (planet-ring) "
+               "mesh is the checked one at another roll angle")
+
+
+def _set_teeth(family, sun, planet, ring, planets) -> tuple:
+    """The family and tooth numbers checked: (z_sun, z_planet, z_ring, planets)."""
+    if not isinstance(family, str) or family not in PLANETARY_FAMILIES:
+        raise GearError("family", family, "one of " + ", ".join(PLANETARY_FAMILIES)
+                        + " (rack-generated families with a module)")
+    zs = PLANETARY["sun"].check(sun) if sun is not None else _required("sun")
+    zp = PLANETARY["planet"].check(planet) if planet is not None else _required("planet")
+    zr = PLANETARY["ring"].check(ring) if ring is not None else _required("ring")
+    n = PLANETARY["planets"].check(planets)
+    if zr != zs + 2 * zp:
+        raise GearError("ring", zr, f"{zs + 2 * zp} (= sun + 2 planet: {zs} + 2 x {zp}) for a standard set",
+                        "the planets must touch sun and ring on their pitch circles")
+    return zs, zp, zr, n
+
+
+def _planet_angles_checked(zs, zr, n, a, r_tip, spacing) -> tuple:
+    """The planets' angles (rad) and their tip clearance (mm): the assembly condition and
+    the clearance between neighbouring planets checked."""
+    s = zs + zr
+    if spacing == "equal" and s % n:
+        ok = _allowed_planets(zs, zr, a, r_tip, "equal")
+        raise GearError("planets", n, f"one of {_list(ok)} (divisors of z_sun + z_ring = {s} whose planets "
+                        "clear each other)",
+                        f"(z_sun + z_ring)/planets = {s}/{n} = {s / n:.4g} is not an integer: equally spaced "
+                        "planets cannot all mesh; --spacing nearest (spacing='nearest') places them unequally")
+    angles = planet_angles(zs, zr, n, spacing)
+    clearance = tip_clearance(a, r_tip, angles)
+    if clearance is not None and clearance <= 0:
+        ok = _allowed_planets(zs, zr, a, r_tip, spacing)
+        what = f"divisors of z_sun + z_ring = {s}" if spacing == "equal" else "counts placed by spacing nearest"
+        raise GearError("planets", n, f"one of {_list(ok)} ({what} whose planets clear each other)",
+                        f"neighbouring planet tips overlap: 2a sin(dtheta/2) - 2 r_tip = {clearance:.4f} mm "
+                        f"(a = {a:g} mm, r_tip = {r_tip:.4f} mm)")
+    return angles, clearance
+
+
+def _place(zs, zp, zr, angles, a) -> tuple:
+    """Every wheel placed in phase: (placements, the ring's phase error in pitches)."""
+    placements = [{"name": "sun", "center": (0.0, 0.0), "turn": 0.0}]
+    ring_turns = []
+    for k, th in enumerate(angles):
+        f_sun = _phase(th, 0.0, zs)                              # the sun at the sun-planet pitch point
+        t_pl = _mate_turn(zp, th + math.pi, f_sun, internal=False)
+        placements.append({"name": f"planet-{k + 1}", "center": (a * math.cos(th), a * math.sin(th)),
+                           "turn": t_pl})
+        f_pl = _phase(th, t_pl, zp)                              # the planet at the planet-ring pitch point
+        ring_turns.append(_mate_turn(zr, th, f_pl, internal=True))
+    t_ring = ring_turns[0]
+    pitch_r = 2 * math.pi / zr
+    phase_err = max(abs(((t - t_ring) / pitch_r + 0.5) % 1.0 - 0.5) for t in ring_turns)
+    placements.append({"name": "ring", "center": (0.0, 0.0), "turn": t_ring})
+    if phase_err > 1e-6:     # cannot happen past the assembly condition; a guard, not a check
+        raise GearError("planets", len(angles), "a count that assembles", f"ring phase error {phase_err:.3g} pitches")
+    return placements, phase_err
+
+
+def _willis(wheels) -> dict:
+    """The ratios again from the built wheels' pitch radii (Willis): a cross-check of the formulas."""
+    rs, rp, rr = (float(wheels[k].report["pitch_radius"]) for k in ("sun", "planet", "ring"))
+    willis = {"ring_fixed": 1 + rr / rs, "carrier_fixed": -rr / rs, "sun_fixed": 1 + rs / rr}
+    return {"ratios_from_pitch_radii": willis, "pitch_radii": {"sun": rs, "planet": rp, "ring": rr}}
 
 
 def _required(name):

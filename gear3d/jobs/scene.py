@@ -308,18 +308,8 @@ def _scene_graph(scene: Scene, out_dir, only=None):
         for n in sel:
             if n not in known:
                 raise TemplateError(scene.file, "--only", n, "one of " + ", ".join(sorted(known)))
-    files = {}
     owners = {"parts": {}, "pairs": {}, "assemblies": {}}
-
-    def claim(fname, who):
-        # names that differ only in case collide on case-insensitive file systems
-        k = fname.casefold()
-        if k in files and files[k][0] != who:
-            raise TemplateError(scene.file, f"{who}.name", fname,
-                                f"a name whose files do not collide with {files[k][0]}'s",
-                                f"both would write {files[k][1]}")
-        files[k] = (who, fname)
-
+    claim = _Claims(scene.file)
     claim(scene.name + ".report.json", "scene")
     for part in scene.parts:
         if sel and part.name not in sel:
@@ -329,81 +319,106 @@ def _scene_graph(scene: Scene, out_dir, only=None):
             claim(part.name + EXT[k], f"part[{part.name}]")
         owners["parts"][part.name] = t
     for pair in scene.pairs:
-        if sel and pair.name not in sel:
-            continue
-        label = f"pair[{pair.name}]"
-        t = {}
-        a, b = by[pair.parts[0]], by[pair.parts[1]]
-        if pair.check or "json" in pair.outputs:
-            tc = scene.tolerance_for("check")
-            p1 = profile_stage(g, scene, a, tc, f"part[{a.name}]")
-            p2 = profile_stage(g, scene, b, tc, f"part[{b.name}]")
-            t["check"] = g.add("check", {"internal": pair.internal, "tolerance": tc,
-                                         "center_distance": pair.center_distance}, [p1, p2],
-                               fn=run_check, label=f"{pair.name}: {a.name} x {b.name} @ {tc:g} mm",
-                               file=scene.file, prefix=label, keys=())
-        for kind in pair.outputs:
-            fname = pair.name + EXT[kind]
-            path = out_path(out_dir, fname, scene.file, f"{label}.name")
-            claim(fname, label)
-            if kind == "json":
-                src = t["check"]
-                inputs = {"kind": "json", "file": fname}
-            else:
-                tol = scene.tolerance_for(kind)
-                b1 = body_stage(g, scene, a, tol, f"part[{a.name}]", by)
-                b2 = body_stage(g, scene, b, tol, f"part[{b.name}]", by)
-                src = g.add("place", {"internal": pair.internal,
-                                      "center_distance": pair.center_distance}, [b1, b2], fn=run_place,
-                            label=f"{pair.name} @ {tol:g} mm", file=scene.file, prefix=label, keys=())
-                inputs = {"kind": kind, "file": fname, "tolerance": tol, "names": list(pair.parts)}
-                if kind == "3mf" and scene.options.get("3mf"):
-                    inputs["options"] = dict(scene.options["3mf"])     # arrange, gap
-            t[kind] = g.add("write", inputs, [src], fn=run_write, label=fname, phase=1,
-                            path=path, out_dir=out_dir)
-        owners["pairs"][pair.name] = t
+        if not sel or pair.name in sel:
+            owners["pairs"][pair.name] = _pair_targets(g, scene, pair, out_dir, by, claim)
     for asm in scene.assemblies:
-        if sel and asm.name not in sel:
-            continue
-        label = f"assembly[{asm.name}]"
-        t = {}
-        for kind in asm.outputs:
-            tol = min(scene.tolerance_for(kind), 0.05)
-            h = g.add("harmonic", {"design": asm.design, "seed002": asm.seed002, "tooth": asm.tooth,
-                                   "bearing_thickness": asm.bearing_thickness, "tolerance": tol},
-                      fn=run_harmonic, label=f"{asm.name} parts @ {tol:g} mm",
-                      file=scene.file, prefix=label, keys=())
-            if kind == "json":
-                fname = asm.name + ".json"
-                src = g.add("design", {}, [h], fn=lambda s, built: {
-                    "design": built[0].report, "parts": {p.name: p.report for p in built[1]}},
-                    label=f"{asm.name} report")
-                inputs = {"kind": "json", "file": fname}
-                claim(fname, label)
-                t[kind] = g.add("write", inputs, [src], fn=run_write, label=fname, phase=1,
-                                path=out_path(out_dir, fname, scene.file, label), out_dir=out_dir)
-            elif kind == "3mf":
-                fname = asm.name + ".3mf"
-                claim(fname, label)
-                src = g.add("assembly", {"deformed": asm.deformed}, [h], fn=run_assembly,
-                            label=f"{asm.name} placed")
-                inputs = {"kind": kind, "file": fname, "tolerance": tol}
-                if scene.options.get("3mf"):
-                    inputs["options"] = dict(scene.options["3mf"])     # arrange, gap
-                t[kind] = g.add("write", inputs, [src],
-                                fn=run_write, label=fname, phase=1,
-                                path=out_path(out_dir, fname, scene.file, label), out_dir=out_dir)
-            else:
-                for pn in _harmonic_part_names(asm):
-                    fname = f"{asm.name}_{pn}{EXT[kind]}"
-                    claim(fname, label)
-                    src = g.add("pick", {"part": pn}, [h], fn=lambda s, built: next(
-                        p for p in built[1] if p.name == s.inputs["part"]), label=f"{asm.name}.{pn}")
-                    t[f"{kind}:{pn}"] = g.add("write", {"kind": kind, "file": fname, "tolerance": tol}, [src],
-                                              fn=run_write, label=fname, phase=1,
-                                              path=out_path(out_dir, fname, scene.file, label), out_dir=out_dir)
-        owners["assemblies"][asm.name] = t
+        if not sel or asm.name in sel:
+            owners["assemblies"][asm.name] = _assembly_targets(g, scene, asm, out_dir, claim)
     return g, owners
+
+
+class _Claims:
+    """The scene's file names, each claimed by one owner: names that differ only in case
+    collide on case-insensitive file systems, and are refused."""
+
+    def __init__(self, file):
+        self.file, self.files = file, {}
+
+    def __call__(self, fname, who):
+        k = fname.casefold()
+        if k in self.files and self.files[k][0] != who:
+            raise TemplateError(self.file, f"{who}.name", fname,
+                                f"a name whose files do not collide with {self.files[k][0]}'s",
+                                f"both would write {self.files[k][1]}")
+        self.files[k] = (who, fname)
+
+
+def _pair_targets(g, scene, pair, out_dir, by, claim) -> dict:
+    """A pair's stages (its rolling check, the placed bodies) and write targets by output kind."""
+    label = f"pair[{pair.name}]"
+    t = {}
+    a, b = by[pair.parts[0]], by[pair.parts[1]]
+    if pair.check or "json" in pair.outputs:
+        tc = scene.tolerance_for("check")
+        p1 = profile_stage(g, scene, a, tc, f"part[{a.name}]")
+        p2 = profile_stage(g, scene, b, tc, f"part[{b.name}]")
+        t["check"] = g.add("check", {"internal": pair.internal, "tolerance": tc,
+                                     "center_distance": pair.center_distance}, [p1, p2],
+                           fn=run_check, label=f"{pair.name}: {a.name} x {b.name} @ {tc:g} mm",
+                           file=scene.file, prefix=label, keys=())
+    for kind in pair.outputs:
+        fname = pair.name + EXT[kind]
+        path = out_path(out_dir, fname, scene.file, f"{label}.name")
+        claim(fname, label)
+        if kind == "json":
+            src = t["check"]
+            inputs = {"kind": "json", "file": fname}
+        else:
+            tol = scene.tolerance_for(kind)
+            b1 = body_stage(g, scene, a, tol, f"part[{a.name}]", by)
+            b2 = body_stage(g, scene, b, tol, f"part[{b.name}]", by)
+            src = g.add("place", {"internal": pair.internal,
+                                  "center_distance": pair.center_distance}, [b1, b2], fn=run_place,
+                        label=f"{pair.name} @ {tol:g} mm", file=scene.file, prefix=label, keys=())
+            inputs = {"kind": kind, "file": fname, "tolerance": tol, "names": list(pair.parts)}
+            if kind == "3mf" and scene.options.get("3mf"):
+                inputs["options"] = dict(scene.options["3mf"])     # arrange, gap
+        t[kind] = g.add("write", inputs, [src], fn=run_write, label=fname, phase=1,
+                        path=path, out_dir=out_dir)
+    return t
+
+
+def _assembly_targets(g, scene, asm, out_dir, claim) -> dict:
+    """A harmonic assembly's stages and write targets by output kind (``kind:part`` for
+    the per-part mesh files)."""
+    label = f"assembly[{asm.name}]"
+    t = {}
+    for kind in asm.outputs:
+        tol = min(scene.tolerance_for(kind), 0.05)
+        h = g.add("harmonic", {"design": asm.design, "seed002": asm.seed002, "tooth": asm.tooth,
+                               "bearing_thickness": asm.bearing_thickness, "tolerance": tol},
+                  fn=run_harmonic, label=f"{asm.name} parts @ {tol:g} mm",
+                  file=scene.file, prefix=label, keys=())
+        if kind == "json":
+            fname = asm.name + ".json"
+            src = g.add("design", {}, [h], fn=lambda s, built: {
+                "design": built[0].report, "parts": {p.name: p.report for p in built[1]}},
+                label=f"{asm.name} report")
+            inputs = {"kind": "json", "file": fname}
+            claim(fname, label)
+            t[kind] = g.add("write", inputs, [src], fn=run_write, label=fname, phase=1,
+                            path=out_path(out_dir, fname, scene.file, label), out_dir=out_dir)
+        elif kind == "3mf":
+            fname = asm.name + ".3mf"
+            claim(fname, label)
+            src = g.add("assembly", {"deformed": asm.deformed}, [h], fn=run_assembly,
+                        label=f"{asm.name} placed")
+            inputs = {"kind": kind, "file": fname, "tolerance": tol}
+            if scene.options.get("3mf"):
+                inputs["options"] = dict(scene.options["3mf"])     # arrange, gap
+            t[kind] = g.add("write", inputs, [src],
+                            fn=run_write, label=fname, phase=1,
+                            path=out_path(out_dir, fname, scene.file, label), out_dir=out_dir)
+        else:
+            for pn in _harmonic_part_names(asm):
+                fname = f"{asm.name}_{pn}{EXT[kind]}"
+                claim(fname, label)
+                src = g.add("pick", {"part": pn}, [h], fn=lambda s, built: next(
+                    p for p in built[1] if p.name == s.inputs["part"]), label=f"{asm.name}.{pn}")
+                t[f"{kind}:{pn}"] = g.add("write", {"kind": kind, "file": fname, "tolerance": tol}, [src],
+                                          fn=run_write, label=fname, phase=1,
+                                          path=out_path(out_dir, fname, scene.file, label), out_dir=out_dir)
+    return t
 
 
 def _harmonic_part_names(asm: AssemblySpec):
