@@ -29,9 +29,12 @@ from dataclasses import dataclass
 from . import budget
 from .budget import Estimate, estimate
 
-#: the DXF and SVG writers certify their arcs against a reference profile built this much
-#: finer (gear3d.export.dxf), which has sqrt(20) times the vertices
+#: the DXF and SVG writers' sampled fallback fits a reference profile built this much finer
+#: (gear3d.export.dxf), which has sqrt(20) times the vertices
 REFERENCE_FACTOR = 20.0
+#: gears of at most this many teeth may take the DXF/SVG writers' sampled fallback (their
+#: outline cannot always be walked on the exact pieces: sine 3-5 teeth, cycloidal 3)
+FALLBACK_TEETH = 6
 
 
 @dataclass(frozen=True)
@@ -91,16 +94,19 @@ def probe_profile(family: str, params: dict) -> Sketch | None:
 def write_estimate(ext: str, *, vertices: float = 0.0, per_tooth: float = 0.0, triangles: float = 0.0,
                    brep: Estimate | None = None) -> Estimate:
     """An export's estimate: 2D formats from the profile's ``vertices`` (``per_tooth``: of
-    one period; DXF and SVG also build their reference profile 20x finer), 3D formats from
+    one period; DXF and SVG of few teeth also their sampled fallback), 3D formats from
     the body's ``triangles`` (a B-rep STEP: its :func:`brep_estimate` ``brep``)."""
     ext = ext.lower()
     if ext in (".dxf", ".svg"):
-        k = math.sqrt(REFERENCE_FACTOR)
-        ref = budget.profile_estimate(k * vertices, k * per_tooth)
-        return Estimate(ref.seconds + estimate("write" + ext, vertices).seconds,
-                        max(ref.bytes, estimate("write" + ext, vertices).bytes), 0.0,
-                        f"the {ext[1:].upper()} of {vertices:,.0f} vertices, certified against a reference "
-                        f"of {k * vertices:,.0f}")
+        what = f"the {ext[1:].upper()} of {vertices:,.0f} vertices"
+        est = estimate("write" + ext, vertices, 0.0, what)
+        if not per_tooth or vertices / per_tooth <= FALLBACK_TEETH:      # and the sampled fallback
+            k = math.sqrt(REFERENCE_FACTOR)
+            ref = budget.profile_estimate(k * vertices, k * per_tooth)
+            fb = estimate("write.dxf.sampled", vertices)
+            est = Estimate(est.seconds + ref.seconds + fb.seconds, max(est.bytes, ref.bytes, fb.bytes), 0.0,
+                           what + f", or its sampled fit against a reference of {k * vertices:,.0f}")
+        return est
     if ext == ".png" and not triangles:
         return estimate("write.png", vertices, 0.0, f"a figure of {vertices:,.0f} vertices")
     if ext == ".json":

@@ -126,7 +126,7 @@ def test_three_limits_validated_and_restored(tmp_path):
 
 
 @pytest.mark.parametrize("argv, resource, param", [
-    (["profile", "triangular", "--teeth", "100000", "--module", "0.3", "-o", "g.dxf"], "time", "teeth"),
+    (["profile", "triangular", "--teeth", "100000", "--module", "0.3", "--width", "1", "-o", "g.stl"], "time", "teeth"),
     (["check", "pair", "involute", "--teeth", "2000", "--mate-teeth", "2000"], "time", "teeth"),
     (["body", "involute", "--teeth", "400", "--kind", "helical", "--helix-angle-deg", "45", "--width", "60",
       "--tolerance", "0.002", "-o", "g.step"], "memory", "tolerance"),
@@ -242,15 +242,16 @@ def test_watchdog_memory_limit(tmp_path):
 
 
 def test_failed_scene_leaves_its_nested_out_as_it_was(tmp_path):
-    """Two parts written, the third refused at its DXF (the budget): none of the run's files
-    and none of the folders it made are left (issue #27: 3 files were)."""
+    """Two parts written, the third refused at its DXF (the budget: a 4-tooth sine's DXF may
+    take the sampled fallback): none of the run's files and none of the folders it made are
+    left (issue #27: 3 files were)."""
     scene = tmp_path / "s.toml"
-    scene.write_text('[scene]\nname = "s"\noutputs = ["json", "dxf"]\n'
+    scene.write_text('[scene]\nname = "s"\noutputs = ["json", "dxf"]\ntolerance = 0.00001\n'
                      '[[part]]\nname = "a"\nfamily = "involute"\nteeth = 12\n'
                      '[[part]]\nname = "b"\nfamily = "involute"\nteeth = 14\n'
-                     '[[part]]\nname = "c"\nfamily = "triangular"\nteeth = 20000\n')
+                     '[[part]]\nname = "c"\nfamily = "sine"\nteeth = 4\n')
     (tmp_path / "keep").mkdir()
     (tmp_path / "keep" / "old.txt").write_text("mine\n")
-    rc, err = run(["--max-seconds", "20", "build", str(scene), "--out", "keep/a/b/c", "-q"], tmp_path)
+    rc, err = run(["--max-seconds", "3", "build", str(scene), "--out", "keep/a/b/c", "-q"], tmp_path)
     assert rc == 2 and err.count("\n") == 1 and "budget" in err and "the DXF of" in err, err   # at c's write
     assert sorted(os.listdir(tmp_path / "keep")) == ["old.txt"]

@@ -312,6 +312,7 @@ LIGHT = {
     "gear3d.cliargs": "argparse value types (standard library)",
     "gear3d.progress": "stage names and the progress bar (standard library)",
     "gear3d.budget": "resource estimates and checks (standard library)",
+    "gear3d.costs": "the budget's per-item costs (standard library)",
     "gear3d.profiles": "the family registry (the families load on first use)",
     "gear3d.spec": "GearSpec and gear3d.profile, on top of the registry (bodies load on first use)",
     "gear3d.export": "the format registry and file safety (the formats load on first use)",

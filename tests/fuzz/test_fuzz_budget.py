@@ -35,10 +35,7 @@ REGRESSIONS = [
     "body involute --teeth 400 --kind helical --helix-angle-deg 45 --width 60 --tolerance 0.002 -o g.3mf",
     "body involute --teeth 500 --kind herringbone --helix-angle-deg 30 --width 20 --tolerance 0.0001 -o g.step "
     "--step brep",
-    "profile triangular --teeth 100000 --module 0.3 -o g.dxf",
-    "profile triangular --teeth 100000 --module 0.3 -o g.svg",
     "profile triangular --teeth 100000 --module 0.3 --width 1 -o g.stl",
-    "profile triangular --teeth 40000 --module 0.3 -o g.dxf",
     "body involute --teeth 40 --internal --width 8 --rim-diameter 1e9 -o g.stl",
     "check pair involute --teeth 2000 --mate-teeth 2000",
     "check pair involute --teeth 10000 --mate-teeth 10000 --tolerance 0.01",
@@ -53,6 +50,11 @@ REGRESSIONS = [
 #: reports that the budget now lets run (under the default limits) but that must still keep
 #: the promise: within twice their estimate (minutes of CPU each: -m slow)
 SLOW_REGRESSIONS = [
+    # the DXF/SVG of 100,000 triangular teeth (issue: > 120 s) take 3.6-4.9 s since the arcs
+    # are certified on the exact curve (estimates 12 s)
+    "profile triangular --teeth 100000 --module 0.3 -o g.dxf",
+    "profile triangular --teeth 100000 --module 0.3 -o g.svg",
+    "profile triangular --teeth 40000 --module 0.3 -o g.dxf",
     "profile moineau-stator --eccentricity 1 --tooth-radius 100000 -o g.json",
     "profile triangular --teeth 20000 --module 0.3 -o g.dxf",
     "profile cycloidal --teeth 1000 --rolling-radius-coeff 100 -o g.json",

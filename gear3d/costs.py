@@ -1,0 +1,116 @@
+"""Per-item costs of the resource budget (:mod:`gear3d.budget`): CPU seconds and peak bytes
+a counted item (a profile vertex, a triangle, a rolling position x vertex, a B-rep face...),
+plus once-only costs, each with where its numbers come from.
+
+Every estimate is counts x these costs (:func:`gear3d.budget.estimate`); a cost is the
+largest of several sizes and families measured, rounded up, so that an estimate is an upper
+bound within about 2x (the fuzz property of ``tests/fuzz`` holds every command to that).
+
+>>> COSTS["write.stl"].seconds < COSTS["write.3mf"].seconds
+True
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+
+@dataclass(frozen=True)
+class Cost:
+    """Per-item costs of one stage: CPU seconds and peak bytes per item, plus once-only
+    costs (imports, the interpreter's share), with where the numbers come from."""
+    seconds: float
+    bytes: float
+    fixed_seconds: float = 0.0
+    fixed_bytes: float = 0.0
+    source: str = ""
+
+
+#: per-item costs, measured once on the reference machine (2 cores, Python 3.11, numpy 2.4,
+#: manifold3d 3.5.4, shapely 2.1; each source says what was measured and when):
+#: the largest of several sizes and families, rounded up, so an estimate is an upper bound
+#: within about 2x
+COSTS = {
+    # gear3d.model.build_profile after sampling: pattern, trim (Clipper), corners, measure
+    "profile": Cost(12e-6, 900.0, 0.05, 40e6, "involute z=3000 (66,000 vertices) 0.31 s, +22 MB; "
+                    "triangular z=20,000 (100,000 vertices) 0.21 s, +24 MB; cycloidal 0.38 s"),
+    # gear3d.buildsteps.sector_distance: per (point, edge) pair near tooth 0, numpy in chunks
+    "profile.pairs": Cost(1e-8, 0.0, 0.0, 0.0, "moineau-stator rho=1e5, e=1: 27,800 x 55,600 pairs, 5.4 s"),
+    # solids.body: the layer mesh (float64 V, int64 F, intermediates) and its measurement
+    "body": Cost(1.2e-6, 260.0, 0.1, 60e6, "helical z=20..400 at 2-10 um: 0.6-0.9 us and 180-240 B "
+                 "a triangle"),
+    # manifold3d's polygon triangulation of the end faces: per (layer vertices)^2
+    "body.caps": Cost(4e-9, 0.0, 0.0, 0.0, "triangular z=2500..10,000 (12,500-60,000 vertices a layer): "
+                      "2.0-2.2e-9 s x n^2, z=20,000 (100,000): about 4e-9; involute z=1000-2000: 0.8-0.9e-9"),
+    # gear3d.exact distance: per (point, chord) pair of the brute-force window
+    "measure": Cost(2e-8, 0.0, 0.0, 0.0, "moineau-stator rho=288, e=0.1 at 0.3 um: 76,000 points x 5,452 "
+                    "chords in 6.2 s (15 ns a pair); involute z=6 at 10 um: 7.4 s in all"),
+    # manifold3d booleans (hubs, keyways, chamfers): extrude + warp + boolean + to_mesh64
+    "body.manifold": Cost(4e-6, 600.0, 0.1, 60e6, "chamfered helical z=40..200: 2.5-3.5 us, "
+                          "450-550 B a triangle"),
+    # exporters, per profile vertex (2D) or per triangle (3D)
+    "write.json": Cost(4e-6, 400.0, 0.05, 0.0, "triangular z=4000, 20,000 vertices: 0.25 s"),
+    "write.dxf": Cost(1.2e-5, 600.0, 0.05, 30e6, "measured 2026-11-26 (CPU, after the profile; arcs certified on "
+                      "the exact curve): involute z=20..2000, triangular z=4000 / 20,000, cycloidal z=200 and z=1000 "
+                      "rc 100, sine, cycloid disc, gerotor, Moineau: 2.4-9.8 us a vertex + 10 ms; 100,000 vertices: "
+                      "0.56 s, +41 MB"),
+    "write.svg": Cost(1.2e-5, 900.0, 0.05, 30e6, "measured 2026-11-26, the same 13 parts: 3.6-9.8 us a vertex; "
+                      "triangular z=20,000: 0.76 s; z=100,000 (500,000 vertices): 4.9 s, 533 MB peak in all"),
+    # the sampled fallback (a reference 20x finer, shapely, up to 3 budgets): per profile vertex
+    "write.dxf.sampled": Cost(1.5e-3, 4000.0, 0.1, 250e6, "measured 2026-11-26, forced: involute z=20 / 200 0.37 / "
+                              "0.32 ms, triangular z=4000 0.11 ms, sine z=300 0.32 ms, cycloidal z=1000 rc 100 "
+                              "1.4 ms a vertex (3 tries, 43 s); taken unforced by gears of 5 teeth or fewer (sine "
+                              "z=4 at 0.1 um: 1.7-2.0 s, 238 MB peak with shapely)"),
+    "write.png": Cost(5e-5, 3000.0, 1.0, 70e6, "profile figure, triangular z=4000 (20,000 vertices): 0.8 s "
+                      "with matplotlib's import; body preview, 10,000-56,000 triangles: 0.65-0.82 s, +47-68 MB"),
+    "write.stl": Cost(1.0e-6, 130.0, 0.05, 0.0, "binary STL, helical z=40..1000 (10,000-56,000 triangles): "
+                      "0.4-0.8 us and about 100-130 B a triangle"),
+    "write.mesh": Cost(1.0e-5, 500.0, 0.1, 10e6, "meshio OBJ/PLY/VTU, 10,000-56,000 triangles: 5-10 us a triangle"),
+    "write.3mf": Cost(3.0e-5, 2000.0, 0.8, 100e6, "trimesh + lxml 3MF, 10,000-56,000 triangles: 0.9-2.1 s "
+                      "(26 us a triangle + 0.6 s), +95-153 MB"),
+    "write.step": Cost(8.0e-5, 3000.0, 0.4, 60e6, "faceted STEP, 10,000-56,000 triangles: 1.0-3.3 s "
+                       "(60-95 us a triangle), +65-158 MB"),
+    # a B-rep STEP (gear3d.plan.brep_estimate): per surface sample measured, plus per face
+    "write.brep": Cost(2.5e-4, 20000.0, 1.2, 300e6, "measured 2026-11-26 in process (CPU): spur z=400 at "
+                       "0.1 / 0.001 mm, 800 faces, 4,000 / 16,000 samples: 2.9 / 6.1 s, so 2.7e-4 s a sample; "
+                       "+1.2 s OpenCascade's import and first call; +296-336 MB (helical z=40, 200)"),
+    "brep.face": Cost(1.5e-3, 50000.0, 0.0, 0.0, "measured 2026-11-26 (CPU): spur z=700 / 1000 / 1500 at 0.1 mm, "
+                      "1,400 / 2,000 / 3,000 flank faces: 4.2 / 6.0 / 11.5 s (3.0-3.8 ms a face, counted 4 a tooth)"),
+    # conjugate contact (gear3d.analysis.contact): per wheel-1 angle of its grid (96 a pitch)
+    "contact": Cost(3e-3, 2000.0, 0.3, 20e6, "measured 2026-11-26 (CPU): involute 20/20..2000/2000 and sine "
+                    "at 1e-4..0.05 mm, 234-3,301 angles: 0.3-3.3 ms an angle; bands over 0.4 pitch up to 15 ms "
+                    "(involute 100/100 and 150/150 at 0.05 mm: 10.8 s for 741 and 901 angles: CONTACT_WIDE_BAND)"),
+    # rolling check: per (position x vertex of both polygons), shapely
+    "pair": Cost(1.2e-5, 300.0, 0.3, 30e6, "check_pair, 78 positions: involute 20/21 to 1000/1000 at "
+                 "1-10 um 4.6-11 us, sine 200/210 internal 10 us a (position x vertex)"),
+    # gerotor chamber areas: per (crank position x polygon vertex), shapely buffer/difference
+    "chambers": Cost(2.5e-7, 400.0, 0.0, 0.0, "gerotor 30 lobes R=300: 3.9 s for 62 positions x 366,000 "
+                     "polygon vertices (1.7e-7 s an item), +113 MB (300 B a polygon vertex)"),
+    # gear3d.simulate_cut: per (rack position x outline point), shapely unions in chunks
+    "cut": Cost(6e-6, 200.0, 0.3, 30e6, "involute z=20, 2000 positions x 200 samples x 4: 7.8 s (4.9 us)"),
+    # figures (matplotlib), per profile vertex drawn
+    "figure": Cost(5e-5, 3000.0, 1.2, 60e6, "annotated involute figure, 20,000 vertices: 1.1 s"),
+    # the set commands (gear3d.plan_sets), measured 2026-11-26 in a subprocess (CPU, ru_maxrss)
+    "worm.body": Cost(1.6e-6, 280.0, 0.4, 60e6, "measured 2026-11-26 (CPU, peak RSS): worm pairs m 2, z2 = "
+                      "30 / 100 / 300 at 10 / 2 / 0.5 um, 0.2-10.7 M triangles: 1.26-1.45 us and 240-250 B a "
+                      "triangle (z2 = 300 at 0.5 um: 13.5 s, 2.55 GB); per estimated triangle (plan_sets.worm_counts)"),
+    "worm.sections": Cost(8e-4, 0.0, 0.0, 0.0, "measured 2026-11-26 (CPU): worm wheels z2 = 8 / 12 / 16 at m 2, "
+                          "10 um, built section by section: 6.3 / 3.4 / 2.6 s for 117 / 80 / 71 sections of 67 "
+                          "vertices a tooth (5.5-8e-4 s per section x vertex a tooth)"),
+    "worm.rolling": Cost(5e-3, 2e5, 0.5, 60e6, "measured 2026-11-26: rolling check of z2 = 30 / 60 (24 positions "
+                         "x 81 sections): 0.4-0.7 s, per wheel tooth an upper bound"),
+    "bevel.body": Cost(1.3e-7, 1000.0, 0.4, 60e6, "measured 2026-11-26 (CPU): straight bevels 20/30, 100/100, "
+                       "200/200 at 10-0.1 um: per (section vertex x cap segment) 1.25e-7 s split in layers "
+                       "(200/200 at 0.1 um: 12,800 x 9,970 in 16 s), 2.2e-7 unsplit (counted twice); "
+                       "400-735 B per estimated triangle (+40 MB)"),
+    "bevel.spiral": Cost(1.2e-5, 1500.0, 0.4, 60e6, "measured 2026-11-26 (CPU, peak RSS): spiral bevel 20/40 m 2, "
+                         "35 deg, gear at 10 / 3 um, 136k / 399k triangles: 1.2 / 4.6 s (1.05e-5 s a triangle), "
+                         "131 / 318 MB; per planned triangle (layers x warped vertices, plan_sets)"),
+    "bevel.rolling": Cost(2e-2, 1e5, 1.0, 60e6, "estimated 2026-11-26 from 20/40 m 2 pair checks (about 1 s); per "
+                          "tooth of the larger member an upper bound"),
+    "facegear.plan": Cost(2.5e-4, 0.0, 0.4, 40e6, "measured 2026-11-26 (CPU): z2 = 60, z0 = 20 at 0.1 um: 177 "
+                          "sections x 93 vertices, about 4 s beyond the body (2.4e-4 s an item); the limits' scan "
+                          "0.3 s"),
+    "facegear.body": Cost(3e-6, 400.0, 0.0, 40e6, "measured 2026-11-26 (CPU): z2 = 300 / 1000 at 1 um, 1.26 / "
+                          "4.2 M triangles: 3.6 / 11.7 s (2.8 us a triangle, plan included); 260 B a triangle "
+                          "charged by the builder, 400 B kept"),
+}
