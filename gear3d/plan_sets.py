@@ -45,6 +45,12 @@ from .plan import brep_estimate, write_estimate
 #: triangles from above (measured 2026-11-26, m 2, z2 = 30..300, 1-4 starts, 0.5-10 um:
 #: wheel 0.17-0.33 of its formula, worm 0.40-0.49): these factors keep both upper bounds
 WHEEL_FACTOR, WORM_FACTOR = 0.4, 0.55
+#: wheels of this many teeth or fewer (teeth that point near the throat's kinks, default
+#: throat) are planned section by section (gear3d.wormgear.wheel_body.plan_layers: a profile
+#: build and a band measurement a section) and need more sections: measured 2026-11-26,
+#: z2 = 8 / 12 / 16 at m 2, 10 um: 117 / 80 / 71 sections against the formula's 48; z2 = 8
+#: at m 5, 8 um: 282 against 82 (3.4x); z2 = 22: the shared sheet, 47
+SMALL_WHEEL, SMALL_WHEEL_SECTIONS = 24, 3.5
 
 
 def _ext(path) -> str:
@@ -61,7 +67,8 @@ def _decide(est: Estimate, param: str, value) -> Estimate:
 def worm_counts(d, part: str) -> dict:
     """Estimated counts of a worm set of design ``d`` (:class:`gear3d.wormgear.design.WormDesign`):
     ``wheel`` and ``worm`` triangles, the wheel's ``layers`` and ``per_tooth`` vertices a
-    section's tooth, the worm's ``per_layer`` vertices (see the module doc).
+    section's tooth, the worm's ``per_layer`` vertices, and for a small wheel
+    (:data:`SMALL_WHEEL`) ``by_section``: sections x vertices a tooth built one by one.
 
     >>> from gear3d.wormgear.design import design
     >>> c = worm_counts(design(module=2, starts=1, wheel_teeth=30), "wheel")
@@ -71,13 +78,17 @@ def worm_counts(d, part: str) -> dict:
     tol, m = d.tolerance, d.module
     per_tooth = 3 * math.pi * m / math.sqrt(8 * tol / m) + 20
     layers = d.face_width / max(math.sqrt(8 * tol * m), 1e-3) + 3
-    wheel = WHEEL_FACTOR * 2 * d.wheel_teeth * per_tooth * layers if part in ("wheel", "pair") else 0.0
+    small = d.wheel_teeth <= SMALL_WHEEL
+    if small:
+        layers *= SMALL_WHEEL_SECTIONS
+    wheel = (1.0 if small else WHEEL_FACTOR) * 2 * d.wheel_teeth * per_tooth * layers if part != "worm" else 0.0
+    by_section = layers * per_tooth if small and part != "worm" else 0.0
     turns = d.worm_length / d.p
     dth = math.sqrt(8 * 0.2 * tol / d.worm_tip_radius)
     per_layer = 2 * math.pi * d.worm_tip_radius / math.sqrt(8 * tol * m) + 8 * d.starts
     worm = WORM_FACTOR * 2 * per_layer * turns / dth if part in ("worm", "pair") else 0.0
     return {"wheel": wheel, "worm": worm, "layers": layers, "per_tooth": per_tooth, "per_layer": per_layer,
-            "worm_layers": turns / dth}
+            "worm_layers": turns / dth, "by_section": by_section}
 
 
 def _worm_export(d, c: dict, ext: str, step, tri: float, part: str) -> Estimate:
@@ -117,6 +128,9 @@ def plan_worm(kw: dict, output=None, step=None, png=None, json=None, bodies: boo
     cost = budget.COSTS["worm.body"]
     est = Estimate(cost.fixed_seconds + cost.seconds * tri, cost.fixed_bytes + cost.bytes * tri, tri,
                    f"a worm set of {tri:,.0f} triangles ({c['wheel']:,.0f} wheel, {c['worm']:,.0f} worm)")
+    if c["by_section"]:
+        est = est.then(estimate("worm.sections", c["by_section"], 0.0,
+                                f"{c['layers']:,.0f} wheel sections built one by one"))
     wheel_feats = any(kw.get(k) for k in ("wheel_bore", "hub_diameter", "wheel_keyway", "web_thickness"))
     worm_feats = any(kw.get(k) for k in ("worm_bore", "shaft_diameter"))
     cut = (c["wheel"] if wheel_feats else 0.0) + (c["worm"] if worm_feats else 0.0)
