@@ -339,6 +339,19 @@ def load_library(path, sets=()) -> Library:
     zipped = bool_at(file, "library.sweep.zip", sweep.pop("zip", False))
     fam = base.family
     sig = family_signature(fam)
+    axes = _sweep_axes(file, sweep, base, sig)
+    combos = _combinations(file, axes, zipped)
+    fields = set(sig) | set(body_signature()) | {"family", "index", "name"} | set(base.params)
+    pattern = check_pattern(file, "library.pattern", top.get("pattern", name + "_{index}"), fields)
+    parts = _library_parts(file, base, sig, axes, combos, (name, pattern))
+    return Library(file=file, name=name, description=top.get("description", ""), pattern=pattern,
+                   outputs=outputs, tolerance=tol, tolerances=tols, options=options,
+                   zip=zipped, parts=tuple(parts))
+
+
+def _sweep_axes(file, sweep, base, sig) -> list:
+    """The sweep's axes, each (key path tuple, checked values), in the table's order."""
+    fam = base.family
     axes = []   # (key path tuple, values)
     for k, v in sweep.items():
         if k == "body":
@@ -359,18 +372,28 @@ def load_library(path, sets=()) -> Library:
             axes.append(((k,), vals))
     if base.body is None and any(a[0][0] == "body" for a in axes):
         fail(file, "library.sweep.body", sweep.get("body"), "a [library.part] body table to sweep")
+    return axes
+
+
+def _combinations(file, axes, zipped) -> list:
+    """The parts' value tuples: the axes zipped (one length) or their product (capped)."""
     if zipped:
         lens = {len(vals) for _, vals in axes}
         if len(lens) > 1:
             fail(file, "library.sweep", {".".join(k): len(v) for k, v in axes}, "lists of one length (zip = true)")
-        combos = list(zip(*[vals for _, vals in axes])) if axes else [()]
-    else:
-        total = math.prod(len(v) for _, v in axes)
-        if total > MAX_LIBRARY_PARTS:
-            fail(file, "library.sweep", total, f"at most {MAX_LIBRARY_PARTS} parts")
-        combos = list(itertools.product(*[vals for _, vals in axes]))
-    fields = set(sig) | set(body_signature()) | {"family", "index", "name"} | set(base.params)
-    pattern = check_pattern(file, "library.pattern", top.get("pattern", name + "_{index}"), fields)
+        return list(zip(*[vals for _, vals in axes])) if axes else [()]
+    total = math.prod(len(v) for _, v in axes)
+    if total > MAX_LIBRARY_PARTS:
+        fail(file, "library.sweep", total, f"at most {MAX_LIBRARY_PARTS} parts")
+    return list(itertools.product(*[vals for _, vals in axes]))
+
+
+def _library_parts(file, base, sig, axes, combos, naming) -> list:
+    """One :class:`LibraryPart` per combination, named by the pattern (``naming`` is the
+    library's (name, pattern)); names that collide (also in case) or take a library file's
+    name are refused."""
+    name, pattern = naming
+    fam = base.family
     parts, seen = [], {}
     bsig = body_signature()
     for i, combo in enumerate(combos):
@@ -405,9 +428,7 @@ def load_library(path, sets=()) -> Library:
         # ``options`` are not applied, as before the typed specs)
         parts.append(LibraryPart(name=pname, family=fam, params=params, body=body, outputs=base.outputs,
                                  options={}, values={".".join(kp): x for (kp, _), x in zip(axes, combo)}))
-    return Library(file=file, name=name, description=top.get("description", ""), pattern=pattern,
-                   outputs=outputs, tolerance=tol, tolerances=tols, options=options,
-                   zip=zipped, parts=tuple(parts))
+    return parts
 
 
 def tolerance_for(job: Job, kind: str) -> float:
