@@ -90,42 +90,11 @@ def triangular(teeth=200, module=0.3, addendum_coeff=7 / 8, dedendum_coeff=9 / 8
     alpha = math.radians(a_deg)
     s = kc * math.pi * m
     beta = s / (2 * R)
-    if internal:
-        r_tip, r_root = R - ha * m, R + hf * m
-        if r_tip <= 0:
-            raise GearError("addendum_coeff", ha, f"a value below {z / 2:g} for {z} teeth",
-                            "the ring's tips would reach the centre")
-        d_up = (-math.cos(alpha), -math.sin(alpha))     # from the pitch point toward the tip
-    else:
-        r_tip, r_root = R + ha * m, R - hf * m
-        if r_root <= 0:
-            raise GearError("dedendum_coeff", hf, f"a value below {z / 2:g} for {z} teeth",
-                            "the root circle would reach the centre")
-        d_up = (math.cos(alpha), -math.sin(alpha))
-    p0 = (R * math.cos(beta), R * math.sin(beta))
-    lt = _line_circle(p0, d_up, r_tip)
-    lr = _line_circle(p0, d_up, r_root)
-    if not math.isfinite(lt):
-        raise GearError("half_angle_deg", a_deg, "a smaller angle", "the flank misses the tip circle")
-    up_tip = np.array([p0[0] + lt * d_up[0], p0[1] + lt * d_up[1]])
-    g_t = math.atan2(up_tip[1], up_tip[0])
+    r_tip, r_root, d_up = _radii(z, m, ha, hf, alpha, internal)
+    up_tip, up_root, v_space = _flank_ends(z, (R * math.cos(beta), R * math.sin(beta)), d_up,
+                                           r_tip, r_root, a_deg)
     half = math.pi / z
-    up_root = None
-    if math.isfinite(lr):
-        up_root = np.array([p0[0] + lr * d_up[0], p0[1] + lr * d_up[1]])
-        if math.atan2(up_root[1], up_root[0]) >= half:
-            up_root = None
-    v_space = up_root is None
-    if v_space:
-        # the flanks of neighbouring teeth meet before the root circle: a V-shaped space
-        # whose bottom lies on the space's symmetry axis (angle pi/z)
-        e = (math.cos(half), math.sin(half))
-        den = d_up[0] * e[1] - d_up[1] * e[0]
-        lam = -(p0[0] * e[1] - p0[1] * e[0]) / den
-        up_root = np.array([p0[0] + lam * d_up[0], p0[1] + lam * d_up[1]])
-        if up_root @ np.array(e) <= 0:
-            raise GearError("half_angle_deg", a_deg, "a smaller angle",
-                            "the flanks of neighbouring teeth do not meet inside the gear")
+    g_t = math.atan2(up_tip[1], up_tip[0])
     g_r = math.atan2(up_root[1], up_root[0])
     flip = np.array([1.0, -1.0])
     lo_root, lo_tip = up_root * flip, up_tip * flip
@@ -155,3 +124,51 @@ def triangular(teeth=200, module=0.3, addendum_coeff=7 / 8, dedendum_coeff=9 / 8
     return build_profile("triangular", params, pieces, z, R, internal=internal, tolerance=tol,
                          rim_radius=rim, names=names, nominal_tip_radius=r_tip,
                          extra_report=extra_report)
+
+
+def _radii(z, m, ha, hf, alpha, internal):
+    """(tip radius, root radius, the flank's direction from the pitch point toward the tip)."""
+    R = m * z / 2
+    if internal:
+        r_tip, r_root = R - ha * m, R + hf * m
+        if r_tip <= 0:
+            raise GearError("addendum_coeff", ha, f"a value below {z / 2:g} for {z} teeth",
+                            "the ring's tips would reach the centre")
+        d_up = (-math.cos(alpha), -math.sin(alpha))     # from the pitch point toward the tip
+    else:
+        r_tip, r_root = R + ha * m, R - hf * m
+        if r_root <= 0:
+            raise GearError("dedendum_coeff", hf, f"a value below {z / 2:g} for {z} teeth",
+                            "the root circle would reach the centre")
+        d_up = (math.cos(alpha), -math.sin(alpha))
+    return r_tip, r_root, d_up
+
+
+def _flank_ends(z, p0, d_up, r_tip, r_root, a_deg):
+    """The upper flank's ends (mm): on the tip circle, and on the root circle or, when the
+    neighbouring flanks meet first, on the space's symmetry axis (a V-shaped space).
+
+    Returns (tip end, root end, v_space)."""
+    lt = _line_circle(p0, d_up, r_tip)
+    lr = _line_circle(p0, d_up, r_root)
+    if not math.isfinite(lt):
+        raise GearError("half_angle_deg", a_deg, "a smaller angle", "the flank misses the tip circle")
+    up_tip = np.array([p0[0] + lt * d_up[0], p0[1] + lt * d_up[1]])
+    half = math.pi / z
+    up_root = None
+    if math.isfinite(lr):
+        up_root = np.array([p0[0] + lr * d_up[0], p0[1] + lr * d_up[1]])
+        if math.atan2(up_root[1], up_root[0]) >= half:
+            up_root = None
+    v_space = up_root is None
+    if v_space:
+        # the flanks of neighbouring teeth meet before the root circle: a V-shaped space
+        # whose bottom lies on the space's symmetry axis (angle pi/z)
+        e = (math.cos(half), math.sin(half))
+        den = d_up[0] * e[1] - d_up[1] * e[0]
+        lam = -(p0[0] * e[1] - p0[1] * e[0]) / den
+        up_root = np.array([p0[0] + lam * d_up[0], p0[1] + lam * d_up[1]])
+        if up_root @ np.array(e) <= 0:
+            raise GearError("half_angle_deg", a_deg, "a smaller angle",
+                            "the flanks of neighbouring teeth do not meet inside the gear")
+    return up_tip, up_root, v_space

@@ -125,30 +125,37 @@ def plan_features(profile, width, *, bore=None, hub_diameter=None, hub_length=0.
             f.set_screw_at = (width / 2, math.pi / profile.teeth, float(rep["tip_radius"]) + f.set_screw)
     n = check_number("lightening_holes", lightening_holes, 0, 64, integer=True)
     if n or web_thickness is not None:
-        r_in = max(r_hub, r_bore + 2 * wall, (f.keyway[2] + wall) if f.keyway else 0.0, 0.25 * r_root)
-        r_out = r_root - 4 * wall
-        if r_out - r_in < 2 * wall:
-            p, v = ("web_thickness", web_thickness) if web_thickness is not None else ("lightening_holes", n)
-            raise GearError(p, v, "None: no room for a web", f"web annulus {r_in:.4g}..{r_out:.4g} mm")
-        t = width
-        if web_thickness is not None:
-            t = check_number("web_thickness", web_thickness, 2 * wall, width, lo_open=False, hi_open=True,
-                             unit="mm (below the face width)")
-            f.web = (r_in, r_out, t)
-            f.volumes["web"] = -math.pi * (r_out ** 2 - r_in ** 2) * (width - t)
-        if n:
-            rh = (r_in + r_out) / 2
-            d = _hole_diameter(n, r_in, r_out, wall)
-            if d < 2 * wall:
-                nmax = max([k for k in range(1, 65) if _hole_diameter(k, r_in, r_out, wall) >= 2 * wall],
-                           default=0)
-                raise GearError("lightening_holes", n, f"an integer in [0, {nmax}] for this web",
-                                f"holes would be {d:.3g} mm wide")
-            f.lightening_holes, f.hole_diameter, f.hole_circle = n, d, rh
-            f.volumes["lightening_holes"] = -n * math.pi * d * d / 4 * t
+        _plan_web(f, n, web_thickness, width, r_root, (r_hub, r_bore, wall))
     if f.bore:
         f.volumes["bore"] = -math.pi * r_bore ** 2 * (width + f.hub_length)
     return f
+
+
+def _plan_web(f, n, web_thickness, width, r_root, radii):
+    """Thin the web and drill ``n`` lightening holes in it (mm), on ``f``; ``radii`` is
+    (hub radius, bore radius, wall) - the web's annulus keeps a wall from each."""
+    r_hub, r_bore, wall = radii
+    r_in = max(r_hub, r_bore + 2 * wall, (f.keyway[2] + wall) if f.keyway else 0.0, 0.25 * r_root)
+    r_out = r_root - 4 * wall
+    if r_out - r_in < 2 * wall:
+        p, v = ("web_thickness", web_thickness) if web_thickness is not None else ("lightening_holes", n)
+        raise GearError(p, v, "None: no room for a web", f"web annulus {r_in:.4g}..{r_out:.4g} mm")
+    t = width
+    if web_thickness is not None:
+        t = check_number("web_thickness", web_thickness, 2 * wall, width, lo_open=False, hi_open=True,
+                         unit="mm (below the face width)")
+        f.web = (r_in, r_out, t)
+        f.volumes["web"] = -math.pi * (r_out ** 2 - r_in ** 2) * (width - t)
+    if n:
+        rh = (r_in + r_out) / 2
+        d = _hole_diameter(n, r_in, r_out, wall)
+        if d < 2 * wall:
+            nmax = max([k for k in range(1, 65) if _hole_diameter(k, r_in, r_out, wall) >= 2 * wall],
+                       default=0)
+            raise GearError("lightening_holes", n, f"an integer in [0, {nmax}] for this web",
+                            f"holes would be {d:.3g} mm wide")
+        f.lightening_holes, f.hole_diameter, f.hole_circle = n, d, rh
+        f.volumes["lightening_holes"] = -n * math.pi * d * d / 4 * t
 
 
 def _hole_diameter(n, r_in, r_out, wall):
