@@ -90,12 +90,13 @@ COSTS = {
     # figures (matplotlib), per profile vertex drawn
     "figure": Cost(5e-5, 3000.0, 1.2, 60e6, "annotated involute figure, 20,000 vertices: 1.1 s"),
     # the set commands (gear3d.plan_sets), measured 2026-11-26 in a subprocess (CPU, ru_maxrss)
-    "worm.body": Cost(1.6e-6, 280.0, 0.4, 60e6, "measured 2026-11-26 (CPU, peak RSS): worm pairs m 2, z2 = "
+    "worm.body": Cost(1.6e-6, 280.0, 0.4, 150e6, "measured 2026-11-26 (CPU, peak RSS): worm pairs m 2, z2 = "
                       "30 / 100 / 300 at 10 / 2 / 0.5 um, 0.2-10.7 M triangles: 1.26-1.45 us and 240-250 B a "
-                      "triangle (z2 = 300 at 0.5 um: 13.5 s, 2.55 GB); per estimated triangle (plan_sets.worm_counts)"),
-    "worm.sections": Cost(8e-4, 0.0, 0.0, 0.0, "measured 2026-11-26 (CPU): worm wheels z2 = 8 / 12 / 16 at m 2, "
-                          "10 um, built section by section: 6.3 / 3.4 / 2.6 s for 117 / 80 / 71 sections of 67 "
-                          "vertices a tooth (5.5-8e-4 s per section x vertex a tooth)"),
+                      "triangle (z2 = 300 at 0.5 um: 13.5 s, 2.55 GB); per estimated triangle "
+                      "(plan_sets.worm_counts); small sets peak at 90-140 MB"),
+    "worm.sections": Cost(5e-4, 0.0, 0.0, 0.0, "measured 2026-11-26 (CPU): worm wheels z2 = 8 / 12 / 16 at m 2, "
+                          "10 um, built section by section: 6.3 / 3.4 / 2.6 s for 117 / 80 / 71 sections of 114 "
+                          "vertices a tooth (3.2-4.7e-4 s per section x vertex a tooth)"),
     "worm.rolling": Cost(5e-3, 2e5, 0.5, 60e6, "measured 2026-11-26: rolling check of z2 = 30 / 60 (24 positions "
                          "x 81 sections): 0.4-0.7 s, per wheel tooth an upper bound"),
     "bevel.body": Cost(1.3e-7, 1000.0, 0.4, 60e6, "measured 2026-11-26 (CPU): straight bevels 20/30, 100/100, "
@@ -110,7 +111,7 @@ COSTS = {
     "facegear.plan": Cost(2.5e-4, 0.0, 0.4, 40e6, "measured 2026-11-26 (CPU): z2 = 60, z0 = 20 at 0.1 um: 177 "
                           "sections x 93 vertices, about 4 s beyond the body (2.4e-4 s an item); the limits' scan "
                           "0.3 s"),
-    "facegear.body": Cost(3e-6, 400.0, 0.0, 40e6, "measured 2026-11-26 (CPU): z2 = 300 / 1000 at 1 um, 1.26 / "
+    "facegear.body": Cost(3e-6, 400.0, 0.0, 150e6, "measured 2026-11-26 (CPU): z2 = 300 / 1000 at 1 um, 1.26 / "
                           "4.2 M triangles: 3.6 / 11.7 s (2.8 us a triangle, plan included); 260 B a triangle "
-                          "charged by the builder, 400 B kept"),
+                          "charged by the builder, 400 B kept; small gears peak at 50-220 MB"),
 }
