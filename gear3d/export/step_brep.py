@@ -234,12 +234,11 @@ def section_wire(b, z: float = 0.0):
 
 
 def _mesh_volume_area(b):
-    """(volume mm^3, area mm^2) of the mesh body ``b`` from its triangle arrays (divergence
-    theorem; the signed volume, positive for outward faces), without making a manifold."""
-    V, F = b.arrays()
-    a, c, d = (np.asarray(V, float)[F[:, i]] for i in range(3))
-    n = np.cross(c - a, d - a)
-    return float(np.einsum("ij,ij->", a, n)) / 6.0, 0.5 * float(np.linalg.norm(n, axis=1).sum())
+    """(volume mm^3, area mm^2) of the mesh body ``b`` from its triangle arrays
+    (:func:`gear3d.solids.layers.mesh_properties`), without making a manifold."""
+    from ..solids.layers import mesh_properties
+    m = mesh_properties(*b.arrays())
+    return m["volume"], m["surface_area"]
 
 
 def _validate(shape, b, tol):
