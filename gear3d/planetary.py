@@ -251,6 +251,8 @@ def planetary_set(family: str, sun: int, planet: int, ring: int, planets: int = 
     width = BODY["width"].check(width)
     tol = TOLERANCE.check(tolerance)
     fp = _family_params(family, module, family_params)
+    from .plan_jobs import plan_planetary           # the whole set estimated, refused before any wheel
+    plan_planetary(family, zs, zp, zr, n, fp, width, tol, how.check, how.bodies)
 
     # ---- profiles (each in its own frame), the same family parameters
     p_sun = profile(family, teeth=zs, tolerance=tol, **fp)

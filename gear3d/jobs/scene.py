@@ -444,6 +444,8 @@ def build_scene(scene: Scene, out_dir, only=None, dry_run=False, log=None) -> di
     targets = [k for grp in owners.values() for t in grp.values() for k in t.values()]
     if dry_run:
         return {"stages": g.plan(targets), "graph": g}
+    from ..plan_jobs import plan_scene
+    plan_scene(scene, g, targets)          # the whole scene estimated, refused before any stage
     made = make_out_dir(out_dir, "out")
     # the files this run would create (not those it replaces): removed again if it fails
     fresh = [p for p in (g.stages[k].ctx.get("path") for k in g.stages) if p and not os.path.lexists(p)]

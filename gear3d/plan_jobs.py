@@ -1,0 +1,145 @@
+"""Whole-job plans (issue #27): a scene (``gear3d build``) and a planetary set (``gear3d
+planetary``, :func:`gear3d.planetary.planetary_set`) estimated from counts before any stage,
+and refused in one line before any work, as :mod:`gear3d.plan` does for ``profile``,
+``body`` and ``check pair``.
+
+* **scene**: the scene's stage graph (:mod:`gear3d.jobs.graph`, shared stages once) is
+  walked in run order; every profile stage is probed (its tooth period sampled at the
+  tolerance, :func:`gear3d.plan.probe_profile`), every body counted by the body builder's own
+  layer plan (:func:`gear3d.plan.body_layers`), every rolling check by
+  :func:`gear3d.plan.pair_estimate` with its conjugate contact, every file by
+  :func:`gear3d.plan.write_estimate`. The walk stops as soon as the running total is over
+  the budget, so a huge scene is refused after probing only as much as the budget holds.
+  Stages with no plan here (racks, worm sets, harmonic assemblies, placing) are charged by
+  their builders as they run.
+* **planetary set**: the three wheels probed (sun, planet, ring), the bodies (the planets'
+  copies counted), the two rolling checks, and the set's file.
+
+The refusal names the scene's tolerance (``scene.tolerance``) or the set's ``tolerance``,
+the resource, the estimate, the limit and how to raise it (``--max-seconds`` or the scene's
+``max_seconds`` key, ...).
+
+    >>> est = plan_planetary("involute", 12, 18, 48, 3, {"module": 1.0}, width=5.0, tolerance=0.01)
+    >>> 0 < est.seconds < 60
+    True
+"""
+from __future__ import annotations
+
+from . import budget
+from .budget import Estimate
+from .plan import (Sketch, body_layers, pair_estimate, probe_profile, sketch_contact,
+                   write_estimate)
+
+#: body keywords that make the builder use manifold3d booleans (COSTS["body.manifold"])
+FEATURES = ("chamfer", "elephant_foot", "gap", "hub_length", "keyway", "set_screw", "lightening_holes",
+            "web_thickness", "bore")
+
+
+def body_counts(sk: Sketch, body_kw: dict, tol: float) -> tuple:
+    """(triangles, estimate) of a body of the sketched profile (``body_kw``: its keywords;
+    ``tol``: the body tolerance, mm)."""
+    nv, layers = body_layers(sk, body_kw, tol)
+    tri = 2 * nv * layers + 2 * nv
+    manifold = any(body_kw.get(k) for k in FEATURES)
+    return tri, budget.body_estimate(tri, manifold, f"a body of {nv:,.0f} vertices a layer x {layers:,} layers",
+                                     layer_vertices=nv, teeth=sk.teeth)
+
+
+def _ext(kind: str) -> str:
+    return "." + kind.split(":")[0]
+
+
+class _Walk:
+    """The running plan of a graph: sketches of profile stages, triangles of body stages."""
+
+    def __init__(self, g, param: str, value):
+        self.g, self.param, self.value = g, param, value
+        self.sketch, self.tri, self.total = {}, {}, Estimate()
+
+    def add(self, est: Estimate) -> None:
+        self.total = self.total.then(est)
+        budget.check(self.total, self.param, self.value, est)       # refused as soon as it is over
+
+    def stage(self, k: str) -> None:
+        s = self.g.stages[k]
+        i = s.inputs
+        if s.kind == "profile" and "family" in i and not i.get("rack") and not i.get("section"):
+            sk = probe_profile(i["family"], dict(i["params"], tolerance=i["tolerance"]))
+            if sk is not None:
+                self.sketch[k] = sk
+                self.add(sk.estimate)
+        elif s.kind == "body" and not i.get("rack") and s.deps and s.deps[0] in self.sketch:
+            tri, est = body_counts(self.sketch[s.deps[0]], dict(i.get("body") or {}), float(i["tolerance"]))
+            self.tri[k] = tri
+            self.add(est)
+        elif s.kind == "place":
+            self.tri[k] = sum(self.tri.get(d, 0.0) for d in s.deps)
+        elif s.kind == "check" and len(s.deps) == 2 and all(d in self.sketch for d in s.deps):
+            a, b = (self.sketch[d] for d in s.deps)
+            tol = float(i.get("tolerance") or max(a.tolerance, b.tolerance))
+            self.add(pair_estimate(a.teeth, a.r_max, a.vertices, b.vertices, tol,
+                                   contact=sketch_contact(a, b, bool(i.get("internal")), tol)))
+        elif s.kind == "write" and s.deps:
+            self.write(s)
+
+    def write(self, s) -> None:
+        src, ext = s.deps[0], _ext(s.inputs.get("kind", ""))
+        if src in self.sketch:
+            sk = self.sketch[src]
+            self.add(write_estimate(ext, vertices=sk.vertices, per_tooth=sk.per_tooth))
+        elif src in self.tri:
+            self.add(write_estimate(ext, triangles=self.tri[src]))
+
+
+def plan_graph(g, targets, param: str, value) -> Estimate:
+    """The plan of the stages ``targets`` need in graph ``g`` (see the module doc), logged
+    and checked: BudgetError naming ``param`` = ``value`` when over the budget in force."""
+    w = _Walk(g, param, value)
+    for k in g.needed(targets):
+        w.stage(k)
+    budget.log_plan(w.total)
+    return w.total
+
+
+def plan_scene(scene, g, targets) -> Estimate:
+    """:func:`plan_graph` of a scene under its own limits (``[scene]`` ``max_triangles``,
+    ``max_memory``, ``max_seconds``), naming ``scene.tolerance``."""
+    with budget.limits(scene.max_triangles, scene.max_memory, scene.max_seconds):
+        return plan_graph(g, targets, "scene.tolerance", scene.tolerance)
+
+
+def plan_planetary(family: str, zs: int, zp: int, zr: int, planets: int, params: dict, width: float,
+                   tolerance: float, check: bool = True, bodies: bool = True) -> Estimate:
+    """A planetary set (:func:`gear3d.planetary.planetary_set`): the sun, planet and ring
+    probed at ``tolerance`` (``params``: the family's, the module included), the two rolling
+    checks (``check``), the bodies of ``width`` mm (``bodies``: the sun, ``planets`` planets
+    and the ring) and a 3MF of them all; logged and checked (BudgetError naming the
+    tolerance)."""
+    tol = float(tolerance)
+    sks = [probe_profile(family, dict(params, teeth=z, tolerance=tol, **({"internal": True} if ring else {})))
+           for z, ring in ((zs, False), (zp, False), (zr, True))]
+    if any(s is None for s in sks):
+        return Estimate()
+    sun, pl, ring = sks
+    total = Estimate()
+
+    def add(est):
+        nonlocal total
+        total = total.then(est)
+        budget.check(total, "tolerance", tol, est)
+    for s in sks:
+        add(s.estimate)
+    if check:
+        add(pair_estimate(sun.teeth, sun.r_max, sun.vertices, pl.vertices, tol,
+                          contact=sketch_contact(sun, pl, False, tol)))
+        add(pair_estimate(pl.teeth, pl.r_max, pl.vertices, ring.vertices, tol,
+                          contact=sketch_contact(pl, ring, True, tol)))
+    if bodies:
+        tri = 0.0
+        for s, copies in ((sun, 1), (pl, max(int(planets), 1)), (ring, 1)):
+            t, est = body_counts(s, {"kind": "spur", "width": width}, tol)
+            tri += copies * t
+            add(est)
+        add(write_estimate(".3mf", triangles=tri))
+    budget.log_plan(total)
+    return total
