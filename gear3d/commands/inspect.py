@@ -41,7 +41,12 @@ def run(args) -> int:
         _check_path(args.json, "json", (".json",))
     if args.png is not None:
         _check_path(args.png, "png", (".png", ".svg"))
-    prof = profile(args.family, **family_params(args))
+    kw = family_params(args)
+    from .profile import FAMILY_FLAGS_PLANNED
+    if args.family in FAMILY_FLAGS_PLANNED:       # the profile and its figure, refused before either
+        from ..plan import plan_profile
+        plan_profile(args.family, kw, figure=args.png)
+    prof = profile(args.family, **kw)
     ins = inspect(prof, span_teeth=args.span_teeth, pin_diameter=args.pin_diameter,
                   helix_angle_deg=args.helix_angle)
     sys.stdout.write(table(ins) + "\n")

@@ -46,6 +46,9 @@ REGRESSIONS = [
     "profile teeth --teeth 1_0",
     "profile involute --teeth 1_0 -o g.json",
     "--max-seconds 1_0 profile involute",
+    # inspect is planned as its profile and figure (before either is built)
+    "inspect involute --teeth 20000 --tolerance 1e-4 --png x.png",
+    "--max-seconds 1 inspect cycloidal --teeth 3000 --tolerance 1e-4 --png x.png",
 ]
 #: reports that the budget now lets run (under the default limits) but that must still keep
 #: the promise: within twice their estimate (minutes of CPU each: -m slow)
