@@ -27,11 +27,12 @@ import math
 from dataclasses import asdict, dataclass
 
 from ..errors import GearError, check_number
+from ..params import MESH_TOLERANCE
 from .geometry import FaceGeometry, face_geometry
 from .section import section
 
 #: mm: default tolerance (the body is a mesh)
-DEFAULT_TOLERANCE = 0.01
+DEFAULT_TOLERANCE = MESH_TOLERANCE
 #: the default outer radius leaves this tip land (× module, both halves)
 DEFAULT_TIP_LAND = 0.25
 
