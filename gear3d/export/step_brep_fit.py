@@ -163,7 +163,7 @@ def _surface_points(rec, us, vs):
         return P, 0.0
     Bu = basis_matrix(rec.group.knots, 3, us)
     Bv = basis_matrix(rec.vknots, rec.vdeg, vs)
-    P = np.einsum("ai,bj,ijc->abc", Bu, Bv, rec.net).reshape(-1, 3)
+    P = np.stack([Bu @ rec.net[:, :, c] @ Bv.T for c in range(3)], axis=-1).reshape(-1, 3)
     nv = len(vs)
     worst = 0.0
     for a, b in ((0, 0), (len(us) - 1, nv - 1), (len(us) // 2, nv // 2)):

@@ -51,16 +51,26 @@ def _deriv(G, t, h=1e-6):
     return P[1], (P[2] - P[0]) / (2 * h), (P[2] - 2 * P[1] + P[0]) / (h * h)
 
 
-def _nearest_index(S, pts, block: int = 1 << 21):
-    """Index into S (M,2) of the nearest sample to every point (N,2): brute force in
-    blocks of about ``block`` distances (a piece has a few thousand samples at most)."""
-    j = np.empty(len(pts), dtype=np.intp)
-    step = max(1, block // max(len(S), 1))
-    for a in range(0, len(pts), step):
-        q = pts[a:a + step]
-        d2 = (q[:, None, 0] - S[None, :, 0]) ** 2 + (q[:, None, 1] - S[None, :, 1]) ** 2
-        j[a:a + step] = np.argmin(d2, axis=1)
-    return j
+def _nearest_index(S, pts, block: int = 1 << 21, coarse: int = 8):
+    """Index into S (M,2) of the nearest sample to every point (N,2): the nearest of every
+    ``coarse``-th sample first, then the nearest within four coarse steps of it (brute
+    force in blocks of about ``block`` distances). For a chain this is the nearest sample
+    unless the chain folds back within a few steps; the chord and Newton steps that follow
+    only ever lower a distance from a start, so a farther start cannot understate one."""
+    def brute(Q, C):
+        j = np.empty(len(Q), dtype=np.intp)
+        step = max(1, block // max(len(C), 1))
+        for a in range(0, len(Q), step):
+            q = Q[a:a + step]
+            j[a:a + step] = np.argmin((q[:, None, 0] - C[None, :, 0]) ** 2 + (q[:, None, 1] - C[None, :, 1]) ** 2, axis=1)
+        return j
+    if len(S) <= 16 * coarse:
+        return brute(pts, S)
+    c = brute(pts, S[::coarse]) * coarse
+    w = np.arange(-4 * coarse, 4 * coarse + 1)
+    cand = np.clip(c[:, None] + w[None], 0, len(S) - 1)
+    d2 = ((S[cand] - pts[:, None]) ** 2).sum(axis=2)
+    return cand[np.arange(len(pts)), np.argmin(d2, axis=1)]
 
 
 def nearest_on_piece(G, samples_t, pts, lo, hi, iters=8):
