@@ -57,6 +57,14 @@ def cpu_run(cmd, cwd=None, env=None) -> float:
     return (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
 
 
+def gear3d_script() -> str:
+    """The ``gear3d`` console script installed next to this Python (what ``pip install``
+    makes), else the first on PATH. A version manager's shim on PATH (pyenv's is a bash
+    script that runs ``pyenv exec``) would add its own ~50 ms of CPU to every run."""
+    own = Path(sys.executable).with_name("gear3d")
+    return str(own) if own.exists() else (shutil.which("gear3d") or "gear3d")
+
+
 def inv(a):
     return np.tan(a) - a
 
@@ -146,7 +154,7 @@ def main(argv=None) -> int:
     if openscad is None:
         print("openscad not found: apt-get install -y openscad", file=sys.stderr)
         return 2
-    gear3d = shutil.which("gear3d") or str(Path(sys.executable).with_name("gear3d"))
+    gear3d = gear3d_script()
     work = Path(tempfile.mkdtemp(prefix="gear3d-peers-"))
     jobs = {"BOSL2 (OpenSCAD)": ([openscad, "-o", str(work / "bosl2.stl"), "helical20.scad"], PEERS,
                                  work / "bosl2.stl", "slices=20"),

@@ -41,7 +41,7 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from peers import ROOT, cpu_run, points_flank_error  # noqa: E402
+from peers import ROOT, cpu_run, gear3d_script, points_flank_error  # noqa: E402
 
 CQ_PYTHON = os.environ.get("CQ_PYTHON", "/work/notes/cqvenv/bin/python")
 CQ_GEARS_SRC = os.environ.get("CQ_GEARS_SRC", "/work/notes/cq_gears_src")
@@ -114,7 +114,7 @@ def main(argv=None) -> int:
     ap.add_argument("--runs", type=int, default=5)
     args = ap.parse_args(argv)
     work = Path(tempfile.mkdtemp(prefix="gear3d-peers-brep-"))
-    gear3d = shutil.which("gear3d") or str(Path(sys.executable).with_name("gear3d"))
+    gear3d = gear3d_script()
     jobs = {"gear3d --step brep": ([gear3d, "body", "involute", "--teeth", "20", "--kind", "helical",
                                     "--helix-angle-deg", "20", "--width", "10", "-o", str(work / "g.step"),
                                     "--step", "brep"], None, work / "g.step", "tolerance 0.01 mm (default)"),
