@@ -106,6 +106,9 @@ COSTS = {
     "bevel.spiral": Cost(1.2e-5, 1500.0, 0.4, 60e6, "measured 2026-11-26 (CPU, peak RSS): spiral bevel 20/40 m 2, "
                          "35 deg, gear at 10 / 3 um, 136k / 399k triangles: 1.2 / 4.6 s (1.05e-5 s a triangle), "
                          "131 / 318 MB; per planned triangle (layers x warped vertices, plan_sets)"),
+    "bevel.brep": Cost(0.16, 2e6, 1.2, 300e6, "measured 2026-11-26 (CPU, peak RSS): B-rep STEP of a 20-tooth "
+                       "gear (20/40 m 2, 10 um) 3.95 s in all, of the 100/100 pair at 50 um 30 s and 492 MB: "
+                       "0.12-0.15 s and about 2 MB a tooth, plus OpenCascade's import"),
     "bevel.rolling": Cost(3e-3, 2e5, 0.3, 30e6, "measured 2026-11-26 (CPU, with and without --check): 20/40 m 2 "
                           "at 10 um 0.27 s, 300/300 m 1 at 50 um 0.87 s and +64 MB; per tooth of the larger member"),
     "facegear.plan": Cost(2.5e-4, 0.0, 0.4, 40e6, "measured 2026-11-26 (CPU): z2 = 60, z0 = 20 at 0.1 um: 177 "

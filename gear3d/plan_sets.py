@@ -233,9 +233,9 @@ def plan_bevel(kw: dict, output=None, step=None, png=None, json=None, preview=No
     if kw.get("check"):
         est = est.then(estimate("bevel.rolling", max(kw["teeth"], kw["mate_teeth"]), 0.0, "the rolling check"))
     ext = _ext(output)
-    if step == "brep" and ext in (".step", ".stp"):
-        for nv, z in zip(parts, (kw["teeth"], kw["mate_teeth"])):
-            est = est.then(brep_estimate(z, 1, nv * 4))
+    if step == "brep" and ext in (".step", ".stp"):      # cones over the certified sections, sewn tooth by tooth
+        z = {"gear": kw["teeth"], "mate": kw["mate_teeth"], "pair": kw["teeth"] + kw["mate_teeth"]}[part]
+        est = est.then(estimate("bevel.brep", z, 0.0, f"a B-rep STEP of {z:,} teeth"))
     elif ext:
         est = est.then(write_estimate(ext, triangles=tri))
     if png:
