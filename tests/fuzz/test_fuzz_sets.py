@@ -29,6 +29,12 @@ REGRESSIONS = [
     "worm --module 2 --starts 1 --wheel-teeth 400 --part wheel --tolerance 0.0001 -o w.stl",
     "bevel --teeth 200 --mate-teeth 200 --module 1 --tolerance 1e-5 --part pair -o b.stl",
     "face-gear --teeth 1000 --shaper-teeth 8 --module 1 --tolerance 1e-5 -o f.stl",
+    # found while fuzzing (2026-11-26): an 8-tooth wheel is built section by section (20+ s, was
+    # planned at 13.7 s from its triangles); a bevel B-rep costs 0.12-0.15 s a tooth (the 100/100
+    # pair took 30 s, was planned at 6.6 s from faces x samples): both over these budgets now
+    "--max-seconds 20 worm --module 5 --starts 1 --wheel-teeth 8 --part wheel --tolerance 0.0081 -o g.3mf",
+    "--max-seconds 10 bevel --teeth 100 --mate-teeth 100 --module 1 --part pair --tolerance 0.05 -o b.step "
+    "--step brep",
 ]
 #: a face gear over a radius span far beyond its limits: refused by its range, in one line
 #: naming the radius and the allowed interval (the limits cost a fixed scan of sections)
@@ -88,8 +94,10 @@ def worm_case(draw):
     argv = ["worm", "--module", draw(_num(0.5, 5, True)), "--starts", draw(_ints(1, 4)),
             "--wheel-teeth", draw(_ints(8, 1000)), "--part", draw(st.sampled_from(["worm", "wheel", "pair"])),
             "--tolerance", draw(_num(1e-4, 0.05, True))]
-    out = draw(st.sampled_from([["-o", "g.stl"], ["-o", "g.3mf"], ["--json", "g.json"], ["-o", "g.stl", "--check"]]))
-    if "--check" in out and argv[-3] != "pair":
+    out = draw(st.sampled_from([["-o", "g.stl"], ["-o", "g.3mf"], ["--json", "g.json"], ["-o", "g.stl", "--check"],
+                                ["-o", "g.step", "--step", "brep"], ["-o", "g.dxf"]]))
+    part = argv[argv.index("--part") + 1]
+    if ("--check" in out and part != "pair") or ("g.dxf" in out and part != "wheel"):
         out = ["-o", "g.stl"]
     return argv + out
 
@@ -101,7 +109,11 @@ def bevel_case(draw):
             "--part", draw(st.sampled_from(["gear", "pair"]))]
     if draw(st.booleans()):
         argv += ["--spiral-angle-deg", draw(_num(5, 45))]
-    return argv + draw(st.sampled_from([["-o", "g.stl"], ["-o", "g.3mf"], ["-o", "g.step"]]))
+    out = draw(st.sampled_from([["-o", "g.stl"], ["-o", "g.3mf"], ["-o", "g.step"], ["-o", "g.step", "--step", "brep"],
+                                ["-o", "g.stl", "--check"]]))
+    if "--check" in out and "pair" not in argv:
+        out = ["-o", "g.stl"]
+    return argv + out
 
 
 @st.composite
