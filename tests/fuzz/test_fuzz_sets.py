@@ -11,7 +11,7 @@ the budget's log says it planned and charged) and under 2 GiB, leaving no file w
   line that names the resource, the estimate, the limit and the flag that raises it;
 * :func:`test_property_sample`: two Hypothesis inputs per command near the limits under a
   1 s budget (quick suite); :func:`test_property_full`: more, ``-m slow``
-  (``GEAR3D_FUZZ_SET_EXAMPLES`` per command, default 4).
+  (``GEAR3D_FUZZ_SET_EXAMPLES`` per command, default 3).
 """
 from __future__ import annotations
 
@@ -150,6 +150,6 @@ def test_property_sample(kind, tmp_path_factory):
 
 @pytest.mark.slow
 def test_property_full(tmp_path_factory):
-    n = int(os.environ.get("GEAR3D_FUZZ_SET_EXAMPLES", "4"))
+    n = int(os.environ.get("GEAR3D_FUZZ_SET_EXAMPLES", "3"))
     for kind in sorted(CASES):
         _property(kind, n, ("--max-seconds", "3"), tmp_path_factory)
