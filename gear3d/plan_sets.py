@@ -299,31 +299,59 @@ def plan_face_gear(kw: dict, output=None, png=None, json=None) -> Estimate:
 
 # ------------------------------------------------------------------ the planned API
 
-def worm(**kw):
-    """:func:`gear3d.wormgear.worm`, planned first (:func:`plan_worm`): a set over the
-    budget is refused before any work."""
+def given(builder, args, kw) -> dict:
+    """The keywords a call ``builder(*args, **kw)`` gives (positional ones by name, None
+    left out: the builder's default), for a plan; {} when the call does not fit (the
+    builder then refuses it itself).
+
+    >>> given(lambda teeth, module=1.0, **more: None, (20,), {"tolerance": 0.01, "rim": None})
+    {'teeth': 20, 'tolerance': 0.01}
+    """
+    import inspect
+    sig = inspect.signature(builder)
+    try:
+        bound = sig.bind(*args, **kw)
+    except TypeError:
+        return {}
+    out = {}
+    for name, v in bound.arguments.items():
+        out.update(v if sig.parameters[name].kind is inspect.Parameter.VAR_KEYWORD else {name: v})
+    return {k: v for k, v in out.items() if v is not None}
+
+
+def _planned(builder, plan):
+    """``builder`` (its name, signature and documentation), planned by ``plan`` first."""
+    import functools
+
+    @functools.wraps(builder)
+    def run(*args, **kw):
+        full = given(builder, args, kw)
+        if full:
+            plan(full)
+        return builder(*args, **kw)
+    return run
+
+
+def _worm_builder():
     import importlib
-    wormgear = importlib.import_module("gear3d.wormgear")
-    plan_worm(kw)
-    return wormgear.worm(**kw)
+    return _planned(importlib.import_module("gear3d.wormgear").worm, plan_worm)
+
+
+def _face_builder():
+    import importlib
+    return _planned(importlib.import_module("gear3d.facegear").build, plan_face_gear)
+
+
+#: ``gear3d.worm``: :func:`gear3d.wormgear.worm`, planned first (:func:`plan_worm`)
+worm = _worm_builder()
+#: ``gear3d.face_gear``: :func:`gear3d.facegear.build`, planned first (:func:`plan_face_gear`)
+face_gear = _face_builder()
 
 
 def bevel(build, *args, **kw):
     """``build(*args, **kw)`` (:func:`gear3d.bevel.build`, which ``gear3d.bevel(...)`` passes
     here), planned first (:func:`plan_bevel`)."""
-    names = ("teeth", "mate_teeth", "module", "face_width", "pressure_angle_deg", "shaft_angle_deg", "form",
-             "shift_coeff", "tolerance", "part")
-    full = dict(zip(names, args), **kw)
-    plan_bevel(full)
-    return build(**full)
-
-
-def face_gear(*args, **kw):
-    """:func:`gear3d.facegear.build`, planned first (:func:`plan_face_gear`)."""
-    import importlib
-    facegear = importlib.import_module("gear3d.facegear")
-    names = ("teeth", "shaper_teeth", "module", "pressure_angle_deg", "pinion_teeth", "inner_radius",
-             "outer_radius", "tolerance", "rim")
-    full = dict(zip(names, args), **kw)
-    plan_face_gear(full)
-    return facegear.build(**full)
+    full = given(build, args, kw)
+    if full:
+        plan_bevel(full)
+    return build(*args, **kw)
