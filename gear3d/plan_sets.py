@@ -123,7 +123,7 @@ def plan_worm(kw: dict, output=None, step=None, png=None, json=None, bodies: boo
     part = kw.get("part", "pair")
     c = worm_counts(d, part)
     if not bodies:
-        c = dict(c, wheel=0.0, worm=0.0)
+        c = dict(c, wheel=0.0, worm=0.0, by_section=0.0)
     tri = c["wheel"] + c["worm"]
     cost = budget.COSTS["worm.body"]
     est = Estimate(cost.fixed_seconds + cost.seconds * tri, cost.fixed_bytes + cost.bytes * tri, tri,
