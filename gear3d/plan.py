@@ -65,12 +65,18 @@ def probe_profile(family: str, params: dict) -> Sketch | None:
     """Run ``family``'s builder up to its first sample (see the module doc). Bad input is
     refused as the builder refuses it (GearError); None when the builder never samples a
     period (it built the whole profile: nothing is left to plan)."""
+    from .spec import profile
+    return probe_call(lambda: profile(family, **dict(params)), params.get("tolerance", 1e-3))
+
+
+def probe_call(build, tolerance=1e-3) -> Sketch | None:
+    """:func:`probe_profile` of any call ``build()`` that builds one profile (a harmonic
+    drive's tooth profile, say) at ``tolerance`` (mm)."""
     import numpy as np
 
-    from .spec import profile
     with budget.probing() as root:
         try:
-            profile(family, **dict(params))
+            build()
         except budget.Probe as p:
             info = p.info
         else:
@@ -85,7 +91,7 @@ def probe_profile(family: str, params: dict) -> Sketch | None:
     seg = np.hypot(*np.diff(chain, axis=0).T) if len(chain) > 1 else np.zeros(0)
     length = float(np.nansum(seg)) * z
     est = pre.then(info["estimate"])
-    tol = float(params.get("tolerance", 1e-3))
+    tol = float(tolerance if tolerance is not None else 1e-3)
     return Sketch(z, per * z, per, r, length, tol, est, float(info.get("pitch_radius", r)), chain,
                   float(info.get("rim_vertices", 0.0)), r_lo)
 

@@ -13,7 +13,12 @@ and refused in one line before any work, as :mod:`gear3d.plan` does for ``profil
   Stages with no plan here (racks, worm sets, harmonic assemblies, placing) are charged by
   their builders as they run.
 * **planetary set**: the three wheels probed (sun, planet, ring), the bodies (the planets'
-  copies counted), the two rolling checks, and the set's file.
+  copies counted), the two rolling checks, and the set's file;
+* **harmonic drive** (:func:`gear3d.harmonic.build_parts`): each toothed wheel's profile
+  probed (flexspline, its inner teeth, the rigid wheels), its part a manifold3d prism of
+  about 4 triangles a profile vertex, and its STL. The wave generator (an ellipse and a
+  disc) is not counted; the deformed-state check (``gear3d harmonic check``) is charged by
+  its own stages.
 
 The refusal names the scene's tolerance (``scene.tolerance``) or the set's ``tolerance``,
 the resource, the estimate, the limit and how to raise it (``--max-seconds`` or the scene's
@@ -27,7 +32,7 @@ from __future__ import annotations
 
 from . import budget
 from .budget import Estimate
-from .plan import (Sketch, body_layers, pair_estimate, probe_profile, sketch_contact,
+from .plan import (Sketch, body_layers, pair_estimate, probe_call, probe_profile, sketch_contact,
                    write_estimate)
 
 #: body keywords that make the builder use manifold3d booleans (COSTS["body.manifold"])
@@ -141,5 +146,30 @@ def plan_planetary(family: str, zs: int, zp: int, zr: int, planets: int, params:
             tri += copies * t
             add(est)
         add(write_estimate(".3mf", triangles=tri))
+    budget.log_plan(total)
+    return total
+
+
+#: the toothed wheels of a harmonic drive, by kind of design
+HARMONIC_ROLES = {"double": ("flexspline", "flexspline-inner", "fixed", "mobile"),
+                  "single": ("flexspline", "circular")}
+
+
+def plan_harmonic(design, wheel_profile, tolerance: float) -> Estimate:
+    """A harmonic drive's parts (see the module doc): ``wheel_profile(role)`` builds the
+    profile of one toothed wheel of ``design`` (:func:`gear3d.harmonic.parts.tooth_profile`),
+    probed here; logged and checked (BudgetError naming the tolerance)."""
+    tol = float(tolerance)
+    total = Estimate()
+    for role in HARMONIC_ROLES.get(design.kind, ()):
+        sk = probe_call(lambda r=role: wheel_profile(r), tol)
+        if sk is None:
+            continue
+        tri = 4.0 * sk.layer_vertices
+        for est in (sk.estimate, budget.body_estimate(tri, True, f"the {role} of {tri:,.0f} triangles",
+                                                      layer_vertices=sk.layer_vertices, teeth=sk.teeth),
+                    write_estimate(".stl", triangles=tri)):
+            total = total.then(est)
+            budget.check(total, "tolerance", tol, est)
     budget.log_plan(total)
     return total

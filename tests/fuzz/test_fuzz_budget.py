@@ -49,6 +49,9 @@ REGRESSIONS = [
     # inspect is planned as its profile and figure (before either is built)
     "inspect involute --teeth 20000 --tolerance 1e-4 --png x.png",
     "--max-seconds 1 inspect cycloidal --teeth 3000 --tolerance 1e-4 --png x.png",
+    # harmonic drives are planned whole (their toothed wheels' prisms and STLs) before any part
+    "harmonic build --module 0.3 --z-flex 20000 --z-circular 20002 --tolerance 0.001 -o hb",
+    "--max-seconds 1 harmonic build --seed002 --tolerance 0.0001 -o hb",
 ]
 #: reports that the budget now lets run (under the default limits) but that must still keep
 #: the promise: within twice their estimate (minutes of CPU each: -m slow)
