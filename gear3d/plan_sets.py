@@ -202,7 +202,8 @@ def _bevel_geometry(kw: dict):
     from .bevel.spiral import with_tooth_line
     geo = pair_geometry(kw["teeth"], kw["mate_teeth"], kw["module"], kw.get("face_width"),
                         kw.get("pressure_angle_deg", 20.0), kw.get("shaft_angle_deg", 90.0),
-                        kw.get("shift_coeff", 0.0), kw.get("form", "spherical-involute"))
+                        kw.get("shift_coeff", 0.0), kw.get("form", "spherical-involute"),
+                        clearance=kw.get("clearance", "standard"))
     return with_tooth_line(geo, kw.get("spiral_angle_deg"), kw.get("cutter_radius"), kw.get("hand"))
 
 

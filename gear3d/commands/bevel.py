@@ -71,9 +71,6 @@ def run(args) -> int:
     from ..bevel import build
     out = args.output
     check_output(out, kinds="body")
-    if args.step == "brep" and out.lower().endswith((".step", ".stp")):
-        from ..export.step_brep import require_occ
-        require_occ()                       # before any work: one line naming what to install
     if args.step == "brep" and (args.clearance == "uniform" or args.mounting_distance is not None
                                 or args.mate_mounting_distance is not None or _internal(args)):
         raise GearError("step", "brep", "faceted with --clearance uniform, a mounting distance or an internal "
@@ -89,8 +86,11 @@ def run(args) -> int:
     from ..plan_sets import plan_bevel          # the whole command planned first: refused before any work
     plan_bevel({k: getattr(args, k) for k in ("teeth", "mate_teeth", "module", "face_width", "pressure_angle_deg",
                                               "shaft_angle_deg", "form", "shift_coeff", "tolerance", "part",
-                                              "check", "spiral_angle_deg", "cutter_radius", "hand")},
+                                              "check", "spiral_angle_deg", "cutter_radius", "hand", "clearance")},
                out, args.step, args.png, args.json, args.preview_png)
+    if args.step == "brep" and out.lower().endswith((".step", ".stp")):
+        from ..export.step_brep import require_occ
+        require_occ()                       # after the plan (OCC's import: 0.6 s), before any work
     b = build(args.teeth, args.mate_teeth, args.module, args.face_width, args.pressure_angle_deg,
               args.shaft_angle_deg, args.form, args.shift_coeff, args.tolerance, args.part,
               mate_form=args.mate_form, check=args.check, spiral_angle_deg=args.spiral_angle_deg,

@@ -112,8 +112,6 @@ def _check_outputs(args):
             if feats:
                 raise GearError("step", "brep", "faceted with --" + feats[0].replace("_", "-"),
                                 "the wheel's features and the worm's shaft are not made exact yet")
-            from ..export.step_brep import require_occ
-            require_occ()
         if args.output.lower().endswith(".dxf") and args.part != "wheel":
             raise GearError("output", args.output, "a .stl or .3mf file for --part " + args.part,
                             "the DXF is the wheel's mid-plane section: --part wheel")
@@ -141,6 +139,9 @@ def run(args) -> int:
     # the whole command planned first (bodies, features, check, export, figure): refused before any work
     plan_worm(dict(kw, part=args.part, check=check), args.output, args.step if _is_step(args) else None,
               args.png, args.json)
+    if _brep(args):
+        from ..export.step_brep import require_occ
+        require_occ()                       # after the plan (OCC's import: 0.6 s), before any work
     d = design(**{k: v for k, v in kw.items() if k not in FEATURES})
     s = worm(part=args.part, check=check, **kw)
     lines = []
