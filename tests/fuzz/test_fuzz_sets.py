@@ -153,3 +153,24 @@ def test_property_full(tmp_path_factory):
     n = int(os.environ.get("GEAR3D_FUZZ_SET_EXAMPLES", "3"))
     for kind in sorted(CASES):
         _property(kind, n, ("--max-seconds", "3"), tmp_path_factory)
+
+
+@pytest.mark.parametrize("call", [
+    ("worm", {"module": 2, "starts": 1, "wheel_teeth": 400, "part": "wheel", "tolerance": 1e-4}),
+    ("bevel", {"teeth": 200, "mate_teeth": 200, "module": 1, "tolerance": 1e-5, "part": "pair"}),
+    ("face_gear", {"teeth": 1000, "shaper_teeth": 8, "module": 1, "tolerance": 1e-5}),
+])
+def test_the_python_api_is_planned_before_any_stage(call, tmp_path, monkeypatch):
+    """gear3d.worm / gear3d.bevel / gear3d.face_gear: the plan refuses (BudgetError) before
+    any stage charges the budget (oracle: the budget's log holds a plan and no charge)."""
+    import gear3d
+    from gear3d.budget import BudgetError
+    log = tmp_path / "budget.log"
+    log.write_text("")
+    monkeypatch.setenv("GEAR3D_BUDGET_LOG", str(log))
+    name, kw = call
+    with pytest.raises(BudgetError) as e:
+        getattr(gear3d, name)(**kw)
+    kinds = [line.split(" ", 1)[0] for line in log.read_text().splitlines()]
+    assert kinds == ["plan"], kinds
+    assert e.value.resource in ("triangles", "memory", "time") and e.value.estimate > e.value.limit
