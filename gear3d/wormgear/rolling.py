@@ -42,7 +42,7 @@ import numpy as np
 
 from ..geometry import rotate
 from . import sheet
-from .thread import axial_profile
+from .thread import axial_profile, thinned
 
 #: positions over one wheel pitch
 POSITIONS = 24
@@ -75,23 +75,12 @@ def rolling_check(d, positions: int = POSITIONS, heights: int = HEIGHTS, thinnin
     phis = 2 * math.pi / d.wheel_teeth * np.arange(positions) / positions
     zones = {name: _zone(d, f, S, keep, side) for name, side in FLANKS}
     lines = {name: [_contacts(d, zones[name], phi) for phi in phis] for name, _ in FLANKS}
-    gaps = _gaps(d, f, _thinned(f, thinning), S, keep, phis)
+    gaps = _gaps(d, f, thinned(f, thinning), S, keep, phis)
     rep = _summary(d, zones, lines, gaps, phis)
     rep.update({"positions": positions, "sections": int(len(keep)), "sections_skipped": int(len(H) - len(keep)),
                 "contact_lines": _listed(d, lines, phis)})
     rep["_lines"], rep["_zones"] = lines, zones          # for the figure (dropped from JSON)
     return rep
-
-
-def _thinned(f, dx):
-    """The worm's axial profile with each flank moved ``dx`` (mm) into the thread."""
-    if not dx:
-        return f
-
-    def g(rho):
-        e, de = f(rho)
-        return e + dx, de
-    return g
 
 
 #: below this (mm) a gap is double-precision noise of the coordinates (reported as 0)

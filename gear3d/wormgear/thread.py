@@ -57,7 +57,17 @@ def axial_profile(d):
 def worm_profile(d):
     """The worm's axial profile as made: the nominal one (:func:`axial_profile`) with each
     flank moved ``d.worm_thinning`` (mm) axially into the thread for the backlash."""
-    f, dx = nominal_profile(d), d.worm_thinning
+    return thinned(nominal_profile(d), d.worm_thinning)
+
+
+def thinned(f, dx):
+    """The axial profile ``f`` (see :func:`axial_profile`) with each flank moved ``dx`` (mm)
+    axially into the thread: the groove's half width grows by ``dx``, its slope is kept.
+
+    >>> g = thinned(lambda rho: (1.0, 0.5), 0.01)
+    >>> g(10.0)
+    (1.01, 0.5)
+    """
     if not dx:
         return f
 
