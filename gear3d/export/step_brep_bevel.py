@@ -44,7 +44,8 @@ import numpy as np
 
 from ..errors import GearError, ToleranceError
 from .step_brep_fit import FIT_SHARE, fit_runs, merge_runs
-from .step_brep_occ import bspline_curve, bspline_surface, count, plane_face, sew_solid, volume, wire_of_curves
+from .step_brep_occ import (bspline_curve, bspline_surface, count, plane_face, sew_solid,
+                            validate_solid, wire_of_curves)
 from .step_brep_runs import exact_set, loop_runs, nearest_on_piece, rot2
 
 #: most t-rows of a spiral flank's interpolation grid before the tolerance is refused
@@ -234,26 +235,6 @@ def measure_flanks(ex, flanks, recs, zs, band, theta=None) -> float:
     return worst
 
 
-def _validate(shape, b, tol) -> dict:
-    """One valid solid whose volume is the mesh body's within (the mesh's error bound +
-    ``tol``) x the mesh's area: both surfaces lie within their bounds of the exact one, so
-    the solids differ by at most that shell."""
-    from OCP.BRepCheck import BRepCheck_Analyzer
-    ok = BRepCheck_Analyzer(shape).IsValid()
-    ns = count(shape, "solid")
-    if not ok or ns != 1:
-        raise GearError("step", "brep", "'faceted' for this body",
-                        f"the B-rep is {'valid' if ok else 'invalid'} with {ns} solid(s)")
-    V, Vm = volume(shape, VOLUME_EPS), float(b.manifold.volume())
-    allowed = (float(b.report["max_error"]) + tol) * float(b.manifold.surface_area())
-    if not abs(V - Vm) <= allowed:
-        raise ToleranceError("tolerance", tol, "a coarser value",
-                             f"B-rep volume {V:.9g} mm^3 differs from the mesh body's {Vm:.9g} "
-                             f"by more than (mesh error + tolerance) x area = {allowed:.3g} mm^3")
-    return {"solids": ns, "valid": True, "faces": count(shape, "face"), "volume": V, "mesh_volume": Vm,
-            "volume_difference": V - Vm, "volume_allowed": allowed}
-
-
 def section_runs(b, geo, which, zs):
     """(exact set, runs) of the member's section: the body's own section, or - where its
     trimmed loop has a bridge this writer cannot resolve (a pruned undercut notch) - the
@@ -300,7 +281,7 @@ def bevel_solid(b, geo=None, measure: bool = True):
             break
     t1 = time.perf_counter()
     T = np.asarray(b.transform, float)
-    info = _validate(shape, b, tol)
+    info = validate_solid(shape, b, tol, "body", VOLUME_EPS)
     c = geo.gear if which == "gear" else geo.mate
     band = (geo.inner_cone_distance - tol, geo.cone_distance + tol, c.pitch_angle)
     err = measure_flanks(ex, flanks, recs, zs, band, theta) if measure else math.nan

@@ -20,7 +20,7 @@ import re
 import numpy as np
 
 from .. import __version__
-from ..errors import GearError
+from ..errors import GearError, ToleranceError
 
 #: tolerance (mm) for sewing faces whose edges were built from identical control points
 SEW_TOL = 1e-6
@@ -252,6 +252,27 @@ def volume(shape, eps: float = 1e-7) -> float:
     p = GProp_GProps()
     static_method(BRepGProp, "VolumeProperties")(shape, p, eps, True)
     return float(p.Mass())
+
+
+def validate_solid(shape, mesh, tol: float, what: str = "body", eps: float = 1e-5) -> dict:
+    """Check a B-rep ``shape`` against the certified mesh solid it was made for (``mesh``: a
+    :class:`gear3d.solids.solid.Solid` whose report carries ``max_error``): one valid solid,
+    whose volume is the mesh's within (the mesh's error bound + ``tol``) x the mesh's area
+    (mm^3). Both surfaces lie within their bounds of the exact one, so the solids differ by at
+    most that shell. ``what`` names the part in the refusal. Returns the facts for the report."""
+    from OCP.BRepCheck import BRepCheck_Analyzer
+    ok, ns = BRepCheck_Analyzer(shape).IsValid(), count(shape, "solid")
+    if not ok or ns != 1:
+        raise GearError("step", "brep", f"'faceted' for this {what}",
+                        f"the B-rep is {'valid' if ok else 'invalid'} with {ns} solid(s)")
+    V, Vm = volume(shape, eps), float(mesh.manifold.volume())
+    allowed = (float(mesh.report["max_error"]) + tol) * float(mesh.manifold.surface_area())
+    if not abs(V - Vm) <= allowed:
+        raise ToleranceError("tolerance", tol, "a coarser value",
+                             f"B-rep volume {V:.9g} mm^3 differs from the mesh {what}'s {Vm:.9g} "
+                             f"by more than (mesh error + tolerance) x area = {allowed:.3g} mm^3")
+    return {"solids": ns, "valid": True, "faces": count(shape, "face"), "volume": V, "mesh_volume": Vm,
+            "volume_difference": V - Vm, "volume_allowed": allowed}
 
 
 def _fixed_header(path, product: str):

@@ -41,7 +41,8 @@ import types
 import numpy as np
 
 from ..errors import GearError, ToleranceError
-from .step_brep_occ import bspline_curve, bspline_surface, count, plane_face, sew_solid, volume, wire_of_curves
+from .step_brep_occ import (bspline_curve, bspline_surface, plane_face, sew_solid, validate_solid,
+                            wire_of_curves)
 from .step_brep_runs import exact_set, loop_runs, nearest_on_piece, rot2
 
 #: share of the tolerance given to the sections' polygons (used only to map the runs)
@@ -207,22 +208,6 @@ def _faces(bands, z):
     return faces
 
 
-def _validate(shape, w, tol) -> dict:
-    from OCP.BRepCheck import BRepCheck_Analyzer
-    ok, ns = BRepCheck_Analyzer(shape).IsValid(), count(shape, "solid")
-    if not ok or ns != 1:
-        raise GearError("step", "brep", "'faceted' for this wheel",
-                        f"the B-rep is {'valid' if ok else 'invalid'} with {ns} solid(s)")
-    V, Vm = volume(shape, VOLUME_EPS), float(w.manifold.volume())
-    allowed = (float(w.report["max_error"]) + tol) * float(w.manifold.surface_area())
-    if not abs(V - Vm) <= allowed:
-        raise ToleranceError("tolerance", tol, "a coarser value",
-                             f"B-rep volume {V:.9g} mm^3 differs from the mesh wheel's {Vm:.9g} by more than "
-                             f"(mesh error + tolerance) x area = {allowed:.3g} mm^3")
-    return {"solids": ns, "valid": True, "faces": count(shape, "face"), "volume": V, "mesh_volume": Vm,
-            "volume_difference": V - Vm, "volume_allowed": allowed}
-
-
 def wheel_solid(w, design=None):
     """The exact B-rep solid (OCC shape, placed by ``w.transform``) of worm wheel ``w``
     (:func:`gear3d.wormgear.wheel_body.wheel_body`) of worm set ``design``
@@ -247,7 +232,7 @@ def wheel_solid(w, design=None):
     bands, err = _fit_bands(ctx, tol)
     t1 = time.perf_counter()
     shape = sew_solid(_faces(bands, d.wheel_teeth))
-    info = _validate(shape, w, tol)
+    info = validate_solid(shape, w, tol, "wheel", VOLUME_EPS)
     T = np.asarray(w.transform, float)
     if not np.allclose(T, np.eye(4)):
         shape = transformed(shape, T)
