@@ -24,35 +24,12 @@ import numpy as np
 import pytest
 
 import gear3d
+from occread import is_valid, read_step, sub_shapes
 
 pytest.importorskip("OCP")
 
 
 # --------------------------------------------------------------------------- helpers
-
-def read_step(path):
-    from OCP.IFSelect import IFSelect_RetDone
-    from OCP.STEPControl import STEPControl_Reader
-    r = STEPControl_Reader()
-    assert r.ReadFile(str(path)) == IFSelect_RetDone
-    assert r.TransferRoots() >= 1
-    return r.OneShape()
-
-
-def sub_shapes(shape, kind):
-    from OCP import TopAbs
-    from OCP.TopExp import TopExp_Explorer
-    ex = TopExp_Explorer(shape, getattr(TopAbs, "TopAbs_" + kind.upper()))
-    out = []
-    while ex.More():
-        out.append(ex.Current())
-        ex.Next()
-    return out
-
-
-def is_valid(shape):
-    from OCP.BRepCheck import BRepCheck_Analyzer
-    return BRepCheck_Analyzer(shape).IsValid()
 
 
 def occ_volume(shape, eps=1e-7):

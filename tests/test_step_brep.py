@@ -14,6 +14,7 @@ import numpy as np
 import pytest
 
 import gear3d
+from occread import is_valid, read_step, sub_shapes
 from gear3d.errors import GearError, ToleranceError
 from gear3d.export import write
 from gear3d.solids.body import body
@@ -26,27 +27,6 @@ def _occ():
     return OCP
 
 
-def read_step(path):
-    """The shape in a STEP file, read by OCC's STEPControl_Reader."""
-    from OCP.IFSelect import IFSelect_RetDone
-    from OCP.STEPControl import STEPControl_Reader
-    r = STEPControl_Reader()
-    assert r.ReadFile(str(path)) == IFSelect_RetDone
-    assert r.TransferRoots() >= 1
-    return r.OneShape()
-
-
-def sub_shapes(shape, kind):
-    from OCP import TopAbs
-    from OCP.TopExp import TopExp_Explorer
-    ex = TopExp_Explorer(shape, getattr(TopAbs, "TopAbs_" + kind.upper()))
-    out = []
-    while ex.More():
-        out.append(ex.Current())
-        ex.Next()
-    return out
-
-
 def occ_volume(shape):
     from OCP.BRepGProp import BRepGProp
     from OCP.GProp import GProp_GProps
@@ -54,11 +34,6 @@ def occ_volume(shape):
     f = getattr(BRepGProp, "VolumeProperties_s", None) or BRepGProp.VolumeProperties
     f(shape, p, 1e-7, True)
     return p.Mass()
-
-
-def is_valid(shape):
-    from OCP.BRepCheck import BRepCheck_Analyzer
-    return BRepCheck_Analyzer(shape).IsValid()
 
 
 def face_samples(shape, n=9):
