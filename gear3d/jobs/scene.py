@@ -6,8 +6,9 @@ output file. A pair adds a ``check`` (:func:`gear3d.analysis.pairs.check_pair` o
 profiles at the ``check`` tolerance) and a placed multi-body ``write`` per mesh kind
 (:func:`gear3d.solids.place_pair`; the second wheel of a twisted pair is a
 ``[part.body] mate = "<first>"`` body). A harmonic assembly builds the seed 002 parts. A
-``kind = "worm"`` part builds its worm set (:func:`gear3d.worm`) once per mesh tolerance,
-and the wheel's mid-plane section for dxf/png.
+``kind = "worm"`` / ``"bevel"`` / ``"face-gear"`` part builds its set (:func:`gear3d.worm`,
+:func:`gear3d.bevel`, :func:`gear3d.face_gear`; planned first) once per mesh tolerance,
+and a worm wheel's mid-plane section for dxf/png.
 ``[scene.options.3mf]`` (``arrange``, ``gap``) applies to the parts', pairs' and
 assemblies' 3MF files.
 The scene report ``<scene>.report.json`` lists every measured max error (profiles,
@@ -25,6 +26,7 @@ from ..errors import GearError
 from .graph import Graph, first_upstream
 from .specs import AssemblySpec, Job, PartSpec, Scene
 from .template import MESH_KINDS, TemplateError
+from .template_parts import SET_KINDS
 from .. import profile
 from ..spec import GearSpec
 from ..budget import limits
@@ -229,44 +231,77 @@ def body_stage(g: Graph, job: Job, part: PartSpec, tol, prefix, parts_by_name=No
                  file=job.file, prefix=prefix + ".body", keys=tuple(b))
 
 
-def run_worm(stage):
-    """A worm set (:func:`gear3d.worm`) at the stage's tolerance, or - for the wheel's
-    mid-plane outputs (``section``) - only that section."""
-    from ..wormgear import FEATURE_KEYS, worm
-    from ..wormgear.design import design
-    from ..wormgear.wheel import section
+class _Built:
+    """A built set as the scene reads it: ``set`` (what its builder returned) and ``report``
+    (dict-like: the scene report's body summary reads it)."""
+
+    def __init__(self, built, kind):
+        self.set = built
+        self.report = built.report if kind == "worm" else built.report.to_dict()
+
+
+def run_set(stage):
+    """A set part (:func:`gear3d.worm`, :func:`gear3d.bevel`, :func:`gear3d.face_gear`) at
+    the stage's tolerance, or - for a worm wheel's mid-plane outputs (``section``) - only
+    that section."""
+    from .template_parts import set_builder
     i = stage.inputs
     try:
         if i["section"]:
+            from ..wormgear import FEATURE_KEYS
+            from ..wormgear.design import design
+            from ..wormgear.wheel import section
             d = design(tolerance=i["tolerance"], **{k: v for k, v in i["params"].items() if k not in FEATURE_KEYS})
             return section(d, 0.0, i["tolerance"])
-        return worm(tolerance=i["tolerance"], **i["params"])
+        return _Built(set_builder(i["set"])(tolerance=i["tolerance"], **i["params"]), i["set"])
     except GearError as e:
         raise _wrap(stage, e) from None
 
 
-def _worm_output(stage, s):
-    """What a worm part writes of its set: the bodies (mesh kinds) or the report (json)."""
-    return s.report.to_dict() if stage.inputs["kind"] == "json" else s.parts()
+def _set_output(stage, b):
+    """What a set part writes: its bodies (mesh kinds, as its command writes them) or its report (json)."""
+    s = b.set
+    if stage.inputs["kind"] == "json":
+        return s.report.to_dict()
+    return s.parts() if hasattr(s, "parts") else list(s.bodies)
 
 
-def worm_targets(g: Graph, job: Job, part: PartSpec, out_dir, prefix) -> dict:
-    """A ``kind = "worm"`` part's stages: one worm set per mesh tolerance (json: the mesh
-    kinds' tolerance, the report is the bodies'), the mid-plane section for dxf/png."""
+def _plan_set(job: Job, part: PartSpec, kind, tol, path, prefix):
+    """The set's whole-command plan (:mod:`gear3d.plan_sets`) for one output, as its CLI
+    command plans it: refused before any work, naming the part's key."""
+    from .. import plan_sets
+    plan = {"worm": plan_sets.plan_worm, "bevel": plan_sets.plan_bevel, "face-gear": plan_sets.plan_face_gear}
+    out = {"json": {"json": path}, "png": {"png": path}}.get(kind, {"output": path})
+    if part.family == "worm" and kind in ("dxf", "png"):
+        out = {"output": path, "bodies": False} if kind == "dxf" else dict(out, bodies=False)
+    try:
+        plan[part.family](dict(part.params, tolerance=tol), **out)
+    except GearError as e:
+        p = getattr(e, "param", None)
+        raise TemplateError(job.file, f"{prefix}.{p}" if p else prefix, getattr(e, "value", None),
+                            getattr(e, "allowed", str(e)), getattr(e, "why", "")) from None
+
+
+def set_targets(g: Graph, job: Job, part: PartSpec, out_dir, prefix) -> dict:
+    """A set part's stages (``kind`` = worm | bevel | face-gear): each output planned first,
+    one set per mesh tolerance (json: the mesh kinds' tolerance, the report is the
+    bodies'), a worm wheel's mid-plane section for dxf/png."""
     targets = {}
+    what = part.params.get("part", "pair" if part.family == "worm" else "")
     for kind in part.outputs:
         sec = kind in ("dxf", "png")
         tol = job.tolerance_for(kind if sec or kind != "json" else "stl")
         fname = part.name + EXT[kind]
         path = out_path(out_dir, fname, job.file, f"{prefix}.name")
+        _plan_set(job, part, kind, tol, path, prefix)
         # stage kinds as the report reads them: the section is a profile, the set a body
         src = g.add("profile" if sec else "body", {"params": part.params, "tolerance": tol, "section": sec,
-                                                   "worm": True},
-                    fn=run_worm, label=f"worm {part.params.get('part', 'pair')} " +
+                                                   "set": part.family},
+                    fn=run_set, label=f"{part.family} {what} ".replace("  ", " ") +
                     " ".join(f"{k}={v}" for k, v in sorted(part.params.items()) if k != "part") + f" @ {tol:g} mm",
                     file=job.file, prefix=prefix, keys=tuple(part.params))
         if not sec:
-            src = g.add("pick", {"kind": kind}, [src], fn=_worm_output, label=f"{part.name} {kind}")
+            src = g.add("pick", {"kind": kind}, [src], fn=_set_output, label=f"{part.name} {kind}")
         targets[kind] = g.add("write", {"kind": kind, "file": fname, "tolerance": tol, "name": part.name}, [src],
                               fn=run_write, label=fname, phase=1, path=path, out_dir=out_dir)
     return targets
@@ -276,8 +311,8 @@ def part_targets(g: Graph, job: Job, part: PartSpec, out_dir, parts_by_name=None
     """Add one part's stages; return {kind: write-stage key}. ``prefix``: how error messages
     name the part (default ``part[NAME]``)."""
     prefix = prefix or f"part[{part.name}]"
-    if part.family == "worm":
-        return worm_targets(g, job, part, out_dir, prefix)
+    if part.family in SET_KINDS:
+        return set_targets(g, job, part, out_dir, prefix)
     targets = {}
     for kind in part.outputs:
         tol = job.tolerance_for(kind)

@@ -209,9 +209,9 @@ def _pair(file, i, rp, by, seen):
     for j, n in enumerate(ps):
         if by[n].rack:
             fail(file, f"{label}.parts[{j}]", n, "a gear part (a pinion on a rack: gear3d pair FAMILY --rack)")
-        if by[n].family == "worm":
+        if by[n].family in ("worm", "bevel", "face-gear"):
             fail(file, f"{label}.parts[{j}]", n,
-                 "a gear part (a worm set is its own pair: part = \"pair\", check = true)")
+                 f"a gear part (a {by[n].family} set is its own pair: part = \"pair\", check = true)")
     outs = kinds_at(file, f"{label}.outputs", rp.get("outputs", ["json"]), ("json",) + MESH_KINDS)
     if any(k in MESH_KINDS for k in outs):
         for n in ps:

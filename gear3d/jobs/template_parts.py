@@ -214,7 +214,7 @@ def check_part(file, key, raw, *, default_outputs, names=None, require_name=True
     table_at(file, key, raw)
     raw = dict(raw)
     if "kind" in raw:
-        return _worm_part(file, key, raw, default_outputs, require_name)
+        return _set_part(file, key, raw, default_outputs, require_name)
     name = raw.pop("name", None)
     if require_name:
         if name is None:
@@ -268,33 +268,100 @@ def _outputs(file, key, outs, b, default_outputs):
 
 #: the output kinds of a ``kind = "worm"`` part: its bodies, its report, the wheel's mid-plane
 WORM_KINDS = ("stl", "3mf", "json", "dxf", "png")
+#: the output kinds of a ``kind = "bevel"`` part: its bodies (STEP faceted), its report
+BEVEL_KINDS = ("stl", "3mf", "json", "step")
+#: the output kinds of a ``kind = "face-gear"`` part: its body, its report
+FACE_KINDS = ("stl", "3mf", "json")
+#: the set part kinds: a scene's ``[[part]] kind = ...``, built by its own builder
+SET_KINDS = {"worm": WORM_KINDS, "bevel": BEVEL_KINDS, "face-gear": FACE_KINDS}
 
 
-def _worm_part(file, key, raw, default_outputs, require_name):
-    """A ``kind = "worm"`` part: a worm set, the keywords of :func:`gear3d.worm` (``part``
-    worm|wheel|pair, the design, bores, hub, ``check``) but ``tolerance`` (the scene's per
-    kind), checked by the builder's own rules before any work (:func:`gear3d.wormgear.validate`).
-    Outputs: stl/3mf (the bodies; the pair as two named objects in 3MF), json (the report),
-    dxf/png (the wheel's mid-plane section; wheel or pair)."""
-    from ..wormgear import FEATURE_KEYS, validate
-    from ..wormgear.design import design
-    str_at(file, f"{key}.kind", raw.pop("kind"), ("worm",))
+def set_builder(kind):
+    """The builder of a set part ``kind`` (its keywords: the part's keys and ``tolerance``)."""
+    import importlib
+    mod, fn = {"worm": ("..wormgear", "worm"), "bevel": ("..bevel", "build"),
+               "face-gear": ("..facegear", "build")}[kind]
+    return getattr(importlib.import_module(mod, __package__), fn)
+
+
+def _set_keys(kind) -> tuple:
+    """(keys, required keys) of a set part: its builder's keywords but ``tolerance``."""
+    if kind == "worm":
+        from ..wormgear import FEATURE_KEYS
+        from ..wormgear.design import design
+        return [k for k in inspect.signature(design).parameters if k != "tolerance"] + list(FEATURE_KEYS), ()
+    ps = inspect.signature(set_builder(kind)).parameters
+    return ([k for k in ps if k != "tolerance"],
+            tuple(k for k, p in ps.items() if p.default is inspect.Parameter.empty))
+
+
+def _set_check(kind, kw) -> tuple:
+    """The builder's own validation of a set part's keywords (GearError naming the key,
+    before any work); returns the output kinds the part can write."""
+    if kind == "worm":
+        from ..wormgear import validate
+        validate(**kw)
+        return WORM_KINDS if kw.get("part", "pair") != "worm" else ("stl", "3mf", "json")
+    if kind == "bevel":
+        _bevel_check(kw)
+    else:
+        _face_check(kw)
+    return SET_KINDS[kind]
+
+
+def _bevel_check(kw):
+    """:func:`gear3d.bevel.build`'s checks but the bodies: the part, the rolling check's
+    pair, the pair geometry with its tooth line, the mate's form, the mounting distances."""
+    from ..bevel import PARTS, _check_mounts
+    from ..bevel.geometry import FORMS
+    from ..plan_sets import _bevel_geometry
+    from ..errors import check_choice
+    part = check_choice("part", kw.get("part", "gear"), PARTS)
+    if not isinstance(kw.get("check", False), bool):
+        raise GearError("check", kw["check"], "true or false")
+    if kw.get("check") and part != "pair":
+        raise GearError("check", kw["check"], "only with part='pair' (the check rolls the pair)")
+    geo = _bevel_geometry(kw)
+    if kw.get("mate_form") is not None:
+        check_choice("mate_form", kw["mate_form"], FORMS)
+    _check_mounts(geo, {"gear": kw.get("mounting_distance"), "mate": kw.get("mate_mounting_distance")},
+                  ("gear", "mate") if part == "pair" else (part,))
+
+
+def _face_check(kw):
+    """:func:`gear3d.facegear.build`'s geometry checks (the radii: by its build)."""
+    from ..facegear.geometry import face_geometry
+    if kw.get("shaper_teeth") is None and kw.get("pinion_teeth") is None:
+        raise GearError("shaper_teeth", None, "an integer 8..200 (or give pinion_teeth)")
+    face_geometry(kw["teeth"], kw.get("shaper_teeth"), kw.get("module", 1.0), kw.get("pressure_angle_deg", 20.0),
+                  kw.get("pinion_teeth"), kw.get("addendum_coeff", 1.0), kw.get("dedendum_coeff", 1.25),
+                  kw.get("rim"))
+
+
+def _set_part(file, key, raw, default_outputs, require_name):
+    """A set part (``kind`` = worm | bevel | face-gear): the keywords of :func:`gear3d.worm`,
+    :func:`gear3d.bevel` or :func:`gear3d.face_gear` but ``tolerance`` (the scene's per
+    output kind), checked by the builder's own rules before any work. Outputs
+    (:data:`SET_KINDS`): stl/3mf (the bodies; a pair as two named objects in 3MF), json
+    (the report), step (bevel, faceted), dxf/png (worm: the wheel's mid-plane section)."""
+    kind = str_at(file, f"{key}.kind", raw.pop("kind"), tuple(SET_KINDS))
     if not require_name:
-        fail(file, f"{key}.kind", "worm", "no kind in a library (a worm set is a scene's [[part]])")
+        fail(file, f"{key}.kind", kind, f"no kind in a library (a {kind} set is a scene's [[part]])")
     name = safe_name(file, f"{key}.name", raw.pop("name", None) or fail(file, f"{key}.name", None, "required"))
     outs = raw.pop("outputs", None)
     if "tolerance" in raw:
         fail(file, f"{key}.tolerance", raw["tolerance"], "not a part key: set [scene] tolerance / [scene.tolerances]")
-    keys = [k for k in inspect.signature(design).parameters if k != "tolerance"] + list(FEATURE_KEYS)
+    keys, required = _set_keys(kind)
     refuse_unknown(file, key, raw, keys)
+    for k in required:
+        if k not in raw:
+            fail(file, f"{key}.{k}", None, "required")
     try:
-        validate(**raw)
+        kinds = _set_check(kind, raw)
     except GearError as e:
         fail(file, f"{key}.{e.param}", e.value, e.allowed, e.why)
-    part = raw.get("part", "pair")
-    kinds = WORM_KINDS if part != "worm" else ("stl", "3mf", "json")
     outs = [k for k in default_outputs if k in kinds] if outs is None else kinds_at(file, f"{key}.outputs", outs, kinds)
-    return PartSpec(name=name, family="worm", params=dict(raw), body=None, outputs=tuple(outs), options={})
+    return PartSpec(name=name, family=kind, params=dict(raw), body=None, outputs=tuple(outs), options={})
 
 
 #: the keys of a rack part's body table (gear3d.rack_body)
