@@ -89,10 +89,6 @@ COSTS = {
     "cut": Cost(6e-6, 200.0, 0.3, 30e6, "involute z=20, 2000 positions x 200 samples x 4: 7.8 s (4.9 us)"),
     # figures (matplotlib), per profile vertex drawn
     "figure": Cost(5e-5, 3000.0, 1.2, 60e6, "annotated involute figure, 20,000 vertices: 1.1 s"),
-    # the 3MF writer's part that grows with the square of the triangles (gear3d.export.threemf
-    # _model_xml's walk over every element): per triangle squared, on top of write.3mf
-    "write.3mf.square": Cost(3.5e-10, 0.0, 0.0, 0.0, "measured 2026-11-26 (CPU): face gears of 134,400 / 448,000 "
-                             "triangles to 3MF, 8.1 s (6.0 s in _model_xml) / 70 s: about 3.4e-10 s x triangles^2"),
     # the set commands (gear3d.plan_sets), measured 2026-11-26 in a subprocess (CPU, ru_maxrss)
     "worm.body": Cost(1.6e-6, 280.0, 0.4, 150e6, "measured 2026-11-26 (CPU, peak RSS): worm pairs m 2, z2 = "
                       "30 / 100 / 300 at 10 / 2 / 0.5 um, 0.2-10.7 M triangles: 1.26-1.45 us and 240-250 B a "
