@@ -55,6 +55,25 @@ Scene (``[scene]``, ``[[part]]``, ``[[pair]]``, ``[[assembly]]``)::
     check = true                   # the rolling check in the json
     outputs = ["3mf", "json", "dxf"]   # stl 3mf json; dxf png: the wheel's mid-plane
 
+    [[part]]                       # a bevel set: gear3d.bevel's keywords but tolerance
+    name = "bevel"
+    kind = "bevel"
+    part = "pair"                  # gear | mate | pair (the mate in mesh)
+    teeth = 12
+    mate_teeth = 18
+    module = 2
+    face_width = 6                 # also shaft_angle_deg, form, shift_coeff, spiral_angle_deg, ...
+    check = true                   # pair: the rolling check in the json
+    outputs = ["stl", "3mf", "json"]   # stl 3mf json step (faceted)
+
+    [[part]]                       # a face gear: gear3d.face_gear's keywords but tolerance
+    name = "face"
+    kind = "face-gear"
+    teeth = 40
+    shaper_teeth = 14              # or pinion_teeth
+    module = 1
+    outputs = ["stl", "json"]      # stl 3mf json
+
     [[pair]]                       # placed (place_pair) and checked (check_pair)
     name = "mesh"
     parts = ["pinion", "wheel"]
