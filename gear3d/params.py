@@ -510,6 +510,14 @@ BEVEL_PARAMS: tuple = (
     _p("cutter_radius", float, "mm", 0, None, lo_open=True,
        help="radius of the crown's circular tooth line (default the mean cone distance)"),
     _p("hand", str, choices=("right", "left"), help="hand of the gear's spiral, default right (the mate gets the other)"),
+    _p("clearance", str, default="standard", choices=("standard", "uniform"),
+       help="standard: the tip tapers to the apex; uniform: each face cone parallel to the mate's root cone, "
+            "through the heel tip (the heel's clearance all along the face)"),
+    _p("mounting_distance", float, "mm", 0, None, lo_open=True,
+       help="apex to the gear's back mounting face along its axis: a hub out to it (default the body's own "
+            "back face, in the report)", limits="beyond the body's own back face"),
+    _p("mate_mounting_distance", float, "mm", 0, None, lo_open=True, help="the same for the mate",
+       limits="beyond the mate's own back face"),
     _p("part", str, default="gear", choices=("gear", "mate", "pair"),
        help="gear (z1), mate (z2, own frame) or pair (the mate placed in mesh)"),
     _p("tolerance", float, "mm", 0, 1, lo_open=True, default=MESH_TOLERANCE,

@@ -15,7 +15,6 @@ from __future__ import annotations
 
 import sys
 
-from ..cliargs import number
 from ..errors import GearError
 from ..export import atomic_path, check_output, check_path, write
 from ..params import BEVEL_PARAMS
@@ -40,14 +39,6 @@ def add_parser(sub):
             p.add_argument("--mate-form", default=None, choices=list(FORMS),
                            help="the mate's tooth form (default --form; an octoid is not conjugate to a "
                                 "spherical involute)")
-    p.add_argument("--clearance", default="standard", choices=["standard", "uniform"],
-                   help="standard: the tip tapers to the apex (default); uniform: each face cone parallel to "
-                        "the mate's root cone, through the heel tip (the heel's clearance all along the face)")
-    p.add_argument("--mounting-distance", type=number("float", 0, None, lo_open=True, unit="mm"), default=None,
-                   help="apex to the gear's back mounting face along its axis (mm): a hub out to it; default "
-                        "the body's own back face (in the report)")
-    p.add_argument("--mate-mounting-distance", type=number("float", 0, None, lo_open=True, unit="mm"),
-                   default=None, help="the same for the mate (mm)")
     p.add_argument("-o", "--output", required=True, help="output file; extension picks the format")
     p.add_argument("--step", default=None, choices=["faceted", "brep"],
                    help="STEP flavour: faceted (default) or brep (exact surfaces: the flanks are cones through the "
