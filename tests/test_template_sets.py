@@ -55,6 +55,7 @@ def _variant(tmp_path, old, new):
     ("teeth = 40\n", "teeth = 4\n", "part[face].teeth"),
     ('outputs = ["stl", "json"]', 'outputs = ["stl", "step"]', "part[face].outputs"),
     ("tolerance = 0.05", "tolerance = 0.00001", "part[bevel-pair].tolerance"),   # the plan: over budget
+    ("shaper_teeth = 14\n", "shaper_teeth = 14\nouter_radius = 100\n", "part[face].outer_radius"),
 ])
 def test_set_part_refusals_name_the_key_and_write_nothing(tmp_path, capsys, old, new, key):
     """An unknown key, an out-of-range value, an output the kind has not and a plan over the

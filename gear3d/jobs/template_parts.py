@@ -329,13 +329,25 @@ def _bevel_check(kw):
 
 
 def _face_check(kw):
-    """:func:`gear3d.facegear.build`'s geometry checks (the radii: by its build)."""
+    """:func:`gear3d.facegear.build`'s geometry checks, and its radius limits when a radius
+    is given (a scan of sections: 0.2 s)."""
+    import math
+    from ..errors import check_number
+    from ..facegear import _limits
     from ..facegear.geometry import face_geometry
     if kw.get("shaper_teeth") is None and kw.get("pinion_teeth") is None:
         raise GearError("shaper_teeth", None, "an integer 8..200 (or give pinion_teeth)")
-    face_geometry(kw["teeth"], kw.get("shaper_teeth"), kw.get("module", 1.0), kw.get("pressure_angle_deg", 20.0),
+    g = face_geometry(kw["teeth"], kw.get("shaper_teeth"), kw.get("module", 1.0), kw.get("pressure_angle_deg", 20.0),
                   kw.get("pinion_teeth"), kw.get("addendum_coeff", 1.0), kw.get("dedendum_coeff", 1.25),
                   kw.get("rim"))
+    r1, r2 = kw.get("inner_radius"), kw.get("outer_radius")
+    if r1 is None and r2 is None:
+        return
+    lim = _limits(g)
+    lo, hi = math.ceil(lim["inner"] * 1e6) / 1e6, math.floor(lim["outer"] * 1e6) / 1e6
+    r1 = lo if r1 is None else check_number("inner_radius", r1, lo, hi, unit="mm")
+    if r2 is not None:
+        check_number("outer_radius", r2, r1, hi, lo_open=True, unit="mm")
 
 
 def _set_part(file, key, raw, default_outputs, require_name):
