@@ -39,6 +39,9 @@ def test_bevel_set_template_builds_like_the_cli(tmp_path):
     f = json.loads((out / "face.json").read_text(), **strict)
     assert f["teeth"] == 40 and f["shaper_teeth"] == 14 and 0 < f["max_error"] <= TOL
     assert rep["parts"]["bevel-pair"]["bodies"][f"{TOL:g}"]["max_error"] <= TOL
+    import trimesh
+    scene = trimesh.load(str(out / "bevel-pair.3mf"), force="scene")
+    assert sorted(scene.geometry) == ["gear", "mate"]          # the pair: two named objects
 
 
 def _variant(tmp_path, old, new):

@@ -293,6 +293,9 @@ def set_targets(g: Graph, job: Job, part: PartSpec, out_dir, prefix) -> dict:
         tol = job.tolerance_for(kind if sec or kind != "json" else "stl")
         fname = part.name + EXT[kind]
         path = out_path(out_dir, fname, job.file, f"{prefix}.name")
+        if kind == "step" and job.options.get("step", {}).get("step", "faceted") != "faceted":
+            raise TemplateError(job.file, f"{prefix}.outputs", list(part.outputs), "no step with [scene.options.step] "
+                                "kind = \"brep\" (a set part's STEP is faceted; for a B-rep: gear3d bevel --step brep)")
         _plan_set(job, part, kind, tol, path, prefix)
         # stage kinds as the report reads them: the section is a profile, the set a body
         src = g.add("profile" if sec else "body", {"params": part.params, "tolerance": tol, "section": sec,
