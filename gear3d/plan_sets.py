@@ -203,23 +203,14 @@ def bevel_member_counts(geo, which: str, tol: float) -> tuple:
     return nv, n_seg, layers
 
 
-def _bevel_geometry(kw: dict):
-    from .bevel.geometry import pair_geometry
-    from .bevel.spiral import with_tooth_line
-    geo = pair_geometry(kw["teeth"], kw["mate_teeth"], kw["module"], kw.get("face_width"),
-                        kw.get("pressure_angle_deg", 20.0), kw.get("shaft_angle_deg", 90.0),
-                        kw.get("shift_coeff", 0.0), kw.get("form", "spherical-involute"),
-                        clearance=kw.get("clearance", "standard"))
-    return with_tooth_line(geo, kw.get("spiral_angle_deg"), kw.get("cutter_radius"), kw.get("hand"))
-
-
 def plan_bevel(kw: dict, output=None, step=None, png=None, json=None, preview=None) -> Estimate:
     """``gear3d bevel ...`` / ``gear3d.bevel(**kw)``: each member's body (its section's
     vertices x cap segments, COSTS["bevel.body"]), the rolling check, the export and the
     figures; refused before any work (BudgetError)."""
     tol = check_number("tolerance", kw.get("tolerance", MESH_TOLERANCE), 1e-6, 1.0, unit="mm")
     part = check_choice("part", kw.get("part", "gear"), ("gear", "mate", "pair"))
-    geo = _bevel_geometry(kw)
+    from .bevel.spiral import pair_geometry_of
+    geo = pair_geometry_of(kw)
     est, tri, parts = Estimate(), 0.0, []
     cost = budget.COSTS["bevel.body"]
     for which in (("gear", "mate") if part == "pair" else (part,)):

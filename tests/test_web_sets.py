@@ -111,11 +111,12 @@ def test_the_sets_builders_refuse_what_their_tables_refuse(table):
     ``limits``): just outside the table's range, the builder refuses it by name."""
     from gear3d.errors import GearError
     from gear3d.params import BEVEL_PARAMS, WORM_PARAMS
-    from gear3d.web.builds import _bevel_geometry, _worm_design
+    from gear3d.bevel.spiral import pair_geometry_of
+    from gear3d.web.builds import _worm_design
     if table == "worm":
         params, base, build = WORM_PARAMS, {"module": 2.0, "starts": 1, "wheel_teeth": 30}, _worm_design
     else:
-        params, base, build = BEVEL_PARAMS, {"teeth": 20, "mate_teeth": 40, "module": 2.0}, _bevel_geometry
+        params, base, build = BEVEL_PARAMS, {"teeth": 20, "mate_teeth": 40, "module": 2.0}, pair_geometry_of
     build(dict(base))                                      # the base design is fine
     checked = 0
     for p in params:

@@ -152,7 +152,7 @@ def build(teeth, mate_teeth, module, face_width=None, pressure_angle_deg=20.0, s
     from .spiral import body
     which = ("gear", "mate") if part == "pair" else (part,)
     mounts = {"gear": mounting_distance, "mate": mate_mounting_distance}
-    _check_mounts(geo, mounts, which)
+    check_mounts(geo, mounts, which)
     bodies = [body(geo if w == "gear" else geo_m, w, tol) for w in which]
     bodies = [_add_hub(geo, w, b, mounts[w], tol) for w, b in zip(which, bodies)]
     overlap = None
@@ -175,7 +175,7 @@ def build(teeth, mate_teeth, module, face_width=None, pressure_angle_deg=20.0, s
     return Bevel(tuple(bodies), rep, geo)
 
 
-def _check_mounts(geo, mounts, which):
+def check_mounts(geo, mounts, which):
     """Refuse a mounting distance below the body's own back face (before any work)."""
     from .body import caps
     for w, name in (("gear", "mounting_distance"), ("mate", "mate_mounting_distance")):

@@ -45,6 +45,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ..errors import GearError, ToleranceError, check_choice, check_number
+from .geometry import pair_geometry
 from .body import CLIPPER_ROUNDING, BevelBody, cap_segments, caps, edge_sine, member_body
 from .section import member, section
 
@@ -98,6 +99,24 @@ class ToothLine:
     def spiral_angle(self, rho) -> float:
         """ψ(ρ) (rad) at one cone distance."""
         return float(np.arcsin(np.clip(self.sin_psi(rho), -1, 1)))
+
+
+def pair_geometry_of(kw: dict):
+    """The pair geometry (:func:`gear3d.bevel.geometry.pair_geometry` with its tooth line) of
+    :func:`gear3d.bevel`'s keywords ``kw`` (teeth, mate_teeth, module in mm, face_width,
+    pressure and shaft angles in deg, shift, form, clearance, spiral angle, cutter radius,
+    hand), for whoever needs the geometry before the build (plans, templates, the web page).
+
+    >>> import math
+    >>> g = pair_geometry_of({"teeth": 20, "mate_teeth": 40, "module": 2.0})
+    >>> round(math.degrees(g.gear.pitch_angle), 4), round(g.cone_distance, 4)   # atan(20/40), m z2 / 2 / sin d2
+    (26.5651, 44.7214)
+    """
+    geo = pair_geometry(kw["teeth"], kw["mate_teeth"], kw["module"], kw.get("face_width"),
+                        kw.get("pressure_angle_deg", 20.0), kw.get("shaft_angle_deg", 90.0),
+                        kw.get("shift_coeff", 0.0), kw.get("form", "spherical-involute"),
+                        clearance=kw.get("clearance", "standard"))
+    return with_tooth_line(geo, kw.get("spiral_angle_deg"), kw.get("cutter_radius"), kw.get("hand"))
 
 
 def with_tooth_line(geo, spiral_angle_deg, cutter_radius, hand):

@@ -120,7 +120,7 @@ def measured_limits(g: FaceGeometry) -> dict:
             "outer_pointing_measured": _bisect_flag(g, lambda s: s.pointed, lo, hi)}
 
 
-def _limits(g):
+def radius_limits(g):
     lim = {**g.limits(), **measured_limits(g)}
     inner = max(v for k, v in lim.items() if k.startswith("inner") and k.endswith("measured") and v is not None)
     lim["inner"] = inner
@@ -190,7 +190,7 @@ def build(teeth, shaper_teeth=None, module=1.0, pressure_angle_deg=20.0, pinion_
     g = face_geometry(teeth, shaper_teeth, module, pressure_angle_deg, pinion_teeth, addendum_coeff,
                       dedendum_coeff, rim)
     tol = check_number("tolerance", tolerance, 1e-5, 1.0, unit="mm")
-    lim = _limits(g)
+    lim = radius_limits(g)
     r_in = math.ceil(lim["inner"] * 1e6) / 1e6
     r_out_max = math.floor(lim["outer"] * 1e6) / 1e6
     r1 = r_in if inner_radius is None else check_number("inner_radius", inner_radius, r_in, r_out_max, unit="mm")

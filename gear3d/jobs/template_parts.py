@@ -8,7 +8,7 @@ from __future__ import annotations
 import functools
 import inspect
 
-from ..errors import GearError
+from ..errors import GearError, check_choice, check_number
 from .specs import PartSpec
 from ..conventions import to_transverse
 from ..params import (BODY, BODY_PARAMS, DEFAULT_TOLERANCE, FAMILY_PARAMS, MESH_TOLERANCE, by_name,
@@ -312,19 +312,18 @@ def _set_check(kind, kw) -> tuple:
 def _bevel_check(kw):
     """:func:`gear3d.bevel.build`'s checks but the bodies: the part, the rolling check's
     pair, the pair geometry with its tooth line, the mate's form, the mounting distances."""
-    from ..bevel import PARTS, _check_mounts
+    from ..bevel import PARTS, check_mounts
     from ..bevel.geometry import FORMS
-    from ..plan_sets import _bevel_geometry
-    from ..errors import check_choice
+    from ..bevel.spiral import pair_geometry_of
     part = check_choice("part", kw.get("part", "gear"), PARTS)
     if not isinstance(kw.get("check", False), bool):
         raise GearError("check", kw["check"], "true or false")
     if kw.get("check") and part != "pair":
         raise GearError("check", kw["check"], "only with part='pair' (the check rolls the pair)")
-    geo = _bevel_geometry(kw)
+    geo = pair_geometry_of(kw)
     if kw.get("mate_form") is not None:
         check_choice("mate_form", kw["mate_form"], FORMS)
-    _check_mounts(geo, {"gear": kw.get("mounting_distance"), "mate": kw.get("mate_mounting_distance")},
+    check_mounts(geo, {"gear": kw.get("mounting_distance"), "mate": kw.get("mate_mounting_distance")},
                   ("gear", "mate") if part == "pair" else (part,))
 
 
@@ -332,8 +331,7 @@ def _face_check(kw):
     """:func:`gear3d.facegear.build`'s geometry checks, and its radius limits when a radius
     is given (a scan of sections: 0.2 s)."""
     import math
-    from ..errors import check_number
-    from ..facegear import _limits
+    from ..facegear import radius_limits
     from ..facegear.geometry import face_geometry
     if kw.get("shaper_teeth") is None and kw.get("pinion_teeth") is None:
         raise GearError("shaper_teeth", None, "an integer 8..200 (or give pinion_teeth)")
@@ -343,7 +341,7 @@ def _face_check(kw):
     r1, r2 = kw.get("inner_radius"), kw.get("outer_radius")
     if r1 is None and r2 is None:
         return
-    lim = _limits(g)
+    lim = radius_limits(g)
     lo, hi = math.ceil(lim["inner"] * 1e6) / 1e6, math.floor(lim["outer"] * 1e6) / 1e6
     r1 = lo if r1 is None else check_number("inner_radius", r1, lo, hi, unit="mm")
     if r2 is not None:

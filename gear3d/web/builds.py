@@ -164,15 +164,6 @@ def _worm_design(kw: dict):
     return validate(**kw)
 
 
-def _bevel_geometry(kw: dict):
-    from ..bevel.geometry import pair_geometry
-    from ..bevel.spiral import with_tooth_line
-    geo = pair_geometry(kw["teeth"], kw["mate_teeth"], kw["module"], kw.get("face_width"),
-                        kw.get("pressure_angle_deg", 20.0), kw.get("shaft_angle_deg", 90.0),
-                        kw.get("shift_coeff", 0.0), kw.get("form", "spherical-involute"))
-    return with_tooth_line(geo, kw.get("spiral_angle_deg"), kw.get("cutter_radius"), kw.get("hand"))
-
-
 def set_section(family: str, kw: dict, tolerance: float):
     """The 2D view of a set: a worm wheel's mid-plane section, or a bevel gear's heel
     section (the plane normal to its axis through the heel pitch circle), within
@@ -181,7 +172,8 @@ def set_section(family: str, kw: dict, tolerance: float):
         from ..wormgear.wheel import section
         return section(_worm_design(kw), 0.0, tolerance)
     from ..bevel.section import section
-    geo = _bevel_geometry(kw)
+    from ..bevel.spiral import pair_geometry_of
+    geo = pair_geometry_of(kw)
     return section(geo, "gear", geo.cone_distance * math.cos(geo.gear.pitch_angle), tolerance)
 
 
