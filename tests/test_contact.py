@@ -12,6 +12,7 @@ import math
 import subprocess
 import sys
 
+import numpy as np
 import pytest
 
 import gear3d
@@ -355,3 +356,38 @@ def test_exit_codes_are_documented():
     assert r.returncode == 0
     for s in ("Exit codes: 0", "1 a finding: interference", "2 bad input"):
         assert s in text
+
+
+def test_the_exact_wheel_does_not_move_with_a_coarse_polygon():
+    """A coarse polygon (0.05 mm on module 1) once hid where a heavily undercut flank meets
+    its fillet, and kept a piece beyond the tip circle: the contact ratio of 10/10 fell to 0
+    and 100/100's take-up turned the wrong way. The exact runs are the same at every
+    tolerance, and the contact ratio agrees with the fine build within its uncertainty."""
+    from gear3d.analysis.flanks import ExactWheel
+    for z in (10, 100):
+        tip = 0.5 * z + 1.0
+        runs = {tol: ExactWheel(gear3d.profile("involute", teeth=z, tolerance=tol)).runs for tol in (0.05, 0.01)}
+        for r in runs[0.05]:
+            assert np.hypot(*r.p.T).max() <= tip + 1e-6                  # nothing beyond the tip circle
+        # the flanks (runs reaching the tip circle from 0.5 mm below it) end where they do at 2 um
+        flanks = {tol: sorted((round(r.t[0], 9), round(r.t[-1], 9)) for r in rs
+                              if np.hypot(*r.p.T).min() < tip - 0.5 and np.hypot(*r.p.T).max() > tip - 1e-6)
+                  for tol, rs in runs.items()}
+        assert len(flanks[0.05]) == 2 and flanks[0.05] == flanks[0.01]
+    q = gear3d.profile("involute", teeth=10, tolerance=0.05)
+    fine = gear3d.profile("involute", teeth=10, tolerance=0.01)
+    coarse_rep, fine_rep = gear3d.check_pair(q, q, tolerance=0.05), gear3d.check_pair(fine, fine, tolerance=0.01)
+    assert abs(coarse_rep["contact_ratio"] - fine_rep["contact_ratio"]) <= coarse_rep["contact_ratio_uncertainty"] + 1e-6
+    assert 0.5 < fine_rep["contact_ratio"] < 1
+
+
+@pytest.mark.slow
+def test_a_coarse_large_pair_has_its_textbook_contact_ratio():
+    """100/100, module 1, 20 deg, standard, checked at 0.05 mm (its take-up once turned the
+    wrong way on a piece beyond the tip circle): the textbook ratio from the two tip circles
+    lies within the reported uncertainty."""
+    a, rb, ra = 100.0, 50 * math.cos(math.radians(20)), 51.0
+    textbook = (2 * math.sqrt(ra * ra - rb * rb) - a * math.sin(math.radians(20))) / (math.pi * math.cos(math.radians(20)))
+    p = gear3d.profile("involute", teeth=100, tolerance=0.05)
+    rep = gear3d.check_pair(p, p, tolerance=0.05)
+    assert rep["continuous"] and abs(rep["contact_ratio"] - textbook) <= rep["contact_ratio_uncertainty"]

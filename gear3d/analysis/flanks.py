@@ -45,6 +45,8 @@ SAMPLES = 240
 CORNER_TURN = 1e-4
 #: query rows handled at once (the bracket search holds rows x samples)
 CHUNK = 256
+#: samples a run is crossed at when Newton from a fuzzy end's own chord fails
+CROSS_SAMPLES = 257
 
 
 @dataclass
@@ -195,6 +197,61 @@ def alive_intervals(pc, bnd) -> list:
     return out
 
 
+#: (mm, and relative to the radius) how far beyond its annulus a run's sample may lie
+ANNULUS_SLACK = (1e-6, 1e-9)
+
+
+def within_annulus(f, ts: np.ndarray, p: np.ndarray, annulus) -> list:
+    """The parts of a run (the curve ``f`` sampled at parameters ``ts``, points ``p``) that lie
+    in the ``annulus`` (lo, hi) of radii (mm), each as its parameter samples: the ends where
+    the run leaves the annulus are bisected on the radius to 1e-15 of the parameter. Parts of
+    fewer than two samples are dropped.
+
+    >>> circle = lambda t: np.stack([np.cos(t), np.sin(t)], axis=-1) * (1 + t)[:, None]
+    >>> ts = np.linspace(0.0, 1.0, 11)
+    >>> [round(float(part[-1]), 5) for part in within_annulus(circle, ts, circle(ts), (1.0, 1.5))]
+    [0.5]
+    """
+    if len(ts) < 2:
+        return []
+    lo, hi = annulus
+    rad = lambda t: np.hypot(*np.asarray(f(np.atleast_1d(t)), float).T)
+    slack = lambda r: ANNULUS_SLACK[0] + ANNULUS_SLACK[1] * r
+    inside = lambda r: (r >= lo - slack(lo)) & (r <= hi + slack(hi))
+    on = inside(np.hypot(*p.T))
+    if on.all():
+        return [ts]
+    parts, k = [], 0
+    while k < len(on):
+        if not on[k]:
+            k += 1
+            continue
+        j = k
+        while j + 1 < len(on) and on[j + 1]:
+            j += 1
+        a = ts[k] if k == 0 else _edge(rad, inside, ts[k], ts[k - 1])
+        b = ts[j] if j == len(on) - 1 else _edge(rad, inside, ts[j], ts[j + 1])
+        part = np.concatenate([[a], ts[k + 1:j], [b]]) if j > k else np.array([a, b])
+        r = rad(part)
+        # a sliver left where the run only touches the circle it leaves by is not kept
+        sliver = (r >= hi - slack(hi)).all() or (r <= lo + slack(lo)).all()
+        if part[-1] != part[0] and not sliver:
+            parts.append(part)
+        k = j + 1
+    return parts
+
+
+def _edge(rad, inside, t_in: float, t_out: float) -> float:
+    """The last parameter from ``t_in`` toward ``t_out`` inside the annulus (bisection)."""
+    for _ in range(60):
+        m = 0.5 * (t_in + t_out)
+        if inside(rad(m))[0]:
+            t_in = m
+        else:
+            t_out = m
+    return float(t_in)
+
+
 class ExactWheel:
     """The runs and corners of one tooth period of ``prof``'s exact trimmed boundary (mm,
     the wheel's own frame); see the module doc."""
@@ -207,6 +264,11 @@ class ExactWheel:
         self.pitch = 2 * math.pi / prof.teeth
         self.internal = bool(prof.internal)
         self._pieces = bnd.pieces
+        radii = [r for r in (prof.report["tip_radius"], prof.report["root_radius"], prof.report["rim_radius"])
+                 if r is not None]
+        #: (mm) the annulus the gear's material lies in: a surviving piece's part beyond its tip
+        #: circle (one that hugs a coarse polygon within its error) is not the gear's boundary
+        self._annulus = (min(radii), max(radii))
         self._ivs = [[list(iv) for iv in alive_intervals(pc, bnd)] for pc in bnd.pieces]
         #: interval ends left fuzzy (a corner found only to the polygon's error)
         self.fuzzy = _resolve_fuzzy(bnd, self._ivs, self.pitch, self.teeth)
@@ -239,8 +301,9 @@ class ExactWheel:
                 ts = np.concatenate([(knots[:-1, None] + np.diff(knots)[:, None] * frac[None]).ravel(), [b]])
                 p, n = point_normal(pc.f, ts)
                 ok = np.isfinite(p).all(axis=1) & np.isfinite(n).all(axis=1)
-                if ok.sum() >= 2:
-                    runs.append(Run(pc.f, float(ts[ok][0]), float(ts[ok][-1]), ts[ok], p[ok], n[ok]))
+                for ts_k in within_annulus(pc.f, ts[ok], p[ok], self._annulus):
+                    p_k, n_k = point_normal(pc.f, ts_k)
+                    runs.append(Run(pc.f, float(ts_k[0]), float(ts_k[-1]), ts_k, p_k, n_k))
         return runs
 
     def shrunk(self) -> "ExactWheel":
@@ -399,8 +462,10 @@ def _resolve_fuzzy(bnd, ivs, pitch: float, teeth: int) -> int:
                     continue
                 x, s_, u_ = res
                 d = float(np.hypot(*(x - pts[e])))
-                if d <= reach and (best is None or d < best[0]):
+                if _keeps(ivs[i][j], side, s_) and d <= reach and (best is None or d < best[0]):
                     best = (d, s_, (i2, j2, side2), u_)
+        if best is None:
+            best = _chord_crossing(bnd, ivs, ends, e, pts, copies, pitch, reach)
         if best is None:
             left += 1
             continue
@@ -409,6 +474,61 @@ def _resolve_fuzzy(bnd, ivs, pitch: float, teeth: int) -> int:
         if ivs[i2][j2][2 + side2] is not None:
             ivs[i2][j2][side2], ivs[i2][j2][2 + side2] = float(best[3]), None
     return left
+
+
+def _keeps(iv, side: int, s: float) -> bool:
+    """Whether a crossing at parameter ``s`` can be the ``side`` end (0 start, 1 end) of the
+    interval ``iv`` = [a, b, fuzz_a, fuzz_b]: it leaves the interval a run (it does not pass
+    its other end) and lies within twice the end's fuzz outside it."""
+    a, b, fa, fb = iv
+    if side == 0:
+        return a - 2 * (fa or 0.0) - 1e-12 <= s < b
+    return a < s <= b + 2 * (fb or 0.0) + 1e-12
+
+
+def _chord_crossing(bnd, ivs, ends, e: int, pts, copies, pitch: float, reach: float):
+    """The crossing for fuzzy end ``e`` found where Newton from the end's own chord fails (a
+    coarse polygon hides how far the flank runs on under its fillet): the sampled run of the
+    end's piece and of each other piece near it are crossed as polylines, the crossing
+    nearest the end refined by :func:`gear3d.curves.crossing` on the two chords. Returns
+    (distance, parameter, (piece, interval, side), other parameter) or None."""
+    from ..corners import exact_crossing
+    i, j, side, t = ends[e]
+    a, b, fa, fb = ivs[i][j]
+    ta = np.linspace(a - 2 * (fa or 0.0), b + 2 * (fb or 0.0), CROSS_SAMPLES)
+    pa = np.asarray(bnd.pieces[i].f(ta), float)
+    best = None
+    for i2, j2, side2, _t2 in ends:
+        if i2 == i or side2 != 0:
+            continue
+        a2, b2, fa2, fb2 = ivs[i2][j2]
+        tb = np.linspace(a2 - 2 * (fa2 or 0.0), b2 + 2 * (fb2 or 0.0), CROSS_SAMPLES)
+        pb0 = np.asarray(bnd.pieces[i2].f(tb), float)
+        for k in copies:
+            pb = rotate(pb0, k * pitch)
+            for m, n in _segment_hits(pa, pb):
+                res = exact_crossing(bnd.pieces[i].f, ta[m], ta[m + 1], bnd.pieces[i2].f, tb[n], tb[n + 1],
+                                     k * pitch, pts[e], params=True)
+                if res is None or not _keeps(ivs[i][j], side, res[1]):
+                    continue
+                d = float(np.hypot(*(res[0] - pts[e])))
+                if d <= reach and (best is None or d < best[0]):
+                    best = (d, res[1], (i2, j2, 0 if abs(res[2] - a2) <= abs(res[2] - b2) else 1), res[2])
+    return best
+
+
+def _segment_hits(pa: np.ndarray, pb: np.ndarray):
+    """Index pairs (m, n) of the crossing segments of polylines ``pa`` and ``pb`` (N, 2)."""
+    a0, a1 = pa[:-1, None], pa[1:, None]
+    b0, b1 = pb[None, :-1], pb[None, 1:]
+    da, db = a1 - a0, b1 - b0
+    den = da[..., 0] * db[..., 1] - da[..., 1] * db[..., 0]
+    w = b0 - a0
+    with np.errstate(divide="ignore", invalid="ignore"):
+        s = (w[..., 0] * db[..., 1] - w[..., 1] * db[..., 0]) / den
+        u = (w[..., 0] * da[..., 1] - w[..., 1] * da[..., 0]) / den
+    hit = np.isfinite(s) & np.isfinite(u) & (s >= 0) & (s <= 1) & (u >= 0) & (u <= 1)
+    return list(zip(*np.nonzero(hit)))
 
 
 def _local_step(pc, t: float) -> float:
