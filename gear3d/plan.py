@@ -350,18 +350,22 @@ def working_center_distance(p1, p2, internal=None, precision: float = 0.01, tole
         return pairs.working_center_distance(p1, p2, internal=internal, precision=precision, tolerance=tolerance)
 
 
-def search_estimate(family: str, params: dict, teeth1: int, teeth2: int, internal: bool, iterations: int) -> Estimate:
-    """``iterations`` of (two profiles + a rolling check), from probes of both wheels."""
+def search_estimate(family: str, params: dict, teeth1: int, teeth2: int, internal: bool, iterations: int,
+                    judged: int = 0) -> Estimate:
+    """``iterations`` of (two profiles + a rolling check for interference), and ``judged``
+    checks whose conjugate contact is judged too, from probes of both wheels."""
     kw = {k: v for k, v in params.items()}
     a = probe_profile(family, dict(kw, teeth=teeth1))
     b = probe_profile(family, dict(kw, teeth=teeth2, **({"internal": True} if internal else {})))
     if a is None or b is None:
         return Estimate()
     tol = float(kw.get("tolerance", 1e-3))
-    one = a.estimate.then(b.estimate).then(pair_estimate(teeth1, a.r_max, a.vertices, b.vertices, tol,
-                                                          contact=sketch_contact(a, b, internal, tol)))
-    return Estimate(one.seconds * iterations, one.bytes, one.triangles,
-                    f"a search of {iterations} steps, each two profiles and {one.what.split('; ')[-1]}")
+    one = a.estimate.then(b.estimate).then(pair_estimate(teeth1, a.r_max, a.vertices, b.vertices, tol))
+    contact = sketch_contact(a, b, internal, tol)
+    what = f"a search of {iterations} steps, each two profiles and {one.what.split('; ')[-1]}"
+    if judged:
+        what += f", and {judged} with {contact.what}"
+    return Estimate(one.seconds * (iterations + judged) + contact.seconds * judged, one.bytes, one.triangles, what)
 
 
 def largest_addendum(family: str, teeth1: int, teeth2: int, internal: bool = False, precision: float = 1e-3,
@@ -386,7 +390,7 @@ def tip_correction(family: str, teeth1: int, teeth2: int, internal: bool = True,
     precision = check_number("precision", precision, 1e-4, 0.5, unit="modules")
     n = search_iterations(float(addendum_coeff), precision, 3)
     est = search_estimate(family, dict(params, addendum_coeff=addendum_coeff, tolerance=tolerance),
-                          teeth1, teeth2, internal, n)
+                          teeth1, teeth2, internal, n, judged=2)       # before, and the found pair
     budget.charge(est, "precision", precision)
     with budget.job():
         return pairs.tip_correction(family, teeth1, teeth2, internal=internal, addendum_coeff=addendum_coeff,

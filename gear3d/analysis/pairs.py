@@ -131,14 +131,16 @@ def pair_placement(p1, p2, internal, center_distance=None) -> dict:
 
 
 def check_pair(p1, p2, internal=None, tolerance=None, center_distance=None, cycles: float = 1.0,
-               backlash_phases: int = 8):
+               backlash_phases: int = 8, contact: bool = True):
     """Roll ``p1`` against ``p2`` and report interference, clearance and contact (mm, deg).
 
     ``tolerance`` (mm) sets the rolling step, the interference threshold (2 x) and the band
     within which two conjugate points count as one contact (default: the larger of the two
     profiles' tolerances). Returns a :class:`gear3d.reports.PairReport`; ``contact_ratio``
     comes with ``contact_ratio_uncertainty`` (pitches), ``continuous`` (False: some part of
-    the cycle has no tooth in conjugate contact) and ``edge_contact``.
+    the cycle has no tooth in conjugate contact) and ``edge_contact``. ``contact`` False:
+    interference and clearance only (the contact facts are None; what the addendum and tip
+    searches ask at each step).
 
     Example::
 
@@ -169,7 +171,8 @@ def check_pair(p1, p2, internal=None, tolerance=None, center_distance=None, cycl
     interference = pen_max > 2 * tol
     where = _interference_at(pen_at, c2, phase2, ratio, internal)
     # contact: conjugate action of tooth 0's drive flank on the exact pieces (contact.py)
-    conj = _conjugate(p1, p2, a, c2, phase2, ratio, internal, tol, interference)
+    conj = (_conjugate(p1, p2, a, c2, phase2, ratio, internal, tol, interference) if contact
+            else _no_contact(tol))
     # clearance on each flank: how far wheel 2 may turn each way before touching (mm on r2)
     drive, coast = [], []
     for ph in np.linspace(-pitch_ang / 2, pitch_ang / 2, backlash_phases, endpoint=False):
@@ -257,6 +260,13 @@ def _interference_at(pen_at, c2, phase2, ratio, internal):
             "opposite_pitch_point": bool(pt[0] < (c2[0] if internal else 0.0))}
 
 
+def _no_contact(tol: float) -> dict:
+    """The contact facts of a report whose conjugate contact is not judged."""
+    return {"contact_ratio": None, "contact_ratio_uncertainty": None, "continuous": None,
+            "path_of_contact": [], "path_length": 0.0, "sliding_start": None, "sliding_end": None,
+            "edge_contact": [], "contact_band": tol, "contact_take_up": None, "mean_contact_points": None}
+
+
 def _conjugate(p1, p2, a, c2, phase2, ratio, internal, tol, interference=False) -> dict:
     """The contact facts of the report from :mod:`gear3d.analysis.contact` (conjugate
     action on the exact pieces, band ``tol`` mm): contact ratio and its uncertainty,
@@ -266,9 +276,7 @@ def _conjugate(p1, p2, a, c2, phase2, ratio, internal, tol, interference=False) 
     from .contact import Mesh, contact_ratio, edge_contacts, sliding
     if p1.boundary is None or p2.boundary is None:
         # a profile built by hand has no exact pieces: no conjugate contact to judge
-        return {"contact_ratio": None, "contact_ratio_uncertainty": None, "continuous": None,
-                "path_of_contact": [], "path_length": 0.0, "sliding_start": None, "sliding_end": None,
-                "edge_contact": [], "contact_band": tol, "contact_take_up": None, "mean_contact_points": None}
+        return _no_contact(tol)
     mesh = Mesh(p1, p2, c2, phase2, ratio, operating_pitch_radii(a, p1.teeth, p2.teeth, internal)[0])
     c = contact_ratio(mesh, None, tol, overlaps=not interference)
     iv, pitch = c["intervals"], 2 * math.pi / p1.teeth
@@ -444,7 +452,7 @@ def largest_addendum(family: str, teeth1: int, teeth2: int, internal: bool = Fal
     def ok(c):
         a = profile(family, teeth=teeth1, addendum_coeff=c, **params)
         b = profile(family, teeth=teeth2, addendum_coeff=c, internal=internal, **params)
-        return not check_pair(a, b, internal=internal)["interference"]
+        return not check_pair(a, b, internal=internal, contact=False)["interference"]
     if not ok(lo):
         raise GearError("addendum_coeff", lo, "a lower bound that meshes", "the pair interferes even there")
     if ok(hi):
@@ -480,7 +488,7 @@ def tip_correction(family: str, teeth1: int, teeth2: int, internal: bool = True,
         q1 = profile(family, teeth=teeth1, tip_radius=p1.pitch_radius + a * m, **kw)
         t2 = p2.pitch_radius - a * m if internal else p2.pitch_radius + a * m
         q2 = profile(family, teeth=teeth2, internal=internal, tip_radius=t2, **kw)
-        return q1, q2, check_pair(q1, q2, internal=internal)
+        return q1, q2, check_pair(q1, q2, internal=internal, contact=False)
     if not before["interference"]:
         return {"a": addendum_coeff, "tip_radius1": p1.report["tip_radius"], "tip_radius2": p2.report["tip_radius"],
                 "contact_ratio_before": before["contact_ratio"], "contact_ratio_after": before["contact_ratio"],
@@ -497,7 +505,8 @@ def tip_correction(family: str, teeth1: int, teeth2: int, internal: bool = True,
     if best is None:
         q1, q2, rep = build(lo)
         best = (q1, q2, rep)
-    q1, q2, rep = best
+    q1, q2, _ = best
+    rep = check_pair(q1, q2, internal=internal)          # the found pair's contact, judged once
     return {"a": lo, "tip_radius1": q1.report["tip_radius"], "tip_radius2": q2.report["tip_radius"],
             "contact_ratio_before": before["contact_ratio"], "contact_ratio_after": rep["contact_ratio"],
             "lost_contact": before["contact_ratio"] - rep["contact_ratio"], "interference_before": True,
