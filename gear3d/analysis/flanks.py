@@ -462,10 +462,14 @@ def _resolve_fuzzy(bnd, ivs, pitch: float, teeth: int) -> int:
                     continue
                 x, s_, u_ = res
                 d = float(np.hypot(*(x - pts[e])))
-                if _keeps(ivs[i][j], side, s_) and d <= reach and (best is None or d < best[0]):
+                if d <= reach and (best is None or d < best[0]):
                     best = (d, s_, (i2, j2, side2), u_)
-        if best is None:
-            best = _chord_crossing(bnd, ivs, ends, e, pts, copies, pitch, reach)
+        # Newton from the end's own chord can run to a crossing far along the piece (a coarse
+        # polygon hides how far a flank runs on under its fillet): the runs crossed as
+        # polylines give the crossing next to the end, and the nearer of the two is kept
+        chord = _chord_crossing(bnd, ivs, ends, e, pts, copies, pitch, reach)
+        if chord is not None and (best is None or chord[0] < best[0]):
+            best = chord
         if best is None:
             left += 1
             continue
@@ -487,10 +491,9 @@ def _keeps(iv, side: int, s: float) -> bool:
 
 
 def _chord_crossing(bnd, ivs, ends, e: int, pts, copies, pitch: float, reach: float):
-    """The crossing for fuzzy end ``e`` found where Newton from the end's own chord fails (a
-    coarse polygon hides how far the flank runs on under its fillet): the sampled run of the
-    end's piece and of each other piece near it are crossed as polylines, the crossing
-    nearest the end refined by :func:`gear3d.curves.crossing` on the two chords. Returns
+    """The crossing next to fuzzy end ``e``: the sampled run of the end's piece and of each
+    other piece are crossed as polylines, the crossing nearest the end refined by
+    :func:`gear3d.curves.crossing` on the two chords. Returns
     (distance, parameter, (piece, interval, side), other parameter) or None."""
     from ..corners import exact_crossing
     i, j, side, t = ends[e]
