@@ -90,13 +90,11 @@ def profile_kwargs(form: dict, mesh: bool = False) -> dict:
 
 def body_kwargs(form: dict) -> tuple:
     """(profile keywords at the body's tolerance, ``gear3d.body`` keywords) of the form's
-    profile and body sections. ``kind`` and ``hand`` are always given (their defaults); a
-    width is required (the page always sends it)."""
+    profile and body sections. ``kind``, ``hand`` and ``width`` are always given (their
+    defaults in the table, as on the command line)."""
     pk = profile_kwargs(form, mesh=True)
-    bk = {"kind": BODY["kind"].default, "hand": BODY["hand"].default}
+    bk = {"kind": BODY["kind"].default, "hand": BODY["hand"].default, "width": BODY["width"].default}
     bk.update(_section(BODY, form["body"], "body"))
-    if "width" not in bk:
-        raise GearError("width", None, BODY["width"].allowed())
     if bk.get("keyway") is False:
         bk.pop("keyway")
     return pk, bk

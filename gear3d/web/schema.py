@@ -59,7 +59,8 @@ LABELS = {
     "friction": "Friction coefficient", "worm_bore": "Worm bore", "wheel_bore": "Wheel bore", "part": "Part",
     "shaft_angle_deg": "Shaft angle", "spiral_angle_deg": "Spiral angle", "cutter_radius": "Cutter radius",
     "disc_radius": "Grinding disc radius", "wheel_keyway": "Wheel keyway", "shaft_diameter": "Worm shaft diameter",
-    "shaft_length": "Worm shaft length",
+    "shaft_length": "Worm shaft length", "clearance": "Tip clearance", "mounting_distance": "Mounting distance",
+    "mate_mounting_distance": "Mate's mounting distance",
 }
 #: labels a set words its own way
 SET_LABELS = {"bevel": {"form": "Tooth form", "teeth": "Teeth of the gear", "hand": "Spiral hand"},
@@ -77,7 +78,8 @@ _GROUP_OF = {
     **dict.fromkeys(("mate_teeth", "mate", "center_distance", "friction"), "pair"),
     **dict.fromkeys(("starts", "wheel_teeth", "diameter_quotient", "worm_pitch_diameter", "worm_length",
                      "face_width", "shaft_angle_deg"), "size"),
-    **dict.fromkeys(("worm_bore", "wheel_bore", "part", "wheel_keyway", "shaft_diameter", "shaft_length"), "body"),
+    **dict.fromkeys(("worm_bore", "wheel_bore", "part", "wheel_keyway", "shaft_diameter", "shaft_length",
+                     "mounting_distance", "mate_mounting_distance"), "body"),
     "tolerance": "accuracy",
 }
 
