@@ -180,21 +180,24 @@ def alive_intervals(pc, bnd) -> list:
             continue
         # runs of consecutive surviving samples; a change of state between two samples is
         # a corner the builder did not record: bisected, flagged fuzzy
-        k = 0
-        while k < len(on):
-            if not on[k]:
-                k += 1
-                continue
-            j = k
-            while j + 1 < len(on) and on[j + 1]:
-                j += 1
+        for k, j in true_runs(on):
             lo = seq[k] if k == 0 else _flip(pc.f, bnd, seq[k], seq[k - 1])
             hi = seq[j] if j == len(on) - 1 else _flip(pc.f, bnd, seq[j], seq[j + 1])
             if hi > lo:
                 out.append((float(lo), float(hi), None if k == 0 else _fuzz(pc.f, bnd, lo, seq[k - 1]),
                             None if j == len(on) - 1 else _fuzz(pc.f, bnd, hi, seq[j + 1])))
-            k = j + 1
     return out
+
+
+def true_runs(on) -> list:
+    """(first, last) indices of each run of consecutive True values in the mask ``on``.
+
+    >>> true_runs([False, True, True, False, True])
+    [(1, 2), (4, 4)]
+    """
+    on = np.asarray(on, bool)
+    d = np.diff(np.concatenate([[0], on.astype(np.int8), [0]]))
+    return [(int(a), int(b) - 1) for a, b in zip(np.nonzero(d == 1)[0], np.nonzero(d == -1)[0])]
 
 
 #: (mm, and relative to the radius) how far beyond its annulus a run's sample may lie
@@ -221,14 +224,8 @@ def within_annulus(f, ts: np.ndarray, p: np.ndarray, annulus) -> list:
     on = inside(np.hypot(*p.T))
     if on.all():
         return [ts]
-    parts, k = [], 0
-    while k < len(on):
-        if not on[k]:
-            k += 1
-            continue
-        j = k
-        while j + 1 < len(on) and on[j + 1]:
-            j += 1
+    parts = []
+    for k, j in true_runs(on):
         a = ts[k] if k == 0 else _edge(rad, inside, ts[k], ts[k - 1])
         b = ts[j] if j == len(on) - 1 else _edge(rad, inside, ts[j], ts[j + 1])
         part = np.concatenate([[a], ts[k + 1:j], [b]]) if j > k else np.array([a, b])
@@ -237,7 +234,6 @@ def within_annulus(f, ts: np.ndarray, p: np.ndarray, annulus) -> list:
         sliver = (r >= hi - slack(hi)).all() or (r <= lo + slack(lo)).all()
         if part[-1] != part[0] and not sliver:
             parts.append(part)
-        k = j + 1
     return parts
 
 
