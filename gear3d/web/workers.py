@@ -27,6 +27,7 @@ import os
 import queue
 import signal
 import sys
+import tempfile
 import time
 
 from ..watchdog import GRACE_S, LimitError, child_usage
@@ -109,17 +110,23 @@ class _Worker:
             self.conn.close()
 
 
+#: the longest temporary folder (characters) a fork server is started in: its socket lives in
+#: a folder made there (``.../pymp-XXXXXXXX/listener-XXXXXXXX``, about 40 more characters),
+#: and a Unix socket's path holds at most 107 bytes
+FORKSERVER_TMP = 60
+
+
 class Pool:
     """``n`` build workers; :meth:`run` takes an idle one at once or raises :class:`Busy`
     (never queues). ``limits``: ``{"max_seconds", "max_memory"}`` (and ``max_triangles``) of
     :func:`gear3d.budget.limits`, in force in every worker."""
 
     def __init__(self, n: int, limits: dict):
-        if "forkserver" in multiprocessing.get_all_start_methods():
+        if "forkserver" in multiprocessing.get_all_start_methods() and len(tempfile.gettempdir()) <= FORKSERVER_TMP:
             ctx = multiprocessing.get_context("forkserver")
             ctx.set_forkserver_preload(["gear3d.web.builds", "gear3d.web.svg", "gear3d.web.meshdata",
                                         "gear3d.solids.body", "gear3d.watchdog"])
-        else:                                  # no fork server on this platform: each worker starts afresh
+        else:     # no fork server here (or its socket path would be too long): each worker starts afresh
             ctx = multiprocessing.get_context("spawn")
         self.ctx, self.n, self.limits = ctx, n, dict(limits)
         self.idle: queue.SimpleQueue = queue.SimpleQueue()
