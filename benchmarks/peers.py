@@ -65,6 +65,20 @@ def gear3d_script() -> str:
     return str(own) if own.exists() else (shutil.which("gear3d") or "gear3d")
 
 
+def openscad_path() -> str | None:
+    """OpenSCAD's path, or None after one line on stderr saying how to install it."""
+    path = shutil.which("openscad")
+    if path is None:
+        print("openscad not found: apt-get install -y openscad", file=sys.stderr)
+    return path
+
+
+def compile_gear3d() -> None:
+    """Byte-compile gear3d's sources, as an installed package is (an editable checkout under
+    PYTHONDONTWRITEBYTECODE would recompile gear3d in every timed process)."""
+    subprocess.run([sys.executable, "-m", "compileall", "-q", str(ROOT / "gear3d")], check=True)
+
+
 def inv(a):
     return np.tan(a) - a
 
@@ -150,9 +164,8 @@ def main(argv=None) -> int:
         sys.path.insert(0, str(Path(__file__).resolve().parent))
         from peers_worm import main as worm_main
         return worm_main(["--runs", str(args.runs)])
-    openscad = shutil.which("openscad")
+    openscad = openscad_path()
     if openscad is None:
-        print("openscad not found: apt-get install -y openscad", file=sys.stderr)
         return 2
     gear3d = gear3d_script()
     work = Path(tempfile.mkdtemp(prefix="gear3d-peers-"))
@@ -165,9 +178,7 @@ def main(argv=None) -> int:
         jobs[f"gear3d tol {t:g}"] = ([gear3d, "body", "involute", "--teeth", str(Z), "--module", str(M),
                                       "--kind", "helical", "--helix-angle-deg", str(BETA), "--width", str(WIDTH),
                                       "--bore", "5", "--tolerance", str(t), "-o", str(out)], None, out, f"tol {t:g} mm")
-    # an installed package carries compiled bytecode (pip compiles on install); an editable
-    # checkout under PYTHONDONTWRITEBYTECODE would recompile gear3d in every process
-    subprocess.run([sys.executable, "-m", "compileall", "-q", str(ROOT / "gear3d")], check=True)
+    compile_gear3d()
     times = {k: [] for k in jobs}
     for i in range(args.runs):                       # interleaved: the machine's load hits all alike
         for k, (cmd, cwd, _out, _s) in jobs.items():

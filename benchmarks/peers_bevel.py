@@ -32,14 +32,13 @@ import os
 import platform
 import shutil
 import statistics
-import subprocess
 import sys
 import tempfile
 from pathlib import Path
 
 import numpy as np
 
-from peers import PEERS, ROOT, cpu_run
+from peers import PEERS, compile_gear3d, cpu_run, gear3d_script, openscad_path
 
 Z, Z2, M, ALPHA, FACE = 20, 30, 2.0, 20.0, 10.0
 SPIRAL, CUTTER = 35.0, 30.0
@@ -162,14 +161,13 @@ def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--runs", type=int, default=3)
     args = ap.parse_args(argv)
-    openscad = shutil.which("openscad")
+    openscad = openscad_path()
     if openscad is None:
-        print("openscad not found: apt-get install -y openscad", file=sys.stderr)
         return 2
-    gear3d = shutil.which("gear3d") or str(Path(sys.executable).with_name("gear3d"))
+    gear3d = gear3d_script()
     work = Path(tempfile.mkdtemp(prefix="gear3d-peers-bevel-"))
     todo = jobs(work, openscad, gear3d)
-    subprocess.run([sys.executable, "-m", "compileall", "-q", str(ROOT / "gear3d")], check=True)
+    compile_gear3d()
     times = {k: [] for k in todo}
     for i in range(args.runs):                       # interleaved: the machine's load hits all alike
         for k, (cmd, cwd, env, _stl, _kind, _s) in todo.items():

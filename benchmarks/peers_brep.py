@@ -33,7 +33,6 @@ import os
 import platform
 import shutil
 import statistics
-import subprocess
 import sys
 import tempfile
 from pathlib import Path
@@ -41,7 +40,7 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from peers import ROOT, cpu_run, gear3d_script, points_flank_error  # noqa: E402
+from peers import cpu_run, compile_gear3d, gear3d_script, points_flank_error  # noqa: E402
 
 CQ_PYTHON = os.environ.get("CQ_PYTHON", "/work/notes/cqvenv/bin/python")
 CQ_GEARS_SRC = os.environ.get("CQ_GEARS_SRC", "/work/notes/cq_gears_src")
@@ -126,7 +125,7 @@ def main(argv=None) -> int:
         env = dict(os.environ, PYTHONPATH=CQ_GEARS_SRC)
         jobs["cq_gears (CadQuery)"] = ([CQ_PYTHON, str(work / "cqg.py"), str(work / "cq.step")], None,
                                        work / "cq.step", "SpurGear helix_angle=20", env)
-    subprocess.run([sys.executable, "-m", "compileall", "-q", str(ROOT / "gear3d")], check=True)
+    compile_gear3d()
     times = {k: [] for k in jobs}
     for i in range(args.runs):                       # interleaved: the load hits all alike
         for k, job in jobs.items():

@@ -27,7 +27,6 @@ import argparse
 import math
 import os
 import platform
-import resource
 import shutil
 import statistics
 import subprocess
@@ -37,8 +36,7 @@ from pathlib import Path
 
 import numpy as np
 
-ROOT = Path(__file__).resolve().parents[1]
-PEERS = ROOT.parent / "shared" / "peers"
+from peers import PEERS, ROOT, compile_gear3d, cpu_run, gear3d_script, inv, openscad_path  # noqa: E402
 Z, M, ALPHA = 20, 1.0, 20.0
 RP = Z * M / 2
 RB = RP * math.cos(math.radians(ALPHA))
@@ -46,14 +44,6 @@ R_LO, R_HI = RP - 0.4 * M, RP + 0.85 * M       # working flank, clear of root fi
 TOLS = [0.01, 0.005, 0.003, 0.002, 0.0015, 0.001]
 
 
-def cpu_run(cmd, cwd=None) -> float:
-    """CPU seconds (user + sys) of one whole child process."""
-    before = resource.getrusage(resource.RUSAGE_CHILDREN)
-    r = subprocess.run(cmd, cwd=cwd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
-    after = resource.getrusage(resource.RUSAGE_CHILDREN)
-    if r.returncode != 0:
-        raise RuntimeError(f"{cmd}: {r.stderr.decode()[-500:]}")
-    return (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
 
 
 def peak_rss_mb(cmd, cwd=None) -> float:
@@ -102,8 +92,6 @@ def dxf_points(path: str, per_segment: int = 32) -> tuple:
     return np.concatenate(out), nseg, len(verts)
 
 
-def inv(a):
-    return np.tan(a) - a
 
 
 def flank_error(pts: np.ndarray) -> float:
@@ -140,11 +128,10 @@ def main(argv=None) -> int:
     ap.add_argument("--runs", type=int, default=7)
     ap.add_argument("--publish", action="store_true")
     args = ap.parse_args(argv)
-    openscad = shutil.which("openscad")
+    openscad = openscad_path()
     if openscad is None:
-        print("openscad not found: apt-get install -y openscad", file=sys.stderr)
         return 2
-    gear3d = shutil.which("gear3d") or str(Path(sys.executable).with_name("gear3d"))
+    gear3d = gear3d_script()
     work = Path(tempfile.mkdtemp(prefix="gear3d-peers-dxf-"))
     jobs = {"BOSL2 (OpenSCAD)": ([openscad, "-o", str(work / "bosl2.dxf"), "spur20_2d.scad"], PEERS,
                                  work / "bosl2.dxf", "spur_gear2d defaults"),
@@ -154,7 +141,7 @@ def main(argv=None) -> int:
         jobs[f"gear3d tol {t:g}"] = ([gear3d, "profile", "involute", "--teeth", str(Z), "--module", str(M),
                                       "--tolerance", str(t), "-o", str(out)], None, out, f"tol {t:g} mm")
     # an installed package carries compiled bytecode (pip compiles on install)
-    subprocess.run([sys.executable, "-m", "compileall", "-q", str(ROOT / "gear3d")], check=True)
+    compile_gear3d()
     load0 = os.getloadavg()
     times = {k: [] for k in jobs}
     for i in range(args.runs):                       # interleaved: the machine's load hits all alike

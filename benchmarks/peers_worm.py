@@ -42,8 +42,7 @@ from pathlib import Path
 
 import numpy as np
 
-ROOT = Path(__file__).resolve().parents[1]
-PEERS = ROOT.parent / "shared" / "peers"
+from peers import PEERS, compile_gear3d, cpu_run, gear3d_script, openscad_path  # noqa: E402
 M, Z1, Z2, D1, ALPHA_N, LENGTH = 2.0, 1, 30, 20.0, 20.0, 25.6
 GAMMA = math.atan(Z1 * M / D1)
 TOLS = [0.05, 0.02, 0.01, 0.005]
@@ -59,15 +58,6 @@ def scad(part: str, extra: str = "") -> str:
     return f"include <BOSL2/std.scad>\ninclude <BOSL2/gears.scad>\n{body}\n"
 
 
-def cpu_run(cmd, cwd=None) -> float:
-    """CPU seconds (user + sys) of one whole child process."""
-    import resource
-    before = resource.getrusage(resource.RUSAGE_CHILDREN)
-    r = subprocess.run(cmd, cwd=cwd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
-    after = resource.getrusage(resource.RUSAGE_CHILDREN)
-    if r.returncode != 0:
-        raise RuntimeError(f"{cmd}: {r.stderr.decode()[-500:]}")
-    return (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
 
 
 def design_for(face_width: float):
@@ -176,11 +166,10 @@ def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--runs", type=int, default=5)
     args = ap.parse_args(argv)
-    openscad = shutil.which("openscad")
+    openscad = openscad_path()
     if openscad is None:
-        print("openscad not found: apt-get install -y openscad", file=sys.stderr)
         return 2
-    gear3d = shutil.which("gear3d") or str(Path(sys.executable).with_name("gear3d"))
+    gear3d = gear3d_script()
     work = Path(tempfile.mkdtemp(prefix="gear3d-peers-worm-"))
     (work / "BOSL2").symlink_to(PEERS / "BOSL2")
     for part in ("worm", "wheel"):
@@ -200,7 +189,7 @@ def main(argv=None) -> int:
                 "1.25", "--worm-length", str(LENGTH), "--face-width", f"{B:.6f}", "--tolerance", str(t)]
         jobs[f"gear3d tol {t:g}"] = [(base + ["--part", p, "-o", str(work / f"gear3d_{p}_{t}.stl")], None)
                                      for p in ("worm", "wheel")]
-    subprocess.run([sys.executable, "-m", "compileall", "-q", str(ROOT / "gear3d")], check=True)
+    compile_gear3d()
     times = {k: [] for k in jobs}
     for i in range(args.runs):                       # interleaved: the machine's load hits all alike
         for k, cmds in jobs.items():
