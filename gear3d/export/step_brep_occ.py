@@ -161,39 +161,52 @@ def sew_solid(faces):
     return solid
 
 
+def cylinder(r, z0, h, x=0.0, y=0.0, d=(0, 0, 1)):
+    """OCC solid cylinder (mm): radius ``r``, from ``(x, y, z0)`` along direction ``d`` for ``h``."""
+    from OCP.BRepPrimAPI import BRepPrimAPI_MakeCylinder
+    from OCP.gp import gp_Ax2, gp_Dir, gp_Pnt
+    return BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(x, y, z0), gp_Dir(*d)), r, h).Shape()
+
+
+def boolean(op: str, a, tools):
+    """OCC boolean ``op`` ('fuse' or 'cut') of shape ``a`` with the shapes ``tools``;
+    GearError('step', 'brep', ...) when OpenCascade fails."""
+    from OCP.BRepAlgoAPI import BRepAlgoAPI_Cut, BRepAlgoAPI_Fuse
+    op = BRepAlgoAPI_Fuse() if op == "fuse" else BRepAlgoAPI_Cut()
+    lst_a, lst_t = _shape_list(), _shape_list()
+    lst_a.Append(a)
+    for t in tools:
+        lst_t.Append(t)
+    op.SetArguments(lst_a)
+    op.SetTools(lst_t)
+    op.Build()
+    if not op.IsDone():
+        raise GearError("step", "brep", "'faceted' for this body", "an OCC boolean failed")
+    return op.Shape()
+
+
 def features(shape, rep, W, tol):
     """Hub (fuse) and bore, keyway, set screw, web recesses, lightening holes (cut), the same
-    dimensions as the mesh body's features (:mod:`gear3d.solids.features`)."""
+    dimensions as the mesh body's features (:mod:`gear3d.solids.features`), on a body in
+    z in [0, W] (mm). ``hub_below`` (mm, optional): the hub also runs that far below z = 0
+    (a worm's shaft at both ends), and the bore through it."""
     f = rep.get("features") or {}
     if not f:
         return shape
-    from OCP.BRepAlgoAPI import BRepAlgoAPI_Cut, BRepAlgoAPI_Fuse
-    from OCP.BRepPrimAPI import BRepPrimAPI_MakeBox, BRepPrimAPI_MakeCylinder
-    from OCP.gp import gp_Ax2, gp_Dir, gp_Pnt
-    
-    def cyl(r, z0, h, x=0.0, y=0.0, d=(0, 0, 1)):
-        return BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(x, y, z0), gp_Dir(*d)), r, h).Shape()
-
-    def boolean(op, a, tools):
-        lst_a, lst_t = _shape_list(), _shape_list()
-        lst_a.Append(a)
-        for t in tools:
-            lst_t.Append(t)
-        op.SetArguments(lst_a)
-        op.SetTools(lst_t)
-        op.Build()
-        if not op.IsDone():
-            raise GearError("step", "brep", "'faceted' for this body", "an OCC boolean failed")
-        return op.Shape()
-
+    from OCP.BRepPrimAPI import BRepPrimAPI_MakeBox
+    from OCP.gp import gp_Pnt
+    cyl = cylinder
     hub_len = float(f.get("hub_length") or 0.0)
+    below = float(f.get("hub_below") or 0.0)
     top = W + hub_len
     margin = 1.0 + 0.1 * top
     if hub_len:
-        shape = boolean(BRepAlgoAPI_Fuse(), shape, [cyl(f["hub_diameter"] / 2, W - 1e-3 * W, hub_len + 1e-3 * W)])
+        shape = boolean("fuse", shape, [cyl(f["hub_diameter"] / 2, W - 1e-3 * W, hub_len + 1e-3 * W)])
+    if below:
+        shape = boolean("fuse", shape, [cyl(f["hub_diameter"] / 2, -below, below + 1e-3 * W)])
     cuts = []
     if f.get("bore"):
-        cuts.append(cyl(f["bore"] / 2, -margin, top + 2 * margin))
+        cuts.append(cyl(f["bore"] / 2, -margin - below, top + below + 2 * margin))
     if f.get("keyway"):
         b, _t2, rk = f["keyway"]
         cuts.append(BRepPrimAPI_MakeBox(gp_Pnt(0, -b / 2, -margin), rk, b, top + 2 * margin).Shape())
@@ -204,15 +217,14 @@ def features(shape, rep, W, tol):
         r_in, r_out, t = f["web"]
         depth = (W - t) / 2
         for z0 in (-margin, W - depth):
-            ring = boolean(BRepAlgoAPI_Cut(), cyl(r_out, z0, depth + margin), [cyl(r_in, z0 - 1, depth + margin + 2)])
-            cuts.append(ring)
+            cuts.append(boolean("cut", cyl(r_out, z0, depth + margin), [cyl(r_in, z0 - 1, depth + margin + 2)]))
     if f.get("lightening_holes"):
         n, d, rh = f["lightening_holes"], f["hole_diameter"], f["hole_circle"]
         for k in range(n):
             a = 2 * math.pi * (k + 0.5) / n
             cuts.append(cyl(d / 2, -margin, W + 2 * margin, rh * math.cos(a), rh * math.sin(a)))
     if cuts:
-        shape = boolean(BRepAlgoAPI_Cut(), shape, cuts)
+        shape = boolean("cut", shape, cuts)
     return shape
 
 
