@@ -221,6 +221,13 @@ def _brep(w: _Writer, name: str, V: np.ndarray, F: np.ndarray) -> int:
 
 def step_text(parts, product: str = "gear") -> str:
     """The STEP file for ``parts`` = [(name, vertices (n,3) mm, faces (m,3))]."""
+    return framed_text(lambda w: [_brep(w, n, V, F) for n, V, F in parts], product, "gear3d faceted B-rep")
+
+
+def framed_text(add_breps, product: str, description: str) -> str:
+    """A whole AP214 file (mm): the product, units and context entities around the solids
+    that ``add_breps(writer)`` appends (it returns their MANIFOLD_SOLID_BREP ids); fixed
+    header timestamp. Shared by this writer and :mod:`gear3d.export.step_direct`."""
     w = _Writer()
     ac = w.add("APPLICATION_CONTEXT('core data for automotive mechanical design processes')")
     w.add(f"APPLICATION_PROTOCOL_DEFINITION('international standard','automotive_design',2000,#{ac})")
@@ -241,12 +248,12 @@ def step_text(parts, product: str = "gear") -> str:
     z = w.add("DIRECTION('',(0.,0.,1.))")
     x = w.add("DIRECTION('',(1.,0.,0.))")
     world = w.add(f"AXIS2_PLACEMENT_3D('',#{o},#{z},#{x})")
-    breps = [_brep(w, n, V, F) for n, V, F in parts]
+    breps = add_breps(w)
     rep = w.add(f"ADVANCED_BREP_SHAPE_REPRESENTATION({_s(product)},(#{world}," +
                 ",".join(f"#{b}" for b in breps) + f"),#{ctx})")
     w.add(f"SHAPE_DEFINITION_REPRESENTATION(#{ps},#{rep})")
     head = ["ISO-10303-21;", "HEADER;",
-            "FILE_DESCRIPTION(('gear3d faceted B-rep'),'2;1');",
+            f"FILE_DESCRIPTION(({_s(description)}),'2;1');",
             f"FILE_NAME({_s(product)},'1970-01-01T00:00:00',('gear3d'),('gear3d'),"
             f"'gear3d {__version__}','gear3d {__version__}','');",
             "FILE_SCHEMA(('AUTOMOTIVE_DESIGN { 1 0 10303 214 1 1 1 1 }'));", "ENDSEC;", "DATA;"]
