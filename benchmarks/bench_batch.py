@@ -303,7 +303,7 @@ def main(argv=None):
                "manifests_identical": all(m == manifests[0] for m in manifests)}
         text = markdown(res)
         print(text)
-        from gear3d.export import atomic_path
+        from gear3d.filesafe import atomic_path
         out_md = Path(a.out)
         out_md.parent.mkdir(parents=True, exist_ok=True)
         with atomic_path(out_md) as p:

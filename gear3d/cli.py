@@ -6,7 +6,7 @@ needs them, so ``gear3d --help`` starts fast.
 
 Exit codes: 0 success, 1 a batch with failed parts, 2 bad input (one line on stderr),
 130 interrupted (SIGINT), 143 terminated (SIGTERM). On SIGINT/SIGTERM every temporary
-file still being written is removed (:data:`gear3d.export.LIVE_TEMPS`), so an
+file still being written is removed (:data:`gear3d.filesafe.LIVE_TEMPS`), so an
 interrupted run leaves neither a partial nor a temporary file.
 """
 from __future__ import annotations
@@ -23,7 +23,7 @@ from .budget import (DEFAULT_MAX_MEMORY, DEFAULT_MAX_SECONDS, HARD_MAX_MEMORY, H
                      fmt_bytes, job, limits, parse_bytes)
 from .cliargs import plain_int, plain_number
 from .errors import GearError, one_line, show
-from .export import remove_live_temps
+from .filesafe import remove_live_temps
 from .progress import Reporter
 
 # one BLAS thread: gear3d's arrays are small, and idle BLAS threads only add CPU time to

@@ -15,7 +15,8 @@ import numpy as np
 
 from .errors import GearError, check_choice
 from . import profile as make
-from .export import is_body, atomic_path, check_path
+from .export import is_body
+from .filesafe import atomic_path, check_path
 from .solids.convert import as_bodies, body_mesh
 
 #: file types of the annotated figures (matplotlib's writers)

@@ -17,7 +17,7 @@ Two layers, both used by the command line:
   a second). A child stuck in C code, which no Python signal handler can interrupt, is
   killed :data:`GRACE_S` seconds after it passed a limit; the supervisor then removes the
   temporary files the child announced (``tmp PATH`` lines on a pipe, see
-  :func:`gear3d.export.file_event`), prints the one line and exits with code 2. SIGINT,
+  :func:`gear3d.filesafe.file_event`), prints the one line and exits with code 2. SIGINT,
   SIGTERM and SIGHUP are passed on to the child (and end it the same way if it does not stop).
 
 Time is CPU time (user + system, all threads): the estimates are CPU seconds measured on
@@ -120,7 +120,7 @@ def guard(max_seconds: float, max_memory: int):
     try:
         yield
     except MemoryError:
-        from .export import remove_live_temps
+        from .filesafe import remove_live_temps
         remove_live_temps()
         raise LimitError("memory", max(_rss_peak(), int(max_memory)), int(max_memory)) from None
     finally:
@@ -165,8 +165,8 @@ def supervise(run, max_seconds: float, max_memory: int) -> int:
     if pid == 0:                                          # the child: do the work
         os.close(rfd)
         os.set_blocking(wfd, False)
-        from . import export
-        export.WATCH_FDS.append(wfd)
+        from . import filesafe
+        filesafe.WATCH_FDS.append(wfd)
         code = 70
         try:
             code = run()

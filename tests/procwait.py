@@ -3,7 +3,7 @@ waits, no polling on timing). Linux only (FIFOs, pidfds: Linux >= 5.3, Python >=
 
 * :class:`FileEvents`: a FIFO named by ``GEAR3D_FILE_EVENTS`` in a child's environment;
   gear3d's atomic writes announce ``tmp PID PATH`` (temporary file created) and
-  ``done PID PATH`` (destination replaced) on it (:func:`gear3d.export.file_event`).
+  ``done PID PATH`` (destination replaced) on it (:func:`gear3d.filesafe.file_event`).
   :meth:`FileEvents.wait` blocks in ``select`` on the FIFO and the child's pidfd until the
   wanted events came, the child exited or the deadline passed.
 * :func:`wait_session_gone`: blocks on pidfds until the given processes and every other

@@ -208,8 +208,9 @@ def test_watchdog_stops_work_past_the_cpu_limit(tmp_path):
 #: a write stuck in C code holding the GIL (no Python signal handler can run) after its
 #: temporary file exists: only the supervisor can end it
 STUCK = ("import gear3d.export as ex\n"
+         "from gear3d.filesafe import atomic_path\n"
          "def stuck(obj, path, **opts):\n"
-         "    with ex.atomic_path(path) as tmp:\n"
+         "    with atomic_path(path) as tmp:\n"
          "        open(tmp, 'w').write('partial')\n"
          "        sum(range(10 ** 13))\n"
          "ex.write = stuck\n"
@@ -230,8 +231,9 @@ def test_supervisor_ends_work_stuck_in_c_code(tmp_path):
 
 def test_watchdog_memory_limit(tmp_path):
     grab = ("import gear3d.export as ex, numpy as np\n"
+            "from gear3d.filesafe import atomic_path\n"
             "def grab(obj, path, **opts):\n"
-            "    with ex.atomic_path(path) as tmp:\n"
+            "    with atomic_path(path) as tmp:\n"
             "        open(tmp, 'w').write('partial')\n"
             "        big = [np.empty(2 ** 27) for _ in range(64)]\n"
             "ex.write = grab\n")

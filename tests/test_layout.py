@@ -315,7 +315,8 @@ LIGHT = {
     "gear3d.costs": "the budget's per-item costs (standard library)",
     "gear3d.profiles": "the family registry (the families load on first use)",
     "gear3d.spec": "GearSpec and gear3d.profile, on top of the registry (bodies load on first use)",
-    "gear3d.export": "the format registry and file safety (the formats load on first use)",
+    "gear3d.export": "the format registry (the formats load on first use)",
+    "gear3d.filesafe": "destination checks and atomic writes (standard library)",
     "gear3d.geometry": "rotations and polygon helpers (numpy)",
     "gear3d.curves": "exact-curve numerics (numpy)",
     "gear3d.tessellate": "tolerance-driven sampling (numpy)",
@@ -590,7 +591,7 @@ FITTED = ("gear3d.model", "gear3d.buildsteps", "gear3d.spec", "gear3d.solids.bod
           "gear3d.analysis.pairs", "gear3d.analysis.rack_mesh", "gear3d.analysis.cutting",
           "gear3d.harmonic.deform", "gear3d.harmonic.synthesis", "gear3d.planetary", "gear3d.jobs.scene",
           "gear3d.jobs.template", "gear3d.jobs.template_values", "gear3d.jobs.template_parts",
-          "gear3d.profiles.triangular", "gear3d.solids.features")
+          "gear3d.profiles.triangular", "gear3d.solids.features", "gear3d.filesafe", "gear3d.export")
 MAX_FILE_LINES, MAX_FUNCTION_LINES, MAX_PARAMETERS = 600, 80, 10
 
 

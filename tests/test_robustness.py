@@ -167,7 +167,7 @@ def test_bad_destinations_refused(argv, param, cwd, capsys):
 
 
 def test_atomic_path_contract(tmp_path):
-    from gear3d.export import LIVE_TEMPS, atomic_path
+    from gear3d.filesafe import LIVE_TEMPS, atomic_path
     (tmp_path / "d").mkdir()
     with pytest.raises(GearError, match="folder"):
         with atomic_path(tmp_path / "d"):
@@ -191,7 +191,7 @@ def test_atomic_path_contract(tmp_path):
 def test_file_events_hook(tmp_path, monkeypatch):
     """GEAR3D_FILE_EVENTS (a test hook): one line when the temporary file exists, one when the
     destination is replaced; nothing when unset, and a missing target is never created."""
-    from gear3d.export import atomic_path
+    from gear3d.filesafe import atomic_path
     log = tmp_path / "events"
     log.write_text("")
     monkeypatch.setenv("GEAR3D_FILE_EVENTS", str(log))

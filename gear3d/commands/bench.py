@@ -14,7 +14,7 @@ import sys
 
 from .. import families
 from ..errors import GearError
-from ..export import check_out_dir
+from ..filesafe import check_out_dir
 
 
 def add_parser(sub):

@@ -16,7 +16,8 @@ from __future__ import annotations
 import sys
 
 from ..errors import GearError
-from ..export import atomic_path, check_output, check_path, write
+from ..export import check_output, write
+from ..filesafe import atomic_path, check_path
 from ..params import BEVEL_PARAMS
 
 

@@ -21,7 +21,7 @@ import time
 
 from ..cliargs import number
 from ..errors import GearError
-from ..export import check_out_dir
+from ..filesafe import check_out_dir
 from ..params import DEFAULT_TOLERANCE, MESH_TOLERANCE
 
 

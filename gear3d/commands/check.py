@@ -22,7 +22,7 @@ from ..cliargs import number, number_or_auto
 from .profile import add_profile_flags, family_params
 from .. import profile
 from ..errors import GearError, check_number
-from ..export import atomic_path, check_path
+from ..filesafe import atomic_path, check_path
 from .crossedflags import add_crossed_flags, refuse_crossed_flags, run_crossed
 
 #: families whose builder takes ``center_distance`` itself (not a pair placement)

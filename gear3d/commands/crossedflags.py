@@ -19,7 +19,7 @@ import sys
 from ..analysis.crossed import crossed_pair, summary
 from ..cliargs import number
 from ..errors import GearError
-from ..export import atomic_path, check_path
+from ..filesafe import atomic_path, check_path
 from ..export.json_format import dumps
 
 #: the flags that only --crossed takes (``dest`` names)

@@ -14,7 +14,8 @@ import sys
 
 from ..cliargs import number
 from ..errors import GearError
-from ..export import atomic_path, check_output, check_path, write
+from ..export import check_output, write
+from ..filesafe import atomic_path, check_path
 
 
 def add_parser(sub):

@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import sys
 
-from ..export import check_path
+from ..filesafe import check_path
 
 
 def check_figure_arg(args):

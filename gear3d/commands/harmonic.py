@@ -17,7 +17,8 @@ import sys
 
 from ..cliargs import number
 from ..errors import GearError
-from ..export import atomic_path, check_out_dir, check_path, make_out_dir, remove_dirs, write
+from ..export import write
+from ..filesafe import atomic_path, check_out_dir, check_path, make_out_dir, remove_dirs
 from ..params import MESH_TOLERANCE
 
 #: mm: default tolerance of ``build`` (mesh outputs, printing) and of ``check``

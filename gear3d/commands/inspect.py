@@ -16,7 +16,7 @@ import tempfile
 from .profile import DeprecatedFlag, add_profile_flags, family_params, print_notes
 from .. import profile
 from ..errors import GearError
-from ..export import LIVE_TEMPS
+from ..filesafe import LIVE_TEMPS
 
 
 def add_parser(sub):
@@ -145,7 +145,7 @@ def _check_path(path: str, param: str, exts) -> None:
 def _atomic(path: str, param: str):
     """A temporary file next to ``path`` (same extension) that replaces it when the block
     completes and is removed otherwise: no partial or temporary file is left. While it
-    lives it is listed where the CLI's signal handler looks (``gear3d.export.LIVE_TEMPS``)."""
+    lives it is listed where the CLI's signal handler looks (``gear3d.filesafe.LIVE_TEMPS``)."""
     full = os.path.abspath(path)
     try:
         fd, tmp = tempfile.mkstemp(prefix="." + os.path.basename(full)[:100] + ".",

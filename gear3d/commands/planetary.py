@@ -25,7 +25,8 @@ import os
 import sys
 
 from ..errors import GearError
-from ..export import check_out_dir, check_path, make_out_dir, remove_dirs, write
+from ..export import write
+from ..filesafe import check_out_dir, check_path, make_out_dir, remove_dirs
 from ..params import BODY, DEFAULT_TOLERANCE, MESH_TOLERANCE, TOLERANCE, check_family
 
 #: family flags a set does not take (hidden from --help, refused by the library)
@@ -126,7 +127,7 @@ def _outputs(args):
 
 
 def _check_new(path, param, exts, note=""):
-    """A destination checked before any work (:func:`gear3d.export.check_path`); one whose
+    """A destination checked before any work (:func:`gear3d.filesafe.check_path`); one whose
     folder does not exist yet is checked for its extension and for a folder that can be made."""
     if not isinstance(path, str) or not path or "\x00" in path:
         raise GearError(param, path, "a file path (non-empty text)")

@@ -10,7 +10,8 @@ import sys
 
 from ..errors import GearError
 from ..cliargs import number
-from ..export import atomic_path, check_output, check_path, write
+from ..export import check_output, write
+from ..filesafe import atomic_path, check_path
 from ..params import BODY
 
 

@@ -20,7 +20,8 @@ from __future__ import annotations
 import sys
 
 from ..errors import GearError
-from ..export import atomic_path, check_path, write
+from ..export import write
+from ..filesafe import atomic_path, check_path
 from ..params import WORM_PARAMS
 
 
@@ -105,13 +106,6 @@ def _check_outputs(args):
         raise GearError("output", None, "at least one of -o FILE.stl|.3mf|.dxf, --json, --png, --check, --contact-png")
     if args.output is not None:
         check_path(args.output, "output", exts=(".stl", ".3mf", ".dxf", ".step", ".stp"))
-        if _brep(args):
-            wheel = ("wheel_bore", "hub_diameter", "wheel_keyway", "web_thickness", "rim_diameter")
-            feats = [f for f in (wheel if args.part != "worm" else ()) + (("shaft_diameter",) if args.part != "wheel"
-                                                                          else ()) if getattr(args, f, None)]
-            if feats:
-                raise GearError("step", "brep", "faceted with --" + feats[0].replace("_", "-"),
-                                "the wheel's features and the worm's shaft are not made exact yet")
         if args.output.lower().endswith(".dxf") and args.part != "wheel":
             raise GearError("output", args.output, "a .stl or .3mf file for --part " + args.part,
                             "the DXF is the wheel's mid-plane section: --part wheel")

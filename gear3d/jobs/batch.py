@@ -45,7 +45,8 @@ from .graph import Graph, canonical
 from .scene import part_targets, profile_stage, body_stage, sha256, write_json
 from .specs import Job, Library, LibraryPart
 from .template import MESH_KINDS
-from ..export import FORMATS, LIVE_TEMPS, atomic_path, check_out_dir, file_event, make_out_dir
+from ..export import FORMATS
+from ..filesafe import LIVE_TEMPS, atomic_path, check_out_dir, file_event, make_out_dir
 from ..profiles import FAMILY_MODULES
 
 RECORDS = ".records"
@@ -121,8 +122,8 @@ def write_record(out_dir, name: str, rec: dict) -> dict:
 
     Atomic as every file here (a temporary file renamed into place; a kill leaves at most
     ``.NAME.json.PID.tmp``, removed by the next run; both announced as file events, see
-    :func:`gear3d.export.file_event`), but without the destination probe of
-    :func:`gear3d.export.atomic_path`: the folder was checked when the batch started, and a
+    :func:`gear3d.filesafe.file_event`), but without the destination probe of
+    :func:`gear3d.filesafe.atomic_path`: the folder was checked when the batch started, and a
     probe costs two more file creations a part."""
     clean = _jsonable(rec)
     text = json.dumps(clean, indent=1, allow_nan=False) + "\n"

@@ -19,7 +19,7 @@ from __future__ import annotations
 import html
 import os
 
-from ..export import atomic_path
+from ..filesafe import atomic_path
 from .graph import first_upstream
 
 PREVIEWS = "previews"

@@ -30,7 +30,8 @@ from .template_parts import SET_KINDS
 from .. import profile
 from ..spec import GearSpec
 from ..budget import limits
-from ..export import atomic_path, check_out_dir, make_out_dir, remove_dirs, write
+from ..export import write
+from ..filesafe import atomic_path, check_out_dir, make_out_dir, remove_dirs
 
 EXT = {k: "." + k for k in ("dxf", "svg", "png", "json", "stl", "3mf", "step", "obj", "ply", "vtu")}
 

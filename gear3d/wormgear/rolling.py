@@ -381,7 +381,7 @@ def pattern_figure(d, rep: dict, path) -> str:
     import matplotlib
     matplotlib.use("Agg", force=False)
     import matplotlib.pyplot as plt
-    from ..export import atomic_path
+    from ..filesafe import atomic_path
     matplotlib.rcParams["svg.hashsalt"] = "gear3d"
     fig, axes = plt.subplots(1, 2, figsize=(11, 4.6), sharey=True)
     n = rep["positions"]
