@@ -179,3 +179,195 @@ class PairReport(Report):
     #: once counts twice), in pitches: the mean number of contacts on the driving flanks
     mean_contact_points: float | None = None
     extra: dict = field(default_factory=dict)
+
+
+# ----------------------------------------------------------------------------- racks
+
+@dataclass(frozen=True, eq=False, repr=False)
+class RackReport(Report):
+    """What :func:`gear3d.rack` built and measured on a rack outline (mm, mm²); the family's
+    own facts (``pressure_angle_deg``, ``amplitude``, ``rolling_radius``, ...) in ``extra``.
+
+    >>> import gear3d
+    >>> r = gear3d.rack("involute", teeth=3, module=1.0, tolerance=0.01).report
+    >>> type(r).__name__, r["teeth"], list(r.to_dict())[:3]
+    ('RackReport', 3, ['family', 'rack', 'teeth'])
+    """
+    family: str
+    rack: bool
+    teeth: int
+    module: float
+    pitch: float
+    #: measured on the polygon, and the thickness the tool was drawn for
+    tooth_thickness_at_pitch_line: float
+    nominal_tooth_thickness: float
+    space_at_pitch_line: float
+    addendum: float
+    dedendum: float
+    tip_y: float
+    root_y: float
+    back_height: float
+    back_y: float
+    length: float
+    x_range: list
+    height: float
+    area: float
+    #: measured distance of the outline from the exact rack, and the tolerance asked for
+    max_error: float
+    tolerance: float
+    vertices: int
+    vertices_per_tooth: int
+    pinion_phase_x: float
+    params: dict
+    extra: dict = field(default_factory=dict)
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class RackBodyReport(Report):
+    """What :func:`gear3d.rack_body` built and measured (mm, mm², mm³); ``profile`` is the
+    outline's :class:`RackReport`."""
+    kind: str
+    rack: bool
+    family: str
+    teeth: int
+    module: float
+    width: float
+    helix_angle_deg: float
+    hand: str
+    #: x shift of a layer per mm of height (tan of the helix angle, signed by the hand)
+    shift_per_mm: float
+    triangles: int
+    vertices: int
+    max_error: float
+    tolerance: float
+    measured_side_points: int
+    volume: float
+    surface_area: float
+    genus: int
+    profile: RackReport
+    extra: dict = field(default_factory=dict)
+
+
+# ------------------------------------------------------------------- strain-wave parts
+# Each part's own facts, then what its solid measured (``volume`` mm³, ``genus``,
+# ``triangles``: filled in by :class:`gear3d.harmonic.parts.Part` when left None).
+
+@dataclass(frozen=True, eq=False, repr=False)
+class FlexTubeReport(Report):
+    """A double drive's flexspline tube (:func:`gear3d.harmonic.parts.flexspline_tube`), mm."""
+    part: str
+    kind: str
+    tooth: str
+    tolerance: float
+    outer_diameter: float
+    inner_diameter: float
+    wall: float
+    length: float
+    face_width: float
+    outer_teeth: int
+    inner_teeth: int
+    profile_max_error: float
+    #: the volume the profiles' areas give (mm³), an independent check of the solid's
+    analytic_volume: float
+    volume: float | None = None
+    genus: int | None = None
+    triangles: int | None = None
+    extra: dict = field(default_factory=dict)
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class FlexCupReport(Report):
+    """A single drive's cup flexspline (:func:`gear3d.harmonic.parts.flexspline_cup`), mm."""
+    part: str
+    kind: str
+    tooth: str
+    tolerance: float
+    outer_diameter: float
+    inner_diameter: float
+    wall: float
+    length: float
+    face_width: float
+    teeth: int
+    diaphragm_thickness: float
+    hub_diameter: float
+    bolt_count: int
+    bolt_diameter: float
+    bolt_circle_diameter: float
+    profile_max_error: float
+    volume: float | None = None
+    genus: int | None = None
+    triangles: int | None = None
+    extra: dict = field(default_factory=dict)
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class RigidRingReport(Report):
+    """A rigid ring, fixed or circular (:func:`gear3d.harmonic.parts.circular_spline`), mm."""
+    part: str
+    tooth: str
+    tolerance: float
+    teeth: int
+    face_width: float
+    length: float
+    outer_diameter: float
+    root_diameter: float
+    bolt_count: int
+    bolt_diameter: float
+    profile_max_error: float
+    volume: float | None = None
+    genus: int | None = None
+    triangles: int | None = None
+    extra: dict = field(default_factory=dict)
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class MobileWheelReport(Report):
+    """A double drive's mobile wheel (:func:`gear3d.harmonic.parts.mobile_wheel`), mm."""
+    part: str
+    tooth: str
+    tolerance: float
+    teeth: int
+    length: float
+    bore_diameter: float
+    bolt_count: int
+    bolt_diameter: float
+    profile_max_error: float
+    volume: float | None = None
+    genus: int | None = None
+    triangles: int | None = None
+    extra: dict = field(default_factory=dict)
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class CamReport(Report):
+    """The wave generator's cam (:func:`gear3d.harmonic.parts.wave_generator`), mm."""
+    part: str
+    shape: str
+    major_semi_axis: float
+    minor_semi_axis: float
+    nominal_minor_semi_axis: float
+    w0: float
+    length: float
+    bore_diameter: float
+    tolerance: float
+    #: measured distance of the cam's polygon from its exact curve
+    max_error: float
+    volume: float | None = None
+    genus: int | None = None
+    triangles: int | None = None
+    extra: dict = field(default_factory=dict)
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class BearingRingReport(Report):
+    """The flexible bearing ring around the cam (:func:`gear3d.harmonic.parts.wave_generator`), mm."""
+    part: str
+    inner_radius: float
+    outer_radius: float
+    thickness: float
+    length: float
+    tolerance: float
+    volume: float | None = None
+    genus: int | None = None
+    triangles: int | None = None
+    extra: dict = field(default_factory=dict)

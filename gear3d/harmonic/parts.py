@@ -13,6 +13,7 @@ face width b at z in [0, b] and inner teeth z'2 over b at z in [l - b, l].
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 
@@ -21,6 +22,8 @@ from ..errors import GearError, check_choice, check_number
 from .synthesis import HarmonicDesign
 from .. import profile
 from ..params import DEFAULT_TOLERANCE, MIN_TOLERANCE
+from ..reports import (BearingRingReport, CamReport, FlexCupReport, FlexTubeReport, MobileWheelReport, Report,
+                       RigidRingReport)
 from ..solids.solid import Solid
 from ..tessellate import tessellate
 
@@ -29,16 +32,23 @@ TOOTH_FAMILIES = ("triangular", "sine", "involute")
 
 class Part(Solid):
     """A named solid (a :class:`gear3d.solids.solid.Solid`): ``manifold`` (local frame, mm),
-    ``transform`` (4x4 placement), ``report`` (dict: volume mm^3, genus, triangles) and the
+    ``transform`` (4x4 placement), ``report`` (a typed report of :mod:`gear3d.reports`, or a
+    dict, with the solid's volume mm^3, genus and triangles) and the
     base's cached ``arrays()`` / ``mesh``."""
 
     def __init__(self, name, manifold, report=None, transform=None):
-        super().__init__(name, dict(report or {}), transform, manifold=manifold)
         if manifold.is_empty():
             raise GearError("part", name, "a non-empty solid", "the boolean result is empty")
-        self.report.setdefault("volume", float(manifold.volume()))
-        self.report.setdefault("genus", int(manifold.genus()))
-        self.report.setdefault("triangles", int(manifold.num_tri()))
+        if isinstance(report, Report):          # a typed part report: its solid's measures
+            if report.volume is None:
+                report = replace(report, volume=float(manifold.volume()), genus=int(manifold.genus()),
+                                 triangles=int(manifold.num_tri()))
+        else:
+            report = dict(report or {})
+            report.setdefault("volume", float(manifold.volume()))
+            report.setdefault("genus", int(manifold.genus()))
+            report.setdefault("triangles", int(manifold.num_tri()))
+        super().__init__(name, report, transform, manifold=manifold)
 
     def placed(self, transform=None, manifold=None, name=None) -> "Part":
         """A copy with another placement (and optionally another solid or name)."""
@@ -136,12 +146,13 @@ def flexspline_tube(design: HarmonicDesign, *, tooth="triangular", tolerance=DEF
     tube = _cs([circle_loop(ro, tol), circle_loop(ri, tol, ccw=False)])
     band_in = _cs(inner.loops)
     solid = _union([_prism(band_out, 0.0, b), _prism(tube, b, l - b), _prism(band_in, l - b, l)])
-    rep = {"part": "flexspline", "kind": "double", "tooth": tooth, "tolerance": tol,
-           "outer_diameter": 2 * ro, "inner_diameter": 2 * ri, "wall": ro - ri, "length": l,
-           "face_width": b, "outer_teeth": outer.teeth, "inner_teeth": inner.teeth,
-           "profile_max_error": max(outer.report["max_error"], inner.report["max_error"]),
-           "analytic_volume": b * (outer.area - math.pi * ri * ri) + (l - 2 * b) * math.pi * (ro * ro - ri * ri)
-           + b * inner.area}
+    rep = FlexTubeReport(
+        part="flexspline", kind="double", tooth=tooth, tolerance=tol,
+        outer_diameter=2 * ro, inner_diameter=2 * ri, wall=ro - ri, length=l,
+        face_width=b, outer_teeth=outer.teeth, inner_teeth=inner.teeth,
+        profile_max_error=max(outer.report["max_error"], inner.report["max_error"]),
+        analytic_volume=b * (outer.area - math.pi * ri * ri) + (l - 2 * b) * math.pi * (ro * ro - ri * ri)
+        + b * inner.area)
     return Part("flexspline", solid, rep)
 
 
@@ -178,11 +189,12 @@ def flexspline_cup(design: HarmonicDesign, *, tooth="triangular", tolerance=DEFA
     if holes is not None:
         bottom = bottom - holes
     solid = _union([_prism(bottom, 0.0, t), _prism(tube, t, l - b), _prism(_cs(prof.loops) - bore, l - b, l)])
-    rep = {"part": "flexspline", "kind": "cup", "tooth": tooth, "tolerance": tol,
-           "outer_diameter": 2 * ro, "inner_diameter": di, "wall": ro - ri, "length": l,
-           "face_width": b, "teeth": prof.teeth, "diaphragm_thickness": t, "hub_diameter": hub,
-           "bolt_count": nb, "bolt_diameter": bd, "bolt_circle_diameter": bc,
-           "profile_max_error": prof.report["max_error"]}
+    rep = FlexCupReport(
+        part="flexspline", kind="cup", tooth=tooth, tolerance=tol,
+        outer_diameter=2 * ro, inner_diameter=di, wall=ro - ri, length=l,
+        face_width=b, teeth=prof.teeth, diaphragm_thickness=t, hub_diameter=hub,
+        bolt_count=nb, bolt_diameter=bd, bolt_circle_diameter=bc,
+        profile_max_error=prof.report["max_error"])
     return Part("flexspline", solid, rep)
 
 
@@ -214,9 +226,9 @@ def circular_spline(design: HarmonicDesign, role=None, *, tooth="triangular", to
     bodies = [_prism(teeth, 0.0, b)]
     if L > b:
         bodies.append(_prism(flange, b, L))
-    rep = {"part": role, "tooth": tooth, "tolerance": tol, "teeth": w.teeth, "face_width": b,
-           "length": L, "outer_diameter": 2 * r_out, "root_diameter": 2 * r_root, "bolt_count": nb,
-           "bolt_diameter": bd, "profile_max_error": prof.report["max_error"]}
+    rep = RigidRingReport(part=role, tooth=tooth, tolerance=tol, teeth=w.teeth, face_width=b,
+                          length=L, outer_diameter=2 * r_out, root_diameter=2 * r_root, bolt_count=nb,
+                          bolt_diameter=bd, profile_max_error=prof.report["max_error"])
     return Part(role, _union(bodies), rep)
 
 
@@ -243,9 +255,9 @@ def mobile_wheel(design: HarmonicDesign, *, tooth="triangular", tolerance=DEFAUL
     holes = _bolt_holes(nb, bd, bore + web, tol, phase=math.pi / max(nb, 1))
     if holes is not None:
         cs = cs - holes
-    rep = {"part": "mobile", "tooth": tooth, "tolerance": tol, "teeth": w.teeth, "length": w.length,
-           "bore_diameter": bore, "bolt_count": nb, "bolt_diameter": bd,
-           "profile_max_error": prof.report["max_error"]}
+    rep = MobileWheelReport(part="mobile", tooth=tooth, tolerance=tol, teeth=w.teeth, length=w.length,
+                            bore_diameter=bore, bolt_count=nb, bolt_diameter=bd,
+                            profile_max_error=prof.report["max_error"])
     return Part("mobile", _prism(cs, 0.0, w.length), rep)
 
 
@@ -310,15 +322,15 @@ def wave_generator(design: HarmonicDesign, *, tolerance=DEFAULT_TOLERANCE, w0=No
     if bore > 0:
         cs = cs - _disc(bore / 2, tol)
     cam = Part("wave_generator", _prism(cs, 0.0, L),
-               {"part": "wave_generator", "shape": shape, "major_semi_axis": a, "minor_semi_axis": b,
-                "nominal_minor_semi_axis": rc - w0, "w0": w0, "length": L, "bore_diameter": bore,
-                "tolerance": tol, "max_error": tess.max_error})
+               CamReport(part="wave_generator", shape=shape, major_semi_axis=a, minor_semi_axis=b,
+                         nominal_minor_semi_axis=rc - w0, w0=w0, length=L, bore_diameter=bore,
+                         tolerance=tol, max_error=tess.max_error))
     ring = None
     if tb > 0:
         ring_cs = _cs([circle_loop(ri, tol), circle_loop(rc, tol, ccw=False)])
         ring = Part("bearing_ring", _prism(ring_cs, 0.0, L),
-                    {"part": "bearing_ring", "inner_radius": rc, "outer_radius": ri,
-                     "thickness": tb, "length": L, "tolerance": tol})
+                    BearingRingReport(part="bearing_ring", inner_radius=rc, outer_radius=ri,
+                                      thickness=tb, length=L, tolerance=tol))
     return cam, ring
 
 
