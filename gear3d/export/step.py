@@ -267,10 +267,15 @@ STEP_KINDS = ("faceted", "brep")
 
 def write(obj, path, step: str = "faceted", **opts):
     """Write ``obj`` as STEP: ``step="faceted"`` (default, planar facets) or ``step="brep"``
-    (exact B-spline flanks; needs ``pip install 'gear3d[cad]'``, else GearError naming
-    ``step``)."""
+    (exact B-spline flanks: plain gear bodies by :mod:`gear3d.export.step_direct`, every
+    other body through OpenCascade, which needs ``pip install 'gear3d[cad]'``, else
+    GearError naming ``step``)."""
     check_choice("step", step, STEP_KINDS)
     if step == "brep":
+        from . import step_direct          # plain gear bodies: written without OpenCascade
+        info = step_direct.write(obj, path, **opts)
+        if info is not None:
+            return info
         from . import step_brep
         step_brep.require_occ()
         return step_brep.write(obj, path, **opts)

@@ -1,0 +1,177 @@
+"""Topology and STEP entities of the direct B-rep writer (:mod:`gear3d.export.step_direct`).
+
+A :class:`Shell` collects vertices, edges and faces with numpy geometry (mm), checks that
+it closes (every edge used exactly twice, once in each direction; every loop chains end
+to start), and writes itself as AP214 entities: ``MANIFOLD_SOLID_BREP`` /
+``CLOSED_SHELL`` / ``ADVANCED_FACE`` on ``B_SPLINE_SURFACE_WITH_KNOTS``, ``PLANE`` or
+``CYLINDRICAL_SURFACE``, bounded by ``EDGE_LOOP``\\ s of ``ORIENTED_EDGE``\\ s over shared
+``EDGE_CURVE``\\ s (``B_SPLINE_CURVE_WITH_KNOTS``, ``LINE``, ``CIRCLE``). Equal points are
+written once. Floats are written with ``repr`` (shortest round trip), so the file holds
+exactly the numbers the writer measured.
+
+Conventions: a face's loops are listed outer first; each loop is a list of
+``(edge id, forward)``, traversed with the face on the left seen from the side its normal
+points to (the surface normal, reversed when ``same_sense`` is False). Circles lie in
+planes z = const about the z axis, start and end at (r, 0, z) and run counter-clockwise
+seen from +z; a cylinder face's loop uses the seam line at angle 0 both ways.
+
+Example::
+
+    >>> import numpy as np
+    >>> from gear3d.export.step_direct_text import Shell
+    >>> s = Shell()
+    >>> v = s.vertex(np.array([1.0, 0.0, 0.0]))
+    >>> e = s.edge(v, v, ("circle", 0.0, 1.0))
+    >>> s.edges[e][2][0]
+    'circle'
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from ..errors import GearError
+from .step import _r, _s
+
+
+class Shell:
+    """Vertices (points (3,) mm), edges (start vertex, end vertex, curve) and faces
+    (surface, loops, same_sense) of one closed shell. Curves: ``("bspline", poles (n,3),
+    knots (full vector), degree)``, ``("line",)`` (straight from start to end),
+    ``("circle", z, r)``. Surfaces: ``("bspline", net (nu,nv,3), u knots, v knots, u degree,
+    v degree)``, ``("plane", z, normal sign ±1)``, ``("cylinder", r)``."""
+
+    def __init__(self):
+        self.points = []
+        self.edges = []
+        self.faces = []
+
+    def vertex(self, p) -> int:
+        self.points.append(np.asarray(p, float))
+        return len(self.points) - 1
+
+    def edge(self, v0: int, v1: int, curve) -> int:
+        self.edges.append((v0, v1, curve))
+        return len(self.edges) - 1
+
+    def face(self, surface, loops, same_sense: bool = True) -> int:
+        self.faces.append((surface, [list(lp) for lp in loops], bool(same_sense)))
+        return len(self.faces) - 1
+
+    def check(self) -> dict:
+        """Raise GearError unless the shell closes: every edge used exactly once forward and
+        once backward, every loop chained end to start, every curve ending on its vertices.
+        Returns {faces, edges, vertices, euler}: euler = V - E + F - (loops - F)."""
+        use = np.zeros((len(self.edges), 2), int)
+        nloops = 0
+        for _surf, loops, _same in self.faces:
+            for lp in loops:
+                nloops += 1
+                ends = [self._ends(e, fwd) for e, fwd in lp]
+                for (_a, b), (c, _d) in zip(ends, ends[1:] + ends[:1]):
+                    if b != c:
+                        raise GearError("step", "brep", "'faceted' for this body",
+                                        "a face loop of the direct B-rep does not close")
+                for e, fwd in lp:
+                    use[e, 0 if fwd else 1] += 1
+        if not (use == 1).all():
+            bad = int((use != 1).any(axis=1).sum())
+            raise GearError("step", "brep", "'faceted' for this body",
+                            f"{bad} edges of the direct B-rep are not shared by two faces in opposite senses")
+        for v0, v1, curve in self.edges:
+            if curve[0] == "bspline":
+                P = curve[1]
+                if not (np.array_equal(P[0], self.points[v0]) and np.array_equal(P[-1], self.points[v1])):
+                    raise GearError("step", "brep", "'faceted' for this body",
+                                    "a B-spline edge does not end on its vertices")
+        F, E, V = len(self.faces), len(self.edges), len(self.points)
+        return {"faces": F, "edges": E, "vertices": V, "euler": V - E + F - (nloops - F)}
+
+    def _ends(self, e: int, fwd: bool):
+        v0, v1, _ = self.edges[e]
+        return (v0, v1) if fwd else (v1, v0)
+
+
+def knots_mults(t):
+    """Full knot vector -> (distinct knots, multiplicities), exact float equality."""
+    u, m = np.unique(np.asarray(t, float), return_counts=True)
+    return u, m
+
+
+class _Entities:
+    """Writes a :class:`Shell`'s entities through a :class:`gear3d.export.step._Writer`,
+    each point once."""
+
+    def __init__(self, w):
+        self.w = w
+        self.pts = {}
+        self.dirs = {}
+
+    def point(self, p) -> int:
+        key = (float(p[0]), float(p[1]), float(p[2]))
+        i = self.pts.get(key)
+        if i is None:
+            i = self.pts[key] = self.w.add(f"CARTESIAN_POINT('',({_r(key[0])},{_r(key[1])},{_r(key[2])}))")
+        return i
+
+    def direction(self, d) -> int:
+        key = tuple(float(x) for x in d)
+        i = self.dirs.get(key)
+        if i is None:
+            i = self.dirs[key] = self.w.add("DIRECTION('',(" + ",".join(_r(x) for x in key) + "))")
+        return i
+
+    def axis(self, z: float, nz: float = 1.0) -> int:
+        return self.w.add(f"AXIS2_PLACEMENT_3D('',#{self.point((0.0, 0.0, z))},#{self.direction((0.0, 0.0, nz))},"
+                          f"#{self.direction((1.0, 0.0, 0.0))})")
+
+    def curve(self, curve, p0, p1) -> int:
+        kind = curve[0]
+        if kind == "line":
+            d = np.asarray(p1, float) - np.asarray(p0, float)
+            L = float(np.sqrt(d @ d))
+            ve = self.w.add(f"VECTOR('',#{self.direction(d / L)},{_r(L)})")
+            return self.w.add(f"LINE('',#{self.point(p0)},#{ve})")
+        if kind == "circle":
+            return self.w.add(f"CIRCLE('',#{self.axis(curve[1])},{_r(curve[2])})")
+        _, P, t, k = curve
+        u, m = knots_mults(t)
+        poles = ",".join(f"#{self.point(p)}" for p in P)
+        return self.w.add(f"B_SPLINE_CURVE_WITH_KNOTS('',{k},({poles}),.UNSPECIFIED.,.F.,.F.,"
+                          f"({','.join(str(int(x)) for x in m)}),({','.join(_r(x) for x in u)}),.UNSPECIFIED.)")
+
+    def surface(self, surf) -> int:
+        kind = surf[0]
+        if kind == "plane":
+            return self.w.add(f"PLANE('',#{self.axis(surf[1], surf[2])})")
+        if kind == "cylinder":
+            return self.w.add(f"CYLINDRICAL_SURFACE('',#{self.axis(0.0)},{_r(surf[1])})")
+        _, net, tu, tv, ku, kv = surf
+        uu, mu = knots_mults(tu)
+        uv, mv = knots_mults(tv)
+        rows = ",".join("(" + ",".join(f"#{self.point(p)}" for p in row) + ")" for row in net)
+        return self.w.add(f"B_SPLINE_SURFACE_WITH_KNOTS('',{ku},{kv},({rows}),.UNSPECIFIED.,.F.,.F.,.F.,"
+                          f"({','.join(str(int(x)) for x in mu)}),({','.join(str(int(x)) for x in mv)}),"
+                          f"({','.join(_r(x) for x in uu)}),({','.join(_r(x) for x in uv)}),.UNSPECIFIED.)")
+
+
+def write_shell(w, shell: Shell, name: str) -> int:
+    """Append ``shell``'s entities to writer ``w`` (:class:`gear3d.export.step._Writer`);
+    return the MANIFOLD_SOLID_BREP's id."""
+    en = _Entities(w)
+    vx = [w.add(f"VERTEX_POINT('',#{en.point(p)})") for p in shell.points]
+    ed = []
+    for v0, v1, curve in shell.edges:
+        c = en.curve(curve, shell.points[v0], shell.points[v1])
+        ed.append(w.add(f"EDGE_CURVE('',#{vx[v0]},#{vx[v1]},#{c},.T.)"))
+    faces = []
+    for surf, loops, same in shell.faces:
+        bounds = []
+        for k, lp in enumerate(loops):
+            oes = [w.add(f"ORIENTED_EDGE('',*,*,#{ed[e]},{'.T.' if fwd else '.F.'})") for e, fwd in lp]
+            loop = w.add("EDGE_LOOP('',(" + ",".join(f"#{o}" for o in oes) + "))")
+            bounds.append(w.add(f"{'FACE_OUTER_BOUND' if k == 0 else 'FACE_BOUND'}('',#{loop},.T.)"))
+        sf = en.surface(surf)
+        faces.append(w.add("ADVANCED_FACE('',(" + ",".join(f"#{b}" for b in bounds) + f"),#{sf},"
+                           f"{'.T.' if same else '.F.'})"))
+    sh = w.add("CLOSED_SHELL('',(" + ",".join(f"#{f}" for f in faces) + "))")
+    return w.add(f"MANIFOLD_SOLID_BREP({_s(name)},#{sh})")
