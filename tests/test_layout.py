@@ -306,6 +306,12 @@ LIGHT = {
     "gear3d": "the package root: the exception types and the family registry",
     "gear3d.errors": "the exception types and their one-line messages (standard library)",
     "gear3d.params": "the parameter tables (standard library)",
+    "gear3d.params.param": "the Param type (standard library)",
+    "gear3d.params.tolerance": "the tolerance facts (plain numbers)",
+    "gear3d.params.families": "the family tables (standard library)",
+    "gear3d.params.bodies": "the body and pair tables (standard library)",
+    "gear3d.params.sets": "the worm and bevel set tables (standard library)",
+    "gear3d.params.markdown": "the parameter reference page (standard library)",
     "gear3d.reports": "typed report values (dataclasses)",
     "gear3d.conventions": "normal / transverse / inch size conversions (math)",
     "gear3d.placement": "centre distances and mesh phases (math)",
@@ -591,7 +597,9 @@ FITTED = ("gear3d.model", "gear3d.buildsteps", "gear3d.spec", "gear3d.solids.bod
           "gear3d.analysis.pairs", "gear3d.analysis.rack_mesh", "gear3d.analysis.cutting",
           "gear3d.harmonic.deform", "gear3d.harmonic.synthesis", "gear3d.planetary", "gear3d.jobs.scene",
           "gear3d.jobs.template", "gear3d.jobs.template_values", "gear3d.jobs.template_parts",
-          "gear3d.profiles.triangular", "gear3d.solids.features", "gear3d.filesafe", "gear3d.export")
+          "gear3d.profiles.triangular", "gear3d.solids.features", "gear3d.filesafe", "gear3d.export",
+          "gear3d.params", "gear3d.params.param", "gear3d.params.tolerance", "gear3d.params.families",
+          "gear3d.params.bodies", "gear3d.params.sets", "gear3d.params.markdown")
 MAX_FILE_LINES, MAX_FUNCTION_LINES, MAX_PARAMETERS = 600, 80, 10
 
 

@@ -471,7 +471,7 @@ def markdown() -> str:
                 *[ln[4:] if ln.startswith("    ") else ln for ln in code.strip("\n").split("\n")], "```", ""]
     body = [p for p in BODY_PARAMS if p.name not in ("tolerance", "name")]
     lines = ["# Templates: the TOML schema", "",
-             "Generated from `gear3d/jobs/template.py` and `gear3d/params.py` by",
+             "Generated from `gear3d/jobs/template.py` and `gear3d/params/` by",
              "`python -m gear3d.docsgen --templates > docs/templates.md`; `tests/test_params.py`",
              "checks that this page is up to date. Do not edit by hand.", "",
              "A template is data (nothing in it is evaluated). Every problem (a wrong type, an unknown",

@@ -1,0 +1,95 @@
+"""The keyword tables of the worm and bevel sets (``gear3d.worm``, ``gear3d.bevel``; their
+CLI flags, template keys and web forms)."""
+from __future__ import annotations
+
+from .param import declare as _p
+from .tolerance import MESH_TOLERANCE
+
+#: ``gear3d.worm(...)`` keywords (:mod:`gear3d.wormgear`; ranges checked again by its design)
+WORM_PARAMS: tuple = (
+    _p("module", float, "mm", 0.05, 100, default=2.0, help="axial module m_x (= the wheel's transverse module)"),
+    _p("starts", int, "", 1, 8, default=1, help="worm starts z1"),
+    _p("wheel_teeth", int, "", 8, 1000, default=30, help="wheel teeth z2"),
+    _p("diameter_quotient", float, "", 5, 40, help="diameter quotient q = d1/m (default 10)",
+       excludes=("worm_pitch_diameter",)),
+    _p("worm_pitch_diameter", float, "mm", 0, None, lo_open=True, help="worm pitch diameter d1",
+       limits="5 to 40 modules", excludes=("diameter_quotient",)),
+    _p("normal_pressure_angle_deg", float, "deg", 5, 35,
+       help="normal pressure angle (default 20); tan a_n = tan a_x cos gamma", excludes=("axial_pressure_angle_deg",)),
+    _p("axial_pressure_angle_deg", float, "deg", 5, 35, help="axial pressure angle",
+       excludes=("normal_pressure_angle_deg",)),
+    _p("worm_type", str, default="ZA", choices=("ZA", "ZN", "ZI", "ZK"),
+       help="ZA (straight axial section), ZN (straight normal section), ZI (involute helicoid), "
+            "ZK (ground by a biconical disc)"),
+    _p("disc_radius", float, "mm", 0, 5000, lo_open=True,
+       help="ZK only: the grinding disc's outside radius (default max(125, 25 m))",
+       limits="at least 5 thread depths; ZK only"),
+    _p("backlash", float, "mm", 0, None, default=0.0,
+       help="normal backlash at the pitch point: the worm's thread is thinned, the wheel stays the hob's envelope",
+       limits="at most module/4"),
+    _p("hand", str, default="right", choices=("right", "left"), help="hand of worm and wheel"),
+    _p("addendum_coeff", float, "x m", 0.5, 1.5, default=1.0, help="worm addendum and wheel throat addendum"),
+    _p("dedendum_coeff", float, "x m", 0.5, 2.0, default=1.2, help="worm and wheel dedendum (clearance: "
+       "dedendum - addendum)", limits="at least addendum_coeff"),
+    _p("shift_coeff", float, "x m", -1, 1, default=0.0, help="wheel profile shift x: a = (d1 + d2)/2 + x m"),
+    _p("worm_length", float, "mm", 0, None, lo_open=True, help="worm thread length (default (11 + 0.06 z2) m)",
+       limits="2 pi m to 200 leads"),
+    _p("face_width", float, "mm", 0, None, lo_open=True, help="wheel face width (default 0.75 d_a1)",
+       limits="at most what the worm cuts"),
+    _p("throat", bool, default=True, help="throated (enveloping) wheel blank: a torus about the worm axis"),
+    _p("friction", float, "", 0, 1, default=0.05, help="friction coefficient for the self-locking flag tan gamma < mu"),
+    _p("worm_bore", float, "mm", 0, None, lo_open=True, help="worm bore diameter"),
+    _p("wheel_bore", float, "mm", 0, None, lo_open=True, help="wheel bore diameter"),
+    _p("hub_diameter", float, "mm", 0, None, lo_open=True, help="wheel hub diameter (with hub_length)",
+       limits="with hub_length; between the bore and the root"),
+    _p("hub_length", float, "mm", 0, None, lo_open=True, help="wheel hub length, centred on the mid-plane",
+       limits="with hub_diameter"),
+    _p("wheel_keyway", bool, default=False, help="DIN 6885-1 keyway groove in the wheel's bore",
+       limits="with wheel_bore"),
+    _p("web_thickness", float, "mm", 0, None, lo_open=True,
+       help="the wheel thinned between hub and rim to a web this thick, centred on the mid-plane"),
+    _p("rim_diameter", float, "mm", 0, None, lo_open=True,
+       help="the rim's inside diameter, where the web meets it (default the root diameter less 4 modules)",
+       limits="with web_thickness"),
+    _p("shaft_diameter", float, "mm", 0, None, lo_open=True, help="worm shaft diameter, below the root diameter",
+       limits="with shaft_length"),
+    _p("shaft_length", float, "mm", 0, None, lo_open=True, help="worm shaft length at each end of the thread",
+       limits="with shaft_diameter"),
+    _p("part", str, default="pair", choices=("worm", "wheel", "pair"), help="what to build"),
+    _p("tolerance", float, "mm", 1e-4, 1, default=MESH_TOLERANCE, help="max deviation from the exact surfaces",
+       limits="at most module/10"),
+)
+
+#: ``gear3d.bevel(...)`` keywords (:mod:`gear3d.bevel`; ranges checked again by its geometry)
+BEVEL_PARAMS: tuple = (
+    _p("teeth", int, "", 3, 1000, default=20, help="teeth of the gear z1"),
+    _p("mate_teeth", int, "", 3, 1000, default=40, help="teeth of the mate z2"),
+    _p("module", float, "mm", 0, 1000, lo_open=True, default=2.0, help="outer (heel) module"),
+    _p("face_width", float, "mm", 0, None, lo_open=True, help="face width along the pitch element (default R_e/3)",
+       limits="at most R_e/3"),
+    _p("pressure_angle_deg", float, "deg", 10, 35, default=20.0, help="pressure angle",
+       limits="at most atan(pi / (4 x 1.25)) = 32.1 deg (the crown tooth keeps a tip land)"),
+    _p("shaft_angle_deg", float, "deg", 10, 170, default=90.0, help="shaft angle",
+       limits="each face cone below 87 deg"),
+    _p("form", str, default="spherical-involute", choices=("spherical-involute", "octoid"),
+       help="tooth form: spherical involute or octoid (plane-flank crown gear)"),
+    _p("shift_coeff", float, "x m", -2, 2, default=0.0, help="profile shift x of the gear (the mate gets -x)",
+       limits="|x| at most 0.95 (the addendum 1 less 0.05)"),
+    _p("spiral_angle_deg", float, "deg", 0, 60, hi_open=True,
+       help="spiral angle at mid-face: a spiral bevel (0 with a cutter radius: Zerol)"),
+    _p("cutter_radius", float, "mm", 0, None, lo_open=True,
+       help="radius of the crown's circular tooth line (default the mean cone distance)"),
+    _p("hand", str, choices=("right", "left"), help="hand of the gear's spiral, default right (the mate gets the other)"),
+    _p("clearance", str, default="standard", choices=("standard", "uniform"),
+       help="standard: the tip tapers to the apex; uniform: each face cone parallel to the mate's root cone, "
+            "through the heel tip (the heel's clearance all along the face)"),
+    _p("mounting_distance", float, "mm", 0, None, lo_open=True,
+       help="apex to the gear's back mounting face along its axis: a hub out to it (default the body's own "
+            "back face, in the report)", limits="beyond the body's own back face"),
+    _p("mate_mounting_distance", float, "mm", 0, None, lo_open=True, help="the same for the mate",
+       limits="beyond the mate's own back face"),
+    _p("part", str, default="gear", choices=("gear", "mate", "pair"),
+       help="gear (z1), mate (z2, own frame) or pair (the mate placed in mesh)"),
+    _p("tolerance", float, "mm", 0, 1, lo_open=True, default=MESH_TOLERANCE,
+       help="max deviation of the mesh from the exact surfaces", limits="at least 1e-6 mm"),
+)
