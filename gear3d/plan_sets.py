@@ -295,6 +295,30 @@ def plan_face_gear(kw: dict, output=None, png=None, json=None) -> Estimate:
     return _decide(est, "teeth", g.teeth) if g.teeth > 1000 else _decide(est, "tolerance", tol)
 
 
+# ------------------------------------------------------------------ crossed helical pairs
+
+def plan_crossed(rep: dict, width: float, tolerance: float, output=None) -> Estimate:
+    """``gear3d check pair involute --crossed ... -o pair.3mf --width W``: both helical
+    bodies (:func:`gear3d.plan.plan_body` each: profile, layers) and the file of both;
+    refused before any work."""
+    from .analysis.crossed import member_spec
+    from .plan import plan_body
+    from .spec import GearSpec
+    tol = check_number("tolerance", tolerance, 1e-6, 1.0, unit="mm")
+    est, tri = Estimate(), 0.0
+    for key in ("gear", "mate"):
+        params, body_kw = member_spec(rep, key, width, tol)
+        params["tolerance"] = GearSpec.profile_tolerance(**body_kw)
+        e = plan_body("involute", params, body_kw)
+        est, tri = est.then(e), tri + e.triangles
+    est = Estimate(est.seconds, est.bytes, tri, est.what)          # the file holds both bodies
+    ext = _ext(output)
+    if ext:
+        est = est.then(mesh_write(ext, tri))
+    z = max(rep["gear"]["teeth"], rep["mate"]["teeth"])
+    return _decide(est, "tolerance", tol) if z <= 1000 else _decide(est, "teeth", z)
+
+
 # ------------------------------------------------------------------ the planned API
 
 def given(builder, args, kw) -> dict:

@@ -103,3 +103,79 @@ def summary(rep: dict) -> str:
     if rep["sliding_speed_mps"] is not None:
         s += f" = {rep['sliding_speed_mps']:.4g} m/s"
     return s
+
+
+def mate_frame(shaft_angle: float) -> "np.ndarray":
+    """3x3 rotation (columns: the mate's own x, y, z in the world) of a crossed pair's
+    wheel 2: its axis z2 = (0, sin Σ, cos Σ) (wheel 1's z turned by -Σ about x, the common
+    perpendicular), its own x pointing back to the pitch point (-x). With it a right-hand
+    tooth line of wheel 2 (own direction (0, sin β2, cos β2) at its own +x) lies along
+    (0, sin(Σ - β2), cos(Σ - β2)) = (0, sin β1, cos β1): wheel 1's tooth line at P."""
+    import numpy as np
+    s, c = math.sin(shaft_angle), math.cos(shaft_angle)
+    return np.array([[-1.0, 0.0, 0.0], [0.0, -c, s], [0.0, s, c]])
+
+
+def _rz(a: float):
+    import numpy as np
+    T = np.eye(4)
+    T[:2, :2] = [[math.cos(a), -math.sin(a)], [math.sin(a), math.cos(a)]]
+    return T
+
+
+def member_spec(rep: dict, key: str, width: float, tolerance: float) -> tuple:
+    """(involute family keywords, body keywords) of member ``key`` ("gear" or "mate") of a
+    crossed pair ``rep``: the transverse module m_n / cos β and pressure angle
+    atan(tan α_n / cos β), addendum h_a m_n and dedendum 1.25 m_n (in transverse modules:
+    times cos β); a helical body ``width`` mm wide at ``tolerance`` mm, its hand from β."""
+    g = rep[key]
+    mn, an = rep["normal_module"], math.radians(rep["normal_pressure_angle_deg"])
+    cb = math.cos(math.radians(g["helix_angle_deg"]))
+    ha = (g["tip_radius"] - g["pitch_radius"]) / mn
+    params = {"teeth": g["teeth"], "module": mn / cb, "pressure_angle_deg": math.degrees(math.atan(math.tan(an) / cb)),
+              "addendum_coeff": ha * cb, "dedendum_coeff": 1.25 * cb}
+    return params, {"tolerance": tolerance, "kind": "helical", "helix_angle_deg": abs(g["helix_angle_deg"]),
+                    "width": width, "hand": g["hand"]}
+
+
+def pair_bodies(rep: dict, width: float, tolerance: float = 0.01, mate_width=None) -> list:
+    """[wheel 1, wheel 2]: the helical bodies of a crossed pair (``rep`` from
+    :func:`crossed_pair`), ``width`` mm wide (``mate_width`` for wheel 2, default the same),
+    placed in mesh (mm, world frame):
+
+    * wheel 1 on z, its face centred on z = 0, a tooth centred on the pitch point
+      P = (r1, 0, 0) in the plane z = 0;
+    * wheel 2 on the axis through (a, 0, 0) along (0, sin Σ, cos Σ) (:func:`mate_frame`),
+      a = r1 + r2 along the common perpendicular x, its face centred on that point, a
+      space centred on P.
+
+    The pair is symmetric under the half turn about x (it swaps the two flanks of every
+    tooth), so both flanks touch at once: no backlash for standard teeth. Each body is the
+    involute family's helical body at the transverse module m_n / cos β and pressure angle
+    atan(tan α_n / cos β), addendum h_a m_n and dedendum 1.25 m_n (named "gear", "mate").
+
+    >>> b = pair_bodies(crossed_pair(12, 14, 1.0, 45.0), 4.0, 0.02)
+    >>> [x.name for x in b], round(float(b[1].transform[0, 3]), 4)
+    (['gear', 'mate'], 18.3848)
+    """
+    import numpy as np
+    from ..spec import GearSpec
+    w1 = check_number("width", width, 0, 10_000, lo_open=True, unit="mm")
+    w2 = w1 if mate_width is None else check_number("mate_width", mate_width, 0, 10_000, lo_open=True, unit="mm")
+    sig = math.radians(rep["shaft_angle_deg"])
+    out = []
+    for key, w in (("gear", w1), ("mate", w2)):
+        g = rep[key]
+        b = math.radians(g["helix_angle_deg"])
+        params, body_kw = member_spec(rep, key, w, tolerance)
+        body = GearSpec("involute", params).body(**body_kw, name=key)
+        turn = math.copysign(1.0, b) * (w / 2) * math.tan(abs(b)) / g["pitch_radius"]   # θ(w/2)
+        T = _rz(-turn if key == "gear" else -turn + math.pi / g["teeth"])
+        T[2, 3] = -w / 2
+        if key == "mate":
+            P = np.eye(4)
+            P[:3, :3] = mate_frame(sig)
+            P[0, 3] = rep["center_distance"]
+            T = P @ T
+        out.append(body.placed(T, name=key))
+    return out
