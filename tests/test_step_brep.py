@@ -214,6 +214,7 @@ def test_refuses_and_leaves_no_file(helical, tmp_path, monkeypatch):
     _occ()
     from gear3d.export import step_brep
     out = tmp_path / "x.step"
+    monkeypatch.setenv("GEAR3D_BREP_WRITER", "occ")       # the OpenCascade path (step_direct: its own test)
     monkeypatch.setattr(step_brep, "_measure", lambda *a, **k: 0.002)
     with pytest.raises(ToleranceError) as e:
         write(helical, out, step="brep")
@@ -238,6 +239,7 @@ def test_without_opencascade_step_brep_says_what_to_install(tmp_path, monkeypatc
     """Simulate a missing OCP: the API raises GearError('step', 'brep', ..., install hint);
     the CLI exits 2 with one stderr line and writes nothing. The faceted default still works."""
     monkeypatch.setitem(sys.modules, "OCP", None)
+    monkeypatch.setenv("GEAR3D_BREP_WRITER", "occ")   # plain bodies need no OCC (tests/test_step_direct.py)
     p = gear3d.profile("involute", teeth=12, module=1, tolerance=0.01)
     b = body(p, kind="spur", width=4)
     with pytest.raises(GearError) as e:
