@@ -309,12 +309,3 @@ def test_worm_wheel_midplane_is_the_involute(tmp_path):
     assert 0 < w.report["brep"]["max_error"] <= tol
     # sharp: half a degree off in the pressure angle is seen
     assert involute_distance(P[flank, :2], 30, 2.0, math.radians(20.5)).max() > 2 * d.max()
-
-
-def test_worm_wheel_features_are_refused_before_any_work(tmp_path, capsys):
-    from gear3d.cli import main
-    rc = main(["worm", "--module", "2", "--starts", "1", "--wheel-teeth", "30", "--part", "wheel",
-               "--wheel-bore", "10", "-o", str(tmp_path / "w.step"), "--step", "brep"])
-    err = capsys.readouterr().err
-    assert rc == 2 and err.count("\n") == 1 and "step" in err and "wheel-bore" in err
-    assert list(tmp_path.iterdir()) == []

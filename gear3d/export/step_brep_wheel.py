@@ -208,22 +208,41 @@ def _faces(bands, z):
     return faces
 
 
+def wheel_features(shape, d, feats: dict, tol: float):
+    """The wheel's hub (a cylinder of ``hub_diameter`` and ``hub_length`` centred on the
+    mid-plane, fused) and bore, keyway and web (cut) on its B-rep ``shape`` (mid-plane z = 0,
+    mm): the same dimensions and the same cuts as the mesh's
+    (:func:`gear3d.wormgear.rims.apply_wheel`), through the gear bodies' OCC features
+    (:func:`gear3d.export.step_brep_occ.features`) on the body's z range
+    ``W = max(face width, hub length)``."""
+    if not feats:
+        return shape
+    from .step_brep_occ import boolean, cylinder, features, transformed
+    Lh = float(feats.get("hub_length") or 0.0)
+    if Lh:
+        shape = boolean("fuse", shape, [cylinder(feats["hub_diameter"] / 2, -Lh / 2, Lh)])
+    cuts = {k: feats[k] for k in ("bore", "keyway", "web") if feats.get(k)}
+    if not cuts:
+        return shape
+    W = max(d.face_width, Lh)
+    up, down = np.eye(4), np.eye(4)
+    up[2, 3], down[2, 3] = W / 2, -W / 2
+    return transformed(features(transformed(shape, up), {"features": cuts}, W, tol), down)
+
+
 def wheel_solid(w, design=None):
     """The exact B-rep solid (OCC shape, placed by ``w.transform``) of worm wheel ``w``
     (:func:`gear3d.wormgear.wheel_body.wheel_body`) of worm set ``design``
     (:class:`gear3d.wormgear.design.WormDesign`; default ``w.design``) and its
     report: ``max_error`` (mm, measured), ``tolerance``, faces, sections, volume against the
-    mesh's (mm^3), timings (s). Raises GearError for a wheel with features (bore, hub: not
-    made exact yet) or sections of changing shape, ToleranceError when the measured error
+    mesh's (mm^3), timings (s); the hub, bore, keyway and web as booleans
+    (:func:`wheel_features`). Raises GearError for a wheel whose sections change shape, ToleranceError when the measured error
     exceeds the tolerance."""
     from .step_brep_occ import transformed
     d = design if design is not None else getattr(w, "design", None)
     if d is None:
         raise GearError("step", "brep", "'faceted' for a worm wheel on its own",
                         "pass the worm set's design (gear3d.worm(...).design) as geometry=")
-    if w.report.get("features"):
-        raise GearError("step", "brep", "'faceted' for a wheel with a bore or hub",
-                        "the wheel's features are not made exact yet")
     t0 = time.perf_counter()
     tol = float(w.report["tolerance"])
     ctx = {"d": d, "tol_s": SECTION_SHARE * tol, "sections": {}}
@@ -231,7 +250,7 @@ def wheel_solid(w, design=None):
     ctx["signature"] = _signature(runs0, d.wheel_teeth)
     bands, err = _fit_bands(ctx, tol)
     t1 = time.perf_counter()
-    shape = sew_solid(_faces(bands, d.wheel_teeth))
+    shape = wheel_features(sew_solid(_faces(bands, d.wheel_teeth)), d, w.report.get("features") or {}, tol)
     info = validate_solid(shape, w, tol, "wheel", VOLUME_EPS)
     T = np.asarray(w.transform, float)
     if not np.allclose(T, np.eye(4)):

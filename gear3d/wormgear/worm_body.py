@@ -99,6 +99,10 @@ def worm_body(d, tolerance=None, bore=None, name="worm", shaft_diameter=None, sh
         m = man.to_mesh64()
         V, F = np.asarray(m.vert_properties, float)[:, :3], np.asarray(m.tri_verts, np.int64)
         rep = dict(b.report, **shaft, bore=bore, triangles=int(len(F)), **mesh_properties(V, F))
+        # the B-rep writer's features (gear3d.export.step_brep_occ.features): the shaft is a hub
+        # of its diameter above the thread (z > L) and below it (z < 0), the bore through all
+        rep["features"] = {"hub_diameter": shaft["shaft_diameter"], "hub_length": shaft["shaft_length"][1],
+                           "hub_below": shaft["shaft_length"][0], "bore": bore}
         b = Body(man, b.profile, b.twist, rep, name, arrays=(V, F))
     t = np.eye(4)
     t[2, 3] = -L / 2

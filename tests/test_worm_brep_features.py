@@ -1,0 +1,133 @@
+"""B-rep STEP of the worm set's features (issue #23): the wheel's hub, bore, DIN 6885
+keyway and web, the worm's shaft and bore, as OpenCascade booleans on the certified solids.
+
+The STEP is read back with OCC's own reader (:mod:`tests.occread`), and every dimension is
+checked against numbers written here:
+
+* **bore and keyway** from OCC's section of the wheel at its mid-plane: the inner loop's
+  points lie on the bore circle (radius 6) except the groove, whose walls are at |y| = b/2
+  and whose bottom is at x = 6 + t2 (DIN 6885-1 for a 12 mm bore: b = 4, t2 = 1.8 mm);
+* **hub** (diameter 30, length 24 centred on the mid-plane) and **web** (8 mm thick between
+  the hub and the rim diameter 46): the volume of the solid inside a tube about the axis is
+  the tube's annulus times the length there (π(r_o² - r_i²)·L), and a tube just outside the
+  hub, past the face width, holds nothing;
+* **shaft** (diameter 14, 10 mm at -x and 15 mm at +x of a 30 mm thread, bore 8): the solid's
+  extent along the worm axis, the annulus volume from the bore to just under the shaft over
+  the whole length, nothing just outside the shaft, and the bore circle in a section.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+pytest.importorskip("OCP")
+
+from tests.occread import is_valid, read_step, sub_shapes  # noqa: E402
+
+import gear3d  # noqa: E402
+
+KW = dict(module=2, starts=1, wheel_teeth=30, worm_length=30, tolerance=0.1, wheel_bore=12, hub_diameter=30,
+          hub_length=24, wheel_keyway=True, web_thickness=8, rim_diameter=46, worm_bore=8, shaft_diameter=14,
+          shaft_length=[10, 15])
+#: DIN 6885-1, bores over 10 up to 12 mm: key width b and hub groove depth t2 (mm)
+DIN_B, DIN_T2 = 4.0, 1.8
+#: the centre distance (d1 + d2)/2 = (2·10 + 2·30)/2 (mm) and the worm's thread length
+A, L = 40.0, 30.0
+
+
+def _tube(r_in, r_out, p0, direction, length):
+    from OCP.BRepAlgoAPI import BRepAlgoAPI_Cut
+    from OCP.BRepPrimAPI import BRepPrimAPI_MakeCylinder
+    from OCP.gp import gp_Ax2, gp_Dir, gp_Pnt
+    ax = gp_Ax2(gp_Pnt(*p0), gp_Dir(*direction))
+    outer = BRepPrimAPI_MakeCylinder(ax, r_out, length).Shape()
+    return BRepAlgoAPI_Cut(outer, BRepPrimAPI_MakeCylinder(ax, r_in, length).Shape()).Shape()
+
+
+def _common_volume(a, b):
+    from OCP.BRepAlgoAPI import BRepAlgoAPI_Common
+    from OCP.BRepGProp import BRepGProp
+    from OCP.GProp import GProp_GProps
+    p = GProp_GProps()
+    vp = getattr(BRepGProp, "VolumeProperties_s", None) or BRepGProp.VolumeProperties
+    vp(BRepAlgoAPI_Common(a, b).Shape(), p, 1e-9, True)
+    return p.Mass()
+
+
+def _bbox(shape):
+    from OCP.Bnd import Bnd_Box
+    from OCP.BRepBndLib import BRepBndLib
+    b = Bnd_Box()
+    add = getattr(BRepBndLib, "Add_s", None) or BRepBndLib.Add
+    add(shape, b, False)          # B-splines bounded by their poles, planes and cylinders exactly
+    lo, hi = b.CornerMin(), b.CornerMax()
+    return np.array([lo.X(), lo.Y(), lo.Z(), hi.X(), hi.Y(), hi.Z()])
+
+
+def _section_points(shape, origin, normal, half=10.0, n=50):
+    """Points (mm) on OCC's section of ``shape`` by a square of side 2·``half`` centred at
+    ``origin`` in the plane of that normal, n per edge."""
+    from OCP.BRepAdaptor import BRepAdaptor_Curve
+    from OCP.BRepAlgoAPI import BRepAlgoAPI_Section
+    from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace
+    from OCP.gp import gp_Dir, gp_Pln, gp_Pnt
+    from OCP.TopoDS import TopoDS
+    as_edge = getattr(TopoDS, "Edge_s", None) or TopoDS.Edge
+    square = BRepBuilderAPI_MakeFace(gp_Pln(gp_Pnt(*origin), gp_Dir(*normal)), -half, half, -half, half).Face()
+    sec = BRepAlgoAPI_Section(shape, square)
+    sec.Build()
+    P = []
+    for e in sub_shapes(sec.Shape(), "edge"):
+        c = BRepAdaptor_Curve(as_edge(e))
+        for t in np.linspace(c.FirstParameter(), c.LastParameter(), n):
+            p = c.Value(float(t))
+            P.append((p.X(), p.Y(), p.Z()))
+    return np.array(P)
+
+
+@pytest.mark.slow
+def test_wheel_and_worm_features_in_the_brep(tmp_path):
+    s = gear3d.worm(part="pair", **KW)
+    out = tmp_path / "pair.step"
+    info = gear3d.write(s.parts(), out, step="brep", geometry=s.design)
+    assert "exact B-rep solid(s)" in info
+    solids = sub_shapes(read_step(out), "solid")
+    assert len(solids) == 2 and all(is_valid(x) for x in solids)
+    wheel, worm = sorted(solids, key=lambda x: _bbox(x)[4])       # the worm's axis is at y = 40
+    for b in s.parts():
+        assert 0 < b.report["brep"]["max_error"] <= KW["tolerance"]
+
+    # wheel (placed: own x -> y, own y -> -x): bore and keyway from the mid-plane section
+    P = _section_points(wheel, (0, 0, 0), (0, 0, 1))      # |x|, |y| <= 10: the bore's loop
+    own = np.column_stack([P[:, 1], -P[:, 0]])
+    r = np.hypot(own[:, 0], own[:, 1])
+    inner = own[r < 10]
+    on_bore = np.abs(np.hypot(inner[:, 0], inner[:, 1]) - 6.0) < 1e-6
+    groove = inner[~on_bore]
+    assert on_bore.sum() > 40 and len(groove) > 100
+    assert np.all(groove[:, 0] > 0)                                   # the groove is on own +x
+    assert groove[:, 0].max() == pytest.approx(6.0 + DIN_T2, abs=1e-6)
+    walls = groove[groove[:, 0] < 6.0 + DIN_T2 - 1e-6]
+    assert np.allclose(np.abs(walls[:, 1]), DIN_B / 2, atol=1e-6)
+    # hub: full between the groove and the hub's diameter over its 24 mm, nothing just outside it
+    hub = _common_volume(wheel, _tube(8.2, 14.8, (0, 0, -40), (0, 0, 1), 80))
+    assert hub == pytest.approx(math.pi * (14.8 ** 2 - 8.2 ** 2) * 24, rel=1e-6)
+    assert _common_volume(wheel, _tube(15.05, 16, (0, 0, 10), (0, 0, 1), 5)) < 1e-6
+    bb = _bbox(wheel)
+    assert bb[2] == pytest.approx(-12, abs=1e-6) and bb[5] == pytest.approx(12, abs=1e-6)
+    # web: 8 mm thick between the hub and the rim diameter
+    web = _common_volume(wheel, _tube(15.2, 22.8, (0, 0, -40), (0, 0, 1), 80))
+    assert web == pytest.approx(math.pi * (22.8 ** 2 - 15.2 ** 2) * 8, rel=1e-6)
+
+    # worm: axis along x through (0, 40, 0), thread in x in [-15, 15], shafts 10 and 15 mm
+    bb = _bbox(worm)
+    assert bb[0] == pytest.approx(-L / 2 - 10, abs=1e-6) and bb[3] == pytest.approx(L / 2 + 15, abs=1e-6)
+    core = _common_volume(worm, _tube(4.2, 6.8, (-40, A, 0), (1, 0, 0), 80))
+    assert core == pytest.approx(math.pi * (6.8 ** 2 - 4.2 ** 2) * (L + 10 + 15), rel=1e-6)
+    for x0, x1 in ((-25, -15), (15, 30)):
+        assert _common_volume(worm, _tube(7.05, 7.5, (x0, A, 0), (1, 0, 0), x1 - x0)) < 1e-6
+    Q = _section_points(worm, (20, A, 0), (1, 0, 0))                # through the +x shaft
+    rq = np.hypot(Q[:, 1] - A, Q[:, 2])
+    assert np.allclose(np.sort(np.unique(np.round(rq, 6))), [4.0, 7.0])
