@@ -10,7 +10,7 @@ import sys
 from .profile import add_param_flag, add_profile_flags, family_params, print_notes
 from ..spec import GearSpec
 from ..conventions import uses_conventions
-from ..export import check_output, write
+from ..export import check_output, formats_for, write
 from ..params import BODY, BODY_PARAMS, MESH_TOLERANCE
 
 def body_flags() -> list:
@@ -33,7 +33,8 @@ def add_parser(sub):
     p.add_argument("--keyway", action="store_true", help=BODY["keyway"].help_text())
     for flag, typ, hlp, dest, prm in body_flags():
         add_param_flag(p, prm, "b_" + dest, typ, hlp).gear3d_param = None     # shown for every family
-    p.add_argument("-o", "--output", default=None, help="output file; extension picks the format")
+    p.add_argument("-o", "--output", default=None,
+                   help="output file; its extension picks the format: " + " ".join(formats_for("body")))
     p.add_argument("--step", default=None, choices=["faceted", "brep"],
                    help="STEP flavour: faceted (default) or brep (exact B-spline surfaces, needs pip install 'gear3d[cad]')")
     from .rackflags import add_rack_flags

@@ -25,12 +25,12 @@ import sys
 from ..analysis.crossed import crossed_pair, summary
 from ..cliargs import number
 from ..errors import GearError
-from ..export import check_output, write
+from ..export import check_output, exts, write
 from ..filesafe import atomic_path, check_path
 from ..export.json_format import dumps
 
 #: the 3D outputs of a crossed pair (-o, with --width): both helical bodies placed in mesh
-MESH_EXTS = (".3mf", ".stl", ".step", ".stp", ".obj", ".ply", ".vtu")
+MESH_EXTS = exts("mesh")
 #: the flags that only --crossed takes (``dest`` names)
 CROSSED_ONLY = ("shaft_angle_deg", "speed_rpm")
 

@@ -8,12 +8,12 @@ from ..cliargs import number, number_or_auto
 from .mateflags import add_mate_flags, build_mate, tool_flags_given
 from .. import profile
 from ..errors import GearError, ToleranceError, check_choice
-from ..export import check_output, write
+from ..export import check_output, exts, formats_for, write
 from ..params import (CONV_HELIX, DEFAULT_TOLERANCE, FAMILY_PARAMS, INTERNAL, MESH_TOLERANCE, TOLERANCE, Param,
                       all_params, by_name, check_excludes, union)
 
 #: extensions of mesh outputs (they default to :data:`MESH_TOLERANCE`)
-MESH_EXTS = (".stl", ".3mf", ".step", ".stp", ".obj", ".ply", ".vtu")
+MESH_EXTS = exts("mesh")
 TOLERANCE_HELP = (f"max deviation from the exact curve (mm); default {DEFAULT_TOLERANCE:g} mm, "
                   f"{MESH_TOLERANCE:g} mm for mesh outputs ({' '.join(MESH_EXTS)})")
 
@@ -248,7 +248,8 @@ def add_parser(sub):
     p.add_argument("--no-pitch-circle", action="store_true",
                    help="DXF with --construction: leave the pitch circle (a rack's pitch line) off")
     p.add_argument("-o", "--output", default=None,
-                   help="output file; extension picks the format (.svg: 1:1 cut outline in mm, .png: figure)")
+                   help="output file; its extension picks the format: " + " ".join(formats_for("profile"))
+                        + " (.svg: 1:1 cut outline in mm, .png: figure)")
     p.add_argument("--figure", default=None, metavar="FILE",
                    help="also write the annotated figure (circles, undercut and pointing marks): .svg .png or .pdf")
     from .rackflags import add_rack_flags
@@ -270,7 +271,7 @@ def run(args) -> int:
     kw = family_params(args, out)
     if args.family in FAMILY_FLAGS_PLANNED:     # the profile, its export and figure: refused before any is built
         from ..plan import plan_profile
-        plan_profile(args.family, kw, out, opts.get("width"), args.figure)
+        plan_profile(args.family, kw, out, opts.get("width"), args.figure, opts.get("kerf", 0.0))
     given = [k for k in ("normal_module", "normal_pressure_angle_deg") if kw.get(k) is not None]
     if given and kw.get("helix_angle_deg") is None:
         raise GearError("helix_angle_deg", None, f"a number in [0, 80] deg with --{given[0].replace('_', '-')} "

@@ -10,7 +10,7 @@ import sys
 
 from ..errors import GearError
 from ..cliargs import number
-from ..export import check_output, write
+from ..export import check_output, exts, write
 from ..filesafe import atomic_path, check_path
 from ..params import BODY
 
@@ -56,8 +56,7 @@ def run_profile_cli(args, family_params, write_options) -> int:
     from ..rack_part import rack, write_rack
     out = args.output
     if out is not None:
-        check_path(out, "output", (".json", ".svg", ".png", ".dxf", ".stl", ".3mf", ".step", ".stp",
-                                   ".obj", ".ply", ".vtu"))
+        check_path(out, "output", exts())
     opts = write_options(args, out)
     width = opts.pop("width", None)
     from .figureflag import check_figure_arg, write_figure_arg
@@ -110,7 +109,7 @@ def run_body_cli(args, family_params) -> int:
 
 
 #: 3D outputs of a rack pair (the pinion and the rack bodies placed in mesh)
-PAIR_MESH_EXTS = (".3mf", ".stl", ".step", ".stp", ".obj", ".ply", ".vtu")
+PAIR_MESH_EXTS = exts("mesh")
 
 
 def run_pair_cli(args, family_params) -> int:
@@ -122,7 +121,7 @@ def run_pair_cli(args, family_params) -> int:
     mesh = out is not None and out.lower().endswith(PAIR_MESH_EXTS)
     width = getattr(args, "width", None)
     if out is not None:
-        check_path(out, "output", (".json", ".png", ".svg") + PAIR_MESH_EXTS)
+        check_path(out, "output", exts("data", "figure") + (".svg",) + PAIR_MESH_EXTS)
     if mesh and width is None:
         raise GearError("width", None, "a number > 0 mm (--width) for a 3D output")
     if width is not None and not mesh:

@@ -24,7 +24,13 @@ from .. import budget
 from ..filesafe import atomic_path, check_path, ext_of
 from ..progress import stage
 
-__all__ = ["write", "check_output", "register", "FORMATS", "formats_for"]
+__all__ = ["write", "check_output", "register", "FORMATS", "ROLES", "formats_for", "exts", "output_kinds",
+           "kind_ext"]
+
+
+#: what a format's file is: ``data`` (the report), ``outline`` (a 2D cut outline), ``figure``
+#: (a picture) or ``mesh`` (a 3D body); mesh outputs default to the print tolerance
+ROLES = ("data", "outline", "figure", "mesh")
 
 
 @dataclass(frozen=True)
@@ -33,28 +39,59 @@ class Format:
     module: str       # module under gear3d.export defining write(obj, tmp_path, **opts)
     kinds: tuple      # which objects it takes: "profile", "body"
     doc: str = ""
+    role: str = "mesh"    # one of ROLES
+    kind: str = ""        # the output kind of templates: the extension without its dot, or the
+    #                       kind it spells another way (".stp" -> "step")
 
 
-#: extension -> Format
+#: extension -> Format, in the order formats are listed everywhere (help, messages, docs)
 FORMATS: dict = {}
 
 
-def register(ext: str, module: str, kinds, doc: str = ""):
-    """Register an exporter module for ``ext`` (e.g. ``".dxf"``) taking ``kinds``."""
-    FORMATS[ext.lower()] = Format(ext.lower(), module, tuple(kinds), doc)
+def register(ext: str, module: str, kinds, doc: str = "", role: str = "mesh", kind: str = ""):
+    """Register an exporter module for ``ext`` (e.g. ``".dxf"``) taking ``kinds``; ``role``
+    one of :data:`ROLES`; ``kind``: the output kind when ``ext`` spells another one."""
+    if role not in ROLES:
+        raise GearError("role", role, "one of " + ", ".join(ROLES))
+    FORMATS[ext.lower()] = Format(ext.lower(), module, tuple(kinds), doc, role, kind or ext.lower().lstrip("."))
 
 
-register(".json", "json_format", ("profile", "body"), "profile loops + report (body: report)")
-register(".dxf", "dxf", ("profile",), "DXF lines+arcs for wire EDM / laser / waterjet")
-register(".svg", "svg_outline", ("profile",), "1:1 cut outline in mm (paths only) for laser cutters")
-register(".png", "svg_png", ("profile", "body"), "profile figure / body preview")
+register(".json", "json_format", ("profile", "body"), "profile loops + report (body: report)", "data")
+register(".dxf", "dxf", ("profile",), "DXF lines+arcs for wire EDM / laser / waterjet", "outline")
+register(".svg", "svg_outline", ("profile",), "1:1 cut outline in mm (paths only) for laser cutters", "outline")
+register(".png", "svg_png", ("profile", "body"), "profile figure / body preview", "figure")
 register(".stl", "stl", ("profile", "body"), "binary STL")
 register(".3mf", "threemf", ("profile", "body"), "3MF with names, units and metadata")
 register(".step", "step", ("profile", "body"), "STEP AP214 faceted B-rep")
-register(".stp", "step", ("profile", "body"), "STEP AP214 faceted B-rep")
+register(".stp", "step", ("profile", "body"), "STEP AP214 faceted B-rep", kind="step")
 register(".obj", "meshio_formats", ("profile", "body"), "Wavefront OBJ (meshio)")
 register(".ply", "meshio_formats", ("profile", "body"), "PLY (meshio)")
 register(".vtu", "meshio_formats", ("profile", "body"), "VTK unstructured grid (meshio)")
+
+
+def exts(*roles) -> tuple:
+    """The registered extensions whose format has one of ``roles`` (all without), in
+    registry order.
+
+    >>> exts("mesh")
+    ('.stl', '.3mf', '.step', '.stp', '.obj', '.ply', '.vtu')
+    """
+    return tuple(e for e, f in FORMATS.items() if not roles or f.role in roles)
+
+
+def output_kinds(*roles) -> tuple:
+    """The output kinds (a template's ``outputs``; one per format, ``.stp`` being ``step``)
+    whose format has one of ``roles`` (all without), in registry order.
+
+    >>> output_kinds("mesh")
+    ('stl', '3mf', 'step', 'obj', 'ply', 'vtu')
+    """
+    return tuple(dict.fromkeys(f.kind for f in FORMATS.values() if not roles or f.role in roles))
+
+
+def kind_ext(kind: str) -> str:
+    """The file extension an output kind is written with (``"step"`` -> ``".step"``)."""
+    return next(e for e, f in FORMATS.items() if f.kind == kind)
 
 
 def formats_for(kinds="profile") -> list:

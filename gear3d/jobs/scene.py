@@ -30,10 +30,10 @@ from .template_parts import SET_KINDS
 from .. import profile
 from ..spec import GearSpec
 from ..budget import limits
-from ..export import write
+from ..export import kind_ext, output_kinds, write
 from ..filesafe import atomic_path, check_out_dir, make_out_dir, remove_dirs
 
-EXT = {k: "." + k for k in ("dxf", "svg", "png", "json", "stl", "3mf", "step", "obj", "ply", "vtu")}
+EXT = {k: kind_ext(k) for k in output_kinds()}
 
 
 # ------------------------------------------------------------------- file helpers
@@ -125,7 +125,7 @@ def run_write(stage, obj):
     if kind == "dxf":
         from ..export.dxf import write_dxf
         from ..plan import charge_write
-        charge_write(obj, "profile", ".dxf", {"_path": path})     # the budget, before the fit
+        charge_write(obj, "profile", ".dxf", {**i.get("options", {}), "_path": path})   # the budget, before the fit
         with atomic_path(path) as tmp:
             r = write_dxf(obj, tmp, tolerance=i["tolerance"], **i.get("options", {}))
         extra = {"max_error": r["max_error"], "arcs": r.get("arcs"), "lines": r.get("lines")}

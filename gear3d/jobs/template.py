@@ -275,7 +275,7 @@ def _assembly(file, i, ra, seen):
                                   0, None, unit="mm"),
         deformed=bool_at(file, f"{label}.deformed", ra.get("deformed", True)),
         outputs=tuple(kinds_at(file, f"{label}.outputs", ra.get("outputs", ["stl", "json"]),
-                             ("json", "stl", "3mf", "step", "obj", "ply", "vtu"))))
+                             ("json",) + MESH_KINDS)))
 
 
 # ------------------------------------------------------------------------ library

@@ -9,11 +9,13 @@ import os
 import re
 
 from ..errors import GearError, allowed_range, check_number
+from ..export import output_kinds
 from ..params import MIN_TOLERANCE, TOLERANCE
 
-MESH_KINDS = ("stl", "3mf", "step", "obj", "ply", "vtu")
-PROFILE_KINDS = ("dxf", "svg", "png", "json")
-OUTPUT_KINDS = PROFILE_KINDS + MESH_KINDS
+#: output kinds from the exporter registry: mesh kinds need a body, the others come from the profile
+MESH_KINDS = output_kinds("mesh")
+PROFILE_KINDS = output_kinds("data", "outline", "figure")
+OUTPUT_KINDS = output_kinds()
 #: tolerance keys: every output kind plus the pair check
 TOLERANCE_KEYS = OUTPUT_KINDS + ("check",)
 #: mm: the range of a tolerance (the floor, and the table's upper bound); mesh kinds default to
