@@ -37,12 +37,12 @@ import numpy as np
 
 from . import budget as _budget
 from .errors import GearError, ToleranceError, check_choice, check_number
-from .export import write
+from .export import FORMATS, exts, write
 from .geometry import check_points, rotate, segment_foot, signed_area
 from .params import DEFAULT_TOLERANCE, MAX_TOLERANCE_TEXT, MIN_TOLERANCE, max_tolerance
-from .rackpieces import flat_piece, involute_half, mirror_piece, mirror_points, newton_distance, pitch_thickness, \
-    smooth_piece
+from .rackpieces import RackTooth, mirror_piece, mirror_points, newton_distance, pitch_thickness, rack_tooth
 from .profiles import reject_unknown
+from .reports import RackBodyReport, RackReport
 from .solids.solid import Solid
 from .spec import profile
 from .tessellate import tessellate
@@ -74,7 +74,8 @@ class RackPart:
     module: float
     tolerance: float
     loops: list
-    report: dict
+    #: what was built and measured (:class:`gear3d.reports.RackReport`)
+    report: RackReport
     pieces: list = field(repr=False, default_factory=list)
     samples: list = field(repr=False, default_factory=list)
     #: x (mm) of the pinion centre at roll 0 (the tool's space centre, where the generated
@@ -304,95 +305,69 @@ def rack(family: str, teeth: int = 10, module: float = 1.0, tolerance: float = D
     fam, P = rack_params(family, dict(params, teeth=teeth, module=module, tolerance=tolerance,
                                   back_height=back_height))
     z, m, tol = P["teeth"], P["module"], P["tolerance"]
-    p = math.pi * m
-    phase_x = p / 2
-    info = {}
-    if fam == "involute":
-        half, _tool = involute_half(m, P["pressure_angle_deg"], P["addendum_coeff"], P["dedendum_coeff"],
-                                     P["tip_radius_coeff"], P["backlash"])
-        ha, hf = P["addendum_coeff"] * m, P["dedendum_coeff"] * m
-        s_nom = p / 2 - P["backlash"]
-        info = {"pressure_angle_deg": P["pressure_angle_deg"], "flank_angle_deg": P["pressure_angle_deg"]}
-    elif fam == "triangular":
-        b = p / 2 - P["thickness_coeff"] * p
-        half, _tool = involute_half(m, P["half_angle_deg"], P["addendum_coeff"], P["dedendum_coeff"], 0.0, b)
-        ha, hf = P["addendum_coeff"] * m, P["dedendum_coeff"] * m
-        s_nom = P["thickness_coeff"] * p
-        info = {"half_angle_deg": P["half_angle_deg"], "flank_angle_deg": P["half_angle_deg"]}
-    elif fam == "sine":
-        from .racks import sine_rack
-        h = P["addendum_coeff"] * m
-        c = P["clearance_coeff"] * m
-        el = sine_rack(m, h).elements[0]          # v = -h cos(2u/m), u = (t - 1/2) p
-        # tooth 0 centred at x = 0: u = x - p/2; the right half is t in [0, 1/2]
-        xc = (m / 2) * math.acos(1 - c / h) if c > 0 else 0.0
-        half = [smooth_piece(el, xc / p, 0.5, p / 2)]
-        if c > 0:
-            half = [flat_piece(0.0, xc, h - c)] + half
-        ha, hf = h - c, h
-        s_nom = p / 2
-        phase_x = p / 2 if P["form"] == "epi" else 0.0
-        info = {"amplitude": h, "clearance": c, "form": P["form"]}
-    else:
-        from .profiles.cycloid import cycloidal_rack
-        from .racks import Corner
-        rho = P["rolling_radius_coeff"] * m
-        ha, hf = P["addendum_coeff"] * m, P["dedendum_coeff"] * m
-        try:
-            tool = cycloidal_rack(m, rho, hf, ha)    # the cutter with our tooth: height ha, depth hf
-        except GearError as e:
-            raise GearError(e.param, e.value, e.allowed, e.why) from None
-        els = tool.elements[:len(tool.elements) // 2]
-        half = [smooth_piece(e, 0.0, 1.0, p / 2) for e in els if not isinstance(e, Corner)]
-        s_nom = p / 2
-        info = {"rolling_radius": rho}
-    # tessellate the right half within the tolerance, every chord measured; the left half is
-    # its exact mirror image
+    tooth = rack_tooth(fam, P, m)
+    pieces, samples, straight, max_err = _period(tooth.half, z, m, tol)
+    chain = np.concatenate([pts if i == 0 else pts[1:] for i, (_t, pts) in enumerate(samples)])
+    top, loop, yb = _outline(chain, z, math.pi * m, P["back_height"])
+    part = RackPart(fam, P, z, m, tol, [loop], None, pieces, samples, tooth.phase_x, yb, chain, straight)
+    max_err = max(max_err, _chord_error(part, chain))
+    if max_err > tol:
+        raise ToleranceError("tolerance", tol, "a coarser value", f"the outline measures {max_err:.3g} mm")
+    part.report = _rack_report(part, tooth, top, max_err)
+    return part
+
+
+def _period(half, z, m, tol):
+    """One tooth period from its right half: (pieces, samples, straight, max_error).
+
+    The right half is tessellated within the tolerance, every chord measured; the left half
+    is its exact mirror image. ``samples``: (t, points) per piece, left to right;
+    ``straight``: per piece, True when its chords are exact (a line)."""
     tess = [tessellate(f, 0.98 * tol) for f in half]
     _budget.check_profile(2 * z * sum(len(x.t) for x in tess), "teeth", z)
     pieces = [mirror_piece(f) for f in reversed(half)] + half
     samples = [(1.0 - x.t[::-1], mirror_points(x.points[::-1])) for x in reversed(tess)] + \
               [(x.t, x.points) for x in tess]
-    max_err = max(float(x.max_error) for x in tess)
-    chain = np.concatenate([pts if i == 0 else pts[1:] for i, (_t, pts) in enumerate(samples)])
-    # N teeth along +x, then the back; CCW: along the back left to right, up, teeth right
-    # to left, down
+    straight = [x.max_error <= 1e-12 * m for x in tess]
+    return pieces, samples, straight[::-1] + straight, max(float(x.max_error) for x in tess)
+
+
+def _outline(chain, z, p, back_height):
+    """(top, loop, back y) of a rack of ``z`` teeth from one period's polygon ``chain`` (mm):
+    the teeth along +x, then the back ``back_height`` below the root; the loop CCW."""
     per = chain[:-1]
     top = np.concatenate([per + np.array([k * p, 0.0]) for k in range(z)] + [chain[-1:] + np.array([(z - 1) * p, 0.0])])
-    yb = chain[0, 1] - P["back_height"]
+    yb = chain[0, 1] - back_height
     loop = np.concatenate([top, [[top[-1, 0], yb], [top[0, 0], yb]]])
     if signed_area(loop) < 0:
         loop = loop[::-1]
-    straight = [x.max_error <= 1e-12 * m for x in tess]
-    straight = straight[::-1] + straight
-    part = RackPart(fam, P, z, m, tol, [loop], {}, pieces, samples, phase_x, yb, chain, straight)
-    s_meas = pitch_thickness(chain)
-    # the measured error: every chord of one period at nine interior points, against the
-    # exact pieces (Newton), and the chords' own probes (the tessellation's measurement)
+    return top, loop, yb
+
+
+def _chord_error(part, chain) -> float:
+    """The measured error (mm): every chord of one period at nine interior points, against
+    the exact pieces (Newton)."""
     fr = np.linspace(0.0, 1.0, 11)[1:-1]
     a, bb = chain[:-1], chain[1:]
     probe = (a[:, None, :] + fr[None, :, None] * (bb - a)[:, None, :]).reshape(-1, 2)
-    max_err = max(max_err, float(part._period_distance(probe).max(initial=0.0)))
-    if max_err > tol:
-        raise ToleranceError("tolerance", tol, "a coarser value", f"the outline measures {max_err:.3g} mm")
-    part.report = {
-        "family": fam, "rack": True, "teeth": z, "module": m, "pitch": p,
-        "tooth_thickness_at_pitch_line": s_meas,
-        "nominal_tooth_thickness": s_nom,
-        "space_at_pitch_line": p - s_meas,
-        "addendum": ha, "dedendum": hf,
-        "tip_y": float(chain[:, 1].max()), "root_y": float(chain[0, 1]),
-        "back_height": P["back_height"], "back_y": yb,
-        "length": z * p, "x_range": [float(top[0, 0]), float(top[-1, 0])],
-        "height": float(chain[:, 1].max() - yb),
-        "area": float(signed_area(loop)),
-        "max_error": max_err, "tolerance": tol,
-        "vertices": int(len(loop)), "vertices_per_tooth": int(len(per)),
-        "pinion_phase_x": phase_x,
-        "params": dict(P),
-        **info,
-    }
-    return part
+    return float(part._period_distance(probe).max(initial=0.0))
+
+
+def _rack_report(part, tooth: RackTooth, top, max_err) -> RackReport:
+    """The outline's report (mm, mm²)."""
+    chain, loop, p, z = part.chain, part.loops[0], part.pitch, part.teeth
+    s_meas = pitch_thickness(chain)
+    return RackReport(
+        family=part.family, rack=True, teeth=z, module=part.module, pitch=p,
+        tooth_thickness_at_pitch_line=s_meas, nominal_tooth_thickness=tooth.nominal_thickness,
+        space_at_pitch_line=p - s_meas, addendum=tooth.addendum, dedendum=tooth.dedendum,
+        tip_y=float(chain[:, 1].max()), root_y=float(chain[0, 1]),
+        back_height=part.params["back_height"], back_y=part.back_y,
+        length=z * p, x_range=[float(top[0, 0]), float(top[-1, 0])],
+        height=float(chain[:, 1].max() - part.back_y), area=float(signed_area(loop)),
+        max_error=max_err, tolerance=part.tolerance,
+        vertices=int(len(loop)), vertices_per_tooth=int(len(chain) - 1),
+        pinion_phase_x=tooth.phase_x, params=dict(part.params), extra=dict(tooth.info))
 
 
 # ----------------------------------------------------------------------------- pairs
@@ -536,11 +511,11 @@ def rack_body(part: RackPart, width: float = 10.0, helix_angle_deg: float = 0.0,
     err = float(part.exact_distance(back).max(initial=0.0))
     max_err = max(err, part.report["max_error"])
     props = mesh_properties(V, F)
-    rep = {"kind": "helical" if b > 0 else "spur", "rack": True, "family": part.family,
-           "teeth": part.teeth, "module": part.module, "width": W, "helix_angle_deg": b, "hand": hand,
-           "shift_per_mm": k, "triangles": int(len(F)), "vertices": int(len(V)),
-           "max_error": max_err, "tolerance": part.tolerance, "measured_side_points": int(len(S)),
-           **props, "profile": part.report}
+    rep = RackBodyReport(kind="helical" if b > 0 else "spur", rack=True, family=part.family,
+                         teeth=part.teeth, module=part.module, width=W, helix_angle_deg=b, hand=hand,
+                         shift_per_mm=k, triangles=int(len(F)), vertices=int(len(V)),
+                         max_error=max_err, tolerance=part.tolerance, measured_side_points=int(len(S)),
+                         **props, profile=part.report)
     if max_err > part.tolerance * (1 + 1e-9):
         raise ToleranceError("tolerance", part.tolerance, "a coarser value",
                              f"the body measures {max_err:.3g} mm")
@@ -564,10 +539,10 @@ def write_rack(part: RackPart, path, width=None, **opts) -> str:
     >>> write_rack(r, os.path.join(tempfile.mkdtemp(), "r.dxf"), dxf_version="R12")[:9]
     'dxf R12: '
     """
-    ext = str(path).lower().rsplit(".", 1)[-1]
-    if ext in ("json", "svg", "png", "dxf"):
+    fmt = FORMATS.get("." + str(path).lower().rsplit(".", 1)[-1])
+    if fmt is None or fmt.role != "mesh":       # an unknown extension: write() refuses it
         if width is not None:
-            raise GearError("width", width, "only with a 3D output (.stl .3mf .step .obj .ply .vtu)")
+            raise GearError("width", width, "only with a 3D output (" + " ".join(exts("mesh")) + ")")
         return write(part, path, **opts) or ""
     if width is None:
         raise GearError("width", None, "a number > 0 mm for a 3D output (--width)")

@@ -1,7 +1,8 @@
 """The exact pieces of a rack part's tooth (:mod:`gear3d.rack_part`): evaluators
 ``f(t) -> (N, 2)`` (mm, t in [0, 1]) of the family's tool elements in the rack frame, their
-mirror images, flat lands, the involute trapezoid's right half, and the distance from
-points to a piece by Newton's method (the rack's independent measurement).
+mirror images, flat lands, the involute trapezoid's right half, each family's tooth half
+(:func:`rack_tooth`), and the distance from points to a piece by Newton's method (the
+rack's independent measurement).
 
 >>> import numpy as np
 >>> f = flat_piece(0.0, 2.0, 1.0)
@@ -11,6 +12,7 @@ points to a piece by Newton's method (the rack's independent measurement).
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -131,3 +133,79 @@ def pitch_thickness(chain) -> float:
     if len(xs) < 2:
         return math.nan
     return float(xs[xs >= 0].min() - xs[xs < 0].max())
+
+
+@dataclass(frozen=True)
+class RackTooth:
+    """The right half of a rack tooth (``half``: exact pieces from the tooth's axis x = 0 to
+    the middle of the space x = p/2, mm) and what the report says of it."""
+    half: list
+    addendum: float
+    dedendum: float
+    nominal_thickness: float
+    #: x (mm) of the pinion centre at roll 0, modulo the pitch
+    phase_x: float
+    #: the family's own report facts
+    info: dict
+
+
+def _involute_tooth(P, m, p) -> RackTooth:
+    """Straight flanks at the pressure angle, thinned by the backlash (ISO 53)."""
+    half, _tool = involute_half(m, P["pressure_angle_deg"], P["addendum_coeff"], P["dedendum_coeff"],
+                                P["tip_radius_coeff"], P["backlash"])
+    return RackTooth(half, P["addendum_coeff"] * m, P["dedendum_coeff"] * m, p / 2 - P["backlash"], p / 2,
+                  {"pressure_angle_deg": P["pressure_angle_deg"], "flank_angle_deg": P["pressure_angle_deg"]})
+
+
+def _triangular_tooth(P, m, p) -> RackTooth:
+    """Straight flanks at the half angle, ``thickness_coeff`` p thick on the pitch line."""
+    b = p / 2 - P["thickness_coeff"] * p
+    half, _tool = involute_half(m, P["half_angle_deg"], P["addendum_coeff"], P["dedendum_coeff"], 0.0, b)
+    return RackTooth(half, P["addendum_coeff"] * m, P["dedendum_coeff"] * m, P["thickness_coeff"] * p, p / 2,
+                  {"half_angle_deg": P["half_angle_deg"], "flank_angle_deg": P["half_angle_deg"]})
+
+
+def _sine_tooth(P, m, p) -> RackTooth:
+    """y = h cos(2x/m), its tips flattened by the clearance."""
+    from .racks import sine_rack
+    h = P["addendum_coeff"] * m
+    c = P["clearance_coeff"] * m
+    el = sine_rack(m, h).elements[0]          # v = -h cos(2u/m), u = (t - 1/2) p
+    # tooth 0 centred at x = 0: u = x - p/2; the right half is t in [0, 1/2]
+    xc = (m / 2) * math.acos(1 - c / h) if c > 0 else 0.0
+    half = [smooth_piece(el, xc / p, 0.5, p / 2)]
+    if c > 0:
+        half = [flat_piece(0.0, xc, h - c)] + half
+    return RackTooth(half, h - c, h, p / 2, p / 2 if P["form"] == "epi" else 0.0,
+                  {"amplitude": h, "clearance": c, "form": P["form"]})
+
+
+def _cycloidal_tooth(P, m, p) -> RackTooth:
+    """The cycloids of the rolling circle on both sides of the pitch line."""
+    from .profiles.cycloid import cycloidal_rack
+    from .racks import Corner
+    rho = P["rolling_radius_coeff"] * m
+    ha, hf = P["addendum_coeff"] * m, P["dedendum_coeff"] * m
+    try:
+        tool = cycloidal_rack(m, rho, hf, ha)    # the cutter with our tooth: height ha, depth hf
+    except GearError as e:
+        raise GearError(e.param, e.value, e.allowed, e.why) from None
+    els = tool.elements[:len(tool.elements) // 2]
+    half = [smooth_piece(e, 0.0, 1.0, p / 2) for e in els if not isinstance(e, Corner)]
+    return RackTooth(half, ha, hf, p / 2, p / 2, {"rolling_radius": rho})
+
+
+_TOOTH = {"involute": _involute_tooth, "triangular": _triangular_tooth, "sine": _sine_tooth,
+          "cycloidal": _cycloidal_tooth}
+
+
+def rack_tooth(family: str, P: dict, m: float) -> RackTooth:
+    """The right half of a rack part's tooth of ``family`` from its validated parameters
+    ``P`` (:func:`gear3d.rack_part.rack_params`) and module ``m`` (mm).
+
+    >>> t = rack_tooth("involute", dict(pressure_angle_deg=20.0, addendum_coeff=1.0,
+    ...                dedendum_coeff=1.25, tip_radius_coeff=0.0, backlash=0.0), 2.0)
+    >>> t.addendum, t.dedendum, round(t.nominal_thickness, 6)                  # mm
+    (2.0, 2.5, 3.141593)
+    """
+    return _TOOTH[family](P, m, math.pi * m)
