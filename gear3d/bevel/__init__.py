@@ -17,8 +17,10 @@ returns a :class:`Bevel`: the bodies and a typed, frozen :class:`BevelReport` wh
 * :mod:`.rolling`: the pair's rolling check (interference, backlash, contact ratio,
   transmission error).
 
-Not built (refused with one line): internal bevels and crown or face gears (face cone >=
-87°), uniform clearance.
+Internal bevels (a pitch cone beyond 90°) are built in their own frame turned by π about x
+(straight, spiral and Zerol; rolling check and figures). Not built (refused with one line):
+crown gears (a face cone within 3° of 90°: ``gear3d face-gear``), uniform clearance on an
+internal pair.
 
 Example::
 
@@ -141,8 +143,6 @@ def build(teeth, mate_teeth, module, face_width=None, pressure_angle_deg=20.0, s
     geo = pair_geometry(teeth, mate_teeth, module, face_width, pressure_angle_deg, shaft_angle_deg,
                         shift_coeff, form, clearance=clearance)
     geo = with_tooth_line(geo, spiral_angle_deg, cutter_radius, hand)
-    if check and (geo.gear.internal or geo.mate.internal):
-        raise GearError("check", check, "an external pair (the rolling check of internal bevels is not built)")
     mform = geo.form if mate_form is None else check_choice("mate_form", mate_form, FORMS)
     geo_m = geo if mform == geo.form else replace(geo, form=mform)
     if geo_m is not geo:

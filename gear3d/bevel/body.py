@@ -204,17 +204,26 @@ def member_body(geo: PairGeometry, which: str, tolerance: float, name: str | Non
     return BevelBody(man, name or which, rep, profile=sec)
 
 
-def mate_transform(geo: PairGeometry) -> np.ndarray:
-    """4x4 placing the mate (built in its own frame) on its axis at the shaft angle, in
-    mesh with the gear: turn it by π + π/z2 about its axis (a space on the common pitch
-    element), then tilt its axis by Σ about y."""
+def mate_rotation(geo: PairGeometry) -> np.ndarray:
+    """3x3 from the mate's unturned frame to the gear's (both with their pitch cones at δ,
+    an internal member's beyond 90°): turn by π + π/z2 about its axis (a space on the common
+    pitch element), then tilt its axis by Σ about y."""
     a = math.pi + math.pi / geo.mate.teeth
     ca, sa = math.cos(a), math.sin(a)
     s, c = math.sin(geo.shaft_angle), math.cos(geo.shaft_angle)
     Rz = np.array([[ca, -sa, 0.0], [sa, ca, 0.0], [0.0, 0.0, 1.0]])
     Ry = np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]])
+    return Ry @ Rz
+
+
+def mate_transform(geo: PairGeometry) -> np.ndarray:
+    """4x4 placing the mate (built in its own frame) on its axis at the shaft angle, in
+    mesh with the gear (built in its own frame): :func:`mate_rotation` between the unturned
+    frames, with an internal member's own frame turned by π about x on either side."""
     T = np.eye(4)
-    T[:3, :3] = Ry @ Rz
+    T[:3, :3] = mate_rotation(geo)
     if geo.mate.internal:                  # built in its own frame turned by π about x
         T[:3, :3] = T[:3, :3] @ np.diag([1.0, -1.0, -1.0])
+    if geo.gear.internal:                  # the world is the gear's own (turned) frame
+        T[:3, :3] = np.diag([1.0, -1.0, -1.0]) @ T[:3, :3]
     return T

@@ -5,7 +5,8 @@
   back cone developed into the plane: a ray at polar angle ϑ meets it at the slant distance
   ℓ = R_e tan δ + R_e tan(ϑ - δ) from the back cone's apex, and azimuth φ develops to φ cos δ.
   That is Tredgold's virtual spur gear (pitch radius R_e tan δ, z / cos δ teeth); its pitch,
-  tip and root circles are drawn and labelled.
+  tip and root circles are drawn and labelled. An internal member (δ > 90°) is drawn in its
+  own frame (turned by π about x, pitch angle π - δ): a virtual internal gear, tip inside.
 * :func:`contact_pattern_figure`: gear 1's working flank developed over the face (cone
   distance across, height above the pitch cone up), with the lines of contact at evenly
   spread gear angles and the active zone's edges (:func:`gear3d.bevel.rolling.contact_lines`).
@@ -65,9 +66,12 @@ def _dense(loop: np.ndarray, k: int = 8) -> np.ndarray:
 
 def _member_axes(ax, geo, body, which):
     c = geo.gear if which == "gear" else geo.mate
-    re, d = geo.cone_distance, c.pitch_angle
+    # an internal member's section is in its own frame, turned by π about x (pitch angle
+    # π - δ, the teeth pointing inwards: Tredgold's virtual internal gear)
+    re, d = geo.cone_distance, (math.pi - c.pitch_angle if c.internal else c.pitch_angle)
+    sgn = -1.0 if c.internal else 1.0
     zs = body.report["section_z"]
-    loop = _dense(np.asarray(body.profile.loops[0], float))
+    loop = _dense(np.asarray(body.profile.tooth_loop, float))
     az = np.arctan2(loop[:, 1], loop[:, 0])
     xy = developed(loop, zs, d, re)
     xy[np.abs(az) > 2.2 * math.pi / c.teeth] = np.nan
@@ -75,13 +79,14 @@ def _member_axes(ax, geo, body, which):
     rv = re * math.tan(d)
     span = 2.6 * math.pi / c.teeth * math.cos(d)
     t = np.linspace(-span, span, 200)
-    rings = (("pitch", rv, "-"), ("tip", rv + re * math.tan(c.addendum_angle), "--"),
-             ("root", rv - re * math.tan(c.dedendum_angle), ":"))
+    rings = (("pitch", rv, "-"), ("tip", rv + sgn * re * math.tan(c.addendum_angle), "--"),
+             ("root", rv - sgn * re * math.tan(c.dedendum_angle), ":"))
     for name, r, ls in rings:
         ax.plot(-r * np.sin(t), r * np.cos(t), ls, lw=0.8, color=COLORS[name], gid=name)
         ax.annotate(f"{name} {r:.3f}", (r * math.sin(span), r * math.cos(span)), fontsize=7, color=COLORS[name])
     ax.set_aspect("equal")
-    ax.set_title(f"{which}: {c.teeth} teeth, back cone r_v = {rv:.3f} mm (z_v = {c.teeth / math.cos(d):.2f})",
+    kind = "internal, " if c.internal else ""
+    ax.set_title(f"{which}: {c.teeth} teeth, {kind}back cone r_v = {rv:.3f} mm (z_v = {c.teeth / math.cos(d):.2f})",
                  fontsize=8)
     ax.set_xlabel("mm (developed back cone)")
 

@@ -49,7 +49,7 @@ import numpy as np
 
 from ..errors import check_choice, check_number
 from .crown import crown_elements, element_xt
-from .sphere import contact_roll, generated_points, sphere_envelope_piece, to_sphere
+from .sphere import FLIP, contact_roll, generated_points, sphere_envelope_piece, to_sphere
 
 #: exact samples per surviving run of the boundary, and roll positions per pitch of gear 1
 RUN_SAMPLES = 400
@@ -91,14 +91,14 @@ class Tooth:
 def tooth(geo, which: str, tolerance: float = CHECK_TOLERANCE) -> Tooth:
     """The :class:`Tooth` of member ``which`` ("gear" or "mate") of ``geo`` (its form)."""
     from ..analysis.flanks import ExactWheel
-    from .section import member, section
+    from .section import crown_depth, member, section
     c = member(geo, which)
-    zs = geo.cone_distance * math.cos(c.pitch_angle)
+    zs = geo.cone_distance * abs(math.cos(c.pitch_angle))     # an internal member's own (turned) frame
     prof = section(geo, which, zs, tolerance)
     wheel = ExactWheel(prof)
     m, a = geo.module, geo.pressure_angle
     turn = c.shift_coeff * m * math.tan(a) / geo.cone_distance
-    els = crown_elements(geo.form, geo.crown_teeth, a, c.dedendum_angle, -c.addendum_angle, turn)
+    els = crown_elements(geo.form, geo.crown_teeth, a, c.dedendum_angle, -crown_depth(geo, c), turn)
     flank_el = els[len(els) // 2 + 2]                  # the mirrored flank: the upper side
     probe = sphere_envelope_piece(flank_el, c.pitch_angle, zs)
     half = math.pi / c.teeth
@@ -106,10 +106,10 @@ def tooth(geo, which: str, tolerance: float = CHECK_TOLERANCE) -> Tooth:
     for r in wheel.runs:
         t = np.linspace(r.a, r.b, RUN_SAMPLES)
         g = np.asarray(r.f(t), float)
-        az = np.arctan2(g[:, 1], g[:, 0])
+        u = to_sphere(g, zs) * (FLIP if c.internal else 1.0)  # the unturned frame: pitch angle δ
+        az = np.arctan2(u[:, 1], u[:, 0])
         if np.median(az) <= 0 or np.median(az) >= half:
             continue
-        u = to_sphere(g, zs)
         parts.append(u)
         mid = 0.5 * (r.a + r.b)
         if np.allclose(np.asarray(r.f(np.array([mid])), float), probe(np.array([mid])), atol=1e-9 * zs):
@@ -170,8 +170,8 @@ class Placement:
     element ``P`` (world) and its azimuth ``beta2`` in the mate's own frame."""
 
     def __init__(self, geo):
-        from .body import mate_transform
-        self.M2 = mate_transform(geo)[:3, :3]
+        from .body import mate_rotation
+        self.M2 = mate_rotation(geo)
         self.z1, self.z2 = geo.gear.teeth, geo.mate.teeth
         d1 = geo.gear.pitch_angle
         self.P = np.array([math.sin(d1), 0.0, math.cos(d1)])
@@ -481,12 +481,14 @@ def contact_lines(geo, lines: int = 11, spheres: int = 41, mate_form: str | None
 
 def virtual_contact_ratio(geo) -> float:
     """The contact ratio of Tredgold's virtual spur pair (back cones developed: pitch radii
-    R_e tan δ, the heel addenda, the pressure angle), for comparison."""
+    R_e tan δ, the heel addenda, the pressure angle), for comparison. An internal member
+    (δ > 90°: R_e tan δ < 0) is the virtual internal gear of radius R_e |tan δ|, tip radius
+    R_e |tan δ| - h_a: its term is -√(r_a² - r_b²) + r sin α."""
     a, m = geo.pressure_angle, geo.module
     total = 0.0
     for c in (geo.gear, geo.mate):
         rv = geo.cone_distance * math.tan(c.pitch_angle)
-        total += math.sqrt((rv + c.addendum) ** 2 - (rv * math.cos(a)) ** 2) - rv * math.sin(a)
+        total += math.copysign(math.sqrt((rv + c.addendum) ** 2 - (rv * math.cos(a)) ** 2), rv) - rv * math.sin(a)
     return total / (math.pi * m * math.cos(a))
 
 

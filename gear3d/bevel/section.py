@@ -37,7 +37,7 @@ def section(geo: PairGeometry, which: str, zs: float, tolerance: float):
     cone = member(geo, which)
     m, a = geo.module, geo.pressure_angle
     turn = cone.shift_coeff * m * math.tan(a) / geo.cone_distance
-    els = crown_elements(geo.form, geo.crown_teeth, a, cone.dedendum_angle, -cone.addendum_angle, turn)
+    els = crown_elements(geo.form, geo.crown_teeth, a, cone.dedendum_angle, -crown_depth(geo, cone), turn)
     pieces = sphere_envelope(els, cone.pitch_angle, zs)
     d = cone.pitch_angle
     params = dict(teeth=cone.teeth, module=m, pressure_angle_deg=math.degrees(a), shift_coeff=cone.shift_coeff,
@@ -51,8 +51,28 @@ def section(geo: PairGeometry, which: str, zs: float, tolerance: float):
         dp, tip, rim = d, zs * math.tan(cone.face_angle), None
     return build_profile(f"bevel-{geo.form}", params, [p for p, _ in pieces], cone.teeth, zs * math.tan(dp),
                          internal=cone.internal, tolerance=tolerance, rim_radius=rim, names=[n for _, n in pieces],
+                         clip_radius=(tip, None) if cone.internal else None,
                          flank_pieces=[i for i, (_, n) in enumerate(pieces) if n == "crown-flank"],
                          nominal_tip_radius=tip)
+
+
+def crown_depth(geo: PairGeometry, cone) -> float:
+    """The generating crown's depth below its pitch plane (rad, > 0), which forms the member's
+    tip. External member: its addendum angle θ_a (the crown's root land rolls out the tip
+    cone). Internal member: the crown (a great circle) rolls *inside* its pitch circle, so a
+    crown point at depth θ_a generates a point short of the tip cone (in the plane, a rack
+    point at depth h meets an internal circle of radius r at sqrt((r - h)² + (h tan α)²) > r - h);
+    the crown is cut deeper, by the pair's clearance (h_f* - h_a*) m as well (kept short of
+    the spherical-involute crown's base circle), and the tip is turned at the tip cone, an
+    exact cut (the body's blank)."""
+    if not cone.internal:
+        return cone.addendum_angle
+    m = geo.module
+    clearance = (cone.dedendum + cone.addendum) - 2 * (cone.addendum - cone.shift_coeff * m)
+    deep = math.atan((cone.addendum + clearance) / geo.cone_distance)
+    if geo.form == "spherical-involute":
+        deep = min(deep, 0.5 * (cone.addendum_angle + geo.pressure_angle))
+    return max(deep, cone.addendum_angle)
 
 
 def rim_polar(cone) -> float:

@@ -130,9 +130,6 @@ def with_tooth_line(geo, spiral_angle_deg, cutter_radius, hand):
         if hand is not None:
             raise GearError("hand", hand, "only for a spiral or Zerol bevel (--spiral-angle-deg or --cutter-radius)")
         return geo
-    if geo.gear.internal or geo.mate.internal:
-        raise GearError("spiral_angle_deg" if psi else "cutter_radius", spiral_angle_deg if psi else cutter_radius,
-                        "none for an internal bevel pair (straight only)")
     h = 1.0 if check_choice("hand", "right" if hand is None else hand, HANDS) == "right" else -1.0
     re, ri = geo.cone_distance, geo.inner_cone_distance
     rm = re - geo.face_width / 2
@@ -149,14 +146,17 @@ def with_tooth_line(geo, spiral_angle_deg, cutter_radius, hand):
     return replace(geo, line=line)
 
 
-def law(geo, which: str, clamp=None):
-    """θ(ρ) (rad) of member ``which``: its sections' turn about its own axis at cone
-    distance ρ (mm); None for a straight bevel. ``clamp`` (ρ_a, ρ_b): ρ is clipped to that
-    range first (beyond it the turn is rigid)."""
+def law(geo, which: str, clamp=None, own=False):
+    """θ(ρ) (rad) of member ``which``: its sections' turn about its axis at cone distance ρ
+    (mm); None for a straight bevel. ``clamp`` (ρ_a, ρ_b): ρ is clipped to that range first
+    (beyond it the turn is rigid). ``own``: about the axis of the member's own frame (an
+    internal member's is turned by π about x, which reverses the turn)."""
     if geo.line is None:
         return None
     c = geo.gear if which == "gear" else geo.mate
     k = (1.0 if which == "gear" else -1.0) / math.sin(c.pitch_angle)
+    if own and c.internal:
+        k = -k                             # its own frame is turned by π about x: Rz(θ) -> Rz(-θ)
     line = geo.line
     if clamp is None:
         return lambda rho: k * line.lam(rho)
@@ -285,19 +285,22 @@ def spiral_body(geo, which: str, tolerance: float, name=None):
     th_max = max(c.addendum_angle, c.dedendum_angle) + 0.02
     pad = max(0.02 * geo.face_width, 4 * e_w, 1.5 * r_out * (1 / math.cos(th_max) - 1))
     layers, longest = plan(law(geo, which), r_in - pad, r_out + pad, c.face_angle, cp.r_max, e_w)
-    loop = split_long_edges(np.asarray(sec.loops[0], float), longest)
+    # an internal member's section is a ring: the teeth are its hole (made counter-clockwise
+    # here and cut from the rim's cone, which turning about the axis keeps)
+    loop = split_long_edges(np.asarray(sec.tooth_loop, float)[::-1 if c.internal else 1], longest)
     # the turn is rigid beyond the cones at r_in - pad and r_out + pad (each a band away from
     # the end cones): the bands out to the end planes stay exact, and the law's kinks lie in
     # the bands next to them, outside the body
-    tilt = float(np.abs(np.arctan2(np.hypot(*loop.T), zs) - c.pitch_angle).max())
-    theta = law(geo, which, (r_in - pad, (r_out + pad) / math.cos(tilt)))
+    dp = math.pi - c.pitch_angle if c.internal else c.pitch_angle      # in its own frame
+    tilt = float(np.abs(np.arctan2(np.hypot(*loop.T), zs) - dp).max())
+    theta = law(geo, which, (r_in - pad, (r_out + pad) / math.cos(tilt)), own=True)
     W = warp(theta)
     for attempt in range(4):
         budget.check_body(2 * len(loop) * (layers + 4) + 4 * n_seg, "tolerance", tolerance,
                           what=f"a spiral bevel of {len(loop):,} vertices a layer x {layers + 3:,} layers")
         stage("body")
         step = (r_out - r_in + 2 * pad) / layers
-        rho = layer_radii(loop, zs, c.pitch_angle, r_in - pad - step, r_out + pad + step, layers + 2, cp.z_lo, zs)
+        rho = layer_radii(loop, zs, dp, r_in - pad - step, r_out + pad + step, layers + 2, cp.z_lo, zs)
         V, F, V0, sides = layered_mesh(loop, zs, rho, W)
         band = sides.min(axis=1) // len(loop)
         inner = sides[(band >= 2) & (band <= len(rho) - 4)]
@@ -308,6 +311,8 @@ def spiral_body(geo, which: str, tolerance: float, name=None):
     else:
         raise ToleranceError("tolerance", tolerance, "a larger value", f"the warp error stays at {measured:.3g} mm")
     teeth = Manifold(Mesh64(vert_properties=np.ascontiguousarray(V), tri_verts=np.ascontiguousarray(F, np.uint64)))
+    if c.internal:
+        teeth = _rim_cone(sec, zs, rho) - teeth
     capsolid = Manifold.revolve(CrossSection([cp.outline], FillRule.Positive), n_seg)
     man = teeth ^ capsolid
     e_s = sec.report["max_error"]
@@ -320,6 +325,17 @@ def spiral_body(geo, which: str, tolerance: float, name=None):
            "section_vertices": int(len(loop)), "layers": int(layers),
            "z_range": [float(Vb[:, 2].min()), float(Vb[:, 2].max())]}
     return BevelBody(man, name or which, rep, profile=sec)
+
+
+def _rim_cone(sec, zs: float, rho: np.ndarray):
+    """The cone over an internal section's rim loop (the one that is not the teeth), out to
+    the layers' ends ``rho`` (unturned: a turn about the axis keeps the rim)."""
+    from manifold3d import Manifold, Mesh64
+    rim = max(sec.loops, key=lambda l: float(np.hypot(l[:, 0], l[:, 1]).min()))
+    rim = np.asarray(rim, float)
+    r = np.array([[rho[0].min() * 0.999], [rho[-1].max() * 1.001]]) * np.ones((1, len(rim)))
+    V, F, _, _ = layered_mesh(rim, zs, r, lambda v: np.asarray(v, float))
+    return Manifold(Mesh64(vert_properties=np.ascontiguousarray(V), tri_verts=np.ascontiguousarray(F, np.uint64)))
 
 
 def _tooth0(V0, sides, teeth: int):

@@ -74,7 +74,6 @@ def run(args) -> int:
             check_path(getattr(args, name), name, (".png", ".svg") if name != "preview_png" else (".png",))
     if args.contact_png is not None and args.part != "pair":
         raise GearError("contact_png", args.contact_png, "only with --part pair")
-    _refuse_internal_figures(args)
     from ..plan_sets import plan_bevel          # the whole command planned first: refused before any work
     plan_bevel({k: getattr(args, k) for k in ("teeth", "mate_teeth", "module", "face_width", "pressure_angle_deg",
                                               "shaft_angle_deg", "form", "shift_coeff", "tolerance", "part",
@@ -116,15 +115,6 @@ def _internal(args) -> bool:
     import math
     from ..bevel.geometry import pitch_angles
     return max(pitch_angles(args.teeth, args.mate_teeth, math.radians(args.shaft_angle_deg))) > math.pi / 2
-
-
-def _refuse_internal_figures(args):
-    """The figures of an internal bevel pair are not drawn yet: refused before any work."""
-    if args.png is None and args.contact_png is None:
-        return
-    if _internal(args):
-        name = "png" if args.png is not None else "contact_png"
-        raise GearError(name, getattr(args, name), "none for an internal bevel pair (the figures are not drawn yet)")
 
 
 def _figures(args, b):
