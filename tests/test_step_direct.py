@@ -146,20 +146,25 @@ def test_direct_brep_reads_back_exact(name, pkw, bkw, theta, faces, tmp_path, mo
         assert involute_distance(xy2[band], z, 1.0, internal).max() > 5 * TOL
 
 
-def test_left_hand_chevron_arch_and_gap(tmp_path):
-    """A left-hand chevron-arch (three law pieces) and a herringbone with a central groove:
-    valid single solids with the OCC path's volume."""
+@pytest.mark.parametrize("kw", [
+    pytest.param(dict(kind="chevron-arch", helix_angle_deg=25, arch_radius=3.0, hand="left"),
+                 marks=pytest.mark.slow, id="chevron-arch-left"),
+    pytest.param(dict(kind="herringbone", helix_angle_deg=25, gap=1.5), id="herringbone-gap"),
+])
+def test_more_laws(kw, tmp_path):
+    """A left-hand chevron-arch (its law in several smooth pieces) and a herringbone with a
+    central groove (groove ends and root cylinder): valid single solids with the OCC path's
+    volume."""
     from gear3d.export.step_brep import brep_solid
     p = gear3d.profile("involute", teeth=18, module=1, tolerance=TOL)
-    for kw, faces in ((dict(kind="chevron-arch", helix_angle_deg=25, arch_radius=3.0, hand="left"), None),
-                      (dict(kind="herringbone", helix_angle_deg=25, gap=1.5), None)):
-        b = body(p, width=8, **kw)
-        out = tmp_path / "g.step"
-        write(b, out, step="brep")
-        assert b.report["brep"]["writer"] == "direct"
-        shape = read_step(out)
-        assert is_valid(shape) and len(sub_shapes(shape, "solid")) == 1
-        assert occ_volume(shape) == pytest.approx(occ_volume(brep_solid(b)[0]), rel=1e-9)
+    b = body(p, width=8, **kw)
+    out = tmp_path / "g.step"
+    write(b, out, step="brep")
+    assert b.report["brep"]["writer"] == "direct"
+    shape = read_step(out)
+    assert is_valid(shape) and len(sub_shapes(shape, "solid")) == 1
+    assert len(sub_shapes(shape, "face")) == b.report["brep"]["faces"]
+    assert occ_volume(shape) == pytest.approx(occ_volume(brep_solid(b)[0]), rel=1e-9)
 
 
 def test_bodies_it_does_not_take_keep_the_occ_path(tmp_path, monkeypatch):
