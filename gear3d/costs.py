@@ -89,6 +89,12 @@ COSTS = {
     "cut": Cost(6e-6, 200.0, 0.3, 30e6, "involute z=20, 2000 positions x 200 samples x 4: 7.8 s (4.9 us)"),
     # figures (matplotlib), per profile vertex drawn
     "figure": Cost(5e-5, 3000.0, 1.2, 60e6, "annotated involute figure, 20,000 vertices: 1.1 s"),
+    # the harmonic deformed-state check (gear3d.harmonic.deform.mesh_check): per (position x flex
+    # tooth x (tooth region vertices + 10) x rigid wheel vertex), shapely intersects/intersection/distance
+    "harmonic.check": Cost(4e-9, 0.0, 0.3, 60e6, "measured 2026-11-26 in process (CPU): single drives m 0.3, "
+                           "z_f = 200 / 1000 triangular at 0.1 um, 200 at 0.01 um, 200 involute at 0.1 um: "
+                           "72-81 ns a (tooth x rigid vertex) for 12-17 region vertices, 202 ns for 58 "
+                           "(3.1-3.5 ns an item)"),
     # the set commands (gear3d.plan_sets), measured 2026-11-26 in a subprocess (CPU, ru_maxrss)
     "worm.body": Cost(1.6e-6, 280.0, 0.4, 150e6, "measured 2026-11-26 (CPU, peak RSS): worm pairs m 2, z2 = "
                       "30 / 100 / 300 at 10 / 2 / 0.5 um, 0.2-10.7 M triangles: 1.26-1.45 us and 240-250 B a "

@@ -31,8 +31,8 @@ the resource, the estimate, the limit and how to raise it (``--max-seconds`` or 
 from __future__ import annotations
 
 from . import budget
-from .budget import Estimate
-from .plan import (Sketch, body_layers, pair_estimate, probe_call, probe_profile, sketch_contact,
+from .budget import Estimate, estimate
+from .plan import (Sketch, kerf_of, body_layers, pair_estimate, probe_call, probe_profile, sketch_contact,
                    write_estimate)
 
 #: body keywords that make the builder use manifold3d booleans (COSTS["body.manifold"])
@@ -91,7 +91,8 @@ class _Walk:
         src, ext = s.deps[0], _ext(s.inputs.get("kind", ""))
         if src in self.sketch:
             sk = self.sketch[src]
-            self.add(write_estimate(ext, vertices=sk.vertices, per_tooth=sk.per_tooth))
+            kerf = kerf_of(s.inputs.get("options"))
+            self.add(write_estimate(ext, vertices=sk.vertices, per_tooth=sk.per_tooth, kerf=kerf))
         elif src in self.tri:
             self.add(write_estimate(ext, triangles=self.tri[src]))
 
@@ -173,3 +174,55 @@ def plan_harmonic(design, wheel_profile, tolerance: float) -> Estimate:
             budget.check(total, "tolerance", tol, est)
     budget.log_plan(total)
     return total
+
+
+def harmonic_check_counts(flex: Sketch, rigid: Sketch, positions: int) -> tuple:
+    """(items, vertices) of a deformed-state mesh check (:func:`gear3d.harmonic.deform.mesh_check`)
+    of the sketched flex and rigid wheels over ``positions`` flex rotations: at each, every
+    flex tooth (its region: one period's vertices, the arc of the neutral circle's
+    1,024-gon it cuts, 4 corners) is intersected with and measured against the whole rigid
+    wheel (teeth and rim), so the items are positions x flex teeth x (region vertices +
+    10) x rigid vertices; vertices: those of the flex teeth and the rigid wheel.
+
+    >>> from gear3d.budget import Estimate
+    >>> f = Sketch(200, 2000.0, 10.0, 30.0, 0.0, 1e-4, Estimate())
+    >>> r = Sketch(202, 2020.0, 10.0, 31.0, 0.0, 1e-4, Estimate(), rim_vertices=300.0)
+    >>> harmonic_check_counts(f, r, 16)[0] == 16 * 200 * (10 + 1024 / 200 + 4 + 10) * 2320
+    True
+    """
+    region = flex.per_tooth + 1024.0 / max(flex.teeth, 1) + 4
+    items = float(positions) * flex.teeth * (region + 10) * rigid.layer_vertices
+    return items, flex.teeth * region + rigid.layer_vertices
+
+
+def plan_harmonic_check(design, stage: int, tooth: str, tolerance: float, positions: int,
+                        tooth_params: dict | None = None, figure: bool = False) -> Estimate:
+    """The deformed-state mesh check of ``design``'s ``stage`` (0-based) at ``tolerance``
+    (mm) over ``positions`` flex rotations (``gear3d harmonic check``,
+    :func:`gear3d.harmonic.deform.mesh_check`): the flex and rigid profiles probed, the
+    rolling (:func:`harmonic_check_counts` x COSTS["harmonic.check"]) and, with ``figure``,
+    its figure; logged and checked (BudgetError naming the positions, or the tolerance when
+    one position is already over)."""
+    from .errors import check_number
+    from .harmonic.deform import stage_builders
+    from .params import MIN_TOLERANCE
+    tol = check_number("tolerance", tolerance, MIN_TOLERANCE, 0.05, unit="mm")
+    _, flex_call, rigid_call, _ = stage_builders(design, stage, tooth, tol, dict(tooth_params or {}))
+    flex, rigid = probe_call(flex_call, tol), probe_call(rigid_call, tol)
+    if flex is None or rigid is None:
+        return Estimate()
+    items, verts = harmonic_check_counts(flex, rigid, positions)
+    total = Estimate()
+    roll = estimate("harmonic.check", items, 0.0, f"{positions:,} positions x {flex.teeth:,} flex teeth x "
+                    f"{rigid.layer_vertices:,.0f} rigid vertices")
+    parts = [flex.estimate, rigid.estimate,
+             Estimate(0.0, 2000.0 * verts, 0.0, f"the check's polygons of {verts:,.0f} vertices"), roll]
+    if figure:
+        parts.append(estimate("figure", verts, 0.0, f"a figure of {verts:,.0f} vertices"))
+    for est in parts:
+        total = total.then(est)
+    budget.log_plan(total)
+    one = (flex.estimate.seconds + rigid.estimate.seconds + roll.seconds / max(positions, 1))
+    by_positions = one <= budget.current().max_seconds
+    return budget.check(total, "positions" if by_positions else "tolerance", positions if by_positions else tol,
+                        roll)

@@ -35,21 +35,29 @@ from .synthesis import HarmonicDesign
 
 # ----------------------------------------------------------------------------- mesh check
 
-def _stage_geometry(design, stage, tooth, tolerance, tooth_params):
+def stage_builders(design, stage, tooth, tolerance, tooth_params):
+    """(the stage, a call that builds its flex profile, one that builds its rigid wheel's
+    profile, the neutral radius r_n in mm): what :func:`mesh_check` builds, also probed by
+    its plan (:func:`gear3d.plan_jobs.plan_harmonic_check`)."""
     from .parts import tooth_profile
     st = design.stages[stage]
     f = design.flexspline
     ro = f["outer_diameter"] / 2
     fl, rg = st.flex, st.rigid
     if fl.internal:
-        pf = tooth_profile(design, fl.role, tooth, tolerance, rim_radius=ro, **tooth_params)
         r_n = (fl.root_diameter / 2 + ro) / 2
+        flex_kw = dict(tooth_params, rim_radius=ro)
     else:
-        pf = tooth_profile(design, fl.role, tooth, tolerance, **tooth_params)
         r_n = (f["inner_diameter"] / 2 + ro) / 2
+        flex_kw = dict(tooth_params)
     rim = rg.root_diameter / 2 + 4 * design.module if rg.internal else None
-    pr = tooth_profile(design, rg.role, tooth, tolerance, rim_radius=rim, **tooth_params)
-    return st, pf, pr, r_n
+    return (st, lambda: tooth_profile(design, fl.role, tooth, tolerance, **flex_kw),
+            lambda: tooth_profile(design, rg.role, tooth, tolerance, rim_radius=rim, **tooth_params), r_n)
+
+
+def _stage_geometry(design, stage, tooth, tolerance, tooth_params):
+    st, flex, rigid, r_n = stage_builders(design, stage, tooth, tolerance, tooth_params)
+    return st, flex(), rigid(), r_n
 
 
 def _polygon(loops):
@@ -118,6 +126,8 @@ def mesh_check(design: HarmonicDesign, stage=0, *, tooth="triangular", tolerance
     stage = check_number("stage", stage, 0, len(design.stages) - 1, integer=True)
     tol = check_number("tolerance", tolerance, MIN_TOLERANCE, 0.05, unit="mm")
     npos = check_number("positions", positions, 1, 10_000, integer=True)
+    from ..plan_jobs import plan_harmonic_check
+    plan_harmonic_check(design, stage, tooth, tol, npos, tooth_params)      # refused before any work
     st, pf, pr, r_n = _stage_geometry(design, stage, tooth, tol, tooth_params)
     w = st.w0 if w0 is None else check_number("w0", w0, 0, r_n / 4, unit="mm")
     gap = 2 * tol + 1e-3 if contact_gap is None else check_number("contact_gap", contact_gap, 0, None, unit="mm")

@@ -53,6 +53,20 @@ REGRESSIONS = [
     # harmonic drives are planned whole (their toothed wheels' prisms and STLs) before any part
     "harmonic build --module 0.3 --z-flex 20000 --z-circular 20002 --tolerance 0.001 -o hb",
     "--max-seconds 1 harmonic build --seed002 --tolerance 0.0001 -o hb",
+    # the deformed-state check is planned whole (positions x flex teeth x rigid vertices),
+    # and so is a DXF with a kerf (its sampled fallback, at any number of teeth)
+    "harmonic check --seed002 --stage 2 --tooth sine --positions 64",
+    "--max-seconds 5 harmonic check --seed002 --positions 1000",
+    "harmonic check --module 0.3 --z-flex 2000 --z-circular 2002 --positions 50",
+    "--max-seconds 5 profile involute --teeth 400 --kerf 0.9 --tolerance 0.001 -o g.dxf",
+    "--max-seconds 5 drive harmonic check --seed002 --tooth involute --positions 100 --png h.png",
+]
+#: cases that run (a few seconds) and must finish within twice their whole-job plan:
+#: before the plans, the harmonic check was charged 0.19 s (its profiles) for 6.8 s of
+#: work, and a kerfed DXF of 40 teeth 0.13 s for 5.7 s
+QUICK_WITHIN = [
+    "harmonic check --seed002",
+    "profile involute --teeth 12 --kerf -0.5 --tolerance 0.001 -o g.dxf",
 ]
 #: reports that the budget now lets run (under the default limits) but that must still keep
 #: the promise: within twice their estimate (minutes of CPU each: -m slow)
@@ -76,6 +90,10 @@ SLOW_REGRESSIONS = [
     # a B-rep that OpenCascade finds invalid (an undercut 12-tooth spur) is a finding of the
     # work, not a budget refusal: one line, no file, within twice its estimate
     "--max-seconds 10 body involute --teeth 12 --kind spur --width 5 --tolerance 0.1 -o g.step --step brep",
+    # whole-job plans of the harmonic check and of a kerfed DXF (6.8 s against 9.5 s; 5.7 s
+    # against 3.9 s)
+    "harmonic check --seed002 --positions 200",
+    "profile involute --teeth 40 --kerf 0.9 --tolerance 0.001 -o g.dxf",
 ]
 
 
@@ -97,6 +115,13 @@ def test_issue_runaways_are_refused_at_once(tmp_path):
     bad = [f"{line}: rc {r.rc}; {verdict(r)} | {r.err.strip()[-200:]}" for line, r in results
            if r.rc != 2 or verdict(r)]
     assert not bad, "\n".join(bad)
+
+
+@pytest.mark.parametrize("line", QUICK_WITHIN)
+def test_planned_jobs_run_within_their_estimate(line, tmp_path):
+    """A harmonic check and a kerfed DXF finish within twice their plan (budgetrun.verdict)."""
+    r = run(_case(line), tmp_path)
+    assert r.rc == 0 and not verdict(r), (line, verdict(r), r.err[-300:])
 
 
 @pytest.mark.slow
