@@ -28,6 +28,7 @@ from dataclasses import dataclass
 
 from . import budget
 from .budget import Estimate, estimate
+from .export import FORMATS
 
 #: the DXF and SVG writers' sampled fallback fits a reference profile built this much finer
 #: (gear3d.export.dxf), which has sqrt(20) times the vertices
@@ -149,7 +150,7 @@ def charge_write(obj, kind: str, ext: str, opts: dict) -> Estimate:
         r = _report(obj)
         v = float(r.get("vertices") or sum(len(l) for l in getattr(obj, "loops", []) or []))
         per = float(r.get("vertices_per_tooth") or 0.0)
-        tri = 4.0 * v if ext not in (".dxf", ".svg", ".png", ".json") else 0.0
+        tri = 4.0 * v if FORMATS[ext].role == "mesh" else 0.0
         est = write_estimate(ext, vertices=v, per_tooth=per, triangles=tri, kerf=kerf_of(opts))
     else:
         bodies = list(obj) if isinstance(obj, (list, tuple)) else [obj]
