@@ -3,8 +3,10 @@
 Construction. A plain body (no chamfer, gap or hub feature; a bore at most) is built
 directly as a closed triangle mesh (:func:`twisted_mesh`): each layer is the profile
 polygon turned exactly by θ(z), side quads are split on the diagonal that runs with the
-turn, the end faces come from manifold3d's polygon triangulation; its ``Manifold`` is made
-from that mesh only when something asks for it. Other bodies use
+turn, the end faces are a fan or a strip from the section's polar structure
+(:mod:`gear3d.solids.caps`; manifold3d's polygon triangulation for an undercut outline),
+and the profile's loops are taken as they are (no clipper): no manifold3d on that path.
+Its ``Manifold`` is made from that mesh only when something asks for it. Other bodies use
 ``CrossSection(loops).extrude(W, n)`` and one ``warp_batch`` that moves the layers to
 their heights, insets the chamfer bands and turns each layer by θ(z); features are
 manifold booleans.
@@ -452,7 +454,6 @@ def _build(prof, plan: BuildPlan, share: float = 1.0) -> Built:
     """Extrude, warp and measure one attempt of ``plan``; ``share`` scales the twist budget.
     ``plan.direct`` None builds a manifold (extrude + warp); a number builds the mesh arrays
     directly, with a bore of that radius (mm, 0 = none)."""
-    from manifold3d import CrossSection, FillRule, Manifold
     law, W, tol, direct = plan.law, plan.width, plan.tolerance, plan.direct
     delta, cb, ct = plan.finish.xy_offset, plan.finish.bottom, plan.finish.top
     e_p = float(prof.report["max_error"])
@@ -466,8 +467,7 @@ def _build(prof, plan: BuildPlan, share: float = 1.0) -> Built:
                           teeth=prof.teeth)
     knots, max_len, bound = plan_layers(law, W, rho, loops, e_z, (cb, ct), charge)
     loops = subdivide(loops, max_len)
-    cs = CrossSection(loops, FillRule.Positive)
-    polys = [np.asarray(p, float) for p in cs.to_polygons()]
+    cs, polys = _section(loops, direct is not None and not delta)
     nv = sum(len(p) for p in polys)
     est = 2 * nv * (len(knots) - 1) + 2 * nv
     budget.check_body(est, "tolerance", tol, manifold=direct is None, layer_vertices=nv, teeth=prof.teeth)
@@ -488,6 +488,7 @@ def _build(prof, plan: BuildPlan, share: float = 1.0) -> Built:
         vecs = (chamfer_vectors(polys, cb, "elephant_foot" if ef_bottom else "chamfer") if cb else None,
                 chamfer_vectors(polys, ct, "chamfer") if ct else None)
 
+    from manifold3d import Manifold
     man = Manifold.extrude(cs, W, len(knots) - 2)
     man = man.warp_batch(warp_layers(law, W, knots, polys, vecs, cb, ct))
     _check_manifold(man, "width", W)
@@ -495,6 +496,23 @@ def _build(prof, plan: BuildPlan, share: float = 1.0) -> Built:
     # ---- measure the tooth surface against the exactly turned profile
     max_err, heights = measure(man, law, prof, knots, delta, skip)
     return Built(man, knots, max_len, bound, max_err, heights, e_p)
+
+
+def _section(loops, as_given: bool):
+    """(manifold3d CrossSection or None, polygons (n, 2) mm) of the body's section.
+    ``as_given``: the loops are a profile's own (no offset) for a plain body; when they
+    are one outline star-shaped about the axis (or two such loops, one inside the other:
+    :func:`gear3d.solids.caps.cap_triangles`), they are simple and oriented (outer CCW,
+    holes CW) and are taken as they are, with no clipper. Otherwise: the positive fill of
+    ``loops`` (an offset may overlap)."""
+    if as_given:
+        from .caps import cap_triangles
+        polys = [np.asarray(p, float) for p in loops]
+        if cap_triangles(polys) is not None:
+            return None, polys
+    from manifold3d import CrossSection, FillRule
+    cs = CrossSection(loops, FillRule.Positive)
+    return cs, [np.asarray(p, float) for p in cs.to_polygons()]
 
 
 def _check_profile(profile):

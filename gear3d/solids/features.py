@@ -223,9 +223,9 @@ def offset_loops(loops, delta: float, tol: float):
     """XY offset (mm) of the profile loops by ``delta`` (positive = more material), round
     joins whose chords sag at most ``tol``. Raises GearError when the offset changes the
     profile's topology (teeth merging or vanishing)."""
-    from manifold3d import CrossSection, FillRule, JoinType
     if delta == 0:
         return [np.asarray(l, float) for l in loops]
+    from manifold3d import CrossSection, FillRule, JoinType
     a = abs(delta)
     n = 8 if tol >= a else max(8, int(math.ceil(math.pi / math.acos(1 - tol / a))))
     cs = CrossSection(loops, FillRule.Positive).offset(delta, JoinType.Round, 2.0, n)

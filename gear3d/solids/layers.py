@@ -23,9 +23,10 @@ def twisted_mesh(polys, knots, law, fixed=None):
     """Closed triangle mesh (V (n, 3) float64 mm, F (m, 3) int64) of polygons ``polys``
     (outer loops CCW, holes CW, mm) stacked at heights ``knots`` (mm), each layer turned by
     ``law(z)`` (rad) except the loops flagged in ``fixed``. Side quads are split into two
-    triangles; the end faces come from manifold3d's polygon triangulation (no new vertices),
-    so every edge is shared by exactly two triangles, all facing outwards."""
-    from manifold3d import triangulate
+    triangles; the end faces come from :func:`gear3d.solids.caps.cap_triangles` (a fan from
+    one vertex on the axis, or a strip between the outline and a bore or rim), else from
+    manifold3d's polygon triangulation (no new vertices), so every edge is shared by
+    exactly two triangles, all facing outwards."""
     fixed = [False] * len(polys) if fixed is None else fixed
     P = np.concatenate(polys)
     n, K = len(P), len(knots)
@@ -35,6 +36,30 @@ def twisted_mesh(polys, knots, law, fixed=None):
     x = c * P[None, :, 0] - s * P[None, :, 1]
     y = s * P[None, :, 0] + c * P[None, :, 1]
     V = np.stack([x, y, np.broadcast_to(np.asarray(knots, float)[:, None], x.shape)], axis=-1).reshape(-1, 3)
+    sides = _side_triangles(polys, n, K, th[:, 0])
+    T, centre = end_triangles(polys)
+    top = T + (K - 1) * n
+    if centre:                            # the fans' apexes: two new vertices on the axis
+        V = np.concatenate([V, [[0.0, 0.0, float(knots[0])], [0.0, 0.0, float(knots[-1])]]])
+        T = np.where(T == n, K * n, T)
+        top = np.where(T == K * n, K * n + 1, top)
+    F = np.concatenate([T[:, ::-1], sides, top])
+    return V, F
+
+
+def end_triangles(polys):
+    """(CCW triangles (m, 3) int64 of the section, whether index ``sum(len(p))`` is a new
+    vertex on the axis): :func:`gear3d.solids.caps.cap_triangles`, else manifold3d's."""
+    from .caps import cap_triangles
+    got = cap_triangles(polys)
+    if got is not None:
+        return got
+    from manifold3d import triangulate
+    return np.asarray(triangulate(polys), np.int64).reshape(-1, 3), False
+
+
+def _side_triangles(polys, n: int, K: int, th):
+    """The side quads of ``K`` layers of ``n`` vertices, two triangles each."""
     a, b, start = [], [], 0
     for p in polys:
         i = np.arange(len(p))
@@ -47,13 +72,10 @@ def twisted_mesh(polys, knots, law, fixed=None):
     A1, B1 = A0 + n, B0 + n
     # split each side quad along the diagonal whose zig-zag bulges out of the material where
     # the chords sag into it: the diagonal that runs with the turn (measured: 25% less error)
-    up = np.repeat(np.diff(th[:, 0]) >= 0, len(a))
+    up = np.repeat(np.diff(th) >= 0, len(a))
     t1 = np.where(up[:, None], np.stack([A0, B0, A1], axis=1), np.stack([A0, B0, B1], axis=1))
     t2 = np.where(up[:, None], np.stack([B0, B1, A1], axis=1), np.stack([A0, B1, A1], axis=1))
-    sides = np.concatenate([t1, t2])
-    T = np.asarray(triangulate(polys), np.int64).reshape(-1, 3)
-    F = np.concatenate([T[:, ::-1], sides, T + (K - 1) * n])
-    return V, F
+    return np.concatenate([t1, t2])
 
 
 def minimum_vertices(prof, law, tol: float, W: float) -> float:
