@@ -131,3 +131,45 @@ def test_wheel_and_worm_features_in_the_brep(tmp_path):
     Q = _section_points(worm, (20, A, 0), (1, 0, 0))                # through the +x shaft
     rq = np.hypot(Q[:, 1] - A, Q[:, 2])
     assert np.allclose(np.sort(np.unique(np.round(rq, 6))), [4.0, 7.0])
+
+
+# ------------------------------------------------------------- a wheel that points (z2 = 20)
+
+Z20 = dict(part="wheel", module=2, starts=1, wheel_teeth=20, tolerance=0.1)
+
+
+def _throat_kink(m=2.0, z2=20, q=10.0):
+    """|h| (mm) where the throat arc (torus of radius a - d_a2/2 about the worm axis) meets
+    the outside cylinder d_e2/2 = d_a2/2 + m (one start): h² = R_t² - (a - d_e2/2)²."""
+    a = m * (q + z2) / 2
+    rt = a - (m * z2 / 2 + m)
+    return math.sqrt(rt ** 2 - (a - (m * z2 / 2 + 2 * m)) ** 2)
+
+
+def test_pointed_wheel_is_refused_in_one_line_naming_what_to_change(tmp_path, capsys):
+    from gear3d.cli import main
+    out = tmp_path / "w.step"
+    rc = main(["worm", "--module", "2", "--starts", "1", "--wheel-teeth", "20", "--tolerance", "0.1",
+               "--part", "wheel", "-o", str(out), "--step", "brep"])
+    err = capsys.readouterr().err
+    assert rc == 2 and err.count("\n") == 1 and list(tmp_path.iterdir()) == []
+    assert "step" in err and "--face-width" in err and "--no-throat" in err
+    import re
+    h0, h1, kink = (float(x) for x in re.search(r"\|h\| = ([\d.]+) to ([\d.]+) mm .*kink is at ([\d.]+) mm", err).groups())
+    assert kink == pytest.approx(_throat_kink(), abs=5e-3) and h0 < kink < h1 <= 9.0
+
+
+@pytest.mark.slow
+def test_pointed_wheel_brep_with_the_suggested_changes(tmp_path):
+    """The refusal's suggestions work: the face width it names, or a flat blank."""
+    import re
+    s = gear3d.worm(**Z20)
+    with pytest.raises(gear3d.GearError) as e:
+        gear3d.write(s.parts(), tmp_path / "x.step", step="brep", geometry=s.design)
+    width = float(re.search(r"--face-width ([\d.]+) mm", str(e.value)).group(1))
+    assert width < 2 * _throat_kink()
+    for kw in ({"face_width": width}, {"throat": False}):
+        s = gear3d.worm(**Z20, **kw)
+        gear3d.write(s.parts(), tmp_path / "w.step", step="brep", geometry=s.design)
+        (w,) = sub_shapes(read_step(tmp_path / "w.step"), "solid")
+        assert is_valid(w) and 0 < s.wheel.report["brep"]["max_error"] <= Z20["tolerance"]

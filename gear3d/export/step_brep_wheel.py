@@ -84,6 +84,53 @@ def section_runs(d, h: float, tol_s: float):
     return ex, runs[start:] + runs[:start]
 
 
+def _is_pointed(d, h: float, tol_s: float) -> bool:
+    """True where the section at height ``h`` (mm) comes to a point below the blank's tip
+    circle (no vertex of its loop on that circle: the tip arc run vanishes)."""
+    from ..wormgear.wheel import section
+    L = np.asarray(section(d, float(h), tol_s).tooth_loop)
+    rt = float(d.blank_tip_radius(h))
+    return not bool(np.any(np.abs(np.hypot(L[:, 0], L[:, 1]) - rt) <= 1e-9 * rt))
+
+
+def pointed_band(d, tol_s: float, steps: int = 48):
+    """(h0, h1) (mm, 0 <= h0 <= h1 <= B/2): the heights |h| between which the wheel's
+    sections come to a point below the blank's tip, found on ``steps`` heights and the
+    throat's kink, the first one bisected to 1e-4 mm; None when none is pointed. A throated
+    wheel of few teeth points near the kink, where the blank's tip is highest over its
+    narrowest teeth."""
+    half = d.face_width / 2
+    hs = set(np.linspace(0.0, half, steps + 1).tolist())
+    kink = d.throat_break()
+    if kink is not None and kink < half:
+        hs |= {kink, max(kink - 1e-3, 0.0), min(kink + 1e-3, half)}
+    hs = sorted(hs)
+    bad = [h for h in hs if _is_pointed(d, h, tol_s)]
+    if not bad:
+        return None
+    hi = bad[0]
+    lo = max([h for h in hs if h < hi], default=hi)
+    while hi - lo > 1e-4 and lo < hi:
+        mid = 0.5 * (lo + hi)
+        lo, hi = (lo, mid) if _is_pointed(d, mid, tol_s) else (mid, hi)
+    return hi, bad[-1]
+
+
+def refuse_pointed(d, tol_s: float) -> None:
+    """One GearError line, before any surface is fitted, for a wheel whose teeth come to a
+    point below the blank's tip somewhere across the face width (the tip's surface would
+    shrink to an edge there): it names the heights and what to change."""
+    band = pointed_band(d, tol_s)
+    if band is None:
+        return
+    h0, h1 = band
+    fix = f"--face-width {math.floor(2 * h0 * 100) / 100:g} mm or less, " if h0 > 0.25 * d.module else ""
+    raise GearError("step", "brep", "'faceted' for this wheel",
+                    f"its teeth come to a point below the blank's tip at |h| = {h0:.3g} to {h1:.3g} mm "
+                    f"(the throat's kink is at {d.throat_break() or 0:.3g} mm); for a B-rep give {fix}"
+                    "--no-throat or more teeth")
+
+
 def _signature(runs, z):
     return [(r.piece, r.k) for r in runs[:len(runs) // z]]
 
@@ -246,6 +293,7 @@ def wheel_solid(w, design=None):
     t0 = time.perf_counter()
     tol = float(w.report["tolerance"])
     ctx = {"d": d, "tol_s": SECTION_SHARE * tol, "sections": {}}
+    refuse_pointed(d, ctx["tol_s"])
     _ex, runs0 = section_runs(d, 0.0, ctx["tol_s"])
     ctx["signature"] = _signature(runs0, d.wheel_teeth)
     bands, err = _fit_bands(ctx, tol)
