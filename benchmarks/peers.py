@@ -159,7 +159,7 @@ def main(argv=None) -> int:
     if args.case == "brep":
         sys.path.insert(0, str(Path(__file__).resolve().parent))
         from peers_brep import main as brep_main
-        return brep_main(["--runs", str(args.runs)])
+        return brep_main(["--runs", str(args.runs)] + (["--publish"] if args.publish else []))
     if args.case == "worm":
         sys.path.insert(0, str(Path(__file__).resolve().parent))
         from peers_worm import main as worm_main

@@ -4,7 +4,9 @@ Reference gear: 20 teeth, module 1, pressure angle 20 deg, helix 20 deg, 10 mm w
 
 * gear3d: ``gear3d body involute --teeth 20 --kind helical --helix-angle-deg 20 --width 10
   -o g.step --step brep`` (the default tolerance, 0.01 mm; the file reports its own measured
-  flank error);
+  flank error). A plain gear body like this one is written by the direct writer
+  (``gear3d/export/step_direct.py``, no OpenCascade); the same command with
+  ``GEAR3D_BREP_WRITER=occ`` (the OpenCascade path, kept for every other body) is a row too;
 * cq_gears: ``SpurGear(module=1, teeth_number=20, width=10, pressure_angle=20,
   helix_angle=20)`` on a CadQuery ``Workplane``, exported with ``cq.exporters.export``.
 
@@ -24,15 +26,22 @@ against the exact involute along the base-circle tangent on the working flank
 (``peers.points_flank_error``: the helix hand and the tooth phase fitted, the tooth
 thickness theoretical).
 
-Run:  python benchmarks/peers.py --case brep [--runs 5]   (or python benchmarks/peers_brep.py)
+*First call*, in process: the CPU time of the first ``write(b, "x.step", step="brep")`` in a
+fresh interpreter (after the body is built) minus that of a second write of a new body,
+median over the runs, for both writers.
+
+Run:  python benchmarks/peers.py --case brep [--runs 5] [--publish]   (or python benchmarks/peers_brep.py)
+(``--publish``: the table into BENCHMARKS.md between the ``peers-brep`` markers.)
 """
 from __future__ import annotations
 
 import argparse
+import json
 import os
 import platform
 import shutil
 import statistics
+import subprocess
 import sys
 import tempfile
 from pathlib import Path
@@ -40,7 +49,7 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from peers import cpu_run, compile_gear3d, gear3d_script, points_flank_error  # noqa: E402
+from peers import ROOT, cpu_run, compile_gear3d, gear3d_script, points_flank_error  # noqa: E402
 
 CQ_PYTHON = os.environ.get("CQ_PYTHON", "/work/notes/cqvenv/bin/python")
 CQ_GEARS_SRC = os.environ.get("CQ_GEARS_SRC", "/work/notes/cq_gears_src")
@@ -99,6 +108,29 @@ def measure(path: str) -> dict:
     return res
 
 
+FIRST_CALL = """import json, sys, time
+import gear3d
+from gear3d.export import write
+from gear3d.solids.body import body
+p = gear3d.profile("involute", teeth=20, tolerance=0.01)
+out = []
+for i in range(2):
+    b = body(p, kind="helical", helix_angle_deg=20, width=10)
+    t = time.process_time()
+    write(b, sys.argv[1], step="brep")
+    out.append(time.process_time() - t)
+print(json.dumps(out))
+"""
+
+
+def first_call(work: Path, env: dict) -> tuple:
+    """(first write, second write) CPU s of step="brep" in one fresh interpreter."""
+    r = subprocess.run([sys.executable, "-c", FIRST_CALL, str(work / "fc.step")], env=env,
+                       capture_output=True, text=True, check=True)
+    a, b = json.loads(r.stdout.strip().splitlines()[-1])
+    return a, b
+
+
 def cq_available() -> str | None:
     """None when cq_gears can run, else why not."""
     if not Path(CQ_PYTHON).exists():
@@ -111,12 +143,17 @@ def cq_available() -> str | None:
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--runs", type=int, default=5)
+    ap.add_argument("--publish", action="store_true")
     args = ap.parse_args(argv)
     work = Path(tempfile.mkdtemp(prefix="gear3d-peers-brep-"))
     gear3d = gear3d_script()
-    jobs = {"gear3d --step brep": ([gear3d, "body", "involute", "--teeth", "20", "--kind", "helical",
-                                    "--helix-angle-deg", "20", "--width", "10", "-o", str(work / "g.step"),
-                                    "--step", "brep"], None, work / "g.step", "tolerance 0.01 mm (default)"),
+    cmd = [gear3d, "body", "involute", "--teeth", "20", "--kind", "helical", "--helix-angle-deg", "20",
+           "--width", "10", "--step", "brep", "-o"]
+    occ_env = dict(os.environ, GEAR3D_BREP_WRITER="occ")
+    jobs = {"gear3d --step brep": (cmd + [str(work / "g.step")], None, work / "g.step",
+                                   "tolerance 0.01 mm (default), direct writer"),
+            "gear3d --step brep, OpenCascade path": (cmd + [str(work / "o.step")], None, work / "o.step",
+                                                     "the same, GEAR3D_BREP_WRITER=occ", occ_env),
             "python -c 'import OCP'": ([sys.executable, "-c", "import OCP"], None, None, "(OCP import floor)"),
             "python -c 'import numpy'": ([sys.executable, "-c", "import numpy"], None, None, "(floor)")}
     why = cq_available()
@@ -127,9 +164,12 @@ def main(argv=None) -> int:
                                        work / "cq.step", "SpurGear helix_angle=20", env)
     compile_gear3d()
     times = {k: [] for k in jobs}
+    firsts = {"direct": [], "occ": []}
     for i in range(args.runs):                       # interleaved: the load hits all alike
         for k, job in jobs.items():
             times[k].append(cpu_run(job[0], env=job[4] if len(job) > 4 else None))
+        firsts["direct"].append(first_call(work, dict(os.environ, GEAR3D_BREP_WRITER="")))
+        firsts["occ"].append(first_call(work, occ_env))
         print(f"run {i + 1}/{args.runs} done", file=sys.stderr)
     load = os.getloadavg()
     ref = "cq_gears (CadQuery)" if why is None else None
@@ -152,9 +192,35 @@ def main(argv=None) -> int:
         lines.append(f"| {r['tool']} | {r['setting']} | {r['cpu_s']:.3f} | {r['ratio']:.2f} | {faces} | {mb} | {fe} |")
     if why is not None:
         lines += ["", f"cq_gears skipped: {why}."]
-    print("\n".join(lines))
+    lines += ["", "First `step=\"brep\"` call in a process, CPU s (median; first write, a second write, "
+              "the difference):", ""]
+    for k, v in firsts.items():
+        a = statistics.median(x[0] for x in v)
+        b = statistics.median(x[1] for x in v)
+        d = statistics.median(x[0] - x[1] for x in v)
+        lines.append(f"- {'direct writer' if k == 'direct' else 'OpenCascade path'}: {a:.3f} / {b:.3f} / **+{d:.3f}**")
+    table = "\n".join(lines)
+    print(table)
+    if args.publish:
+        _publish(table)
     shutil.rmtree(work, ignore_errors=True)
     return 0
+
+
+def _publish(table: str) -> None:
+    """The table into BENCHMARKS.md between the peers-brep markers (added at the end of the
+    B-rep section the first time)."""
+    md = ROOT / "BENCHMARKS.md"
+    text = md.read_text()
+    start, end = "<!-- peers-brep:begin -->", "<!-- peers-brep:end -->"
+    block = f"{start}\n{table}\n{end}"
+    if start in text:
+        text = text[:text.index(start)] + block + text[text.index(end) + len(end):]
+    elif "<!-- brep:end -->" in text:
+        text = text.replace("<!-- brep:end -->", block + "\n<!-- brep:end -->", 1)
+    else:
+        text = text.rstrip() + "\n\n" + block + "\n"
+    md.write_text(text)
 
 
 if __name__ == "__main__":
