@@ -47,6 +47,7 @@ def section(geo: PairGeometry, which: str, zs: float, tolerance: float):
         # its own frame is turned by π about x: pitch angle π - δ, teeth pointing inwards, a rim
         dp = math.pi - d
         tip, rim = zs * math.tan(dp - cone.addendum_angle), rim_radius(cone, zs)
+        params["tip_radius"] = tip                 # the turned tip (an exact arc piece for the B-rep)
     else:
         dp, tip, rim = d, zs * math.tan(cone.face_angle), None
     return build_profile(f"bevel-{geo.form}", params, [p for p, _ in pieces], cone.teeth, zs * math.tan(dp),

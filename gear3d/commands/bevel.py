@@ -63,10 +63,12 @@ def run(args) -> int:
     from ..bevel import build
     out = args.output
     check_output(out, kinds="body")
-    if args.step == "brep" and (args.clearance == "uniform" or args.mounting_distance is not None
-                                or args.mate_mounting_distance is not None or _internal(args)):
-        raise GearError("step", "brep", "faceted with --clearance uniform, a mounting distance or an internal "
-                        "bevel (the B-rep has neither the uniform face cone, the hub nor internal teeth yet)")
+    if args.step == "brep" and out.lower().endswith((".step", ".stp")):
+        from ..bevel.spiral import pair_geometry_of
+        from ..export.step_brep_bevel import refuse
+        refuse(pair_geometry_of({k: getattr(args, k) for k in (
+            "teeth", "mate_teeth", "module", "face_width", "pressure_angle_deg", "shaft_angle_deg", "shift_coeff",
+            "form", "clearance", "spiral_angle_deg", "cutter_radius", "hand")}))
     if args.json is not None:
         check_path(args.json, "json", (".json",))
     for name in ("png", "preview_png", "contact_png"):
@@ -108,13 +110,6 @@ def run(args) -> int:
     from ..bevel.rolling import finding_code, summary
     sys.stdout.write(summary(r.check) + "\n")
     return finding_code(r.check)
-
-
-def _internal(args) -> bool:
-    """True when the pair has an internal member (a pitch cone beyond 90°)."""
-    import math
-    from ..bevel.geometry import pitch_angles
-    return max(pitch_angles(args.teeth, args.mate_teeth, math.radians(args.shaft_angle_deg))) > math.pi / 2
 
 
 def _figures(args, b):

@@ -44,7 +44,7 @@ import numpy as np
 
 from ..errors import GearError, ToleranceError
 from .step_brep_fit import FIT_SHARE, fit_runs, merge_runs
-from .step_brep_occ import (bspline_curve, bspline_surface, count, plane_face, sew_solid,
+from .step_brep_occ import (boolean, bspline_curve, bspline_surface, count, plane_face, sew_solid,
                             validate_solid, wire_of_curves)
 from .step_brep_runs import exact_set, loop_runs, nearest_on_piece, rot2
 
@@ -71,7 +71,8 @@ def member_geometry(b, geo=None):
                             "pass the bevel's geometry (gear3d.bevel(...).geometry) as geometry=")
         from ..bevel.geometry import pair_geometry
         geo = pair_geometry(p["teeth"], p["mate_teeth"], p["module"], p["face_width"], p["pressure_angle_deg"],
-                            p["shaft_angle_deg"], p["shift_coeff"], p["form"])
+                            p["shaft_angle_deg"], p["shift_coeff"], p["form"],
+                            clearance=p.get("clearance", "standard"))
     if p.get("form") and p["form"] != geo.form:
         geo = replace(geo, form=p["form"])
     return geo
@@ -95,6 +96,36 @@ def _revolved_caps(outline):
     poly.Close()
     face = BRepBuilderAPI_MakeFace(poly.Wire(), True).Face()
     return BRepPrimAPI_MakeRevol(face, gp_Ax1(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), 2 * math.pi).Shape()
+
+
+def refuse(geo):
+    """GearError (before any work) for what this writer does not build: a spiral or Zerol
+    internal member (its warped flank surfaces do not sew with the ring's end faces yet)."""
+    if geo.line is not None and (geo.gear.internal or geo.mate.internal):
+        raise GearError("step", "brep", "'faceted' for a spiral or Zerol internal bevel pair",
+                        "its B-rep is not built")
+
+
+def _rim_cone(c, cp):
+    """An internal member's rim: the solid cone about z of polar angle
+    :func:`gear3d.bevel.section.rim_polar` (own frame) between the planes that end the teeth
+    cone (just inside them, as the mesh body's extrusion ends there)."""
+    from ..bevel.section import rim_polar
+    k, e = math.tan(rim_polar(c)), 1e-4 * (cp.z_hi - cp.z_lo)
+    za, zb = cp.z_lo + e, cp.z_hi - e
+    return _revolved_caps(np.array([[0.0, za], [za * k, za], [zb * k, zb], [0.0, zb]]))
+
+
+def _hub(shape, b, cp):
+    """``shape`` fused with the hub of the mesh body (:func:`gear3d.bevel._add_hub`): a
+    cylinder of the back face's radius from the back face out to the mounting distance."""
+    from .step_brep_occ import cylinder
+    r_b, z_b = float(cp.outline[-2, 0]), float(cp.outline[-1, 1])
+    d = b.report.get("mounting_distance")
+    if d is None or d <= z_b:
+        return shape
+    lap = 1e-3 * (d - z_b)
+    return boolean("fuse", shape, [cylinder(r_b, z_b - lap, d - z_b + lap)])
 
 
 def _common(a, b):
@@ -265,25 +296,31 @@ def bevel_solid(b, geo=None, measure: bool = True):
     from .step_brep_occ import transformed
     t0 = time.perf_counter()
     geo, which = member_geometry(b, geo), _which(b)
+    refuse(geo)
     tol = float(b.report["tolerance"])
     cp = caps(geo, which)
     zs = float(b.report["section_z"])
     ex, runs = section_runs(b, geo, which, zs)
-    theta, capsolid = law(geo, which), _revolved_caps(cp.outline)
+    c = geo.gear if which == "gear" else geo.mate
+    theta = law(geo, which, own=True)
+    capsolid = _revolved_caps(cp.outline)
+    if c.internal:                    # the ring: the caps within the rim cone, the teeth (the hole) cut out
+        capsolid = _common(capsolid, _rim_cone(c, cp))
     for share in (1.0, 0.5, 0.25):
         # OCC's intersection of the teeth and the caps now and then comes back empty for
         # one particular set of knots: a finer fit (other knots) then goes through
         flanks, which_fl = fit_runs(ex, runs, share * FIT_SHARE * tol)
         groups = merge_runs(runs, which_fl, flanks, 2 * math.pi / ex.teeth, ex.pieces)
         teeth, recs, bound = _teeth_solid(groups, zs, cp.z_lo, cp.z_hi, theta, share * tol)
-        shape = _common(teeth, capsolid)
+        shape = _common(teeth, capsolid) if not c.internal else boolean("cut", capsolid, [teeth])
         if count(shape, "solid") == 1:
             break
+    shape = _hub(shape, b, cp)
     t1 = time.perf_counter()
     T = np.asarray(b.transform, float)
     info = validate_solid(shape, b, tol, "body", VOLUME_EPS)
-    c = geo.gear if which == "gear" else geo.mate
-    band = (geo.inner_cone_distance - tol, geo.cone_distance + tol, c.pitch_angle)
+    band = (geo.inner_cone_distance - tol, geo.cone_distance + tol,
+            math.pi - c.pitch_angle if c.internal else c.pitch_angle)
     err = measure_flanks(ex, flanks, recs, zs, band, theta) if measure else math.nan
     if not np.allclose(T, np.eye(4)):
         shape = transformed(shape, T)

@@ -1,0 +1,83 @@
+"""B-rep STEP of bevels with uniform clearance, a hub (mounting distance) and internal teeth
+(issue 24), read back with OpenCascade's own STEP reader and checked against:
+
+* one valid solid per member, its volume against the mesh body's within (the mesh's error
+  bound + the tolerance) x its area;
+* the internal member's flank points (its own frame, turned by π about x: pitch angle
+  δ' = π - δ) against the closed-form spherical involute of the base cone
+  sin δb = sin δ' cos α: involutes of one base cone are parallel on the sphere, so a point's
+  distance to the flank is |P| sin δb times the difference of azimuths at its polar angle;
+  the internal tooth's half-width is π/(2z) - inv(δ') + inv(β) (its space is shaped like an
+  external tooth);
+* the hub: the solid reaches the mounting distance along the axis.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+import gear3d
+from occread import read_step
+from test_brep_bevel_worm import bspline_points, check_solid
+
+pytest.importorskip("OCP")
+
+
+def internal_flank_distance(P, z, dp, alpha):
+    """Distance (mm) from points P (N, 3, own frame) to the flanks of an unshifted internal
+    spherical-involute bevel of z teeth whose pitch cone is dp (own frame) (rad)."""
+    sdb = math.sin(dp) * math.cos(alpha)
+    cdb = math.sqrt(1 - sdb * sdb)
+
+    def inv_s(beta):        # azimuth of the involute from its base point at polar angle β
+        psi = np.arccos(np.clip(np.cos(beta) / cdb, -1, 1))
+        return psi / sdb - np.arctan(np.tan(psi) / sdb)
+    rho = np.linalg.norm(P, axis=1)
+    beta = np.arccos(P[:, 2] / rho)
+    ang = 2 * math.pi / z
+    phi = np.arctan2(P[:, 1], P[:, 0])
+    phi = np.abs(phi - np.round(phi / ang) * ang)
+    flank = math.pi / (2 * z) - inv_s(dp) + inv_s(beta)
+    return rho * sdb * np.abs(phi - flank), beta
+
+
+@pytest.mark.slow
+def test_brep_uniform_clearance_hub_and_internal(tmp_path):
+    """One slow test (CI time): the uniform-clearance gear with a hub, then the internal mate."""
+    tol = 0.05
+    bv = gear3d.bevel(teeth=16, mate_teeth=24, module=2.0, clearance="uniform", mounting_distance=40.0,
+                      tolerance=tol)
+    out = tmp_path / "g.step"
+    assert "B-rep measured max_error=" in gear3d.write(list(bv.bodies), out, step="brep", geometry=bv.geometry)
+    shape = read_step(out)
+    check_solid(shape, bv.bodies[0], tol)
+    from OCP.Bnd import Bnd_Box
+    from OCP.BRepBndLib import BRepBndLib
+    box = Bnd_Box()
+    (getattr(BRepBndLib, "Add_s", None) or BRepBndLib.Add)(shape, box)
+    assert box.CornerMax().Z() == pytest.approx(40.0, abs=1e-4)
+    bv = gear3d.bevel(teeth=20, mate_teeth=30, module=2.0, shaft_angle_deg=150, part="mate", tolerance=tol)
+    out = tmp_path / "m.step"
+    gear3d.write(list(bv.bodies), out, step="brep")
+    shape = read_step(out)
+    check_solid(shape, bv.bodies[0], tol)
+    g, c = bv.geometry, bv.geometry.mate
+    dp = math.pi - c.pitch_angle
+    P = np.concatenate(bspline_points(shape))
+    rho = np.linalg.norm(P, axis=1)
+    d, beta = internal_flank_distance(P, 30, dp, math.radians(20))
+    band = (rho * np.cos(beta - dp) > g.inner_cone_distance + 1e-3) & (rho * np.cos(beta - dp) < g.cone_distance - 1e-3)
+    inv = band & (np.abs(beta - dp) < 0.8 * c.addendum_angle)
+    assert inv.sum() > 200
+    assert d[inv].max() <= tol, d[inv].max()
+
+
+def test_brep_refuses_spiral_internal(tmp_path, capsys):
+    from gear3d.cli import main
+    out = tmp_path / "x.step"
+    rc = main(["bevel", "--teeth", "20", "--mate-teeth", "30", "--module", "2", "--shaft-angle-deg", "150",
+               "--spiral-angle-deg", "35", "--part", "mate", "--step", "brep", "-o", str(out)])
+    err = capsys.readouterr().err
+    assert rc == 2 and err.count("\n") == 1 and "step" in err and not out.exists()
