@@ -116,10 +116,13 @@ def minimum_vertices(prof, law, tol: float, W: float) -> float:
 
 def mesh_properties(V, F) -> dict:
     """Volume (mm^3), surface area (mm^2) and genus of a closed, consistently oriented mesh."""
-    t = V[F]
-    cr = np.cross(t[:, 1] - t[:, 0], t[:, 2] - t[:, 0])
-    vol = float(np.einsum("ij,ij->i", t[:, 0], cr).sum() / 6)
-    area = float(0.5 * np.sqrt(np.einsum("ij,ij->i", cr, cr)).sum())
+    a, b, c = V[F[:, 0]], V[F[:, 1]], V[F[:, 2]]
+    u, w = b - a, c - a
+    cx = u[:, 1] * w[:, 2] - u[:, 2] * w[:, 1]       # the cross product by columns (np.cross
+    cy = u[:, 2] * w[:, 0] - u[:, 0] * w[:, 2]       # is a third slower on (m, 3) arrays)
+    cz = u[:, 0] * w[:, 1] - u[:, 1] * w[:, 0]
+    vol = float((a[:, 0] * cx + a[:, 1] * cy + a[:, 2] * cz).sum() / 6)
+    area = float(0.5 * np.sqrt(cx * cx + cy * cy + cz * cz).sum())
     chi = len(V) - 3 * len(F) // 2 + len(F)
     return {"volume": vol, "surface_area": area, "genus": int((2 - chi) // 2)}
 
