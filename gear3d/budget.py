@@ -224,11 +224,26 @@ class Estimate:
 
 
 def estimate(stage: str, count: float, triangles: float = 0.0, what: str = "") -> Estimate:
-    """The estimate of ``count`` items of stage ``stage`` (a key of :data:`COSTS`)."""
+    """The estimate of ``count`` items of stage ``stage`` (a key of :data:`COSTS`); inside
+    :func:`once_paid` without the stage's once-only seconds."""
     c = COSTS[stage]
     count = float(count)
-    return Estimate(c.fixed_seconds + c.seconds * count, c.fixed_bytes + c.bytes * count,
+    fixed = 0.0 if _LOCAL.once_paid else c.fixed_seconds
+    return Estimate(fixed + c.seconds * count, c.fixed_bytes + c.bytes * count,
                     float(triangles), what or f"{count:,.0f} items of {stage}")
+
+
+@contextlib.contextmanager
+def once_paid():
+    """Estimates made inside leave out each stage's once-only seconds (imports, first
+    calls): the parts of a library after the first in a worker process pay none
+    (:func:`gear3d.plan_jobs.plan_library`); the once-only bytes stay (memory is a peak)."""
+    old = _LOCAL.once_paid
+    _LOCAL.once_paid = True
+    try:
+        yield
+    finally:
+        _LOCAL.once_paid = old
 
 
 def profile_estimate(vertices: float, per_tooth: float = 0.0) -> Estimate:
@@ -288,6 +303,8 @@ class _Local(threading.local):
         #: inside :func:`job` (a command, a batch part, a web request): the ledger adds up
         #: every stage; outside it (a Python session) each outermost stage is a job of its own
         self.in_job = False
+        #: inside :func:`once_paid`
+        self.once_paid = False
 
 
 _LOCAL = _Local()

@@ -55,11 +55,21 @@ def _ext(kind: str) -> str:
 
 
 class _Walk:
-    """The running plan of a graph: sketches of profile stages, triangles of body stages."""
+    """The running plan of a graph: sketches of profile stages, triangles of body stages
+    (``probes``: probed sketches by family, parameters and tolerance, shared between walks)."""
 
-    def __init__(self, g, param: str, value):
+    def __init__(self, g, param: str, value, probes: dict | None = None):
         self.g, self.param, self.value = g, param, value
         self.sketch, self.tri, self.total = {}, {}, Estimate()
+        self.probes = {} if probes is None else probes
+
+    def probe(self, family: str, params: dict):
+        """:func:`gear3d.plan.probe_profile`, once for each family, parameters and tolerance."""
+        from .jobs.graph import canonical
+        key = canonical({"f": family, "p": params})
+        if key not in self.probes:
+            self.probes[key] = probe_profile(family, params)
+        return self.probes[key]
 
     def add(self, est: Estimate) -> None:
         self.total = self.total.then(est)
@@ -69,7 +79,7 @@ class _Walk:
         s = self.g.stages[k]
         i = s.inputs
         if s.kind == "profile" and "family" in i and not i.get("rack") and not i.get("section"):
-            sk = probe_profile(i["family"], dict(i["params"], tolerance=i["tolerance"]))
+            sk = self.probe(i["family"], dict(i["params"], tolerance=i["tolerance"]))
             if sk is not None:
                 self.sketch[k] = sk
                 self.add(sk.estimate)
@@ -105,6 +115,92 @@ def plan_graph(g, targets, param: str, value) -> Estimate:
         w.stage(k)
     budget.log_plan(w.total)
     return w.total
+
+
+#: CPU seconds a library's plan spends on its parts (in a spread order) before it judges
+#: the rest by the mean of those planned (a library of 10^5 small parts is refused in well
+#: under 1 s; every part is still charged by its own builders in its worker)
+LIBRARY_PLAN_SECONDS = 0.25
+
+
+def spread_order(n: int) -> list:
+    """0..n-1 in an order that spreads over the range early (0, n/2, n/4, 3n/4, ...):
+    a library's plan judged from its first parts planned sees the whole sweep.
+
+    >>> spread_order(8)
+    [0, 4, 2, 6, 1, 3, 5, 7]
+    >>> sorted(spread_order(11)) == list(range(11))
+    True
+    """
+    out, seen, step = [], set(), 1
+    while step < n:
+        step *= 2
+    while step >= 1:
+        for i in range(0, n, step):
+            if i not in seen:
+                seen.add(i)
+                out.append(i)
+        step //= 2
+    return out
+
+
+def _part_plan(job, part, out_dir, probes: dict) -> Estimate | None:
+    """One library part's plan (its stage graph walked, :class:`_Walk`); None when its
+    values are refused (the part fails in its worker and is recorded, as before)."""
+    from .errors import GearError
+    from .jobs.graph import Graph
+    from .jobs.scene import part_targets
+    g = Graph()
+    try:
+        targets = part_targets(g, job, part, out_dir, prefix=f"part {part.name}")
+        w = _Walk(g, "library.tolerance", job.tolerance, probes)
+        for k in g.needed(list(targets.values())):
+            w.stage(k)
+    except budget.BudgetError:
+        raise
+    except GearError:
+        return None
+    return w.total.then(estimate("library.part", 1, 0.0, f"part {part.name}"))
+
+
+def plan_library(job, parts, out_dir, workers: int = 1) -> Estimate:
+    """A library batch (``gear3d batch``, :func:`gear3d.jobs.batch.run_library`) of
+    ``parts`` (those still to build) into ``out_dir`` on ``workers`` processes, charged per
+    part: each part's own plan (its profile probed, its body's layers, its files, as
+    :func:`plan_scene`; probes shared by parts of the same profile), the once-only seconds
+    (imports, first calls) once a worker, the rest summed; memory and triangles the
+    largest part's. The parts are planned in :func:`spread_order`; after
+    :data:`LIBRARY_PLAN_SECONDS` of CPU the rest count as the mean of those planned.
+    Logged and checked before the first part is built: BudgetError naming
+    ``library.parts`` (a single part over the budget: ``library.tolerance``)."""
+    import time
+    n = len(parts)
+    if not n:
+        return Estimate()
+    t0, probes = time.process_time(), {}
+    first = _part_plan(job, parts[0], out_dir, {}) or Estimate()
+    with budget.once_paid():
+        once = first.seconds - (_part_plan(job, parts[0], out_dir, probes) or Estimate()).seconds
+        total, planned = Estimate(once * max(1, min(int(workers) or 1, n))), 0
+        for i in spread_order(n):
+            est = _part_plan(job, parts[i], out_dir, probes)
+            planned += 1
+            if est is not None:
+                total = total.then(est)
+                budget.check(_named(total, f"{planned:,} of {n:,} parts planned so far"), "library.parts", n)
+            if time.process_time() - t0 > LIBRARY_PLAN_SECONDS and planned < n:
+                total = Estimate(total.seconds + (total.seconds - once) / planned * (n - planned),
+                                 total.bytes, total.triangles)
+                break
+    judged = f" (judged from {planned:,} planned)" if planned < n else ""
+    total = _named(total, f"{n:,} parts{judged}, {budget.fmt_seconds(once)} of once-only work a worker")
+    budget.log_plan(total)
+    return budget.check(total, "library.parts", n)
+
+
+def _named(est: Estimate, what: str) -> Estimate:
+    """``est`` saying ``what`` it counted (the largest part's words for memory and triangles)."""
+    return Estimate(est.seconds, est.bytes, est.triangles, what, est.bytes_what, est.triangles_what)
 
 
 def plan_scene(scene, g, targets) -> Estimate:

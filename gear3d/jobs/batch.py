@@ -295,27 +295,64 @@ def run_library(lib: Library, out_dir, workers: int = 2, engine: str = "local", 
     "parts_per_s": r}``. ``engine``: local | dask; ``workers``: processes (local, 0 = in
     this process) or Dask workers of a LocalCluster (``processes`` picks process or thread
     workers); ``scheduler``: an existing Dask scheduler address (``tcp://HOST:PORT``).
-    Bad input, an unwritable ``out_dir``, Dask missing or an unreachable scheduler raise
-    GearError before anything is written.
+    Bad input, a library over the budget (its parts still to build, planned whole:
+    :func:`gear3d.plan_jobs.plan_library`), an unwritable ``out_dir``, Dask missing or an
+    unreachable scheduler raise GearError before anything is written.
+
+    >>> from gear3d.jobs.template import load_library  # doctest: +SKIP
+    >>> run_library(load_library("templates/sine-spur-library.toml"), "out/s")["built"]  # doctest: +SKIP
+    51
     """
+    engine, workers = _checked_engine(engine, workers, scheduler)
+    out_dir, job = str(out_dir), job_header(lib)
+    records, todo = _resume_scan(lib, job, out_dir)
+    from ..plan_jobs import plan_library
+    plan_library(job, todo, out_dir, workers)      # the whole batch, before its first part
+    preflight(lib)
+    check_out_dir(out_dir, "out")
+    runner = _open_runner(lib, todo, out_dir, engine, workers, scheduler, processes)
+    run = _BatchRun(lib, out_dir, records, progress)
+    try:
+        if runner is not None:
+            runner.run(job, chunked(todo, runner.slots), out_dir, run.done)
+        else:
+            for part in todo:
+                run.done(build_part(job, part, out_dir))
+    finally:
+        run.finish(runner, job, todo, engine, workers)
+    return run.result()
+
+
+def _checked_engine(engine, workers, scheduler) -> tuple:
+    """(engine, workers) checked; Dask imported when asked for (GearError otherwise)."""
     engine = check_choice("engine", engine, ("local", "dask"))
     workers = check_number("workers", workers, 0, 1024, integer=True)
     if scheduler is not None and engine != "dask":
         raise GearError("scheduler", scheduler, "only with engine dask")
     if engine == "dask":
         require_dask()
-    preflight(lib)
-    out_dir = str(out_dir)
-    check_out_dir(out_dir, "out")
-    job = job_header(lib)
+    return engine, workers
+
+
+def _resume_scan(lib: Library, job: Job, out_dir: str) -> tuple:
+    """({name: record} of the parts already complete in ``out_dir``, [parts to build])."""
     records, todo = {}, []
+    try:
+        stored = set(os.listdir(os.path.join(out_dir, RECORDS)))
+    except OSError:
+        stored = set()
     for part in lib.parts:
-        rec = _done_record(out_dir, part, spec_of(job, part))
+        rec = _done_record(out_dir, part, spec_of(job, part)) if part.name + ".json" in stored else None
         if rec is not None:
             records[part.name] = rec
         else:
             todo.append(part)
-    skipped = len(records)
+    return records, todo
+
+
+def _open_runner(lib, todo, out_dir, engine, workers, scheduler, processes):
+    """The engine's runner (None: this process builds), started before the output folder
+    is made (a Dask scheduler that does not answer leaves no folder); then the folder."""
     runner = None
     if todo and engine == "dask":
         runner = _DaskRunner(workers, scheduler, processes)     # connects before any file
@@ -328,63 +365,70 @@ def run_library(lib: Library, out_dir, workers: int = 2, engine: str = "local", 
             runner.close()
         raise
     _clean_stale(out_dir, lib)
-    timings = _read_timings(out_dir)
-    t0 = time.perf_counter()
-    bar = _bar(len(lib.parts), skipped, progress)
-    failed = 0
-    last_manifest = time.perf_counter()
+    return runner
 
-    used, heavy, cpu = {}, set(), [0.0]
 
-    def done(res):
-        nonlocal failed, last_manifest
+class _BatchRun:
+    """One run of a library: the records as parts finish, the progress bar, the partial
+    manifests, and at the end the manifest, ``timings.json`` and the summary."""
+
+    def __init__(self, lib: Library, out_dir: str, records: dict, progress: bool):
+        self.lib, self.out_dir, self.records = lib, out_dir, records
+        self.skipped, self.failed = len(records), 0
+        self.timings = _read_timings(out_dir)
+        self.t0 = self.last_manifest = time.perf_counter()
+        self.bar = _bar(len(lib.parts), self.skipped, progress)
+        self.used, self.heavy, self.cpu = {}, set(), 0.0
+        self.manifest, self.dt = None, 0.0
+
+    def done(self, res: dict) -> None:
+        """A part's result (:func:`build_part`) is in: record it, count it, show it."""
         rec = res["record"]
-        records[rec["name"]] = rec
-        timings["parts"][rec["name"]] = round(res["seconds"], 4)
-        used[res["worker"]] = used.get(res["worker"], 0) + 1
-        cpu[0] += res.get("cpu_seconds", 0.0)
-        heavy.update(res["heavy_imports"])
+        self.records[rec["name"]] = rec
+        self.timings["parts"][rec["name"]] = round(res["seconds"], 4)
+        self.used[res["worker"]] = self.used.get(res["worker"], 0) + 1
+        self.cpu += res.get("cpu_seconds", 0.0)
+        self.heavy.update(res["heavy_imports"])
         if rec["status"] != "ok":
-            failed += 1
-        if bar is not None:
-            bar.update(1)
-            bar.set_postfix(done=len(records), failed=failed, refresh=False)
-        if time.perf_counter() - last_manifest > 5.0:   # a partial manifest now and then
-            _write_manifest(out_dir, lib, records)
-            last_manifest = time.perf_counter()
+            self.failed += 1
+        if self.bar is not None:
+            self.bar.update(1)
+            self.bar.set_postfix(done=len(self.records), failed=self.failed, refresh=False)
+        if time.perf_counter() - self.last_manifest > 5.0:   # a partial manifest now and then
+            _write_manifest(self.out_dir, self.lib, self.records)
+            self.last_manifest = time.perf_counter()
 
-    try:
-        if runner is not None:
-            runner.run(job, chunked(todo, runner.slots), out_dir, done)
-        else:
-            for part in todo:
-                done(build_part(job, part, out_dir))
-    finally:
+    def finish(self, runner, job: Job, todo: list, engine: str, workers: int) -> None:
+        """Close the runner, pick up parts whose result never came back, write the manifest
+        and the timings."""
         if runner is not None:
             runner.close()
             # parts finished in a worker whose result never came back (an interrupt): their
             # records are on disk, so the manifest lists every complete part
             for part in todo:
-                if part.name not in records:
-                    rec = _done_record(out_dir, part, spec_of(job, part))
+                if part.name not in self.records:
+                    rec = _done_record(self.out_dir, part, spec_of(job, part))
                     if rec is not None:
-                        records[part.name] = rec
-        if bar is not None:
-            bar.close()
-        manifest = _write_manifest(out_dir, lib, records)
-        dt = time.perf_counter() - t0
-        timings.update(engine=engine, workers=workers, last_run_seconds=round(dt, 3),
-                       last_run_built=len(records) - skipped,
-                       last_run_parts_per_s=round((len(records) - skipped) / dt, 3) if dt > 0 else None,
-                       last_run_workers=dict(sorted(used.items())), last_run_heavy_imports=sorted(heavy),
-                       last_run_cpu_seconds=round(cpu[0], 3))
-        write_json(os.path.join(out_dir, "timings.json"), timings)
-    built = len(records) - skipped
-    bad = [records[p.name] for p in lib.parts
-           if p.name in records and records[p.name]["status"] != "ok"]
-    return {"manifest": manifest, "built": built, "skipped": skipped, "failed": len(bad),
-            "first_failure": bad[0] if bad else None,
-            "seconds": dt, "parts_per_s": built / dt if dt > 0 else None}
+                        self.records[part.name] = rec
+        if self.bar is not None:
+            self.bar.close()
+        self.manifest = _write_manifest(self.out_dir, self.lib, self.records)
+        dt = self.dt = time.perf_counter() - self.t0
+        built = len(self.records) - self.skipped
+        self.timings.update(engine=engine, workers=workers, last_run_seconds=round(dt, 3),
+                            last_run_built=built, last_run_parts_per_s=round(built / dt, 3) if dt > 0 else None,
+                            last_run_workers=dict(sorted(self.used.items())),
+                            last_run_heavy_imports=sorted(self.heavy), last_run_cpu_seconds=round(self.cpu, 3))
+        write_json(os.path.join(self.out_dir, "timings.json"), self.timings)
+
+    def result(self) -> dict:
+        """The summary :func:`run_library` returns."""
+        built, dt = len(self.records) - self.skipped, self.dt
+        bad = [self.records[p.name] for p in self.lib.parts
+               if p.name in self.records and self.records[p.name]["status"] != "ok"]
+        return {"manifest": self.manifest, "built": built, "skipped": self.skipped, "failed": len(bad),
+                "first_failure": bad[0] if bad else None,
+                "seconds": dt, "parts_per_s": built / dt if dt > 0 else None}
 
 
 def _bar(total, initial, progress):

@@ -67,6 +67,9 @@ REGRESSIONS = [
 QUICK_WITHIN = [
     "harmonic check --seed002",
     "profile involute --teeth 12 --kerf -0.5 --tolerance 0.001 -o g.dxf",
+    # a library is planned per part (51 parts: 1.4 s planned, 0.8 s used; the parts' own
+    # charges: 0.22 s)
+    "batch {templates}/sine-spur-library.toml --out o --workers 0 --no-progress",
 ]
 #: reports that the budget now lets run (under the default limits) but that must still keep
 #: the promise: within twice their estimate (minutes of CPU each: -m slow)
@@ -94,6 +97,8 @@ SLOW_REGRESSIONS = [
     # against 3.9 s)
     "harmonic check --seed002 --positions 200",
     "profile involute --teeth 40 --kerf 0.9 --tolerance 0.001 -o g.dxf",
+    # a library planned per part: 8 parts with bores and chamfers, STL + 3MF (2.0 s / 1.7 s)
+    "batch {templates}/involute-module-series.toml --out o --workers 0 --no-progress",
 ]
 
 
@@ -120,14 +125,18 @@ def test_issue_runaways_are_refused_at_once(tmp_path):
 @pytest.mark.parametrize("line", QUICK_WITHIN)
 def test_planned_jobs_run_within_their_estimate(line, tmp_path):
     """A harmonic check and a kerfed DXF finish within twice their plan (budgetrun.verdict)."""
-    r = run(_case(line), tmp_path)
+    from pathlib import Path
+    templates = Path(__file__).resolve().parents[2] / "templates"
+    r = run(_case(line.format(templates=templates)), tmp_path)
     assert r.rc == 0 and not verdict(r), (line, verdict(r), r.err[-300:])
 
 
 @pytest.mark.slow
 @pytest.mark.parametrize("line", SLOW_REGRESSIONS)
 def test_issue_cases_now_run_within_their_estimate(line, tmp_path):
-    r = run(_case(line), tmp_path)
+    from pathlib import Path
+    templates = Path(__file__).resolve().parents[2] / "templates"
+    r = run(_case(line.format(templates=templates)), tmp_path)
     assert not verdict(r), (line, verdict(r), r.err[-300:])
 
 
@@ -243,8 +252,17 @@ BIG_SCENE = ('[scene]\nname = "s"\noutputs = ["json", "stl"]\n'
              '[[part]]\nname = "a"\nfamily = "involute"\nteeth = 12\nbody = { width = 5 }\n'
              '[[part]]\nname = "b"\nfamily = "involute"\nteeth = 20000\n'
              'body = { width = 5, kind = "helical", helix_angle_deg = 30 }\n')
+#: a library of 20,000 parts (10..1009 teeth x 20 modules, DXF + STL): about 1e4 s of CPU
+BIG_LIBRARY = ('[library]\nname = "huge"\npattern = "g_m{module}_z{teeth}"\noutputs = ["stl", "dxf"]\n'
+               'tolerance = 0.01\n[library.part]\nfamily = "involute"\nbody = { kind = "spur", width = 4 }\n'
+               '[library.sweep]\nteeth = { start = 10, stop = 1009, step = 1 }\n'
+               'module = [0.5, 0.6, 0.7, 0.8, 0.9, 1.0, 1.1, 1.2, 1.3, 1.4, 1.5, 1.6, 1.7, 1.8, 1.9, 2.0, 2.1, '
+               '2.2, 2.3, 2.4]\n')
 JOB_REFUSALS = [
     (["build", "big.toml", "--out", "o", "-q"], "scene.tolerance"),
+    (["batch", "lib.toml", "--out", "o", "--workers", "2", "--no-progress"], "library.parts"),
+    (["--max-seconds", "2", "batch", "lib.toml", "--out", "o", "--workers", "0", "--no-progress",
+      "--set", "library.sweep.teeth.stop=400"], "library.parts"),
     (["--max-seconds", "5", "build", "small.toml", "--out", "o", "-q"], "scene.tolerance"),
     (["planetary", "involute", "--sun", "3000", "--planet", "1500", "--ring", "6000", "--planets", "3",
       "--width", "5", "-o", "g.3mf"], "tolerance"),
@@ -260,6 +278,7 @@ def test_whole_jobs_are_planned_and_refused_before_any_work(argv, param, tmp_pat
     REFUSE_CPU s of CPU, before any file or folder (the first part of the big scene is not
     built either)."""
     (tmp_path / "big.toml").write_text(BIG_SCENE)
+    (tmp_path / "lib.toml").write_text(BIG_LIBRARY)
     (tmp_path / "small.toml").write_text(BIG_SCENE.replace("teeth = 20000", "teeth = 2000"))
     r = run(argv, tmp_path)
     assert r.rc == 2 and not verdict(r), (verdict(r), r.err)
