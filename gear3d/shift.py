@@ -18,6 +18,7 @@ from __future__ import annotations
 import math
 
 from .errors import GearError, check_bool, check_number
+from .profiles.keywords import RackTool, front
 from .placement import (involute_function, operating_center_distance, pressure_angle_at,
                         standard_center_distance, working_pressure_angle_deg)
 
@@ -140,10 +141,14 @@ def split_shift(teeth1: int, teeth2: int, total: float, module: float = 1.0,
     return {"shift1": x1, "shift2": total - x1, "rule": rule, "zeta1": fin[0], "zeta2": fin[1]}
 
 
+#: design_pair's keywords, in their documented order
+PAIR_KEYS = ("teeth1", "teeth2", "module", "shift1", "shift2", "center_distance", "pressure_angle_deg",
+             "addendum_coeff", "dedendum_coeff", "tip_radius_coeff", "internal")
+
+
+@front(PAIR_KEYS, RackTool)
 def design_pair(teeth1: int, teeth2: int, module: float = 1.0, shift1=0.0, shift2=0.0,
-                center_distance=None, pressure_angle_deg: float = 20.0, addendum_coeff: float = 1.0,
-                dedendum_coeff: float = 1.25, tip_radius_coeff: float = 0.25,
-                internal: bool = False) -> dict:
+                center_distance=None, *, internal: bool = False, **tool) -> dict:
     """A shifted involute pair: shifts (numbers or ``"auto"``), centre distance (mm), tips.
 
     * no ``center_distance``: the operating one from x1 + x2 (an ``"auto"`` shift is the
@@ -153,55 +158,73 @@ def design_pair(teeth1: int, teeth2: int, module: float = 1.0, shift1=0.0, shift
     * ``center_distance`` with both shifts given: used as it is (backlash or interference
       is then the rolling check's finding).
 
+    ``tool``: the fields of :class:`gear3d.profiles.keywords.RackTool` (``pressure_angle_deg``,
+    ``addendum_coeff``, ``dedendum_coeff``, ``tip_radius_coeff``), the rack both wheels are
+    cut by.
+
     Returns ``shift1``, ``shift2``, ``center_distance``, ``standard_center_distance`` (mm),
     ``working_pressure_angle_deg``, ``center_distance_modification_coeff`` y,
     ``tip_shortening_coeff`` k, ``tip_radius1``, ``tip_radius2`` (mm, the shortened tips;
     None where not shortened), ``shift_rule``.
+
+    >>> d = design_pair(12, 24, 3.0, 0.6, 0.36)
+    >>> round(d["center_distance"], 4), d["shift_rule"]                       # mm
+    (56.4999, 'given')
     """
     internal = check_bool("internal", internal)
     m = check_number("module", module, 0, 1000, lo_open=True, unit="mm")
-    auto = [s == "auto" for s in (shift1, shift2)]
+    t = RackTool(**tool)
+    z = (teeth1, teeth2)
+    xs, aw, rule = _pair_shifts(z, m, (shift1, shift2), center_distance, t, internal)
+    alw = pressure_angle_at(aw, teeth1, teeth2, m, t.pressure_angle_deg, internal)
+    y, k = tip_shortening(teeth1, teeth2, m, xs[0], xs[1], aw, internal)
+    tips = [None, None]
+    if k > 0:
+        tips = [m * zi / 2 + (t.addendum_coeff + x - k) * m for zi, x in zip(z, xs)]
+    return {"shift1": xs[0], "shift2": xs[1], "center_distance": aw,
+            "standard_center_distance": standard_center_distance(teeth1, teeth2, m, internal),
+            "working_pressure_angle_deg": alw, "center_distance_modification_coeff": y,
+            "tip_shortening_coeff": k, "tip_radius1": tips[0], "tip_radius2": tips[1],
+            "shift_rule": rule}
+
+
+def _pair_shifts(z, m, shifts, center_distance, t: RackTool, internal: bool) -> tuple:
+    """([x1, x2], centre distance a_w (mm), rule) of :func:`design_pair` for teeth ``z``,
+    module ``m`` (mm), ``shifts`` (numbers or "auto") and the tool ``t``."""
+    auto = [s == "auto" for s in shifts]
     xs = [None if a else check_number(n, s, *SHIFT_RANGE)
-          for a, s, n in zip(auto, (shift1, shift2), ("shift_coeff", "mate_shift_coeff"))]
-    lim = dict(pressure_angle_deg=pressure_angle_deg, dedendum_coeff=dedendum_coeff,
-               tip_radius_coeff=tip_radius_coeff)
-    a0 = standard_center_distance(teeth1, teeth2, m, internal)
-    rule = "given"
+          for a, s, n in zip(auto, shifts, ("shift_coeff", "mate_shift_coeff"))]
+    lim = dict(pressure_angle_deg=t.pressure_angle_deg, dedendum_coeff=t.dedendum_coeff,
+               tip_radius_coeff=t.tip_radius_coeff)
     if center_distance is None:
-        for i, z in enumerate((teeth1, teeth2)):
+        rule = "given"
+        for i in range(2):
             if auto[i]:
                 if internal and i == 1:      # wheel 2 is the ring
                     raise GearError("mate_shift_coeff", "auto", "a number for a ring gear",
                                     "a ring has no undercut limit")
-                xs[i] = min_shift(z, **lim)
+                xs[i] = min_shift(z[i], **lim)
                 rule = "undercut limit"
-        aw = operating_center_distance(teeth1, teeth2, m, xs[0], xs[1], pressure_angle_deg, internal)
+        aw = operating_center_distance(z[0], z[1], m, xs[0], xs[1], t.pressure_angle_deg, internal)
+        return xs, aw, rule
+    aw = check_number("center_distance", center_distance, 0, None, lo_open=True, unit="mm")
+    if not any(auto):
+        return xs, aw, "given"
+    total = shift_sum(z[0], z[1], m, aw, t.pressure_angle_deg, internal)
+    if all(auto):
+        sp = split_shift(z[0], z[1], total, m, t.pressure_angle_deg, t.addendum_coeff,
+                         t.dedendum_coeff, t.tip_radius_coeff, internal)
+        xs, rule = [sp["shift1"], sp["shift2"]], sp["rule"]
+    elif auto[0]:
+        xs[0], rule = total - xs[1], "the rest of x1 + x2"
     else:
-        aw = check_number("center_distance", center_distance, 0, None, lo_open=True, unit="mm")
-        if any(auto):
-            total = shift_sum(teeth1, teeth2, m, aw, pressure_angle_deg, internal)
-            if all(auto):
-                sp = split_shift(teeth1, teeth2, total, m, pressure_angle_deg, addendum_coeff,
-                                 dedendum_coeff, tip_radius_coeff, internal)
-                xs, rule = [sp["shift1"], sp["shift2"]], sp["rule"]
-            elif auto[0]:
-                xs[0], rule = total - xs[1], "the rest of x1 + x2"
-            else:
-                xs[1], rule = total - xs[0], "the rest of x1 + x2"
-            for i, n in enumerate(("shift_coeff", "mate_shift_coeff")):
-                if not SHIFT_RANGE[0] <= xs[i] <= SHIFT_RANGE[1]:
-                    raise GearError("center_distance", aw, "a centre distance the shift range "
-                                    f"[{SHIFT_RANGE[0]:g}, {SHIFT_RANGE[1]:g}] can reach",
-                                    f"{n} would be {xs[i]:.4g}")
-    alw = pressure_angle_at(aw, teeth1, teeth2, m, pressure_angle_deg, internal)
-    y, k = tip_shortening(teeth1, teeth2, m, xs[0], xs[1], aw, internal)
-    tips = [None, None]
-    if k > 0:
-        tips = [m * z / 2 + (addendum_coeff + x - k) * m for z, x in zip((teeth1, teeth2), xs)]
-    return {"shift1": xs[0], "shift2": xs[1], "center_distance": aw, "standard_center_distance": a0,
-            "working_pressure_angle_deg": alw, "center_distance_modification_coeff": y,
-            "tip_shortening_coeff": k, "tip_radius1": tips[0], "tip_radius2": tips[1],
-            "shift_rule": rule}
+        xs[1], rule = total - xs[0], "the rest of x1 + x2"
+    for i, n in enumerate(("shift_coeff", "mate_shift_coeff")):
+        if not SHIFT_RANGE[0] <= xs[i] <= SHIFT_RANGE[1]:
+            raise GearError("center_distance", aw, "a centre distance the shift range "
+                            f"[{SHIFT_RANGE[0]:g}, {SHIFT_RANGE[1]:g}] can reach",
+                            f"{n} would be {xs[i]:.4g}")
+    return xs, aw, rule
 
 
 def pair_center_distance(p1, p2, internal: bool = False):

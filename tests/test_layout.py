@@ -312,6 +312,7 @@ LIGHT = {
     "gear3d.params.bodies": "the body and pair tables (standard library)",
     "gear3d.params.sets": "the worm and bevel set tables (standard library)",
     "gear3d.params.reference": "the parameter reference page (standard library)",
+    "gear3d.params.exporters": "the exporters' option tables (standard library)",
     "gear3d.reports": "typed report values (dataclasses)",
     "gear3d.conventions": "normal / transverse / inch size conversions (math)",
     "gear3d.placement": "centre distances and mesh phases (math)",
@@ -599,7 +600,9 @@ FITTED = ("gear3d.model", "gear3d.buildsteps", "gear3d.spec", "gear3d.solids.bod
           "gear3d.jobs.template", "gear3d.jobs.template_values", "gear3d.jobs.template_parts",
           "gear3d.profiles.triangular", "gear3d.solids.features", "gear3d.filesafe", "gear3d.export",
           "gear3d.params", "gear3d.params.param", "gear3d.params.tolerance", "gear3d.params.families",
-          "gear3d.params.bodies", "gear3d.params.sets", "gear3d.params.reference")
+          "gear3d.params.bodies", "gear3d.params.sets", "gear3d.params.reference", "gear3d.params.exporters", "gear3d.rack_part",
+          "gear3d.rackpieces", "gear3d.reports", "gear3d.shift", "gear3d.harmonic.parts", "gear3d.profiles",
+          "gear3d.profiles.keywords", "gear3d.profiles.involute", "gear3d.profiles.sine", "gear3d.profiles.cycloid")
 MAX_FILE_LINES, MAX_FUNCTION_LINES, MAX_PARAMETERS = 600, 80, 10
 
 

@@ -109,27 +109,3 @@ def reject_unknown(family: str, extra: dict):
     if extra:
         k = sorted(extra)[0]
         raise GearError(k, extra[k], f"not a parameter of the {family} family")
-
-
-def blank_and_rim(internal: bool, tip_radius, rim_radius, root_radius: float, module: float, tol: float):
-    """Validated turned tip (``clip`` for the builder) and ring rim (mm) of a rack family.
-
-    ``tip_radius`` (mm, optional) turns the blank; it must stay outside the root circle
-    ``root_radius`` (mm) of an external gear, inside that of a ring, or no tooth would be
-    left. A ring gets a rim at ``rim_radius`` or, by default, two modules beyond its root
-    circle.
-    """
-    clip = None
-    if tip_radius is not None:
-        if internal:
-            tr = check_number("tip_radius", tip_radius, 0, root_radius - tol, lo_open=True, hi_open=True,
-                              unit="mm (inside the ring's root circle)")
-        else:
-            tr = check_number("tip_radius", tip_radius, root_radius + tol, None, lo_open=True,
-                              unit="mm (outside the root circle)")
-        clip = (tr, None) if internal else (None, tr)
-    rim = None
-    if internal:
-        rim = rim_radius if rim_radius is not None else root_radius + 2 * module
-        check_number("rim_radius", rim, root_radius + tol, None, unit="mm (beyond the root circle)")
-    return clip, rim

@@ -29,13 +29,14 @@ import math
 
 import numpy as np
 
-from ..envelope import circle_loop, rack_envelope
+from ..envelope import rack_envelope
 from ..geometry import rotate as _rot
 from ..errors import GearError, check_number
 from ..params import DEFAULT_TOLERANCE, MAX_TOLERANCE_SHARE, MIN_TOLERANCE, max_tolerance
 from ..model import build_profile
 from ..racks import Corner, Smooth, line_piece, symmetric
 from . import common, register, reject_unknown, table
+from .keywords import DiscHoles, front, grouped
 
 
 # ----------------------------------------------------------------------------- trochoids
@@ -116,11 +117,6 @@ def size_tolerance(tolerance, scale):
     :func:`gear3d.params.max_tolerance` of it."""
     return check_number("tolerance", tolerance, MIN_TOLERANCE, max_tolerance(scale),
                         unit=f"mm (at most {max_tolerance(scale):g}, the size scale/{1 / MAX_TOLERANCE_SHARE:g})")
-
-
-def _circle_sag(radius, tol):
-    n = len(circle_loop(radius, tol))
-    return radius * (1 - math.cos(math.pi / n))
 
 
 # ----------------------------------------------------------------- epicycloid / hypocycloid
@@ -250,69 +246,59 @@ def reducer_report(d):
             "disc_min_curvature_radius": d["rho_disc"], "disc_sweep_radius": d["reach"]}
 
 
+#: the cycloid disc's keywords, in their documented order
+DISC_KEYS = ("pins", "pin_circle_radius", "pin_radius", "eccentricity", "offset_correction", "radial_correction",
+             "output_holes", "output_hole_radius", "output_circle_radius", "bore_radius", "teeth", "internal",
+             "tolerance")
+
+
 @register("cycloid-disc")
+@front(DISC_KEYS, DiscHoles)
 def cycloid_disc(pins=12, pin_circle_radius=30.0, pin_radius=3.0, eccentricity=1.5,
-                 offset_correction=0.0, radial_correction=0.0, output_holes=0,
-                 output_hole_radius=None, output_circle_radius=None, bore_radius=None,
-                 teeth=None, internal=False, tolerance=DEFAULT_TOLERANCE, **extra):
+                 offset_correction=0.0, radial_correction=0.0, *, teeth=None, internal=False,
+                 tolerance=DEFAULT_TOLERANCE, **options):
     """Cycloidal reducer disc with pins-1 lobes (mm): the inner equidistant at
     ``pin_radius`` (+ ``offset_correction``) of the pin-centre epitrochoid
     T = (R - radial_correction) e^{i phi} - e e^{i N phi}. Positive corrections give
     clearance. Optional ``output_holes`` holes of ``output_hole_radius`` on
-    ``output_circle_radius`` and a central ``bore_radius`` (mm)."""
-    reject_unknown("cycloid-disc", extra)
+    ``output_circle_radius`` and a central ``bore_radius`` (mm): the frozen
+    :class:`gear3d.profiles.keywords.DiscHoles`.
+
+    >>> p = cycloid_disc(pins=12, tolerance=0.01)
+    >>> p.teeth, p.report["ratio"], p.report["shortening_coefficient"]            # lobes
+    (11, -11, 0.6)
+    """
     if internal:
         raise GearError("internal", internal, "False (the pin ring is family cycloid-pins)")
+    (holes,) = grouped("cycloid-disc", options, DiscHoles)
     d = reducer_design(pins, pin_circle_radius, pin_radius, eccentricity, offset_correction,
                        radial_correction, tolerance, teeth)
+    return disc_profile(d, holes)
+
+
+def disc_profile(d: dict, holes):
+    """The disc of the validated reducer design ``d`` (:func:`reducer_design`) with
+    ``holes`` (:class:`gear3d.profiles.keywords.DiscHoles`): a :class:`gear3d.model.Profile`."""
     N, e, tol = d["N"], d["e"], d["tol"]
     A, c, k = d["Rd"], -e, float(N)
     phi_max, _ = lobe_angles(A, c, k)
     G = trochoid_piece(A, c, k, d["rp_disc"], phi_max, math.pi / (N - 1), 1)
     root = d["Rd"] - e - d["rp_disc"]
-    holes, hole_err = _disc_holes(output_holes, output_hole_radius, output_circle_radius,
-                                  bore_radius, root, tol)
+    hole_loops, hole_err = holes.loops(root, tol)
     params = dict(pins=N, pin_circle_radius=d["R"], pin_radius=d["rp"], eccentricity=e,
-                  offset_correction=d["do"], radial_correction=d["dr"], output_holes=output_holes,
-                  output_hole_radius=output_hole_radius, output_circle_radius=output_circle_radius,
-                  bore_radius=bore_radius, tolerance=tol)
+                  offset_correction=d["do"], radial_correction=d["dr"], output_holes=holes.output_holes,
+                  output_hole_radius=holes.output_hole_radius, output_circle_radius=holes.output_circle_radius,
+                  bore_radius=holes.bore_radius, tolerance=tol)
     rep = reducer_report(d)
     prof = build_profile("cycloid-disc", params, [G], N - 1, (N - 1) * e, internal=False,
                          tolerance=tol, names=["disc-equidistant"], extra_report=rep)
-    if holes:
-        prof.loops = list(prof.loops) + holes
+    if hole_loops:
+        prof.loops = list(prof.loops) + hole_loops
         prof.report["area"] = float(prof.area)
         prof.report["vertices"] = int(sum(len(l) for l in prof.loops))
         prof.report["max_error"] = max(prof.report["max_error"], hole_err)
-        prof.report["output_holes"] = int(output_holes)
+        prof.report["output_holes"] = int(holes.output_holes)
     return prof
-
-
-def _disc_holes(n, r_h, r_w, r_b, root, tol):
-    """CW hole loops (mm) of the output holes and the central bore, with their chord sag."""
-    loops, err = [], 0.0
-    n = table("cycloid-disc")["output_holes"].check(n or 0)
-    rb = 0.0
-    if r_b is not None:
-        rb = check_number("bore_radius", r_b, 0, root, lo_open=True, hi_open=True,
-                          unit=f"mm (inside the disc root radius {root:.6g})")
-        loops.append(circle_loop(rb, tol, ccw=False))
-        err = max(err, _circle_sag(rb, tol))
-    if n:
-        if r_h is None or r_w is None:
-            raise GearError("output_hole_radius" if r_h is None else "output_circle_radius", None,
-                            "a number > 0 mm when output_holes > 0")
-        r_w = check_number("output_circle_radius", r_w, rb, root, lo_open=True, hi_open=True,
-                           unit="mm (between the bore and the disc root)")
-        lim = min(root - r_w, r_w - rb, r_w * math.sin(math.pi / n) if n > 1 else math.inf)
-        r_h = check_number("output_hole_radius", r_h, 0, lim, lo_open=True, hi_open=True,
-                           unit="mm (holes must not touch the root, the bore or each other)")
-        base = circle_loop(r_h, tol, ccw=False)
-        for j in range(n):
-            a = 2 * math.pi * j / n
-            loops.append(base + r_w * np.array([math.cos(a), math.sin(a)]))
-        err = max(err, _circle_sag(r_h, tol))
-    return loops, err
 
 
 @register("cycloid-pins")

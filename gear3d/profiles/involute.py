@@ -8,13 +8,18 @@ from ..errors import GearError, check_number
 from ..params import DEFAULT_TOLERANCE
 from ..model import build_profile
 from ..racks import involute_rack
-from . import blank_and_rim, common, register, reject_unknown, table
+from . import common, register
+from .keywords import Blank, RackTool, Thinning, front, grouped
+
+
+#: the involute builder's keywords, in their documented order
+INVOLUTE_KEYS = ("teeth", "module", "pressure_angle_deg", "addendum_coeff", "dedendum_coeff", "tip_radius_coeff",
+                 "shift_coeff", "backlash", "internal", "tolerance", "tip_radius", "rim_radius")
 
 
 @register("involute")
-def involute(teeth=20, module=1.0, pressure_angle_deg=20.0, addendum_coeff=1.0,
-             dedendum_coeff=1.25, tip_radius_coeff=0.25, shift_coeff=0.0, backlash=0.0,
-             internal=False, tolerance=DEFAULT_TOLERANCE, tip_radius=None, rim_radius=None, **extra):
+@front(INVOLUTE_KEYS, RackTool, Thinning, Blank)
+def involute(teeth=20, module=1.0, *, tolerance=DEFAULT_TOLERANCE, **options):
     """Involute profile (mm, degrees).
 
     ``addendum_coeff``/``dedendum_coeff``: gear addendum/dedendum in modules; the rack tool
@@ -23,21 +28,33 @@ def involute(teeth=20, module=1.0, pressure_angle_deg=20.0, addendum_coeff=1.0,
     an external gear free of undercut with this tool (:func:`gear3d.shift.min_shift`). ``backlash`` (mm): arc thickness removed at
     the pitch circle. ``tip_radius`` (mm): optional turned tip (a blank smaller than the
     generated one). Rings get a rim at root radius + 2m unless ``rim_radius`` is given.
+
+    A thin keyword front: the keywords travel as the frozen :class:`RackTool`,
+    :class:`Thinning` and :class:`Blank` (:mod:`gear3d.profiles.keywords`) to
+    :func:`involute_profile`.
+
+    >>> p = involute(teeth=20, module=1.0, pressure_angle_deg=25.0, tolerance=0.01)
+    >>> p.params["pressure_angle_deg"], round(p.report["base_radius"], 4)       # deg, mm
+    (25.0, 9.0631)
     """
-    reject_unknown("involute", extra)
+    tool, thin, blank = grouped("involute", options, RackTool, Thinning, Blank)
     z, m, tol = common(teeth, module, tolerance)
-    P = table("involute")
-    a = P["pressure_angle_deg"].check(pressure_angle_deg)
-    ha = P["addendum_coeff"].check(addendum_coeff)
-    hf = P["dedendum_coeff"].check(dedendum_coeff)
-    rho = P["tip_radius_coeff"].check(tip_radius_coeff)
-    if isinstance(shift_coeff, str) and shift_coeff == "auto":
+    return involute_profile(z, m, tol, tool, thin, blank)
+
+
+def involute_profile(z: int, m: float, tol: float, tool: RackTool, thin: Thinning, blank: Blank):
+    """The involute wheel of ``z`` teeth, module ``m`` (mm), at tolerance ``tol`` (mm; all
+    three validated, :func:`gear3d.profiles.common`) cut by ``tool`` with ``thin``'s shift
+    and backlash from ``blank``: a :class:`gear3d.model.Profile`."""
+    a, ha, hf, rho = tool.pressure_angle_deg, tool.addendum_coeff, tool.dedendum_coeff, tool.tip_radius_coeff
+    internal = blank.internal
+    x = thin.shift_coeff
+    if x == "auto":
         if internal:
-            raise GearError("shift_coeff", shift_coeff, "a number in [-3, 3] for a ring (auto: external gears)")
+            raise GearError("shift_coeff", x, "a number in [-3, 3] for a ring (auto: external gears)")
         from ..shift import min_shift
-        shift_coeff = min_shift(z, a, hf, rho)     # the smallest shift free of undercut
-    x = P["shift_coeff"].check(shift_coeff)
-    b = check_number("backlash", backlash, 0, math.pi * m / 4, unit="mm")
+        x = min_shift(z, a, hf, rho)     # the smallest shift free of undercut
+    b = check_number("backlash", thin.backlash, 0, math.pi * m / 4, unit="mm")
     r = m * z / 2
     rack = involute_rack(m, a, ha, hf, rho, b)
     root = r - hf * m + x * m if not internal else r + hf * m - x * m
@@ -47,12 +64,12 @@ def involute(teeth=20, module=1.0, pressure_angle_deg=20.0, addendum_coeff=1.0,
     if internal and tip_gen <= 0:
         raise _no_root("addendum_coeff", ha, r, x, m)
     params = dict(teeth=z, module=m, pressure_angle_deg=a, addendum_coeff=ha, dedendum_coeff=hf,
-                  tip_radius_coeff=rho, shift_coeff=x, backlash=b, internal=bool(internal),
-                  tolerance=tol, tip_radius=tip_radius, rim_radius=rim_radius)
-    clip, rim = blank_and_rim(bool(internal), tip_radius, rim_radius, root, m, tol)
-    pieces = rack_envelope(rack, r, x * m, bool(internal))
+                  tip_radius_coeff=rho, shift_coeff=x, backlash=b, internal=internal,
+                  tolerance=tol, tip_radius=blank.tip_radius, rim_radius=blank.rim_radius)
+    clip, rim = blank.clip_and_rim(root, m, tol)
+    pieces = rack_envelope(rack, r, x * m, internal)
     rb = r * math.cos(math.radians(a))
-    return build_profile("involute", params, [p for p, _ in pieces], z, r, internal=bool(internal),
+    return build_profile("involute", params, [p for p, _ in pieces], z, r, internal=internal,
                          tolerance=tol, rim_radius=rim, clip_radius=clip,
                          names=[n for _, n in pieces],
                          flank_pieces=[i for i, (_, n) in enumerate(pieces) if n == "rack-flank"],
