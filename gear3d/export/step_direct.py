@@ -232,9 +232,16 @@ def _deriv(t, k, net, axis):
     return t[1:-1], d
 
 
-def _gauss(t, npts=5):
-    """Gauss-Legendre nodes and weights over the knot spans of ``t``."""
-    x, w = np.polynomial.legendre.leggauss(npts)
+_G5 = (math.sqrt(5 - 2 * math.sqrt(10 / 7)) / 3, math.sqrt(5 + 2 * math.sqrt(10 / 7)) / 3)
+#: 5-point Gauss-Legendre nodes and weights on [-1, 1] (closed form; exact for degree 9)
+GAUSS5 = (np.array([-_G5[1], -_G5[0], 0.0, _G5[0], _G5[1]]),
+          np.array([(322 - 13 * math.sqrt(70)) / 900, (322 + 13 * math.sqrt(70)) / 900, 128 / 225,
+                    (322 + 13 * math.sqrt(70)) / 900, (322 - 13 * math.sqrt(70)) / 900]))
+
+
+def _gauss(t):
+    """Gauss-Legendre nodes and weights (5 a span) over the knot spans of ``t``."""
+    x, w = GAUSS5
     u = np.unique(t)
     a, h = u[:-1, None], np.diff(u)[:, None] / 2
     return (a + h * (x[None] + 1)).ravel(), (h * w[None]).ravel()
