@@ -31,6 +31,20 @@ from .progress import Reporter
 for _v in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ.setdefault(_v, "1")
 
+
+def _keep_freed_memory() -> None:
+    """A ``gear3d`` process keeps freed blocks up to 32 MB for reuse (glibc ``mallopt``:
+    mmap threshold 32 MB, trim threshold 64 MB, top pad 16 MB) instead of mapping and
+    unmapping each large numpy temporary: the reference helical STL makes 6,000 fewer page
+    faults, about 14 ms of CPU (issue 28). Larger arrays are still mapped and returned."""
+    try:
+        import ctypes
+        libc = ctypes.CDLL(None)
+        for param, value in ((-3, 32 << 20), (-1, 64 << 20), (-2, 16 << 20)):
+            libc.mallopt(param, value)
+    except (OSError, AttributeError):          # not glibc: nothing to tune
+        pass
+
 #: sub-command modules, in help order; each defines ``add_parser(subparsers)`` and ``run(args)``
 COMMANDS = ["profile", "inspect", "body", "pair", "check", "planetary", "harmonic", "bevel", "face-gear", "worm", "drive", "build", "batch", "bench", "families", "serve"]
 
@@ -220,6 +234,8 @@ def main(argv=None) -> int:
     time and memory are watched from outside); called with a list (tests, embedding) it
     runs in this process under :func:`gear3d.watchdog.guard` alone."""
     words = list(sys.argv[1:] if argv is None else argv)
+    if argv is None:
+        _keep_freed_memory()
     try:
         words, lim = _take_budget(words)
     except GearError as e:
