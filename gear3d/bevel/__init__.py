@@ -155,6 +155,8 @@ def build(teeth, mate_teeth, module, face_width=None, pressure_angle_deg=20.0, s
     check_mounts(geo, mounts, which)
     bodies = [body(geo if w == "gear" else geo_m, w, tol) for w in which]
     bodies = [_add_hub(geo, w, b, mounts[w], tol) for w, b in zip(which, bodies)]
+    for w, b in zip(which, bodies):
+        b.geometry = geo if w == "gear" else geo_m      # the pair's (a spiral member's B-rep needs it)
     overlap = None
     if part == "pair":
         bodies[1].transform = mate_transform(geo)

@@ -136,12 +136,14 @@ def cap_segments(r_max: float, sag: float) -> int:
 
 class BevelBody(Solid):
     """One bevel body (a :class:`gear3d.solids.solid.Solid`): ``manifold`` (manifold3d, own
-    frame), ``name``, ``report`` (dict, mm), ``transform`` (4x4, its place in a pair) and the
-    base's cached ``arrays()`` / ``mesh``."""
+    frame), ``name``, ``report`` (dict, mm), ``transform`` (4x4, its place in a pair), the
+    pair's ``geometry`` and the base's cached ``arrays()`` / ``mesh``."""
 
     def __init__(self, manifold, name: str, report: dict, transform=None, profile=None):
         super().__init__(name, report, transform, manifold=manifold)
         self.profile = profile
+        #: the pair's :class:`~gear3d.bevel.geometry.PairGeometry` (set by :func:`gear3d.bevel.build`)
+        self.geometry = None
 
     def __repr__(self) -> str:
         return f"BevelBody(name={self.name!r}, triangles={self.report.get('triangles')})"

@@ -62,9 +62,11 @@ def is_bevel(b) -> bool:
 
 def member_geometry(b, geo=None):
     """The :class:`gear3d.bevel.geometry.PairGeometry` of bevel body ``b``: ``geo`` (the
-    pair's, with the member's own form), or rebuilt from the body's parameters (straight
-    bevels only: a spiral member needs ``geo``)."""
+    pair's, with the member's own form), the body's own ``geometry`` (set by
+    :func:`gear3d.bevel.build`), or rebuilt from the body's parameters (straight bevels only:
+    a spiral member needs the pair's)."""
     p = b.report.get("params") or {}
+    geo = getattr(b, "geometry", None) if geo is None else geo
     if geo is None:
         if b.report.get("warp_error") is not None:
             raise GearError("step", "brep", "'faceted' for a spiral bevel body on its own",
@@ -96,14 +98,6 @@ def _revolved_caps(outline):
     poly.Close()
     face = BRepBuilderAPI_MakeFace(poly.Wire(), True).Face()
     return BRepPrimAPI_MakeRevol(face, gp_Ax1(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), 2 * math.pi).Shape()
-
-
-def refuse(geo):
-    """GearError (before any work) for what this writer does not build: a spiral or Zerol
-    internal member (its warped flank surfaces do not sew with the ring's end faces yet)."""
-    if geo.line is not None and (geo.gear.internal or geo.mate.internal):
-        raise GearError("step", "brep", "'faceted' for a spiral or Zerol internal bevel pair",
-                        "its B-rep is not built")
 
 
 def _rim_cone(c, cp):
@@ -175,14 +169,14 @@ def rot2_each(xy, th):
     return np.stack([c * xy[:, 0] - s * xy[:, 1], s * xy[:, 0] + c * xy[:, 1]], axis=1)
 
 
-def spiral_net(g, zs, t_lo, t_hi, theta, e_v):
+def spiral_net(g, zs, t_lo, t_hi, theta, e_v, n: int = 4):
     """Control net (n, m, 3) and t knots of the bicubic surface through the warped cone over
     group ``g`` (t = z/zs from t_lo to t_hi): the rows' control points interpolated by
     cubic splines in t, with rows added until the interpolated control points stay within
     ``e_v`` (mm) of the rows' own at every mid-row (a bound of the surface's deviation there,
-    the B-spline basis being a partition of unity). Returns (net, t knots, bound mm)."""
+    the B-spline basis being a partition of unity), starting from ``n`` rows. Returns (net,
+    t knots, bound mm, rows)."""
     from scipy.interpolate import make_interp_spline
-    n = 4
     while True:
         rows = np.linspace(t_lo, t_hi, n)
         R = _row_ctrl(g, zs, rows, theta)
@@ -191,11 +185,22 @@ def spiral_net(g, zs, t_lo, t_hi, theta, e_v):
         got = np.moveaxis(spl(mid), 0, 1)
         err = float(np.linalg.norm(got - _row_ctrl(g, zs, mid, theta), axis=2).max())
         if err <= e_v:
-            return np.moveaxis(np.asarray(spl.c), 0, 1), spl.t, err
+            return np.moveaxis(np.asarray(spl.c), 0, 1), spl.t, err, n
         if n >= MAX_ROWS:
             raise ToleranceError("tolerance", e_v / FIT_SHARE, "a coarser value",
                                  f"the spiral flank's interpolation misses it by {err:.3g} mm")
         n = min(MAX_ROWS, int(n * 1.6) + 1)
+
+
+def _spiral_nets(groups, zs, t_lo, t_hi, theta, e_v):
+    """:func:`spiral_net` of every group on one common grid of rows: neighbouring groups
+    share their boundary column, and only the same rows interpolate it into the same curve
+    (with rows of their own the curves part by up to ``e_v`` and do not sew)."""
+    n, nets = 4, None
+    while nets is None or any(x[3] != n for x in nets):
+        n = max([n] + [x[3] for x in nets or ()])
+        nets = [spiral_net(g, zs, t_lo, t_hi, theta, e_v, n) for g in groups]
+    return nets
 
 
 def _teeth_solid(groups, zs, z_lo, z_hi, theta, tol):
@@ -206,12 +211,13 @@ def _teeth_solid(groups, zs, z_lo, z_hi, theta, tol):
     from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace
     faces, recs, bound = [], [], 0.0
     ends = {z_lo: [], z_hi: []}
-    for g in groups:
+    nets = _spiral_nets(groups, zs, z_lo / zs, z_hi / zs, theta, FIT_SHARE * tol) if theta is not None else None
+    for i, g in enumerate(groups):
         if theta is None:
             net = _straight_net(g.ctrl, zs, z_lo, z_hi)
             vk, vdeg = np.array([z_lo, z_lo, z_hi, z_hi]) / zs, 1
         else:
-            net, vk, e = spiral_net(g, zs, z_lo / zs, z_hi / zs, theta, FIT_SHARE * tol)
+            net, vk, e, _ = nets[i]
             vdeg, bound = 3, max(bound, e)
         surf = bspline_surface(net, g.knots, vk, 3, vdeg)
         faces.append(BRepBuilderAPI_MakeFace(surf, 1e-9).Face())
@@ -296,7 +302,6 @@ def bevel_solid(b, geo=None, measure: bool = True):
     from .step_brep_occ import transformed
     t0 = time.perf_counter()
     geo, which = member_geometry(b, geo), _which(b)
-    refuse(geo)
     tol = float(b.report["tolerance"])
     cp = caps(geo, which)
     zs = float(b.report["section_z"])

@@ -267,7 +267,7 @@ def _set_output(stage, b):
     return s.parts() if hasattr(s, "parts") else list(s.bodies)
 
 
-def _plan_set(job: Job, part: PartSpec, kind, tol, path, prefix):
+def _plan_set(job: Job, part: PartSpec, kind, tol, path, prefix, step=None):
     """The set's whole-command plan (:mod:`gear3d.plan_sets`) for one output, as its CLI
     command plans it: refused before any work, naming the part's key."""
     from .. import plan_sets
@@ -275,6 +275,8 @@ def _plan_set(job: Job, part: PartSpec, kind, tol, path, prefix):
     out = {"json": {"json": path}, "png": {"png": path}}.get(kind, {"output": path})
     if part.family == "worm" and kind in ("dxf", "png"):
         out = {"output": path, "bodies": False} if kind == "dxf" else dict(out, bodies=False)
+    if step is not None:                 # a bevel set's B-rep STEP (gear3d bevel --step brep)
+        out = dict(out, step=step)
     try:
         plan[part.family](dict(part.params, tolerance=tol), **out)
     except GearError as e:
@@ -294,10 +296,11 @@ def set_targets(g: Graph, job: Job, part: PartSpec, out_dir, prefix) -> dict:
         tol = job.tolerance_for(kind if sec or kind != "json" else "stl")
         fname = part.name + EXT[kind]
         path = out_path(out_dir, fname, job.file, f"{prefix}.name")
-        if kind == "step" and job.options.get("step", {}).get("step", "faceted") != "faceted":
+        brep = kind == "step" and job.options.get("step", {}).get("step", "faceted") != "faceted"
+        if brep and part.family != "bevel":
             raise TemplateError(job.file, f"{prefix}.outputs", list(part.outputs), "no step with [scene.options.step] "
-                                "kind = \"brep\" (a set part's STEP is faceted; for a B-rep: gear3d bevel --step brep)")
-        _plan_set(job, part, kind, tol, path, prefix)
+                                "kind = \"brep\" (this set part's STEP is faceted)")
+        _plan_set(job, part, kind, tol, path, prefix, step="brep" if brep else None)
         # stage kinds as the report reads them: the section is a profile, the set a body
         src = g.add("profile" if sec else "body", {"params": part.params, "tolerance": tol, "section": sec,
                                                    "set": part.family},
@@ -306,7 +309,8 @@ def set_targets(g: Graph, job: Job, part: PartSpec, out_dir, prefix) -> dict:
                     file=job.file, prefix=prefix, keys=tuple(part.params))
         if not sec:
             src = g.add("pick", {"kind": kind}, [src], fn=_set_output, label=f"{part.name} {kind}")
-        targets[kind] = g.add("write", {"kind": kind, "file": fname, "tolerance": tol, "name": part.name}, [src],
+        targets[kind] = g.add("write", {"kind": kind, "file": fname, "tolerance": tol, "name": part.name,
+                                        **({"options": {"step": "brep"}} if brep else {})}, [src],
                               fn=run_write, label=fname, phase=1, path=path, out_dir=out_dir)
     return targets
 
