@@ -42,7 +42,7 @@ Example::
     >>> b = body(gear3d.profile("involute", teeth=12, tolerance=0.01), kind="spur", width=4)
     >>> text, info = direct_text(b)
     >>> info["faces"], info["max_error"] <= info["tolerance"], "B_SPLINE_SURFACE_WITH_KNOTS" in text
-    (26, True, True)
+    (50, True, True)
 """
 from __future__ import annotations
 
@@ -55,9 +55,11 @@ import numpy as np
 
 from ..bspline import basis_matrix
 from ..errors import GearError, ToleranceError
+from ..solids.convert import as_bodies, body_name
 from .step_brep_fit import FIT_SHARE, fit_runs, law_fit, law_pieces, merge_runs
 from .step_brep_runs import exact_set, loop_runs, nearest_on_piece
 from .step_direct_text import Shell, write_shell
+from .step_part21 import framed_text
 
 #: environment variable: ``occ`` forces the OpenCascade writer for every body
 FORCE_ENV = "GEAR3D_BREP_WRITER"
@@ -367,8 +369,6 @@ def direct_shell(b):
 def direct_text(b, product: str | None = None):
     """(STEP file text, info) of body ``b`` by the direct writer (see :func:`direct_shell`);
     ``product`` defaults to the body's name."""
-    from ..solids.convert import body_name
-    from .step import framed_text
     shell, info = direct_shell(b)
     name = re.sub(r"[^A-Za-z0-9_.+-]", "_", product or body_name(b, 0))
     t = time.perf_counter()
@@ -381,7 +381,6 @@ def write(obj, path, geometry=None, **opts):
     """Write ``obj`` as exact B-rep STEP when it is one body this writer takes (see
     :func:`reason`); returns the info string, or None (nothing written) for the caller to
     use the OpenCascade path. ``geometry`` (bevel and worm sets) always means OpenCascade."""
-    from ..solids.convert import as_bodies
     if geometry is not None or os.environ.get(FORCE_ENV, "").strip().lower() == "occ":
         return None
     bodies = as_bodies(obj, **opts)

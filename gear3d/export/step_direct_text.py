@@ -30,7 +30,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import GearError
-from .step import _r, _s
+from .step_part21 import real, string
 
 
 class Shell:
@@ -98,7 +98,7 @@ def knots_mults(t):
 
 
 class _Entities:
-    """Writes a :class:`Shell`'s entities through a :class:`gear3d.export.step._Writer`,
+    """Writes a :class:`Shell`'s entities through a :class:`gear3d.export.step_part21.Writer`,
     each point once."""
 
     def __init__(self, w):
@@ -110,14 +110,14 @@ class _Entities:
         key = (float(p[0]), float(p[1]), float(p[2]))
         i = self.pts.get(key)
         if i is None:
-            i = self.pts[key] = self.w.add(f"CARTESIAN_POINT('',({_r(key[0])},{_r(key[1])},{_r(key[2])}))")
+            i = self.pts[key] = self.w.add(f"CARTESIAN_POINT('',({real(key[0])},{real(key[1])},{real(key[2])}))")
         return i
 
     def direction(self, d) -> int:
         key = tuple(float(x) for x in d)
         i = self.dirs.get(key)
         if i is None:
-            i = self.dirs[key] = self.w.add("DIRECTION('',(" + ",".join(_r(x) for x in key) + "))")
+            i = self.dirs[key] = self.w.add("DIRECTION('',(" + ",".join(real(x) for x in key) + "))")
         return i
 
     def axis(self, z: float, nz: float = 1.0) -> int:
@@ -129,33 +129,33 @@ class _Entities:
         if kind == "line":
             d = np.asarray(p1, float) - np.asarray(p0, float)
             L = float(np.sqrt(d @ d))
-            ve = self.w.add(f"VECTOR('',#{self.direction(d / L)},{_r(L)})")
+            ve = self.w.add(f"VECTOR('',#{self.direction(d / L)},{real(L)})")
             return self.w.add(f"LINE('',#{self.point(p0)},#{ve})")
         if kind == "circle":
-            return self.w.add(f"CIRCLE('',#{self.axis(curve[1])},{_r(curve[2])})")
+            return self.w.add(f"CIRCLE('',#{self.axis(curve[1])},{real(curve[2])})")
         _, P, t, k = curve
         u, m = knots_mults(t)
         poles = ",".join(f"#{self.point(p)}" for p in P)
         return self.w.add(f"B_SPLINE_CURVE_WITH_KNOTS('',{k},({poles}),.UNSPECIFIED.,.F.,.F.,"
-                          f"({','.join(str(int(x)) for x in m)}),({','.join(_r(x) for x in u)}),.UNSPECIFIED.)")
+                          f"({','.join(str(int(x)) for x in m)}),({','.join(real(x) for x in u)}),.UNSPECIFIED.)")
 
     def surface(self, surf) -> int:
         kind = surf[0]
         if kind == "plane":
             return self.w.add(f"PLANE('',#{self.axis(surf[1], surf[2])})")
         if kind == "cylinder":
-            return self.w.add(f"CYLINDRICAL_SURFACE('',#{self.axis(0.0)},{_r(surf[1])})")
+            return self.w.add(f"CYLINDRICAL_SURFACE('',#{self.axis(0.0)},{real(surf[1])})")
         _, net, tu, tv, ku, kv = surf
         uu, mu = knots_mults(tu)
         uv, mv = knots_mults(tv)
         rows = ",".join("(" + ",".join(f"#{self.point(p)}" for p in row) + ")" for row in net)
         return self.w.add(f"B_SPLINE_SURFACE_WITH_KNOTS('',{ku},{kv},({rows}),.UNSPECIFIED.,.F.,.F.,.F.,"
                           f"({','.join(str(int(x)) for x in mu)}),({','.join(str(int(x)) for x in mv)}),"
-                          f"({','.join(_r(x) for x in uu)}),({','.join(_r(x) for x in uv)}),.UNSPECIFIED.)")
+                          f"({','.join(real(x) for x in uu)}),({','.join(real(x) for x in uv)}),.UNSPECIFIED.)")
 
 
 def write_shell(w, shell: Shell, name: str) -> int:
-    """Append ``shell``'s entities to writer ``w`` (:class:`gear3d.export.step._Writer`);
+    """Append ``shell``'s entities to writer ``w`` (:class:`gear3d.export.step_part21.Writer`);
     return the MANIFOLD_SOLID_BREP's id."""
     en = _Entities(w)
     vx = [w.add(f"VERTEX_POINT('',#{en.point(p)})") for p in shell.points]
@@ -174,4 +174,4 @@ def write_shell(w, shell: Shell, name: str) -> int:
         faces.append(w.add("ADVANCED_FACE('',(" + ",".join(f"#{b}" for b in bounds) + f"),#{sf},"
                            f"{'.T.' if same else '.F.'})"))
     sh = w.add("CLOSED_SHELL('',(" + ",".join(f"#{f}" for f in faces) + "))")
-    return w.add(f"MANIFOLD_SOLID_BREP({_s(name)},#{sh})")
+    return w.add(f"MANIFOLD_SOLID_BREP({string(name)},#{sh})")
