@@ -25,6 +25,7 @@ benchmarks/peers.png. Needs ``openscad`` (apt-get install -y openscad).
 from __future__ import annotations
 
 import argparse
+import json
 import math
 import os
 import platform
@@ -172,7 +173,8 @@ def main(argv=None) -> int:
     jobs = {"BOSL2 (OpenSCAD)": ([openscad, "-o", str(work / "bosl2.stl"), "helical20.scad"], PEERS,
                                  work / "bosl2.stl", "slices=20"),
             "python -c 'import numpy, manifold3d'": ([sys.executable, "-c", "import numpy, manifold3d"],
-                                                      None, None, "(floor)")}
+                                                      None, None, "(floor)"),
+            "python -c 'import numpy'": ([sys.executable, "-c", "import numpy"], None, None, "(floor)")}
     for t in TOLS:
         out = work / f"gear3d_{t}.stl"
         jobs[f"gear3d tol {t:g}"] = ([gear3d, "body", "involute", "--teeth", str(Z), "--module", str(M),
@@ -211,12 +213,107 @@ def main(argv=None) -> int:
                f"{bosl['flank_error'] * 1e3:.2f} µm) gear3d ({matched['setting']}) takes "
                f"**{matched['cpu_ratio']:.2f}x** BOSL2's CPU time, with "
                f"{matched['vertices'] / bosl['vertices']:.2f}x its vertices.")
-    table = "\n".join([head, "", *lines, "", verdict])
+    stl_cmd = jobs[f"gear3d tol {float(matched['setting'].split()[1]) if matched else 0.003:g}"][0]
+    where = where_it_goes(stl_cmd, args.runs)
+    table = "\n".join([head, "", *lines, "", verdict, "", where])
     print(table)
     if args.publish:
         _publish(table, rows)
     shutil.rmtree(work, ignore_errors=True)
     return 0
+
+
+LOADED = r"""
+import sys
+before = set(sys.modules)
+from gear3d.cli import main
+main(sys.argv[1:])                      # a list: in this process, no supervisor
+print("MODULES", " ".join(m for m in sys.modules if m not in before))
+"""
+
+IMPORTS = r"""
+import importlib, json, sys, time
+t = time.process_time
+out, t0 = {}, t()
+import numpy
+out["numpy (and the standard library it imports)"], t0 = t() - t0, t()
+import manifold3d
+out["manifold3d"], t0 = t() - t0, t()
+for m in sys.argv[1:]:
+    if m.startswith("gear3d"):
+        importlib.import_module(m)
+out["gear3d's modules (and the standard library they import)"] = t() - t0
+print(json.dumps(out))
+"""
+
+
+AIMS = r"""
+import json, os, sys, tempfile, time
+import gear3d
+from gear3d.export import write
+from gear3d.solids.body import profile_tolerance
+d = tempfile.mkdtemp()
+def profile():
+    gear3d.profile("involute", teeth=20, module=1.0, tolerance=0.001)
+def stl():
+    p = gear3d.profile("involute", teeth=20, module=1.0, tolerance=profile_tolerance(0.01, "helical"))
+    b = gear3d.body(p, kind="helical", helix_angle_deg=20.0, width=10.0, tolerance=0.01)
+    write(b, os.path.join(d, "b.stl"))
+def cpu(f, n):
+    out = []
+    for _ in range(n):
+        t0 = time.process_time(); f(); out.append(time.process_time() - t0)
+    return out
+res = {"profile_first": cpu(profile, 1)[0], "stl_first": cpu(stl, 1)[0],
+       "profile": cpu(profile, 30), "stl": cpu(stl, 30)}
+print(json.dumps(res))
+"""
+
+
+def import_costs(cmd, runs: int) -> list:
+    """What the STL command ``cmd`` (gear3d's arguments) imports and what each costs, CPU ms
+    (median of ``runs`` fresh processes): the interpreter's start-up (``python -c pass``:
+    site, its .pth files), numpy, manifold3d, then every gear3d module the command loads
+    (found by running it once in process), in the order it loads them."""
+    out = subprocess.run([sys.executable, "-c", LOADED, *cmd], capture_output=True, text=True, check=True).stdout
+    loaded = next(ln for ln in out.splitlines() if ln.startswith("MODULES ")).split()[1:]
+    env = dict(os.environ, OPENBLAS_NUM_THREADS="1")             # as the gear3d command sets it
+    per = {"Python start-up (python -c pass: site, .pth files)": []}
+    for _ in range(runs):
+        per[next(iter(per))].append(cpu_run([sys.executable, "-c", "pass"]))
+        r = subprocess.run([sys.executable, "-c", IMPORTS, *loaded], capture_output=True, text=True,
+                           check=True, env=env)
+        for k, v in json.loads(r.stdout).items():
+            per.setdefault(k, []).append(v)
+    return [(k, statistics.median(v) * 1000) for k, v in per.items()]
+
+
+def in_process_aims() -> dict:
+    """Issue 28's in-process aims, CPU ms in a fresh process: the first call and the median
+    of 30 of a 20-tooth profile at 0.001 mm, and of a helical body + STL at 0.01 mm
+    (profile at its share, body with its measurement, binary STL written)."""
+    r = subprocess.run([sys.executable, "-c", AIMS], capture_output=True, text=True, check=True,
+                       env=dict(os.environ, OPENBLAS_NUM_THREADS="1"))
+    res = json.loads(r.stdout)
+    return {k: (v if isinstance(v, float) else statistics.median(v)) * 1000 for k, v in res.items()}
+
+
+def where_it_goes(stl_cmd, runs: int) -> str:
+    """Markdown: the imports the STL command still makes and what each costs, and the
+    in-process aims (issue 28, item 2)."""
+    n = max(3, min(runs, 7))
+    imp = import_costs(stl_cmd[1:], n)
+    a = in_process_aims()
+    rows = [f"Where the STL command's time goes: start-up and imports (CPU ms, median of {n} fresh processes; "
+            "the plain body is built and written without manifold3d, which the profile's trim (Clipper2) "
+            "still imports):", "", "| start-up / import | CPU ms |", "|---|---:|"]
+    rows += [f"| {k} | {v:.1f} |" for k, v in imp]
+    rows += ["", "In process (CPU ms; first call in a fresh process / median of 30):", "",
+             "| aim (issue 28) | first call | median | aim |", "|---|---:|---:|---:|",
+             f"| profile, 20 teeth, 0.001 mm | {a['profile_first']:.1f} | {a['profile']:.1f} | 5 |",
+             f"| helical body + STL at 0.01 mm (profile, body, measurement, STL) | {a['stl_first']:.1f} | "
+             f"{a['stl']:.1f} | 25 |"]
+    return "\n".join(rows)
 
 
 def _publish(table: str, rows) -> None:
