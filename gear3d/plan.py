@@ -28,7 +28,7 @@ from dataclasses import dataclass
 
 from . import budget
 from .budget import Estimate, estimate
-from .export import FORMATS
+from .export.registry import FORMATS
 
 #: the DXF and SVG writers' sampled fallback fits a reference profile built this much finer
 #: (gear3d.export.dxf), which has sqrt(20) times the vertices

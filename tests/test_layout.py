@@ -324,6 +324,7 @@ LIGHT = {
     "gear3d.spec": "GearSpec and gear3d.profile, on top of the registry (bodies load on first use)",
     "gear3d.export": "the format registry (the formats load on first use)",
     "gear3d.filesafe": "destination checks and atomic writes (standard library)",
+    "gear3d.export.registry": "the format registry (standard library and the parameter tables)",
     "gear3d.geometry": "rotations and polygon helpers (numpy)",
     "gear3d.curves": "exact-curve numerics (numpy)",
     "gear3d.tessellate": "tolerance-driven sampling (numpy)",
@@ -600,7 +601,8 @@ FITTED = ("gear3d.model", "gear3d.buildsteps", "gear3d.spec", "gear3d.solids.bod
           "gear3d.jobs.template", "gear3d.jobs.template_values", "gear3d.jobs.template_parts",
           "gear3d.profiles.triangular", "gear3d.solids.features", "gear3d.filesafe", "gear3d.export",
           "gear3d.params", "gear3d.params.param", "gear3d.params.tolerance", "gear3d.params.families",
-          "gear3d.params.bodies", "gear3d.params.sets", "gear3d.params.reference", "gear3d.params.exporters", "gear3d.rack_part",
+          "gear3d.params.bodies", "gear3d.params.sets", "gear3d.params.reference", "gear3d.params.exporters", "gear3d.export.registry",
+          "gear3d.export.dxfoptions", "gear3d.rack_part",
           "gear3d.rackpieces", "gear3d.reports", "gear3d.shift", "gear3d.harmonic.parts", "gear3d.profiles",
           "gear3d.profiles.keywords", "gear3d.profiles.involute", "gear3d.profiles.sine", "gear3d.profiles.cycloid")
 MAX_FILE_LINES, MAX_FUNCTION_LINES, MAX_PARAMETERS = 600, 80, 10

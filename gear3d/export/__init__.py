@@ -12,92 +12,21 @@ trimesh, plus optional ``.name``, ``.report``, ``.transform``), or a list of bod
 assembly or a build plate). A profile written to a 3D format is extruded first
 (``width=`` mm, a spur body).
 
+The registry (:mod:`gear3d.export.registry`: each format's extension, module, role, output
+kind and options) is the one list of output kinds: every other list derives from it.
 File safety (the destination checks, the atomic temporary file, the signal handler's list of
 live temporary files) is :mod:`gear3d.filesafe`; this package holds the formats only.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 from ..errors import GearError
 from .. import budget
 from ..filesafe import atomic_path, check_path, ext_of
+from .registry import FORMATS, ROLES, Format, exts, formats_for, kind_ext, kind_options, output_kinds, register
 from ..progress import stage
 
-__all__ = ["write", "check_output", "register", "FORMATS", "ROLES", "formats_for", "exts", "output_kinds",
-           "kind_ext"]
-
-
-#: what a format's file is: ``data`` (the report), ``outline`` (a 2D cut outline), ``figure``
-#: (a picture) or ``mesh`` (a 3D body); mesh outputs default to the print tolerance
-ROLES = ("data", "outline", "figure", "mesh")
-
-
-@dataclass(frozen=True)
-class Format:
-    ext: str          # ".dxf"
-    module: str       # module under gear3d.export defining write(obj, tmp_path, **opts)
-    kinds: tuple      # which objects it takes: "profile", "body"
-    doc: str = ""
-    role: str = "mesh"    # one of ROLES
-    kind: str = ""        # the output kind of templates: the extension without its dot, or the
-    #                       kind it spells another way (".stp" -> "step")
-
-
-#: extension -> Format, in the order formats are listed everywhere (help, messages, docs)
-FORMATS: dict = {}
-
-
-def register(ext: str, module: str, kinds, doc: str = "", role: str = "mesh", kind: str = ""):
-    """Register an exporter module for ``ext`` (e.g. ``".dxf"``) taking ``kinds``; ``role``
-    one of :data:`ROLES`; ``kind``: the output kind when ``ext`` spells another one."""
-    if role not in ROLES:
-        raise GearError("role", role, "one of " + ", ".join(ROLES))
-    FORMATS[ext.lower()] = Format(ext.lower(), module, tuple(kinds), doc, role, kind or ext.lower().lstrip("."))
-
-
-register(".json", "json_format", ("profile", "body"), "profile loops + report (body: report)", "data")
-register(".dxf", "dxf", ("profile",), "DXF lines+arcs for wire EDM / laser / waterjet", "outline")
-register(".svg", "svg_outline", ("profile",), "1:1 cut outline in mm (paths only) for laser cutters", "outline")
-register(".png", "svg_png", ("profile", "body"), "profile figure / body preview", "figure")
-register(".stl", "stl", ("profile", "body"), "binary STL")
-register(".3mf", "threemf", ("profile", "body"), "3MF with names, units and metadata")
-register(".step", "step", ("profile", "body"), "STEP AP214 faceted B-rep")
-register(".stp", "step", ("profile", "body"), "STEP AP214 faceted B-rep", kind="step")
-register(".obj", "meshio_formats", ("profile", "body"), "Wavefront OBJ (meshio)")
-register(".ply", "meshio_formats", ("profile", "body"), "PLY (meshio)")
-register(".vtu", "meshio_formats", ("profile", "body"), "VTK unstructured grid (meshio)")
-
-
-def exts(*roles) -> tuple:
-    """The registered extensions whose format has one of ``roles`` (all without), in
-    registry order.
-
-    >>> exts("mesh")
-    ('.stl', '.3mf', '.step', '.stp', '.obj', '.ply', '.vtu')
-    """
-    return tuple(e for e, f in FORMATS.items() if not roles or f.role in roles)
-
-
-def output_kinds(*roles) -> tuple:
-    """The output kinds (a template's ``outputs``; one per format, ``.stp`` being ``step``)
-    whose format has one of ``roles`` (all without), in registry order.
-
-    >>> output_kinds("mesh")
-    ('stl', '3mf', 'step', 'obj', 'ply', 'vtu')
-    """
-    return tuple(dict.fromkeys(f.kind for f in FORMATS.values() if not roles or f.role in roles))
-
-
-def kind_ext(kind: str) -> str:
-    """The file extension an output kind is written with (``"step"`` -> ``".step"``)."""
-    return next(e for e, f in FORMATS.items() if f.kind == kind)
-
-
-def formats_for(kinds="profile") -> list:
-    """Extensions that accept an object of kind(s) ``kinds`` ("profile" and/or "body")."""
-    ks = (kinds,) if isinstance(kinds, str) else tuple(kinds)
-    return [e for e, f in FORMATS.items() if any(k in f.kinds for k in ks)]
+__all__ = ["write", "check_output", "register", "Format", "FORMATS", "ROLES", "formats_for", "exts", "output_kinds",
+           "kind_ext", "kind_options"]
 
 
 def check_output(path, kinds="profile") -> str:

@@ -59,16 +59,19 @@ import math
 
 import numpy as np
 
-from ..errors import GearError, ToleranceError, check_choice, check_number
+from ..errors import GearError, ToleranceError, check_number
+from ..params.exporters import DXF, DXF_VERSIONS
+from .dxfoptions import DxfOptions, options_of  # noqa: F401  (DxfOptions: part of this module's API)
 from . import arccert, biarcfit, is_rack
 from .arcfit import ArcSpline, fit_arcs, segments_distance, tangent_jumps
 from .dxfread import joint_jumps, measure, measure_segments, read_back, read_segments, sample_segments  # noqa: F401
 from .outline import profile_outline, start_point
 from .rackoutline import rack_outline
 
-VERSIONS = ("R12", "R2000", "R2004", "R2007", "R2010", "R2013", "R2018")
-OPTIONS = ("tolerance", "kerf", "lead_in", "start_angle_deg", "dxf_version", "spline",
-           "construction", "pitch_circle", "max_arc_deg")
+VERSIONS = DXF_VERSIONS
+#: the keywords :func:`write_dxf` takes: the tolerance and the options' table
+#: (:data:`gear3d.params.exporters.DXF_PARAMS`, :class:`DxfOptions`)
+OPTIONS = ("tolerance",) + tuple(DXF)
 LAYERS = {"OUTER": 7, "INNER": 5, "CONSTRUCTION": 8, "LEAD_IN": 3}
 #: mm: the finest DXF tolerance, 20x the engine's finest (the fallback's reference is 20x finer)
 DXF_MIN_TOLERANCE = 2e-6
@@ -86,14 +89,12 @@ def write(profile, path, **opts) -> str:
             f"max tangent jump {r['max_tangent_jump_deg']:.2g} deg, {r['corners']} true corners")
 
 
-def write_dxf(profile, path, tolerance=None, kerf: float = 0.0, lead_in=None,
-              start_angle_deg: float = 0.0, dxf_version: str = "R2000", spline: bool = False,
-              construction: bool = False, pitch_circle: bool = True, max_arc_deg: float = 90.0,
-              **extra) -> dict:
+def write_dxf(profile, path, tolerance=None, **opts) -> dict:
     """Write the DXF and return the certified report (segment counts, errors in mm).
 
     ``tolerance`` (mm, default the profile's): max distance between the written contours
-    and the exact (offset) curve. ``kerf`` (mm): signed offset, > 0 = material grows.
+    and the exact (offset) curve. The options (:class:`DxfOptions`, keywords or
+    ``options=DxfOptions(...)``): ``kerf`` (mm): signed offset, > 0 = material grows.
     ``lead_in`` (mm): length of a straight wire lead-in, along the contour's normal on the
     scrap side, to the start point, which is where the ray at ``start_angle_deg`` from the
     gear centre meets each contour (outermost crossing for outer contours, innermost for
@@ -104,28 +105,21 @@ def write_dxf(profile, path, tolerance=None, kerf: float = 0.0, lead_in=None,
     every option; its centre is tooth 0's centre on the pitch line, its pitch circle the
     pitch line from end to end.
     """
-    if extra:
-        k = sorted(extra)[0]
-        raise GearError(k, extra[k], "not an option of the DXF exporter: one of " + ", ".join(OPTIONS))
-    dxf_version = check_choice("dxf_version", str(dxf_version).upper(), VERSIONS)
-    if spline and dxf_version == "R12":
-        raise GearError("spline", spline, "False for dxf_version R12 (SPLINE needs R2000 or newer)")
-    for name, v in (("spline", spline), ("construction", construction), ("pitch_circle", pitch_circle)):
-        if not isinstance(v, (bool, np.bool_)):
-            raise GearError(name, v, "true or false")
+    o = options_of(opts)
+    lead_in = o.lead_in
     if lead_in is not None:
         lead_in = check_number("lead_in", lead_in, 0, 100 * _module(profile), lo_open=True, unit="mm")
-    fits, loops, rep = fit_profile(profile, tolerance=tolerance, kerf=kerf, start_angle_deg=start_angle_deg,
-                                   max_arc_deg=max_arc_deg)
+    fits, loops, rep = fit_profile(profile, tolerance=tolerance, kerf=o.kerf, start_angle_deg=o.start_angle_deg,
+                                   max_arc_deg=o.max_arc_deg)
     if lead_in is not None and loops is None:
         loops = [f.points(8) for f in fits]     # the contours written: their arcs, 8 points each
     leads = [_lead_in(f, lead_in, loops) for f in fits] if lead_in is not None else None
-    rounding = _write(path, fits, profile, dxf_version, spline, pitch_circle if construction else None,
-                      construction, leads)
+    rounding = _write(path, fits, profile, o.dxf_version, o.spline, o.pitch_circle if o.construction else None,
+                      o.construction, leads)
     rep = dict(rep, max_error=rep["max_error"] + rounding,
                max_error_curve_to_dxf=rep["max_error_curve_to_dxf"] + rounding)
     accept(rep)
-    return {"dxf_version": dxf_version, "spline": bool(spline), "construction": bool(construction), **rep}
+    return {"dxf_version": o.dxf_version, "spline": bool(o.spline), "construction": bool(o.construction), **rep}
 
 
 def accept(rep):
@@ -176,8 +170,8 @@ def fit_profile(profile, tolerance=None, kerf: float = 0.0, start_angle_deg: flo
                              f"the fit is certified against a reference 20x finer, and the engine stops at "
                              f"{MIN_TOLERANCE:g} mm")
     kerf = check_number("kerf", kerf, -m, m, unit="mm (at most one module)")
-    start = math.radians(check_number("start_angle_deg", start_angle_deg, -360, 360, unit="deg"))
-    max_arc_deg = check_number("max_arc_deg", max_arc_deg, 1, 180, unit="deg")
+    start = math.radians(DXF["start_angle_deg"].check(start_angle_deg))
+    max_arc_deg = DXF["max_arc_deg"].check(max_arc_deg)
     exact = profile if abs(profile.tolerance - tol) <= 1e-15 else rebuilt(profile, tol)
     fits, loops, rep = certified_fits(exact, profile, tol, kerf, start, max_arc_deg)
     accept(dict(rep, tolerance=tol))

@@ -23,6 +23,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import GearError, check_choice
+from ..params.exporters import STEP_PARAMS
 from .. import __version__
 from ..solids.convert import as_bodies, body_mesh, body_name
 
@@ -260,12 +261,13 @@ def framed_text(add_breps, product: str, description: str) -> str:
     return "\n".join(head + w.lines + ["ENDSEC;", "END-ISO-10303-21;", ""])
 
 
-#: the two STEP flavours: ``faceted`` (this module, no CAD kernel) and ``brep`` (exact
-#: surfaces through OpenCascade, :mod:`gear3d.export.step_brep`, extra ``gear3d[cad]``)
-STEP_KINDS = ("faceted", "brep")
+#: the two STEP flavours (:data:`gear3d.params.exporters.STEP_KINDS`): ``faceted`` (this
+#: module, no CAD kernel) and ``brep`` (exact surfaces, :mod:`gear3d.export.step_direct` or
+#: OpenCascade, extra ``gear3d[cad]``)
+STEP_KINDS = STEP_PARAMS[0].choices
 
 
-def write(obj, path, step: str = "faceted", **opts):
+def write(obj, path, step: str = STEP_PARAMS[0].default, **opts):
     """Write ``obj`` as STEP: ``step="faceted"`` (default, planar facets) or ``step="brep"``
     (exact B-spline flanks: plain gear bodies by :mod:`gear3d.export.step_direct`, every
     other body through OpenCascade, which needs ``pip install 'gear3d[cad]'``, else

@@ -33,10 +33,12 @@ import math
 import numpy as np
 
 from ..errors import GearError
+from ..params.exporters import STROKE_WIDTH, SVG_PARAMS
 
-OPTIONS = ("tolerance", "kerf", "start_angle_deg", "max_arc_deg", "stroke_width", "margin")
-#: mm: default stroke width (laser software reads hairlines of any width as cut lines)
-STROKE_WIDTH = 0.05
+#: the keywords :func:`write_svg_outline` takes: the tolerance and the options' table
+#: (:data:`gear3d.params.exporters.SVG_PARAMS`; ``STROKE_WIDTH``, mm, is its default stroke)
+OPTIONS = ("tolerance",) + tuple(p.name for p in SVG_PARAMS)
+SVG = {p.name: p for p in SVG_PARAMS}
 
 
 def write(profile, path, **opts) -> str:
@@ -49,22 +51,22 @@ def write(profile, path, **opts) -> str:
             f"{r['max_tangent_jump_deg']:.2g} deg")
 
 
-def write_svg_outline(profile, path, tolerance=None, kerf: float = 0.0, start_angle_deg: float = 0.0,
-                      max_arc_deg: float = 90.0, stroke_width: float = STROKE_WIDTH, margin: float = 1.0,
-                      **extra) -> dict:
+def write_svg_outline(profile, path, tolerance=None, kerf: float = SVG["kerf"].default,
+                      start_angle_deg: float = SVG["start_angle_deg"].default,
+                      max_arc_deg: float = SVG["max_arc_deg"].default, stroke_width: float = STROKE_WIDTH,
+                      margin: float = SVG["margin"].default, **extra) -> dict:
     """Write the 1:1 outline and return the measured report (mm, deg).
 
     ``tolerance`` (mm, default the profile's), ``kerf`` (mm, signed, > 0 = more material),
     ``start_angle_deg`` (deg, where each path starts) and ``max_arc_deg`` as for the DXF;
     ``stroke_width`` (mm) of the cut lines; ``margin`` (mm) of empty page around the part.
     """
-    from ..errors import check_number
     from .dxf import accept, fit_profile
     if extra:
         k = sorted(extra)[0]
         raise GearError(k, extra[k], "not an option of the SVG outline: one of " + ", ".join(OPTIONS))
-    stroke_width = check_number("stroke_width", stroke_width, 0, 10, lo_open=True, unit="mm")
-    margin = check_number("margin", margin, 0, 1000, unit="mm")
+    stroke_width = SVG["stroke_width"].check(stroke_width)
+    margin = SVG["margin"].check(margin)
     fits, _loops, r = fit_profile(profile, tolerance=tolerance, kerf=kerf, start_angle_deg=start_angle_deg,
                                   max_arc_deg=max_arc_deg)
     page = _write(path, fits, stroke_width, margin)

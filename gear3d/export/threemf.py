@@ -27,7 +27,8 @@ from xml.sax.saxutils import escape as xml_escape
 import numpy as np
 
 from .. import __version__
-from ..errors import GearError, check_number
+from ..errors import GearError
+from ..params.exporters import THREEMF_PARAMS
 from ..solids.convert import as_bodies, body_name
 
 NS_CORE = "http://schemas.microsoft.com/3dmanufacturing/core/2015/02"
@@ -35,10 +36,10 @@ NS_PROD = "http://schemas.microsoft.com/3dmanufacturing/production/2015/06"
 NS_G3D = "https://gear3d.invalid/3mf/2026"
 _UUID_NS = uuid.UUID("6f1d3c1e-5a2b-4c8e-9d0f-0e3d6a7b8c9d")
 FIXED_DATE = (1980, 1, 1, 0, 0, 0)
-#: mm between the parts' x-y bounding boxes of an arranged 3MF
-ARRANGE_GAP = 5.0
-#: mm: the largest gap accepted
-MAX_GAP = 1000.0
+#: mm between the parts' x-y bounding boxes of an arranged 3MF, and the largest gap accepted
+#: (the options' table, :data:`gear3d.params.exporters.THREEMF_PARAMS`)
+THREEMF = {p.name: p for p in THREEMF_PARAMS}
+ARRANGE_GAP, MAX_GAP = THREEMF["gap"].default, THREEMF["gap"].hi
 
 
 def check_arrange(arrange=False, gap=ARRANGE_GAP):
@@ -46,7 +47,7 @@ def check_arrange(arrange=False, gap=ARRANGE_GAP):
     in [0, :data:`MAX_GAP`]; anything else raises :class:`~gear3d.errors.GearError`."""
     if not isinstance(arrange, (bool, np.bool_)):
         raise GearError("arrange", arrange, "true or false")
-    return bool(arrange), check_number("gap", gap, 0, MAX_GAP, unit="mm")
+    return bool(arrange), THREEMF["gap"].check(gap)
 
 
 def arrange_offsets(lo, hi, gap=ARRANGE_GAP) -> np.ndarray:

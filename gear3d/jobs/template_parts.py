@@ -13,6 +13,8 @@ from .specs import PartSpec
 from ..conventions import to_transverse
 from ..params import (BODY, BODY_PARAMS, DEFAULT_TOLERANCE, FAMILY_PARAMS, MESH_TOLERANCE, by_name,
                       check_excludes, family_table)
+from ..export import kind_options
+from ..params.exporters import STEP_KINDS
 from ..profiles import FAMILIES, families
 
 from .template_values import (MESH_KINDS, PROFILE_KINDS, TOL_RANGE, TOLERANCE_KEYS, fail, safe_name,
@@ -150,63 +152,48 @@ def check_tolerances(file, key, top):
     return tol, tols
 
 
-@functools.lru_cache(maxsize=1)
-def _dxf_keys() -> tuple:
-    """The DXF writer's options (read once: every part of a scene asks)."""
-    from ..export.dxf import write_dxf
-    return tuple(n for n in inspect.signature(write_dxf).parameters
-                 if n not in ("profile", "path", "tolerance", "extra"))
+#: a TOML key of ``[scene.options.KIND]`` that names an exporter option another way
+OPTION_KEYS = {("step", "kind"): "step"}
 
 
 def check_options(file, key, table):
-    """Exporter options per kind: ``dxf`` (kerf, lead_in, ...), ``step`` (``kind`` =
-    faceted | brep: planar facets, or exact B-rep surfaces through OpenCascade, which needs
-    ``pip install 'gear3d[cad]'``) and ``3mf`` (``arrange`` = true: the parts laid flat and
-    side by side on the bed, ``gap`` mm apart). Returns the writers' keyword arguments per kind."""
+    """Exporter options per kind, each a key of that exporter's table
+    (:mod:`gear3d.params.exporters`, the formats' ``options`` in the registry): ``dxf``
+    (kerf, lead_in, ...), ``svg`` (kerf, stroke_width, ...), ``step`` (``kind`` = faceted |
+    brep: planar facets, or exact B-rep surfaces, which needs ``pip install 'gear3d[cad]'``)
+    and ``3mf`` (``arrange`` = true: the parts laid flat and side by side on the bed, ``gap``
+    mm apart). Returns the writers' keyword arguments per kind."""
     table_at(file, key, table)
+    tables = kind_options()
     out = {}
-    dxf_keys = _dxf_keys()
     for kind, opts in table.items():
-        if kind not in ("dxf", "step", "3mf"):
-            fail(file, f"{key}.{kind}", opts, "dxf, step or 3mf (the exporters with options)")
+        if kind not in tables:
+            fail(file, f"{key}.{kind}", opts, ", ".join(tables) + " (the exporters with options)")
         table_at(file, f"{key}.{kind}", opts)
-        if kind == "3mf":
-            from ..export.threemf import MAX_GAP
-            refuse_unknown(file, f"{key}.3mf", opts, ["arrange", "gap"])
-            o = {k: bool_at(file, f"{key}.3mf.arrange", v) if k == "arrange" else
-                 number_at(file, f"{key}.3mf.gap", v, 0, MAX_GAP, unit="mm") for k, v in opts.items()}
-            out["3mf"] = o
-            continue
+        params = {p.name: p for p in tables[kind]}
+        names = {toml: OPTION_KEYS.get((kind, toml), toml) for toml in _toml_keys(kind, tables[kind])}
+        refuse_unknown(file, f"{key}.{kind}", opts, list(names))
+        out[kind] = {names[k]: typed(file, f"{key}.{kind}.{k}", params[names[k]], v) for k, v in opts.items()}
         if kind == "step":
-            from ..export.step import STEP_KINDS
-            refuse_unknown(file, f"{key}.step", opts, ["kind"])
-            flavour = str_at(file, f"{key}.step.kind", opts.get("kind", "faceted"), STEP_KINDS)
-            if flavour == "brep":
-                import importlib.util
-                if importlib.util.find_spec("OCP") is None:
-                    fail(file, f"{key}.step.kind", flavour,
-                         "faceted, or brep after `pip install 'gear3d[cad]'` (OpenCascade is not installed)")
-            out["step"] = {"step": flavour}
-            continue
-        refuse_unknown(file, f"{key}.dxf", opts, dxf_keys)
-        out["dxf"] = {k: _dxf_option(file, f"{key}.dxf.{k}", k, v) for k, v in opts.items()}
+            out[kind] = {"step": _step_kind(file, f"{key}.step.kind", opts.get("kind", "faceted"))}
     return out
 
 
-def _dxf_option(file, key, name, v):
-    """One DXF exporter option, typed and ranged (the exporter checks module-relative limits)."""
-    from ..export.dxf import VERSIONS
-    if name in ("spline", "pitch_circle"):
-        return bool_at(file, key, v)
-    if name == "dxf_version":
-        return str_at(file, key, v, VERSIONS)
-    if name == "lead_in":
-        return number_at(file, key, v, 0, None, lo_open=True, unit="mm")
-    if name == "start_angle_deg":
-        return number_at(file, key, v, -360, 360, unit="deg")
-    if name == "max_arc_deg":
-        return number_at(file, key, v, 1, 180, unit="deg")
-    return number_at(file, key, v, unit="mm")
+def _toml_keys(kind, params) -> list:
+    """The TOML keys of ``kind``'s options: the parameters' names, or the key naming one
+    another way (:data:`OPTION_KEYS`)."""
+    other = {v: k for (kd, k), v in OPTION_KEYS.items() if kd == kind}
+    return [other.get(p.name, p.name) for p in params]
+
+
+def _step_kind(file, key, flavour):
+    """The STEP flavour; a B-rep without OpenCascade is refused here, before any work."""
+    flavour = str_at(file, key, flavour, STEP_KINDS)
+    if flavour == "brep":
+        import importlib.util
+        if importlib.util.find_spec("OCP") is None:
+            fail(file, key, flavour, "faceted, or brep after `pip install 'gear3d[cad]'` (OpenCascade is not installed)")
+    return flavour
 
 
 def check_part(file, key, raw, *, default_outputs, names=None, require_name=True) -> PartSpec:
@@ -291,8 +278,12 @@ def _set_keys(kind) -> tuple:
         from ..wormgear.design import design
         return [k for k in inspect.signature(design).parameters if k != "tolerance"] + list(FEATURE_KEYS), ()
     ps = inspect.signature(set_builder(kind)).parameters
-    return ([k for k in ps if k != "tolerance"],
-            tuple(k for k, p in ps.items() if p.default is inspect.Parameter.empty))
+    more = []
+    if kind == "bevel":                   # gear3d.bevel's keywords beyond its named ones (**options)
+        from ..bevel import OPTIONS
+        more = list(OPTIONS)
+    return ([k for k, p in ps.items() if k != "tolerance" and p.kind is not p.VAR_KEYWORD] + more,
+            tuple(k for k, p in ps.items() if p.default is inspect.Parameter.empty and p.kind is not p.VAR_KEYWORD))
 
 
 def _set_check(kind, kw) -> tuple:

@@ -27,7 +27,8 @@ Sizes are transverse by default (``module``, ``pressure_angle_deg``); ``normal_m
 One module a topic: :mod:`~gear3d.params.param` (the :class:`Param` type),
 :mod:`~gear3d.params.tolerance` (the tolerance facts), :mod:`~gear3d.params.families` (the
 family tables), :mod:`~gear3d.params.bodies` (body and pair), :mod:`~gear3d.params.sets` (worm
-and bevel sets), :mod:`~gear3d.params.reference` (the reference page). Every name is
+and bevel sets), :mod:`~gear3d.params.exporters` (the exporters' options),
+:mod:`~gear3d.params.reference` (the reference page). Every name is
 importable from ``gear3d.params``.
 
 This package imports nothing heavy (no numpy): the CLI builds its parser from it.
@@ -43,6 +44,7 @@ from .families import (ADD, CONV_HELIX, CONVENTION_FAMILIES, CONVENTIONS, DED, D
                        check_family, family_table)
 from .bodies import BODY, BODY_KINDS, BODY_PARAMS, PAIR, PAIR_PARAMS, check_body
 from .sets import BEVEL_PARAMS, WORM_PARAMS
+from .exporters import DXF_PARAMS, EXPORT_PARAMS, STEP_PARAMS, SVG_PARAMS, THREEMF_PARAMS
 from .reference import markdown, md_rows
 
 __all__ = ["Param", "declare", "union", "DEFAULT_TOLERANCE", "MAX_TOLERANCE_SHARE", "MAX_TOLERANCE_TEXT",
@@ -50,4 +52,5 @@ __all__ = ["Param", "declare", "union", "DEFAULT_TOLERANCE", "MAX_TOLERANCE_SHAR
            "CONVENTIONS", "DED", "DIAMETRAL_PITCH", "FAMILY_PARAMS", "INTERNAL", "MODULE", "NORMAL_MODULE",
            "NORMAL_PRESSURE", "NOT_TABULATED", "PRESSURE", "RIM", "TEETH", "TIP", "TOLERANCE", "all_params",
            "by_name", "check_excludes", "check_family", "family_table", "BODY", "BODY_KINDS", "BODY_PARAMS",
-           "PAIR", "PAIR_PARAMS", "check_body", "BEVEL_PARAMS", "WORM_PARAMS", "markdown", "md_rows"]
+           "PAIR", "PAIR_PARAMS", "check_body", "BEVEL_PARAMS", "WORM_PARAMS", "DXF_PARAMS", "EXPORT_PARAMS", "STEP_PARAMS",
+           "SVG_PARAMS", "THREEMF_PARAMS", "markdown", "md_rows"]
