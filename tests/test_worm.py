@@ -308,49 +308,22 @@ def test_pair_turns_without_interference(hand):
 
 @pytest.mark.slow
 def test_hobbing_simulation_matches_the_envelope():
-    """Brute force: the wheel blank minus the hob (the worm with its tip raised by the
-    clearance) at many (φ, φ z1/z2) positions around tooth 0's space; every section of the
-    simulated space lies within tolerance + the simulation's scallop of the exact section
-    (one-sided: the simulated outline's vertices against the exact section)."""
-    from manifold3d import CrossSection, FillRule, Manifold, OpType
-    from gear3d.wormgear import WHEEL_TURN, worm_transform
+    """Brute force (:mod:`tests.wormhob`, shared with the ZK test): the wheel blank minus
+    the hob (the worm with its tip raised by the clearance) at 12 positions per wheel pitch
+    over +-1.5 pitches around tooth 0's space; every section of the simulated space lies
+    within tolerance + the simulation's scallop of the exact section (one-sided: the
+    simulated outline's vertices against the exact section)."""
     from gear3d.wormgear.worm_body import worm_body
-    from gear3d.wormgear.wheel import section_turn
+    from tests.wormhob import hob_distances
     tol = 0.02
-    d = design(module=2, starts=1, wheel_teeth=30, worm_length=30, tolerance=tol)
-    hob_d = design(module=2, starts=1, wheel_teeth=30, worm_length=30, tolerance=tol, addendum_coeff=1.2)
+    d = design(module=2, starts=1, wheel_teeth=30, worm_length=24, tolerance=tol)
+    hob_d = design(module=2, starts=1, wheel_teeth=30, worm_length=24, tolerance=tol, addendum_coeff=1.2)
     assert hob_d.worm_tip_radius == d.hob_tip_radius and hob_d.p == d.p
-    hob = worm_body(hob_d)
-    a = d.center_distance
-    # the blank: a solid of revolution about z, tip r_tip(h) (throat) in every plane
-    hs = np.linspace(-d.face_width / 2, d.face_width / 2, 61)
-    prof = [(0.0, hs[0])] + [(float(d.blank_tip_radius(h)), float(h)) for h in hs] + [(0.0, hs[-1])]
-    blank = Manifold.revolve(CrossSection([np.array(prof)], FillRule.Positive), 720)
-    # positions: the worm turns by φ about its axis (world x through (0, a, 0)) and the
-    # wheel by φ z1/z2 about z, so in the wheel's own frame the worm also turns back by
-    # -φ z1/z2 about z; 16 positions per wheel pitch (2π of worm turn) over +-2 pitches
-    n = 16
-    phis = np.linspace(-2.0, 2.0, 4 * n + 1) * 2 * math.pi
-    place = worm_transform(d) @ hob.transform
-    cuts = [hob.manifold.transform((np.linalg.inv(WHEEL_TURN) @ _rot("z", -f / 30) @ _rot("x", f, (0, a, 0))
-                                    @ place)[:3, :4]) for f in phis]
-    sim = Manifold.batch_boolean([blank] + cuts, OpType.Subtract)
-    step = 2 * math.pi * d.r2 / 30 / n                      # rack travel between positions
-    for h in (-6.0, 0.0, 5.0):
-        exact = section(d, h, tol / 2)
-        th = section_turn(d, h)
-        pts = np.concatenate([np.asarray(p, float) for p in sim.slice(h).to_polygons()])
-        pts = pts @ np.array([[math.cos(-th), math.sin(-th)], [-math.sin(-th), math.cos(-th)]])
-        ang = np.arctan2(pts[:, 1], pts[:, 0])
-        r = np.hypot(pts[:, 0], pts[:, 1])
-        # tooth 0's two flanks and the space beside them, inside the blank's tip
-        sel = (np.abs(ang) < 1.5 * math.pi / 30) & (r < float(d.blank_tip_radius(h)) - 0.05)
-        dist = exact.exact_distance(pts[sel])
-        # scallop of a rack step s on a flank of curvature radius >= r_b/4: s²/(8 ρ) + the
-        # hob's own mesh error
-        scallop = step ** 2 / (8 * (d.r2 * math.cos(d.alpha_x) / 4))
-        print("hobbing", h, float(dist.max()), 2 * tol + scallop)
-        assert dist.max() <= 2 * tol + scallop, (h, dist.max(), scallop)
+    dist, scallop = hob_distances(d, worm_body(hob_d), (-6.0, 0.0, 5.0), per_pitch=12, pitches=1.5)
+    for h, x in dist.items():
+        assert len(x) > 200
+        # the hob's own mesh error and the section's, and the scallop
+        assert x.max() <= 2 * tol + scallop, (h, x.max(), scallop)
 
 
 # ------------------------------------------------------------------ rolling check of the pair

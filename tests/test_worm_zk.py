@@ -14,6 +14,11 @@
 * **Wheel mid-plane.** The wheel's mid-plane section against a 2D envelope computed here:
   the mid-plane rack (u = ±e(ρ), at distance a - ρ from the wheel axis) rolled over many
   positions; the tooth's half angle at radius R is the least angle the flank reaches.
+* **Hobbing (slow).** The wheel blank minus the ZK hob at many positions in manifold3d
+  (:mod:`tests.wormhob`, shared with the ZA test): the simulated wheel lies within the
+  hob's and the section's tolerances plus the simulation's scallop of the exact ZK sections,
+  and - the test is sharp - not within that bound of the ZA, ZI or ZN wheel of the same
+  sizes (a 3-start worm at q = 8 with a 30 mm disc, where the four types differ).
 """
 from __future__ import annotations
 
@@ -228,3 +233,28 @@ def test_cli_zk_disc_radius(tmp_path, capsys):
     assert rc == 2 and not (tmp_path / "no.json").exists()
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "disc_radius" in err[0]
+
+
+# ------------------------------------------------------------------ slow: brute-force hobbing
+
+@pytest.mark.slow
+def test_zk_hobbing_simulation_matches_the_envelope():
+    from gear3d.wormgear.worm_body import worm_body
+    from tests.wormhob import hob_points
+    tol = 0.01
+    kw = dict(module=2, starts=3, diameter_quotient=8, wheel_teeth=30, worm_length=24, tolerance=tol,
+              worm_type="ZK", disc_radius=30)
+    d = design(**kw)
+    hob = worm_body(design(**kw, addendum_coeff=d.dedendum_coeff))        # the tip raised by the clearance
+    assert hob.report["max_error"] <= tol
+    heights = [round(f * d.face_width, 3) for f in (-0.4, 0.0, 0.3)]
+    pts, scallop = hob_points(d, hob, heights, per_pitch=12, pitches=1.5)
+    bound = 2 * tol + scallop                      # the hob's facets, the section's polygon, the scallop
+    for h, P in pts.items():
+        assert len(P) > 200
+        dist = section(d, h, tol / 2).exact_distance(P)
+        assert dist.max() <= bound, (h, dist.max(), bound)
+    for other in ("ZA", "ZI", "ZN"):
+        o = design(**{**kw, "worm_type": other, "disc_radius": None})
+        worst = max(section(o, h, tol / 2).exact_distance(P).max() for h, P in pts.items())
+        assert worst > 1.5 * bound, (other, worst, bound)
