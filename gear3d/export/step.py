@@ -24,34 +24,12 @@ import numpy as np
 
 from ..errors import GearError, check_choice
 from ..params.exporters import STEP_PARAMS
-from .. import __version__
 from ..solids.convert import as_bodies, body_mesh, body_name
+from .step_part21 import Writer, framed_text, real, string
 
 
-def _r(x: float) -> str:
-    """A STEP REAL (always with a decimal point, upper-case exponent)."""
-    s = repr(float(x))
-    if "e" in s:
-        mant, exp = s.split("e")
-        if "." not in mant:
-            mant += "."
-        return mant + "E" + exp
-    return s if "." in s else s + "."
-
-
-def _s(text: str) -> str:
-    return "'" + str(text).replace("'", "''") + "'"
-
-
-class _Writer:
-    def __init__(self):
-        self.lines = []
-        self.n = 0
-
-    def add(self, text: str) -> int:
-        self.n += 1
-        self.lines.append(f"#{self.n}={text};")
-        return self.n
+#: the Part 21 primitives (shared with the direct B-rep writer)
+_r, _s, _Writer = real, string, Writer
 
 
 #: triangles whose normals differ by less than this (rad) and whose vertices lie within
@@ -223,42 +201,6 @@ def _brep(w: _Writer, name: str, V: np.ndarray, F: np.ndarray) -> int:
 def step_text(parts, product: str = "gear") -> str:
     """The STEP file for ``parts`` = [(name, vertices (n,3) mm, faces (m,3))]."""
     return framed_text(lambda w: [_brep(w, n, V, F) for n, V, F in parts], product, "gear3d faceted B-rep")
-
-
-def framed_text(add_breps, product: str, description: str) -> str:
-    """A whole AP214 file (mm): the product, units and context entities around the solids
-    that ``add_breps(writer)`` appends (it returns their MANIFOLD_SOLID_BREP ids); fixed
-    header timestamp. Shared by this writer and :mod:`gear3d.export.step_direct`."""
-    w = _Writer()
-    ac = w.add("APPLICATION_CONTEXT('core data for automotive mechanical design processes')")
-    w.add(f"APPLICATION_PROTOCOL_DEFINITION('international standard','automotive_design',2000,#{ac})")
-    pc = w.add(f"PRODUCT_CONTEXT('',#{ac},'mechanical')")
-    pr = w.add(f"PRODUCT({_s(product)},{_s(product)},'',(#{pc}))")
-    w.add(f"PRODUCT_RELATED_PRODUCT_CATEGORY('part',$,(#{pr}))")
-    pf = w.add(f"PRODUCT_DEFINITION_FORMATION('','',#{pr})")
-    dc = w.add(f"PRODUCT_DEFINITION_CONTEXT('part definition',#{ac},'design')")
-    pd = w.add(f"PRODUCT_DEFINITION('design','',#{pf},#{dc})")
-    ps = w.add(f"PRODUCT_DEFINITION_SHAPE('','',#{pd})")
-    lu = w.add("(LENGTH_UNIT()NAMED_UNIT(*)SI_UNIT(.MILLI.,.METRE.))")
-    au = w.add("(NAMED_UNIT(*)PLANE_ANGLE_UNIT()SI_UNIT($,.RADIAN.))")
-    su = w.add("(NAMED_UNIT(*)SI_UNIT($,.STERADIAN.)SOLID_ANGLE_UNIT())")
-    un = w.add(f"UNCERTAINTY_MEASURE_WITH_UNIT(LENGTH_MEASURE(1.E-07),#{lu},'distance_accuracy_value','confusion accuracy')")
-    ctx = w.add(f"(GEOMETRIC_REPRESENTATION_CONTEXT(3)GLOBAL_UNCERTAINTY_ASSIGNED_CONTEXT((#{un}))"
-                f"GLOBAL_UNIT_ASSIGNED_CONTEXT((#{lu},#{au},#{su}))REPRESENTATION_CONTEXT('',''))")
-    o = w.add("CARTESIAN_POINT('',(0.,0.,0.))")
-    z = w.add("DIRECTION('',(0.,0.,1.))")
-    x = w.add("DIRECTION('',(1.,0.,0.))")
-    world = w.add(f"AXIS2_PLACEMENT_3D('',#{o},#{z},#{x})")
-    breps = add_breps(w)
-    rep = w.add(f"ADVANCED_BREP_SHAPE_REPRESENTATION({_s(product)},(#{world}," +
-                ",".join(f"#{b}" for b in breps) + f"),#{ctx})")
-    w.add(f"SHAPE_DEFINITION_REPRESENTATION(#{ps},#{rep})")
-    head = ["ISO-10303-21;", "HEADER;",
-            f"FILE_DESCRIPTION(({_s(description)}),'2;1');",
-            f"FILE_NAME({_s(product)},'1970-01-01T00:00:00',('gear3d'),('gear3d'),"
-            f"'gear3d {__version__}','gear3d {__version__}','');",
-            "FILE_SCHEMA(('AUTOMOTIVE_DESIGN { 1 0 10303 214 1 1 1 1 }'));", "ENDSEC;", "DATA;"]
-    return "\n".join(head + w.lines + ["ENDSEC;", "END-ISO-10303-21;", ""])
 
 
 #: the two STEP flavours (:data:`gear3d.params.exporters.STEP_KINDS`): ``faceted`` (this
