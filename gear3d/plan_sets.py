@@ -272,19 +272,29 @@ def face_counts(teeth: int, module: float, tol: float) -> tuple:
 def plan_face_gear(kw: dict, output=None, png=None, json=None) -> Estimate:
     """``gear3d face-gear ...`` / ``gear3d.face_gear(**kw)``: the radius limits (a fixed
     scan of sections), the loft plan (sections x vertices, COSTS["facegear.plan"]), the body
-    (triangles, COSTS["facegear.body"]) and the export; refused before any work."""
-    from .facegear import DEFAULT_TOLERANCE
-    from .facegear.geometry import face_geometry
-    g = face_geometry(kw["teeth"], kw.get("shaper_teeth"), kw.get("module", 1.0), kw.get("pressure_angle_deg", 20.0),
-                      kw.get("pinion_teeth"), kw.get("addendum_coeff", 1.0), kw.get("dedendum_coeff", 1.25),
-                      kw.get("rim"))
+    (triangles, COSTS["facegear.body"]), the pinion's spur body (:func:`gear3d.plan.plan_body`),
+    the rolling check (:func:`gear3d.facegear.rolling.work`) and the export; refused before
+    any work."""
+    from .facegear import DEFAULT_TOLERANCE, PARTS, geometry_of
+    g = geometry_of(kw)
     tol = check_number("tolerance", kw.get("tolerance", DEFAULT_TOLERANCE), 1e-5, 1.0, unit="mm")
+    part = check_choice("part", kw.get("part", "gear"), PARTS)
     sec, nh, tri = face_counts(g.teeth, g.module, tol)
     p, b = budget.COSTS["facegear.plan"], budget.COSTS["facegear.body"]
     est = Estimate(p.fixed_seconds + p.seconds * sec * nh, p.fixed_bytes, 0.0,
                    f"a loft plan of {sec:,.0f} sections x {nh:,.0f} vertices")
-    est = est.then(Estimate(b.fixed_seconds + b.seconds * tri, b.fixed_bytes + b.bytes * tri, tri,
-                            f"a face gear of {tri:,.0f} triangles"))
+    if part == "pinion":
+        tri = 0.0
+    else:
+        est = est.then(Estimate(b.fixed_seconds + b.seconds * tri, b.fixed_bytes + b.bytes * tri, tri,
+                                f"a face gear of {tri:,.0f} triangles"))
+    if part != "gear":
+        e = _pinion_plan(g, kw, tol)
+        est, tri = est.then(e), tri + e.triangles
+        est = Estimate(est.seconds, est.bytes, tri, est.what)      # the pair's file holds both bodies
+    if kw.get("check"):
+        from .facegear.rolling import work
+        est = est.then(Estimate(work(g), 50e6, 0.0, "the rolling check"))
     ext = _ext(output)
     if ext:
         est = est.then(mesh_write(ext, tri))
@@ -293,6 +303,16 @@ def plan_face_gear(kw: dict, output=None, png=None, json=None) -> Estimate:
     if json:
         est = est.then(estimate("write.json", 1000, 0.0, "a JSON report"))
     return _decide(est, "teeth", g.teeth) if g.teeth > 1000 else _decide(est, "tolerance", tol)
+
+
+def _pinion_plan(g, kw: dict, tol: float) -> Estimate:
+    """The face gear's pinion (:func:`gear3d.facegear.pinion.pinion_body`): its spur body, as
+    ``gear3d body`` plans it (the face width bounded by the pointing limit's formula)."""
+    from .facegear.pinion import spec_of
+    from .plan import plan_body
+    width = max(g.limits()["outer_pointing_formula"] - g.pitch_radius * math.cos(g.pressure_angle), g.module)
+    params = {**spec_of(g, g.pinion_teeth or g.shaper_teeth).params, "tolerance": tol}
+    return plan_body("involute", params, {"kind": "spur", "width": width, "tolerance": tol})
 
 
 # ------------------------------------------------------------------ crossed helical pairs

@@ -1,7 +1,11 @@
 """``gear3d face-gear --teeth Z2 (--shaper-teeth Z0 | --pinion-teeth Z1) --module M
 [--pressure-angle-deg A] [--inner-radius R1 --outer-radius R2] [--rim T] [--tolerance T]
--o FILE [--json FILE] [--png FILE]``: a face (crown) gear cut by an involute spur shaper at a
-90° shaft angle (:mod:`gear3d.facegear`).
+[--part gear|pinion|pair] [--check] -o FILE [--json FILE] [--png FILE]``: a face (crown) gear
+cut by an involute spur shaper at a 90° shaft angle (:mod:`gear3d.facegear`), its mating
+spur pinion (``--part pinion``, own frame) or both in mesh (``--part pair``: two named
+objects in 3MF, one mesh in STL); ``--check`` (pair) rolls the pair
+(:mod:`gear3d.facegear.rolling`): one summary line, exit 1 on interference or a contact ratio
+below 1 (the files are still written).
 
 ``-o``'s extension picks the mesh format (.stl .3mf .obj .ply .vtu; .json for the body's
 report); ``--json`` writes the typed report (strict JSON) with the radius limits, each from
@@ -39,6 +43,14 @@ def add_parser(sub):
                    help="thickness below the root plane (mm), default 2 m")
     p.add_argument("--tolerance", type=number("float", 1e-5, 1, unit="mm"), default=0.01,
                    help="max deviation of the mesh from the exact tooth surfaces (mm), default 0.01")
+    p.add_argument("--part", choices=["gear", "pinion", "pair"], default="gear",
+                   help="gear (the face gear, default), pinion (its spur pinion: the shaper's twin with "
+                        "--pinion-teeth teeth, default the shaper's, R2 - R1 wide, own frame) or pair (both, "
+                        "the pinion placed in mesh)")
+    p.add_argument("--check", action="store_true",
+                   help="--part pair: roll the pair (interference, backlash, contact ratio of conjugate action, "
+                        "transmission error): one summary line, the numbers under 'check' in --json; exit 1 on "
+                        "interference or a contact ratio below 1")
     p.add_argument("-o", "--output", required=True, help="output file; extension picks the format")
     p.add_argument("--json", default=None, help="write the report as strict JSON")
     p.add_argument("--png", default=None, help="figure (.png/.svg): the sections at R1, mid and R2, unrolled")
@@ -53,14 +65,13 @@ def run(args) -> int:
         check_path(args.json, "json", (".json",))
     if args.png is not None:
         check_path(args.png, "png", (".png", ".svg"))
-    if args.shaper_teeth is None and args.pinion_teeth is None:
-        raise GearError("shaper_teeth", None, "an integer 8..200 (or give --pinion-teeth)")
+    if args.check and args.part != "pair":
+        raise GearError("check", True, "only with --part pair (the check rolls the pair)")
+    kw = {k: getattr(args, k) for k in ("teeth", "shaper_teeth", "module", "pressure_angle_deg", "pinion_teeth",
+                                        "tolerance", "part", "check", "inner_radius", "outer_radius", "rim")}
     from ..plan_sets import plan_face_gear        # the whole command planned first: refused before any work
-    plan_face_gear({"teeth": args.teeth, "shaper_teeth": args.shaper_teeth, "module": args.module,
-                    "pressure_angle_deg": args.pressure_angle_deg, "pinion_teeth": args.pinion_teeth,
-                    "tolerance": args.tolerance, "rim": args.rim}, out, args.png, args.json)
-    f = build(args.teeth, args.shaper_teeth, args.module, args.pressure_angle_deg, args.pinion_teeth,
-              args.inner_radius, args.outer_radius, args.tolerance, args.rim)
+    plan_face_gear({k: v for k, v in kw.items() if v is not None}, out, args.png, args.json)
+    f = build(**{k: v for k, v in kw.items() if v is not None})
     info = write(list(f.bodies), out)
     if args.json is not None:
         from ..export.json_format import dumps
@@ -72,8 +83,16 @@ def run(args) -> int:
             sections_figure(f, tmp)
     r = f.report
     lim = r.limits
-    sys.stdout.write(f"wrote {out}: face gear {r.teeth} teeth (shaper {r.shaper_teeth}), r {r.inner_radius:.4f}.."
-                     f"{r.outer_radius:.4f} mm (limits {lim['inner']:.4f}..{lim['outer']:.4f}), {r.triangles} "
-                     f"triangles, max_error={r.max_error:.3g} mm (tolerance {r.tolerance:g} mm)"
+    what = {"gear": f"face gear {r.teeth} teeth (shaper {r.shaper_teeth})",
+            "pinion": f"pinion {r.pinion['teeth'] if r.pinion else ''} teeth for a face gear of {r.teeth}",
+            "pair": f"face gear {r.teeth} teeth (shaper {r.shaper_teeth}) and pinion "
+                    f"{r.pinion['teeth'] if r.pinion else ''} in mesh"}[r.part]
+    tri = sum(b.report["triangles"] for b in f.bodies)
+    sys.stdout.write(f"wrote {out}: {what}, r {r.inner_radius:.4f}..{r.outer_radius:.4f} mm (limits {lim['inner']:.4f}.."
+                     f"{lim['outer']:.4f}), {tri} triangles, max_error={r.max_error:.3g} mm (tolerance {r.tolerance:g} mm)"
                      + (f" {info}" if info else "") + "\n")
-    return 0
+    if r.check is None:
+        return 0
+    from ..facegear.rolling import finding_code, summary
+    sys.stdout.write(summary(r.check) + "\n")
+    return finding_code(r.check)

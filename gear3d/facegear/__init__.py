@@ -26,7 +26,7 @@ from __future__ import annotations
 import math
 from dataclasses import asdict, dataclass
 
-from ..errors import GearError, check_number
+from ..errors import GearError, check_choice, check_number
 from ..params import MESH_TOLERANCE
 from .geometry import FaceGeometry, face_geometry
 from .section import section
@@ -41,7 +41,10 @@ DEFAULT_TIP_LAND = 0.25
 class FaceGearReport:
     """What was built and measured (mm, degrees). ``limits``: the radius limits, each from
     its formula and measured on the sections; ``tip_land_inner``/``_outer``: the tip land's
-    arc width at the inner and outer radius."""
+    arc width at the inner and outer radius; ``max_error``: the largest over the bodies
+    built; ``chord_error`` .. ``genus``: the face gear's body (None for ``part="pinion"``);
+    ``pinion``: the pinion's geometry and body (:func:`gear3d.facegear.pinion.pinion_report`);
+    ``check``: the rolling check (:func:`gear3d.facegear.rolling.check_pair`)."""
     teeth: int
     shaper_teeth: int
     pinion_teeth: int | None
@@ -67,6 +70,9 @@ class FaceGearReport:
     volume: float
     triangles: int
     genus: int
+    part: str = "gear"
+    pinion: dict | None = None
+    check: dict | None = None
 
     def to_dict(self) -> dict:
         """Plain, strict-JSON-ready keys."""
@@ -121,11 +127,24 @@ def measured_limits(g: FaceGeometry) -> dict:
 
 
 def radius_limits(g):
+    """The radius limits (mm): each from its formula and measured, and the binding
+    ``inner`` (the larger measured inner limit) and ``outer`` (the pointing limit)."""
     lim = {**g.limits(), **measured_limits(g)}
     inner = max(v for k, v in lim.items() if k.startswith("inner") and k.endswith("measured") and v is not None)
     lim["inner"] = inner
     lim["outer"] = lim["outer_pointing_measured"]
     return lim
+
+
+def check_radii(g: FaceGeometry, inner_radius=None, outer_radius=None, lim=None) -> tuple:
+    """(R1, R2) (mm): ``inner_radius`` (default: the inner limit) and ``outer_radius`` (None
+    when not given) checked against the radius limits ``lim`` (:func:`radius_limits`, made
+    when not given), rounded inwards to the µm; a radius outside them is refused, naming it."""
+    lim = radius_limits(g) if lim is None else lim
+    lo, hi = math.ceil(lim["inner"] * 1e6) / 1e6, math.floor(lim["outer"] * 1e6) / 1e6
+    r1 = lo if inner_radius is None else check_number("inner_radius", inner_radius, lo, hi, unit="mm")
+    r2 = None if outer_radius is None else check_number("outer_radius", outer_radius, r1, hi, lo_open=True, unit="mm")
+    return r1, r2
 
 
 def _default_outer(g, inner, outer):
@@ -140,11 +159,51 @@ def _default_outer(g, inner, outer):
     return lo
 
 
+@dataclass(frozen=True)
+class Band:
+    """The face's band of radii (mm): None takes the default (see :func:`build`)."""
+    inner_radius: float | None = None
+    outer_radius: float | None = None
+
+
+@dataclass(frozen=True)
+class Depths:
+    """Tip and root plane heights over the pitch plane (modules) and the rim below the root
+    (mm, None: 2 m)."""
+    addendum_coeff: float = 1.0
+    dedendum_coeff: float = 1.25
+    rim: float | None = None
+
+
+#: :func:`build`'s keywords held in the frozen groups, by group
+OPTION_GROUPS = {Band: ("inner_radius", "outer_radius"), Depths: ("addendum_coeff", "dedendum_coeff", "rim")}
+#: what ``part`` may be: the face gear, its pinion (own frame), or both in mesh
+PARTS = ("gear", "pinion", "pair")
+
+
+def split_options(options: dict) -> tuple:
+    """(:class:`Band`, :class:`Depths`) from :func:`build`'s keywords; an unknown one is refused."""
+    known = {n for names in OPTION_GROUPS.values() for n in names}
+    for k, v in options.items():
+        if k not in known:
+            raise GearError(k, v, "not a keyword of gear3d.face_gear (" + ", ".join(sorted(known)) + ")")
+    return tuple(cls(**{n: options[n] for n in names if options.get(n) is not None})
+                 for cls, names in OPTION_GROUPS.items())
+
+
+def geometry_of(kw: dict) -> FaceGeometry:
+    """The validated :class:`FaceGeometry` of :func:`build`'s keywords ``kw`` (a dict)."""
+    if kw.get("shaper_teeth") is None and kw.get("pinion_teeth") is None:
+        raise GearError("shaper_teeth", None, "an integer 8..200 (or give pinion_teeth)")
+    _, d = split_options({k: kw.get(k) for names in OPTION_GROUPS.values() for k in names})
+    return face_geometry(kw["teeth"], kw.get("shaper_teeth"), kw.get("module", 1.0), kw.get("pressure_angle_deg", 20.0),
+                         kw.get("pinion_teeth"), d.addendum_coeff, d.dedendum_coeff, d.rim)
+
+
 def build(teeth, shaper_teeth=None, module=1.0, pressure_angle_deg=20.0, pinion_teeth=None,
-          inner_radius=None, outer_radius=None, tolerance=DEFAULT_TOLERANCE, rim=None,
-          addendum_coeff=1.0, dedendum_coeff=1.25) -> FaceGear:
+          tolerance=DEFAULT_TOLERANCE, part="gear", check=False, **options) -> FaceGear:
     """A face gear cut by an involute spur shaper at a 90° shaft angle, its body within the
-    tolerance (measured) and its radius limits.
+    tolerance (measured) and its radius limits; its mating pinion, and the pair in mesh.
 
     Parameters
     ----------
@@ -157,23 +216,28 @@ def build(teeth, shaper_teeth=None, module=1.0, pressure_angle_deg=20.0, pinion_
     pressure_angle_deg : float
         The shaper's pressure angle (deg, 14..30).
     pinion_teeth : int, optional
-        Teeth of the mating pinion z1 (z1 <= z0 <= z1 + 5).
-    inner_radius, outer_radius : float, optional
-        The band of radii (mm). Defaults: the inner limit, and where the tip land has
-        narrowed to ``DEFAULT_TIP_LAND`` m; each refused beyond its limit.
+        Teeth of the mating pinion z1 (z1 <= z0 <= z1 + 5); default z0 (the shaper's twin).
     tolerance : float
-        Largest distance of the mesh from the exact tooth surfaces (mm).
-    rim : float, optional
-        Thickness below the root plane (mm), default 2 m.
-    addendum_coeff, dedendum_coeff : float
-        Tip and root plane heights over the pitch plane, in modules (1 and 1.25).
+        Largest distance of each mesh from its exact surfaces (mm).
+    part : str
+        ``gear`` (the face gear), ``pinion`` (its spur pinion, own frame: axis z from 0 to
+        R2 - R1, tooth 0 on +x) or ``pair`` (both, the pinion placed in mesh:
+        :mod:`gear3d.facegear.pinion`).
+    check : bool
+        With ``part="pair"``: roll the pair (:mod:`gear3d.facegear.rolling`: interference,
+        backlash, contact ratio, transmission error) into ``report.check``.
+    **options
+        :class:`Band` ``inner_radius``, ``outer_radius`` (mm; defaults: the inner limit,
+        and where the tip land has narrowed to ``DEFAULT_TIP_LAND`` m; each refused beyond
+        its limit) and :class:`Depths` ``addendum_coeff``, ``dedendum_coeff`` (tip and root
+        plane heights, modules: 1 and 1.25), ``rim`` (mm below the root plane, default 2 m).
 
     Returns
     -------
     FaceGear
-        ``bodies`` (one watertight body), ``report`` (:class:`FaceGearReport`: the limits
-        from their formulas and measured on the sections, tip lands, measured errors) and
-        ``geometry``.
+        ``bodies`` (the face gear, the pinion, or both), ``report``
+        (:class:`FaceGearReport`: the limits from their formulas and measured on the
+        sections, tip lands, measured errors, the pinion, the rolling check) and ``geometry``.
 
     Raises
     ------
@@ -187,28 +251,47 @@ def build(teeth, shaper_teeth=None, module=1.0, pressure_angle_deg=20.0, pinion_
     (34.713, True)
     """
     from .body import face_body
-    g = face_geometry(teeth, shaper_teeth, module, pressure_angle_deg, pinion_teeth, addendum_coeff,
-                      dedendum_coeff, rim)
+    band, depths = split_options(options)
+    g = face_geometry(teeth, shaper_teeth, module, pressure_angle_deg, pinion_teeth, depths.addendum_coeff,
+                      depths.dedendum_coeff, depths.rim)
     tol = check_number("tolerance", tolerance, 1e-5, 1.0, unit="mm")
+    part = check_choice("part", part, PARTS)
+    if not isinstance(check, bool) or (check and part != "pair"):
+        raise GearError("check", check, "true only with part='pair' (the check rolls the pair), else false")
     lim = radius_limits(g)
-    r_in = math.ceil(lim["inner"] * 1e6) / 1e6
-    r_out_max = math.floor(lim["outer"] * 1e6) / 1e6
-    r1 = r_in if inner_radius is None else check_number("inner_radius", inner_radius, r_in, r_out_max, unit="mm")
-    r2 = _default_outer(g, r1, lim["outer"]) if outer_radius is None else \
-        check_number("outer_radius", outer_radius, r1, r_out_max, lo_open=True, unit="mm")
-    if r2 <= r1:
-        raise GearError("inner_radius", r1, f"below the outer radius {r2:.6g} mm")
-    b = face_body(g, r1, r2, tol)
-    r = b.report
-    b.report["params"] = {"teeth": g.teeth, "shaper_teeth": g.shaper_teeth, "module": g.module,
-                          "pressure_angle_deg": math.degrees(g.pressure_angle), "inner_radius": r1,
-                          "outer_radius": r2, "tolerance": tol}
-    rep = FaceGearReport(g.teeth, g.shaper_teeth, g.pinion_teeth, g.module, math.degrees(g.pressure_angle),
-                         g.pitch_radius, g.shaper_pitch_radius, g.addendum, g.dedendum, g.rim, r1, r2, r2 - r1,
-                         lim, section(g, r1).top_land, section(g, r2).top_land, tol, r["max_error"],
-                         r["chord_error"], r["loft_error"], r["wall_error"], r["sections"], r["volume"],
-                         r["triangles"], r["genus"])
-    return FaceGear((b,), rep, g)
+    r1, r2 = check_radii(g, band.inner_radius, band.outer_radius, lim)
+    r2 = _default_outer(g, r1, lim["outer"]) if r2 is None else r2
+    bodies, face = [], None
+    if part != "pinion":
+        face = face_body(g, r1, r2, tol)
+        bodies.append(face)
+    pin = None
+    if part != "gear":
+        from .pinion import pinion_body, pinion_geometry, pinion_report
+        z1 = g.pinion_teeth or g.shaper_teeth
+        body = pinion_body(g, z1, r1, r2, tol, placed=part == "pair")
+        bodies.append(body)
+        pin = pinion_report(pinion_geometry(g, z1, r1, r2), body)
+    rolled = None
+    if check:
+        from .rolling import check_pair
+        rolled = check_pair(g, g.pinion_teeth or g.shaper_teeth, r1, r2)
+    return FaceGear(tuple(bodies), _report(g, lim, r1, r2, tol, part, face, pin, rolled), g)
+
+
+def _report(g, lim, r1, r2, tol, part, face, pin, rolled) -> FaceGearReport:
+    """The typed report: the face gear's body numbers (None without it), the pinion's."""
+    r = face.report if face is not None else {}
+    if face is not None:
+        face.report["params"] = {"teeth": g.teeth, "shaper_teeth": g.shaper_teeth, "module": g.module,
+                                 "pressure_angle_deg": math.degrees(g.pressure_angle), "inner_radius": r1,
+                                 "outer_radius": r2, "tolerance": tol}
+    errs = [x for x in (r.get("max_error"), None if pin is None else pin["max_error"]) if x is not None]
+    return FaceGearReport(g.teeth, g.shaper_teeth, g.pinion_teeth, g.module, math.degrees(g.pressure_angle),
+                          g.pitch_radius, g.shaper_pitch_radius, g.addendum, g.dedendum, g.rim, r1, r2, r2 - r1,
+                          lim, section(g, r1).top_land, section(g, r2).top_land, tol, max(errs),
+                          r.get("chord_error"), r.get("loft_error"), r.get("wall_error"), r.get("sections"),
+                          r.get("volume"), r.get("triangles"), r.get("genus"), part, pin, rolled)
 
 
 face_gear = build
