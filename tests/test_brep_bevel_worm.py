@@ -192,6 +192,8 @@ def test_spiral_member_alone_needs_the_geometry(tmp_path):
     from gear3d.errors import GearError
     from gear3d.export.step_brep_bevel import member_geometry
     bv = gear3d.bevel(teeth=12, mate_teeth=24, module=1.0, tolerance=0.05, spiral_angle_deg=25.0)
+    assert member_geometry(bv.bodies[0]) is bv.geometry          # a built body carries the pair's
+    bv.bodies[0].geometry = None
     with pytest.raises(GearError) as e:
         member_geometry(bv.bodies[0])
     assert e.value.param == "step" and "geometry" in str(e.value)

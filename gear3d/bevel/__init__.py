@@ -34,7 +34,7 @@ from __future__ import annotations
 import math
 import sys
 import types
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, fields
 
 import numpy as np
 
@@ -117,59 +117,123 @@ class Bevel:
     geometry: object = None
 
 
-def build(teeth, mate_teeth, module, face_width=None, pressure_angle_deg=20.0, shaft_angle_deg=90.0,
-          form="spherical-involute", shift_coeff=0.0, tolerance=DEFAULT_TOLERANCE, part="gear",
-          mate_form=None, check=False, spiral_angle_deg=None, cutter_radius=None, hand=None,
-          clearance="standard", mounting_distance=None, mate_mounting_distance=None) -> Bevel:
-    """Straight bevel member(s) (mm, degrees); see the package doc. ``part``: gear | mate |
-    pair (the mate placed on its axis at the shaft angle, in mesh). ``mate_form``: the
-    mate's tooth form (default ``form``; an octoid and a spherical involute are not
-    conjugate). ``check`` (pair only): roll the pair (:func:`gear3d.bevel.rolling.check_pair`)
-    into ``report.check``. ``spiral_angle_deg`` (at mid-face), ``cutter_radius`` (mm) and
-    ``hand`` (of the gear: "left" | "right"; the mate gets the other) make a spiral bevel, a
-    Zerol one with a cutter radius and no spiral angle (:mod:`gear3d.bevel.spiral`).
-    ``clearance``: "standard" or "uniform" (:func:`gear3d.bevel.geometry.pair_geometry`).
+@dataclass(frozen=True)
+class Cones:
+    """The pair's cone keywords of :func:`build` (mm, degrees): face width (default R_e/3),
+    pressure and shaft angles, the gear's and the mate's tooth forms, profile shift,
+    clearance (see :func:`gear3d.bevel.geometry.pair_geometry`)."""
+    face_width: float | None = None
+    pressure_angle_deg: float = 20.0
+    shaft_angle_deg: float = 90.0
+    form: str = "spherical-involute"
+    shift_coeff: float = 0.0
+    mate_form: str | None = None
+    clearance: str = "standard"
+
+
+@dataclass(frozen=True)
+class Spiral:
+    """The tooth line keywords of :func:`build`: spiral angle at mid-face (deg), cutter
+    radius (mm) and the gear's hand (see :func:`gear3d.bevel.spiral.with_tooth_line`)."""
+    spiral_angle_deg: float | None = None
+    cutter_radius: float | None = None
+    hand: str | None = None
+
+
+@dataclass(frozen=True)
+class Mounts:
+    """Mounting distances (mm, apex to the back mounting face along each axis)."""
+    mounting_distance: float | None = None
+    mate_mounting_distance: float | None = None
+
+
+#: :func:`build`'s keywords beyond teeth, mate_teeth, module, part, tolerance and check,
+#: grouped into the frozen values they fill
+GROUPS = (Cones, Spiral, Mounts)
+OPTIONS = tuple(f.name for g in GROUPS for f in fields(g))
+
+
+def split_options(options: dict) -> tuple:
+    """(:class:`Cones`, :class:`Spiral`, :class:`Mounts`) of :func:`build`'s keywords;
+    TypeError for an unknown one (as Python's own call)."""
+    for k in options:
+        if k not in OPTIONS:
+            raise TypeError(f"bevel() got an unexpected keyword argument {k!r}")
+    return tuple(g(**{f.name: options[f.name] for f in fields(g) if f.name in options}) for g in GROUPS)
+
+
+def build(teeth, mate_teeth, module, part="gear", tolerance=DEFAULT_TOLERANCE, check=False, **options) -> Bevel:
+    """Bevel member(s) (mm, degrees); see the package doc. ``part``: gear | mate | pair (the
+    mate placed on its axis at the shaft angle, in mesh). ``check`` (pair only): roll the
+    pair (:func:`gear3d.bevel.rolling.check_pair`) into ``report.check``. Keywords
+    (:data:`OPTIONS`): ``face_width`` (mm, default R_e/3), ``pressure_angle_deg`` (20),
+    ``shaft_angle_deg`` (90), ``form`` (spherical-involute | octoid), ``shift_coeff``;
+    ``mate_form``: the mate's tooth form (default ``form``; an octoid and a spherical
+    involute are not conjugate); ``spiral_angle_deg`` (at mid-face), ``cutter_radius`` (mm)
+    and ``hand`` (of the gear: "left" | "right"; the mate gets the other) make a spiral
+    bevel, a Zerol one with a cutter radius and no spiral angle (:mod:`gear3d.bevel.spiral`);
+    ``clearance``: "standard" or "uniform" (:func:`gear3d.bevel.geometry.pair_geometry`);
     ``mounting_distance`` / ``mate_mounting_distance`` (mm, apex to the back mounting face
     along each axis): a hub from the body's own back face out to that distance (refused
     below the body's own, which the report gives). Raises :class:`GearError` naming a bad
-    parameter before any work."""
-    from dataclasses import replace
-    from .geometry import FORMS, pair_geometry
-    from .spiral import with_tooth_line
+    parameter before any work.
+
+    >>> b = build(12, 18, 2.0, tolerance=0.05, shaft_angle_deg=80)
+    >>> round(b.report.shaft_angle_deg, 6), b.report.members[0].teeth
+    (80.0, 12)
+    """
+    cones, spiral, mounts = split_options(options)
     part = check_choice("part", part, PARTS)
     tol = check_number("tolerance", tolerance, 1e-6, 1.0, unit="mm")
     if check and part != "pair":
         raise GearError("check", check, "only with part='pair' (the check rolls the pair)")
-    geo = pair_geometry(teeth, mate_teeth, module, face_width, pressure_angle_deg, shaft_angle_deg,
-                        shift_coeff, form, clearance=clearance)
-    geo = with_tooth_line(geo, spiral_angle_deg, cutter_radius, hand)
-    mform = geo.form if mate_form is None else check_choice("mate_form", mate_form, FORMS)
-    geo_m = geo if mform == geo.form else replace(geo, form=mform)
-    if geo_m is not geo:
-        pair_geometry(teeth, mate_teeth, module, face_width, pressure_angle_deg, shaft_angle_deg, shift_coeff, mform,
-                      clearance=clearance)
+    geo, geo_m = _geometries(teeth, mate_teeth, module, cones, spiral)
+    which = ("gear", "mate") if part == "pair" else (part,)
+    return _build(geo, geo_m, which, tol, check, mounts)
+
+
+def _geometries(teeth, mate_teeth, module, cones: Cones, spiral: Spiral) -> tuple:
+    """(the pair's geometry with its tooth line, the same in the mate's form), validated."""
+    from dataclasses import replace
+    from .geometry import FORMS, pair_geometry
+    from .spiral import with_tooth_line
+    c = cones
+    geo = pair_geometry(teeth, mate_teeth, module, c.face_width, c.pressure_angle_deg, c.shaft_angle_deg,
+                        c.shift_coeff, c.form, clearance=c.clearance)
+    geo = with_tooth_line(geo, spiral.spiral_angle_deg, spiral.cutter_radius, spiral.hand)
+    mform = geo.form if c.mate_form is None else check_choice("mate_form", c.mate_form, FORMS)
+    if mform == geo.form:
+        return geo, geo
+    pair_geometry(teeth, mate_teeth, module, c.face_width, c.pressure_angle_deg, c.shaft_angle_deg, c.shift_coeff,
+                  mform, clearance=c.clearance)
+    return geo, replace(geo, form=mform)
+
+
+def _build(geo, geo_m, which: tuple, tol: float, check: bool, mounts: Mounts) -> Bevel:
+    """The bodies of ``which`` (gear, mate), placed as a pair when both, and the report."""
     from .body import mate_transform
     from .spiral import body
-    which = ("gear", "mate") if part == "pair" else (part,)
-    mounts = {"gear": mounting_distance, "mate": mate_mounting_distance}
-    check_mounts(geo, mounts, which)
+    dist = {"gear": mounts.mounting_distance, "mate": mounts.mate_mounting_distance}
+    check_mounts(geo, dist, which)
     bodies = [body(geo if w == "gear" else geo_m, w, tol) for w in which]
-    bodies = [_add_hub(geo, w, b, mounts[w], tol) for w, b in zip(which, bodies)]
+    bodies = [_add_hub(geo, w, b, dist[w], tol) for w, b in zip(which, bodies)]
     for w, b in zip(which, bodies):
         b.geometry = geo if w == "gear" else geo_m      # the pair's (a spiral member's B-rep needs it)
     overlap = None
-    if part == "pair":
+    if len(which) == 2:
         bodies[1].transform = mate_transform(geo)
         overlap = float((bodies[0].manifold ^ bodies[1].world_manifold()).volume())
     members = tuple(_member_report(geo if w == "gear" else geo_m, w, b) for w, b in zip(which, bodies))
     for b, r in zip(bodies, members):
         b.report.update(asdict(r))
         b.report["params"] = _params(geo if b.name == "gear" else geo_m, tol, w=b.name)
+    mform = geo_m.form
     checked = None
     if check:
         from .rolling import check_pair
         checked = check_pair(geo, tol, mform)
     from .rolling import pairing
+    part = "pair" if len(which) == 2 else which[0]
     rep = BevelReport(geo.form, part, geo.module, math.degrees(geo.pressure_angle), math.degrees(geo.shaft_angle),
                       geo.face_width, geo.cone_distance, geo.inner_cone_distance, geo.crown_teeth, tol,
                       max(r.max_error for r in members), members, overlap, pairing(geo.form, mform), mform, checked,

@@ -106,19 +106,27 @@ def pitch_angles(z1: int, z2: int, shaft_angle: float) -> tuple:
     return d1, shaft_angle - d1
 
 
+@dataclass(frozen=True)
+class ToothDepth:
+    """The generating crown tooth's depth in modules: addendum h_a* and dedendum h_f*
+    (the gear's addendum and dedendum at the heel before the shift)."""
+    addendum_coeff: float = 1.0
+    dedendum_coeff: float = 1.25
+
+
 def pair_geometry(teeth, mate_teeth, module, face_width=None, pressure_angle_deg=20.0,
                   shaft_angle_deg=90.0, shift_coeff=0.0, form="spherical-involute",
-                  addendum_coeff=1.0, dedendum_coeff=1.25, clearance="standard") -> PairGeometry:
+                  depth: ToothDepth = ToothDepth(), clearance="standard") -> PairGeometry:
     """Validated pair geometry (see the module doc). ``face_width`` (mm) defaults to R_e/3
-    and is refused beyond it. ``clearance``: "standard" (the tip tapers to the apex) or
-    "uniform" (each face cone parallel to the mate's root cone, through the heel tip: the
-    clearance is the heel's all along the face). Raises :class:`GearError` naming the bad
-    parameter."""
+    and is refused beyond it. ``depth``: the crown tooth's :class:`ToothDepth`.
+    ``clearance``: "standard" (the tip tapers to the apex) or "uniform" (each face cone
+    parallel to the mate's root cone, through the heel tip: the clearance is the heel's all
+    along the face). Raises :class:`GearError` naming the bad parameter."""
     z1 = int(check_number("teeth", teeth, 3, 1000, integer=True))
     z2 = int(check_number("mate_teeth", mate_teeth, 3, 1000, integer=True))
     m = check_number("module", module, 0, 1000, lo_open=True, unit="mm")
-    ha = check_number("addendum_coeff", addendum_coeff, 0.3, 2.0)
-    hf = check_number("dedendum_coeff", dedendum_coeff, ha, 2.5)
+    ha = check_number("addendum_coeff", depth.addendum_coeff, 0.3, 2.0)
+    hf = check_number("dedendum_coeff", depth.dedendum_coeff, ha, 2.5)
     # the crown tooth's tip land is p/2 - 2 h_f* m tan α whatever the shift (as a rack's)
     a_max = min(35.0, math.floor(math.degrees(math.atan(math.pi / (4 * hf))) * 1e4) / 1e4)
     a = math.radians(check_number("pressure_angle_deg", pressure_angle_deg, 10, a_max, unit="deg"))

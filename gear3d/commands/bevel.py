@@ -63,12 +63,6 @@ def run(args) -> int:
     from ..bevel import build
     out = args.output
     check_output(out, kinds="body")
-    if args.step == "brep" and out.lower().endswith((".step", ".stp")):
-        from ..bevel.spiral import pair_geometry_of
-        from ..export.step_brep_bevel import refuse
-        refuse(pair_geometry_of({k: getattr(args, k) for k in (
-            "teeth", "mate_teeth", "module", "face_width", "pressure_angle_deg", "shaft_angle_deg", "shift_coeff",
-            "form", "clearance", "spiral_angle_deg", "cutter_radius", "hand")}))
     if args.json is not None:
         check_path(args.json, "json", (".json",))
     for name in ("png", "preview_png", "contact_png"):
@@ -84,11 +78,9 @@ def run(args) -> int:
     if args.step == "brep" and out.lower().endswith((".step", ".stp")):
         from ..export.step_brep import require_occ
         require_occ()                       # after the plan (OCC's import: 0.6 s), before any work
-    b = build(args.teeth, args.mate_teeth, args.module, args.face_width, args.pressure_angle_deg,
-              args.shaft_angle_deg, args.form, args.shift_coeff, args.tolerance, args.part,
-              mate_form=args.mate_form, check=args.check, spiral_angle_deg=args.spiral_angle_deg,
-              cutter_radius=args.cutter_radius, hand=args.hand, clearance=args.clearance,
-              mounting_distance=args.mounting_distance, mate_mounting_distance=args.mate_mounting_distance)
+    from ..bevel import OPTIONS
+    b = build(args.teeth, args.mate_teeth, args.module, args.part, args.tolerance, args.check,
+              **{k: getattr(args, k) for k in OPTIONS})
     brep = args.step == "brep" and out.lower().endswith((".step", ".stp"))
     step_opts = {"step": args.step} if args.step and out.lower().endswith((".step", ".stp")) else {}
     info = write(list(b.bodies), out, **step_opts, **({"geometry": b.geometry} if brep else {}))
