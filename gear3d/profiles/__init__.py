@@ -67,16 +67,28 @@ def table(family: str) -> dict:
 def families() -> list:
     """The names of every registered profile family, sorted.
 
+    Parameters
+    ----------
+    None
+        It takes no arguments; the registry is the family modules' (:data:`FAMILY_MODULES`).
+
     Returns
     -------
     list of str
-        The ``family`` names :func:`profile` takes (each family module is imported once).
+        The ``family`` names :func:`profile` takes (each family module is imported once),
+        in alphabetical order.
+
+    Raises
+    ------
+    ImportError
+        A family module that fails to import fails the call, loudly.
 
     Examples
     --------
     >>> import gear3d
-    >>> {"involute", "cycloidal", "mate"} <= set(gear3d.families())
-    True
+    >>> names = gear3d.families()
+    >>> {"involute", "cycloidal", "sine", "mate"} <= set(names), names == sorted(names)
+    (True, True)
     """
     _load()
     return sorted(FAMILIES)
