@@ -22,12 +22,59 @@ Internal bevels (a pitch cone beyond 90°) are built in their own frame turned b
 crown gears (a face cone within 3° of 90°: ``gear3d face-gear``), uniform clearance on an
 internal pair.
 
-Example::
+``gear3d.bevel(teeth, mate_teeth, module, part="gear", tolerance=0.01, check=False,
+**options)`` calls :func:`build`, planned against the budget first.
 
-    >>> import gear3d
-    >>> b = gear3d.bevel(teeth=16, mate_teeth=32, module=1.5, part="pair", tolerance=0.01)
-    >>> [x.name for x in b.bodies], b.report.max_error <= 0.01
-    (['gear', 'mate'], True)
+Parameters
+----------
+teeth, mate_teeth : int
+    Teeth of the gear and of its mate.
+module : float
+    The outer (heel) transverse module, mm.
+part : {"gear", "mate", "pair"}, optional
+    What to build (default "gear"; "pair": the mate placed on its axis at the shaft angle,
+    in mesh).
+tolerance : float, optional
+    mm, in [1e-6, 1]: the largest distance of each body from its exact surface (default 0.01).
+check : bool, optional
+    Roll the pair (``part="pair"`` only) into ``report.check``: interference, backlash,
+    contact ratio, transmission error (default False).
+**options
+    ``face_width`` (mm, default R_e/3), ``pressure_angle_deg`` (default 20),
+    ``shaft_angle_deg`` (default 90), ``form`` ("spherical-involute" or "octoid"),
+    ``mate_form`` (default ``form``), ``shift_coeff`` (default 0), ``clearance``
+    ("standard" or "uniform"), ``spiral_angle_deg`` (at mid-face), ``cutter_radius`` (mm)
+    and ``hand`` (spiral and Zerol bevels), ``mounting_distance`` and
+    ``mate_mounting_distance`` (mm, apex to the back mounting face: a hub out to it).
+
+Returns
+-------
+Bevel
+    ``bodies`` (named "gear", "mate") and a frozen :class:`BevelReport`: cone distance,
+    face width (mm), per-member pitch, face and root angles (deg), measured ``max_error``
+    (mm); ``to_dict()`` is strict JSON.
+
+Raises
+------
+GearError
+    A parameter out of its range, named with its value and the allowed range, before any
+    work (an unknown keyword: TypeError, as Python's own call).
+
+Examples
+--------
+At a 90° shaft angle the pitch cone angle is atan(z1/z2) and the outer cone distance
+R_e = (m/2) sqrt(z1² + z2²) = sqrt(720) mm for 12 and 24 teeth of module 2; the face width
+defaults to R_e/3 and the addendum angle is atan(m / R_e).
+
+>>> import math, gear3d
+>>> b = gear3d.bevel(teeth=12, mate_teeth=24, module=2.0, tolerance=0.05)
+>>> r, g = b.report, b.report.members[0]
+>>> [x.name for x in b.bodies], g.teeth, round(g.pitch_angle_deg, 4)
+(['gear'], 12, 26.5651)
+>>> round(r.cone_distance, 6) == round(math.sqrt(720), 6), round(r.face_width * 3 / r.cone_distance, 9)
+(True, 1.0)
+>>> round(g.addendum_angle_deg, 4), r.max_error <= r.tolerance
+(4.2627, True)
 """
 from __future__ import annotations
 
@@ -97,15 +144,19 @@ class BevelReport:
     overlap_volume: float | None
     conjugate: str
     mate_form: str | None = None
-    check: dict | None = None
+    #: the rolling check (:class:`gear3d.reports.BevelCheckReport`)
+    check: object = None
     spiral: dict | None = None
     clearance: str = "standard"
 
     def to_dict(self) -> dict:
         """Plain, strict-JSON-ready keys (NaN/inf become null through
         :func:`gear3d.export.json_format.clean`)."""
+        from dataclasses import replace
         from ..export.json_format import clean
-        return clean(asdict(self))
+        d = asdict(replace(self, check=None))
+        d["check"] = None if self.check is None else self.check.to_dict()     # its own keys (no "extra")
+        return clean(d)
 
 
 @dataclass(frozen=True)

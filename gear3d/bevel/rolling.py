@@ -398,7 +398,8 @@ def check_pair(geo, tolerance: float = CHECK_TOLERANCE, mate_form: str | None = 
     """Roll the pair of ``geo`` (gear in ``geo.form``, mate in ``mate_form``, default the
     same) over one pitch of gear 1 at the nominal placement (zero backlash by design).
 
-    Returns strict-JSON-ready numbers (mm on the heel sphere / heel pitch circles):
+    Returns a :class:`gear3d.reports.BevelCheckReport` (a frozen mapping; mm on the heel
+    sphere / heel pitch circles):
     ``interference`` and ``max_penetration``; ``backlash_min``/``backlash_max`` (the
     circumferential play on the mate's heel pitch circle, < 0: the teeth overlap);
     ``transmission_error_drive``/``_coast`` (peak to peak on that circle, the mate loaded on
@@ -424,19 +425,19 @@ def check_pair(geo, tolerance: float = CHECK_TOLERANCE, mate_form: str | None = 
     face = face_contact_ratio(geo)
     eps = float(ca["contact_ratio"]) + face
     arcsec = 180 * 3600 / math.pi
-    return {
-        "form": geo.form, "mate_form": mate_form, "conjugate": ca["conjugate"],
-        "interference": bool(pen > tol), "max_penetration": pen,
-        "backlash_min": float(lash.min()), "backlash_max": float(lash.max()),
-        "transmission_error_drive": float(np.ptp(up) * r2), "transmission_error_coast": float(np.ptp(lo) * r2),
-        "transmission_error_drive_arcsec": float(np.ptp(up) * arcsec),
-        "transmission_error_coast_arcsec": float(np.ptp(lo) * arcsec),
-        "contact_ratio": eps, "profile_contact_ratio": float(ca["contact_ratio"]), "face_contact_ratio": face,
-        "path_distance": ca["path_distance"],
-        "virtual_contact_ratio": virtual_contact_ratio(geo), "continuous": bool(eps >= 1),
-        "positions": int(grid), "tolerance": tol, "band": BAND,
-        "pairing": pairing(geo.form, mate_form),
-    }
+    from ..reports import BevelCheckReport
+    return BevelCheckReport(
+        form=geo.form, mate_form=mate_form, conjugate=ca["conjugate"],
+        interference=bool(pen > tol), max_penetration=pen,
+        backlash_min=float(lash.min()), backlash_max=float(lash.max()),
+        transmission_error_drive=float(np.ptp(up) * r2), transmission_error_coast=float(np.ptp(lo) * r2),
+        transmission_error_drive_arcsec=float(np.ptp(up) * arcsec),
+        transmission_error_coast_arcsec=float(np.ptp(lo) * arcsec),
+        contact_ratio=eps, profile_contact_ratio=float(ca["contact_ratio"]), face_contact_ratio=face,
+        path_distance=ca["path_distance"],
+        virtual_contact_ratio=virtual_contact_ratio(geo), continuous=bool(eps >= 1),
+        positions=int(grid), tolerance=tol, band=BAND,
+        pairing=pairing(geo.form, mate_form))
 
 
 def face_contact_ratio(geo, samples: int = 257) -> float:
