@@ -8,7 +8,7 @@ from __future__ import annotations
 import functools
 import inspect
 
-from ..errors import GearError, check_choice, check_number
+from ..errors import GearError, check_choice
 from .specs import PartSpec
 from ..conventions import to_transverse
 from ..params import (BODY, BODY_PARAMS, DEFAULT_TOLERANCE, FAMILY_PARAMS, MESH_TOLERANCE, by_name,
@@ -321,22 +321,10 @@ def _bevel_check(kw):
 def _face_check(kw):
     """:func:`gear3d.facegear.build`'s geometry checks, and its radius limits when a radius
     is given (a scan of sections: 0.2 s)."""
-    import math
-    from ..facegear import radius_limits
-    from ..facegear.geometry import face_geometry
-    if kw.get("shaper_teeth") is None and kw.get("pinion_teeth") is None:
-        raise GearError("shaper_teeth", None, "an integer 8..200 (or give pinion_teeth)")
-    g = face_geometry(kw["teeth"], kw.get("shaper_teeth"), kw.get("module", 1.0), kw.get("pressure_angle_deg", 20.0),
-                  kw.get("pinion_teeth"), kw.get("addendum_coeff", 1.0), kw.get("dedendum_coeff", 1.25),
-                  kw.get("rim"))
-    r1, r2 = kw.get("inner_radius"), kw.get("outer_radius")
-    if r1 is None and r2 is None:
-        return
-    lim = radius_limits(g)
-    lo, hi = math.ceil(lim["inner"] * 1e6) / 1e6, math.floor(lim["outer"] * 1e6) / 1e6
-    r1 = lo if r1 is None else check_number("inner_radius", r1, lo, hi, unit="mm")
-    if r2 is not None:
-        check_number("outer_radius", r2, r1, hi, lo_open=True, unit="mm")
+    from ..facegear import check_radii, geometry_of
+    g = geometry_of(kw)
+    if kw.get("inner_radius") is not None or kw.get("outer_radius") is not None:
+        check_radii(g, kw.get("inner_radius"), kw.get("outer_radius"))
 
 
 def _set_part(file, key, raw, default_outputs, require_name):
