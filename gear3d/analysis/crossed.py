@@ -105,7 +105,7 @@ def summary(rep: dict) -> str:
     return s
 
 
-def mate_frame(shaft_angle: float) -> "numpy.ndarray":
+def mate_frame(shaft_angle: float):
     """3x3 rotation (columns: the mate's own x, y, z in the world) of a crossed pair's
     wheel 2: its axis z2 = (0, sin Σ, cos Σ) (wheel 1's z turned by -Σ about x, the common
     perpendicular), its own x pointing back to the pitch point (-x). With it a right-hand
