@@ -12,6 +12,7 @@ from ..spec import GearSpec
 from ..conventions import uses_conventions
 from ..export import check_output, formats_for, write
 from ..params import BODY, BODY_PARAMS, MESH_TOLERANCE
+from ..params.exporters import STEP_PARAMS
 
 def body_flags() -> list:
     """``[(flag, argparse type, help, dest, Param)]``: the ``body()`` keywords of the one
@@ -35,8 +36,8 @@ def add_parser(sub):
         add_param_flag(p, prm, "b_" + dest, typ, hlp).gear3d_param = None     # shown for every family
     p.add_argument("-o", "--output", default=None,
                    help="output file; its extension picks the format: " + " ".join(formats_for("body")))
-    p.add_argument("--step", default=None, choices=["faceted", "brep"],
-                   help="STEP flavour: faceted (default) or brep (exact B-spline surfaces, needs pip install 'gear3d[cad]')")
+    step = STEP_PARAMS[0]
+    p.add_argument(step.flag, default=None, choices=step.choices, help="STEP flavour: " + step.help_text())
     from .rackflags import add_rack_flags
     add_rack_flags(p)
     return p

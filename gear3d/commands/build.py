@@ -23,6 +23,7 @@ from ..cliargs import number
 from ..errors import GearError
 from ..filesafe import check_out_dir
 from ..params import DEFAULT_TOLERANCE, MESH_TOLERANCE
+from ..params.exporters import THREEMF_PARAMS
 
 
 def add_parser(sub):
@@ -43,12 +44,12 @@ def add_parser(sub):
 
 def add_arrange_flags(p, what: str):
     """``--arrange`` and ``--arrange-gap MM``: lay ``what`` out flat on the print bed."""
-    from ..export.threemf import ARRANGE_GAP, MAX_GAP
+    gap = THREEMF_PARAMS[1]
     p.add_argument("--arrange", action="store_true",
                    help=f"lay {what} flat on the print bed, side by side without overlap, "
                         "instead of in mesh (template: [scene.options.3mf] arrange = true)")
-    p.add_argument("--arrange-gap", type=number("float", 0, MAX_GAP, unit="mm"), default=None, metavar="MM",
-                   help=f"mm between arranged parts (default {ARRANGE_GAP:g}; template: [scene.options.3mf] gap)")
+    p.add_argument("--arrange-gap", type=number("float", gap.lo, gap.hi, unit=gap.unit), default=None, metavar="MM",
+                   help=f"mm between arranged parts (default {gap.default:g}; template: [scene.options.3mf] gap)")
 
 
 def arrange_options(args) -> dict:

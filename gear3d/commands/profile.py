@@ -7,10 +7,11 @@ import sys
 from ..cliargs import number, number_or_auto
 from .mateflags import add_mate_flags, build_mate, tool_flags_given
 from .. import profile
-from ..errors import GearError, ToleranceError, check_choice
+from ..errors import GearError, ToleranceError
 from ..export import check_output, exts, formats_for, write
 from ..params import (CONV_HELIX, DEFAULT_TOLERANCE, FAMILY_PARAMS, INTERNAL, MESH_TOLERANCE, TOLERANCE, Param,
                       all_params, by_name, check_excludes, union)
+from ..params.exporters import DXF, DXF_PARAMS
 
 #: extensions of mesh outputs (they default to :data:`MESH_TOLERANCE`)
 MESH_EXTS = exts("mesh")
@@ -22,8 +23,6 @@ FAMILY_FLAGS_PLANNED = ("involute", "sine", "sine-circular", "cycloidal", "epicy
                         "cycloid-disc", "cycloid-pins", "ec-pinion", "ec-wheel", "gerotor-inner",
                         "gerotor-outer", "moineau-rotor", "moineau-stator", "triangular")
 
-#: a finite number (the families check their own ranges)
-FLOAT = number("float")
 
 
 def _pair_params():
@@ -168,13 +167,25 @@ def show_family_help(parser, family) -> None:
         parser.epilog = saved_epilog
 
 
-#: DXF writer options of ``gear3d profile ... -o x.dxf``
-DXF_FLAGS = [
-    ("--kerf", FLOAT, "wire/kerf compensation: signed offset of the exact curve (mm, + = more material)", "kerf"),
-    ("--lead-in", FLOAT, "wire lead-in length (mm)", "lead_in"),
-    ("--start-angle", FLOAT, "polar angle of the wire start point (deg)", "start_angle_deg"),
-    ("--dxf-version", str, "DXF version: R2000 (default), R12 (LINE/ARC), R2004, R2010, R2013, R2018", "dxf_version"),
-]
+#: the DXF writer's options of ``gear3d profile ... -o x.dxf``: (its table's Param, the flag's
+#: dest); ``--no-pitch-circle`` turns pitch_circle off
+DXF_FLAGS = tuple((prm, "no_pitch_circle" if prm.name == "pitch_circle" else prm.name) for prm in DXF_PARAMS)
+
+
+def add_dxf_flags(p) -> None:
+    """The DXF options' flags, read off :data:`gear3d.params.exporters.DXF_PARAMS` (a version
+    in any case: ``r12`` is R12). A flag reads a plain number; its range is checked against
+    the table by :func:`_write_options`, so that a refusal names the parameter
+    (``start_angle_deg``, whose flag is ``--start-angle``)."""
+    for prm, dest in DXF_FLAGS:
+        if prm.kind is bool:
+            text = prm.help if dest != "no_pitch_circle" else "with --construction: leave the pitch circle " \
+                "(a rack's pitch line) off"
+            p.add_argument(prm.flag, action="store_true", dest=dest, help="DXF: " + text)
+        else:
+            p.add_argument(prm.flag, type=str if prm.kind is str else number("float"), dest=dest, default=None,
+                           metavar=_metavar(prm), help="DXF: " + prm.help_text()
+                           + (f"; also {prm.limits}" if prm.limits else ""))
 
 
 def add_profile_flags(p, helix: bool = False, *, retype=None, hidden=(), tolerance_help: str = TOLERANCE_HELP,
@@ -239,14 +250,7 @@ def add_parser(sub):
     p = sub.add_parser("profile", help="a 2D gear profile -> .json .dxf .svg .png .stl", add_help=False)
     add_profile_flags(p, helix=True)
     p.add_argument("--width", type=number("float", 0, None, lo_open=True, unit="mm"), default=None, help="extrusion width for .stl (mm)")
-    for flag, typ, hlp, dest in DXF_FLAGS:
-        p.add_argument(flag, type=typ, dest=dest, default=None, help=hlp)
-    p.add_argument("--spline", action="store_true", help="DXF: SPLINE entities (control points) instead of arcs")
-    p.add_argument("--construction", action="store_true",
-                   help="DXF: also write the centre cross and pitch circle (layer CONSTRUCTION; a rack: a cross at "
-                        "tooth 0's centre and the pitch line); default: cut geometry only")
-    p.add_argument("--no-pitch-circle", action="store_true",
-                   help="DXF with --construction: leave the pitch circle (a rack's pitch line) off")
+    add_dxf_flags(p)
     p.add_argument("-o", "--output", default=None,
                    help="output file; its extension picks the format: " + " ".join(formats_for("profile"))
                         + " (.svg: 1:1 cut outline in mm, .png: figure)")
@@ -299,12 +303,16 @@ def run(args) -> int:
     return 0
 
 
+def _given(v) -> bool:
+    """A flag given: a value (0 too), or a switch that is on."""
+    return v is not None and v is not False
+
+
 def _write_options(args, out) -> dict:
     """Exporter options from the flags, checked against the output before any work."""
     opts = {}
     if out is None:
-        given = [f for f in ("width", "kerf", "lead_in", "start_angle_deg", "dxf_version")
-                 if getattr(args, f) is not None] + [f for f in ("spline", "construction", "no_pitch_circle") if getattr(args, f)]
+        given = [d for d in ("width",) + tuple(d for _, d in DXF_FLAGS) if _given(getattr(args, d))]
         if given:
             raise GearError(given[0], getattr(args, given[0]), "only with an output file (-o)")
         return opts
@@ -314,11 +322,9 @@ def _write_options(args, out) -> dict:
         opts["width"] = args.width
     elif out.lower().endswith(MESH_EXTS):
         raise GearError("width", None, "a number > 0 mm for a 3D output (--width)")
-    dxf_opts = {dest: getattr(args, dest) for *_, dest in DXF_FLAGS if getattr(args, dest) is not None}
-    if args.spline:
-        dxf_opts["spline"] = True
-    if args.construction:
-        dxf_opts["construction"] = True
+    given = {prm: getattr(args, dest) for prm, dest in DXF_FLAGS if _given(getattr(args, dest))}
+    dxf_opts = {prm.name: prm.check(v) if prm.kind is float else v for prm, v in given.items()
+                if prm.name != "pitch_circle"}
     if args.no_pitch_circle:
         if not args.construction:
             raise GearError("no_pitch_circle", True, "only with --construction (without it the DXF holds the cut geometry only)")
@@ -329,8 +335,7 @@ def _write_options(args, out) -> dict:
             raise ToleranceError("tolerance", args.tolerance, f"a number >= {DXF_MIN_TOLERANCE:g} mm for a DXF",
                                  "the fit is certified against a reference 20x finer")
     if "dxf_version" in dxf_opts:
-        from ..export.dxf import VERSIONS
-        dxf_opts["dxf_version"] = check_choice("dxf_version", str(dxf_opts["dxf_version"]).upper(), VERSIONS)
+        dxf_opts["dxf_version"] = DXF["dxf_version"].check(str(dxf_opts["dxf_version"]).upper())
     if dxf_opts and not out.lower().endswith(".dxf"):
         raise GearError(next(iter(dxf_opts)), next(iter(dxf_opts.values())), "only with a .dxf output")
     opts.update(dxf_opts)

@@ -67,7 +67,7 @@ STEP_PARAMS: tuple = (
 THREEMF_PARAMS: tuple = (
     _p("arrange", bool, default=False,
        help="the parts laid flat on the print bed, side by side without overlap, instead of in mesh"),
-    _p("gap", float, "mm", 0, MAX_GAP, default=ARRANGE_GAP, help="between arranged parts"),
+    _p("gap", float, "mm", 0, MAX_GAP, default=ARRANGE_GAP, help="between arranged parts", flag_name="--arrange-gap"),
 )
 
 #: output kind -> its exporter's options (the kinds not here take none)

@@ -5,6 +5,7 @@ from __future__ import annotations
 from .param import Param
 from .families import CONV_HELIX, CONVENTIONS, FAMILY_PARAMS
 from .bodies import BODY_PARAMS
+from .exporters import EXPORT_PARAMS
 
 
 def _md_range(p: Param) -> str:
@@ -30,7 +31,8 @@ def _md_default(p: Param) -> str:
     return f"{p.default:g}" if isinstance(p.default, float) else str(p.default)
 
 
-def md_rows(params) -> list:
+def md_rows(params, cli: bool = True) -> list:
+    """The markdown table of ``params``; ``cli`` False: no CLI flag (keywords and TOML keys only)."""
     rows = ["| TOML key / keyword | CLI flag | type | unit | range | default | meaning |",
             "|---|---|---|---|---|---|---|"]
     for p in params:
@@ -39,7 +41,7 @@ def md_rows(params) -> list:
             meaning += f"; also: {p.limits}"
         if p.excludes:
             meaning += "; not with " + ", ".join(f"`{e}`" for e in p.excludes)
-        flag = f"`{p.flag}`" + "".join(f" (`{a}`, deprecated)" for a in p.aliases)
+        flag = f"`{p.flag}`" + "".join(f" (`{a}`, deprecated)" for a in p.aliases) if cli else "—"
         rows.append(f"| `{p.name}` | {flag} | {p.type_name()} | {p.unit_text or '—'} | {_md_range(p)} | "
                     f"{_md_default(p)} | {meaning.replace('|', '/')} |")
     return rows
@@ -74,4 +76,12 @@ def markdown() -> str:
             "`gear3d.solids.body.body(profile, ...)` keywords. On the command line the body's",
             "tolerance is `--body-tolerance` (`--tolerance` is the profile's).", "",
             *md_rows(BODY_PARAMS), ""]
+    out += ["## Exporter options (`[scene.options.KIND]`)", "",
+            "The options of the formats that take any, by output kind: `gear3d.write(obj, path, **options)`",
+            "keywords and the keys of a template's `[scene.options.KIND]` table (STEP's `step` is the",
+            "key `kind` there). On the command line: the DXF options are flags of `gear3d profile`,",
+            "`--step` of `gear3d body`, `--arrange` / `--arrange-gap` of `gear3d build` and",
+            "`gear3d planetary`; the SVG outline's options are keywords and template keys only.", ""]
+    for kind, params in EXPORT_PARAMS.items():
+        out += [f"### `{kind}`", "", *md_rows(params, cli=kind != "svg"), ""]
     return "\n".join(out)
