@@ -221,7 +221,7 @@ def _shell(b, groups, pieces, lp, tol):
             ca, cb = bd.cylinder(rr + 2 * tol if internal else rr - 2 * tol, za, zb, not internal)
             bd.plane(za, 1, ca)
             bd.plane(zb, -1, cb)
-    return bd.sh, bd.flank, {"rim": rim, "bore": bore}
+    return bd.sh, bd.flank
 
 
 def _deriv(t, k, net, axis):
@@ -342,7 +342,7 @@ def direct_shell(b):
     _snap(groups)
     pieces = [_Piece(law, za, zb, rho, tol) for za, zb, in_gap in lp if not in_gap]
     t1 = time.perf_counter()
-    shell, flank_faces, dims = _shell(b, groups, pieces, lp, tol)
+    shell, flank_faces = _shell(b, groups, pieces, lp, tol)
     topo = shell.check()
     t2 = time.perf_counter()
     V = solid_volume(shell)
