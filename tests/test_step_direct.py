@@ -167,6 +167,33 @@ def test_more_laws(kw, tmp_path):
     assert occ_volume(shape) == pytest.approx(occ_volume(brep_solid(b)[0]), rel=1e-9)
 
 
+def test_placed_pair_two_solids(tmp_path):
+    """A helical pair placed in mesh (gear3d.place_pair): two valid solids in one file, each
+    with the volume of the same body written alone, and centroids on the two axes (a gear's
+    centroid lies on its axis by symmetry): (0, 0, W/2) and (m (z1 + z2) / 2, 0, W/2)."""
+    from OCP.BRepGProp import BRepGProp
+    from OCP.GProp import GProp_GProps
+    b1 = body(gear3d.profile("involute", teeth=20, tolerance=TOL), kind="helical", helix_angle_deg=20, width=5.0)
+    b2 = body(gear3d.profile("involute", teeth=30, tolerance=TOL), kind="helical", helix_angle_deg=20,
+              hand="left", width=5.0)
+    alone = []
+    for i, b in enumerate((b1, b2)):
+        write(b, tmp_path / f"{i}.step", step="brep")
+        alone.append(occ_volume(read_step(tmp_path / f"{i}.step")))
+    out = tmp_path / "pair.step"
+    info = write(gear3d.place_pair(b1, b2), out, step="brep")
+    assert info.startswith("step: 2 exact B-rep solid(s)")
+    shape = read_step(out)
+    solids = sub_shapes(shape, "solid")
+    assert is_valid(shape) and len(solids) == 2
+    for so, V, x in zip(solids, alone, (0.0, 25.0)):
+        p = GProp_GProps()
+        (getattr(BRepGProp, "VolumeProperties_s", None) or BRepGProp.VolumeProperties)(so, p, 1e-9, True)
+        c = p.CentreOfMass()
+        assert p.Mass() == pytest.approx(V, rel=1e-9)
+        assert np.allclose([c.X(), c.Y(), c.Z()], [x, 0.0, 2.5], atol=1e-9)
+
+
 def test_bodies_it_does_not_take_keep_the_occ_path(tmp_path, monkeypatch):
     from gear3d.export import step_direct
     p = gear3d.profile("involute", teeth=20, module=1, tolerance=TOL)

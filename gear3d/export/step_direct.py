@@ -8,12 +8,13 @@ this module writes them itself. OpenCascade stays the independent check (the tes
 every file back with ``STEPControl_Reader``, run ``BRepCheck_Analyzer`` and compare the
 volume with the OCC path's solid) and the writer for every other body.
 
-What it takes: one :class:`gear3d.solids.body.Body` in place (no ``transform``) of a
-spur, helical, herringbone (with or without a central groove) or chevron-arch law, external
-or internal (a ring with its rim), with at most a plain bore. Hubs, keyways, set screws,
-webs, lightening holes, bevels, worms, worm wheels, placed bodies and assemblies keep the
-OpenCascade path. ``GEAR3D_BREP_WRITER=occ`` in the environment forces that path for
-every body (tests compare the two).
+What it takes: :class:`gear3d.solids.body.Body` objects (one, or a list such as a placed
+pair, each placed by its rigid ``transform``) of a spur, helical, herringbone (with or
+without a central groove) or chevron-arch law, external or internal (a ring with its rim),
+with at most a plain bore. Hubs, keyways, set screws, webs, lightening holes, bevels,
+worms, worm wheels and lists holding any of them keep the OpenCascade path.
+``GEAR3D_BREP_WRITER=occ`` in the environment forces that path for every body (tests
+compare the two).
 
 What it writes (the data the B-rep pipeline already computes with numpy):
 
@@ -85,10 +86,34 @@ def reason(b) -> str | None:
     feats = {k for k, v in (rep.get("features") or {}).items() if v}
     if feats - {"bore"}:
         return "hub features: " + ", ".join(sorted(feats - {"bore"}))
-    T = getattr(b, "transform", None)
-    if T is not None and not np.array_equal(np.asarray(T, float), np.eye(4)):
-        return "a placed body"
+    if not _rigid(placement(b)):
+        return "a placement that is not a rigid motion"
     return None
+
+
+def placement(b) -> np.ndarray:
+    """The body's 4x4 placement (identity when it has none)."""
+    T = getattr(b, "transform", None)
+    return np.eye(4) if T is None else np.asarray(T, float)
+
+
+def _rigid(T) -> bool:
+    """True for a proper rigid motion (rotation with det +1, translation; last row 0 0 0 1)."""
+    R = T[:3, :3]
+    return bool(T.shape == (4, 4) and np.allclose(T[3], [0, 0, 0, 1], rtol=0, atol=0)
+                and np.allclose(R.T @ R, np.eye(3), rtol=0, atol=1e-12) and np.linalg.det(R) > 0)
+
+
+def placement_rounding(shell, T) -> float:
+    """Bound (mm) on how far rounding moves the written (placed) points from the exact rigid
+    image of the measured ones: a few units in the last place of the largest coordinate."""
+    if np.array_equal(T, np.eye(4)):
+        return 0.0
+    big = max(float(np.abs(np.asarray(shell.points)).max()), 1.0) + float(np.abs(T[:3, 3]).max())
+    for surf, _loops, _same in shell.faces:
+        if surf[0] == "bspline":
+            big = max(big, float(np.abs(surf[1]).max()) + float(np.abs(T[:3, 3]).max()))
+    return 8 * np.finfo(float).eps * big
 
 
 class _Piece:
@@ -367,31 +392,54 @@ def direct_shell(b):
 
 
 def direct_text(b, product: str | None = None):
-    """(STEP file text, info) of body ``b`` by the direct writer (see :func:`direct_shell`);
-    ``product`` defaults to the body's name."""
-    shell, info = direct_shell(b)
-    name = re.sub(r"[^A-Za-z0-9_.+-]", "_", product or body_name(b, 0))
+    """(STEP file text, info) of body ``b`` by the direct writer (see :func:`direct_shell`),
+    placed by its ``transform``; ``product`` defaults to the body's name."""
+    text, infos = bodies_text([b], product)
+    return text, infos[0]
+
+
+def bodies_text(bodies, product: str | None = None):
+    """(STEP file text, infos) of bodies the direct writer takes: one MANIFOLD_SOLID_BREP
+    each, placed by its ``transform``, in one representation (``product`` defaults to the
+    single body's name, else "assembly")."""
+    shells, infos = [], []
+    for b in bodies:
+        shell, info = direct_shell(b)
+        T = placement(b)
+        extra = placement_rounding(shell, T)
+        if extra:
+            info["max_error"] += extra
+            info["placement_rounding"] = extra
+            if not info["max_error"] <= info["tolerance"]:
+                raise ToleranceError("tolerance", info["tolerance"], "a coarser value",
+                                     f"the B-rep flanks measure {info['max_error']:.3g} mm off the exact surface")
+        shells.append((shell, T))
+        infos.append(info)
+    safe = [re.sub(r"[^A-Za-z0-9_.+-]", "_", body_name(b, i)) for i, b in enumerate(bodies)]
+    name = re.sub(r"[^A-Za-z0-9_.+-]", "_", product) if product else (safe[0] if len(bodies) == 1 else "assembly")
     t = time.perf_counter()
-    text = framed_text(lambda w: [write_shell(w, shell, name)], name, "gear3d exact B-rep")
-    info["seconds"]["write"] = time.perf_counter() - t
-    return text, info
+    text = framed_text(lambda w: [write_shell(w, sh, nm, T) for (sh, T), nm in zip(shells, safe)],
+                       name, "gear3d exact B-rep")
+    infos[0]["seconds"]["write"] = time.perf_counter() - t
+    return text, infos
 
 
 def write(obj, path, geometry=None, **opts):
-    """Write ``obj`` as exact B-rep STEP when it is one body this writer takes (see
+    """Write ``obj`` as exact B-rep STEP when every body in it is one this writer takes (see
     :func:`reason`); returns the info string, or None (nothing written) for the caller to
     use the OpenCascade path. ``geometry`` (bevel and worm sets) always means OpenCascade."""
     if geometry is not None or os.environ.get(FORCE_ENV, "").strip().lower() == "occ":
         return None
     bodies = as_bodies(obj, **opts)
-    if len(bodies) != 1 or reason(bodies[0]) is not None:
+    if not bodies or any(reason(b) is not None for b in bodies):
         return None
-    b = bodies[0]
-    text, info = direct_text(b)
-    rep = getattr(b, "report", None)
-    if rep is not None and hasattr(rep, "__setitem__"):
-        rep["brep"] = {k: v for k, v in info.items() if k != "seconds"}
+    text, infos = bodies_text(bodies)
+    for b, info in zip(bodies, infos):
+        rep = getattr(b, "report", None)
+        if rep is not None and hasattr(rep, "__setitem__"):
+            rep["brep"] = {k: v for k, v in info.items() if k != "seconds"}
     with open(path, "w", encoding="ascii", newline="\n") as fh:
         fh.write(text)
-    return (f"step: 1 exact B-rep solid(s), {info['faces']} faces (B-spline flanks), "
-            f"B-rep measured max_error={info['max_error']:.3g} mm")
+    err = max(i["max_error"] for i in infos)
+    return (f"step: {len(bodies)} exact B-rep solid(s), {sum(i['faces'] for i in infos)} faces (B-spline flanks), "
+            f"B-rep measured max_error={err:.3g} mm")

@@ -99,14 +99,17 @@ def knots_mults(t):
 
 class _Entities:
     """Writes a :class:`Shell`'s entities through a :class:`gear3d.export.step_part21.Writer`,
-    each point once."""
+    each point once; ``T`` (4x4 rigid motion, or None) places every point and direction."""
 
-    def __init__(self, w):
+    def __init__(self, w, T=None):
         self.w = w
         self.pts = {}
         self.dirs = {}
+        self.R, self.t = (None, None) if T is None else (np.asarray(T, float)[:3, :3], np.asarray(T, float)[:3, 3])
 
     def point(self, p) -> int:
+        if self.R is not None:
+            p = self.R @ np.asarray(p, float) + self.t
         key = (float(p[0]), float(p[1]), float(p[2]))
         i = self.pts.get(key)
         if i is None:
@@ -114,6 +117,8 @@ class _Entities:
         return i
 
     def direction(self, d) -> int:
+        if self.R is not None:
+            d = self.R @ np.asarray(d, float)
         key = tuple(float(x) for x in d)
         i = self.dirs.get(key)
         if i is None:
@@ -154,10 +159,11 @@ class _Entities:
                           f"({','.join(real(x) for x in uu)}),({','.join(real(x) for x in uv)}),.UNSPECIFIED.)")
 
 
-def write_shell(w, shell: Shell, name: str) -> int:
-    """Append ``shell``'s entities to writer ``w`` (:class:`gear3d.export.step_part21.Writer`);
-    return the MANIFOLD_SOLID_BREP's id."""
-    en = _Entities(w)
+def write_shell(w, shell: Shell, name: str, T=None) -> int:
+    """Append ``shell``'s entities to writer ``w`` (:class:`gear3d.export.step_part21.Writer`),
+    placed by the rigid motion ``T`` (4x4, mm; None: as built); return the
+    MANIFOLD_SOLID_BREP's id."""
+    en = _Entities(w, T)
     vx = [w.add(f"VERTEX_POINT('',#{en.point(p)})") for p in shell.points]
     ed = []
     for v0, v1, curve in shell.edges:
