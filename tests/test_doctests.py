@@ -57,16 +57,11 @@ def test_every_example_runs(name):
     assert res.attempted + len(skipped) == found
 
 
-#: public names whose module is being reworked this session (tests/test_layout.py REWORKED):
-#: their numpydoc block is left to that work
-PENDING = {"mate", "check_pair", "worm", "bevel"}
-
-
 def _doc(name: str) -> str:
     return inspect.getdoc(getattr(gear3d, name)) or ""
 
 
-@pytest.mark.parametrize("name", sorted(set(gear3d.__all__) - PENDING))
+@pytest.mark.parametrize("name", sorted(gear3d.__all__))
 def test_public_names_have_a_numpydoc_block(name):
     doc = _doc(name)
     obj = getattr(gear3d, name)
@@ -83,8 +78,25 @@ def test_public_names_have_a_numpydoc_block(name):
         f"gear3d.{name}: no unit"
 
 
-def test_the_pending_names_are_the_reworked_ones():
-    # a name leaves PENDING when its module leaves the reworked list
-    for name in PENDING:
-        mod = inspect.getmodule(getattr(gear3d, name)).__name__
-        assert _reworked(mod), f"gear3d.{name} ({mod}) is no longer being reworked: document it"
+def _functions() -> list:
+    """The public names that are called as functions: functions, wrapped functions and the
+    callable ``gear3d.bevel`` package (every callable in ``gear3d.__all__`` but the classes)."""
+    return sorted(n for n in gear3d.__all__ if callable(getattr(gear3d, n)) and not inspect.isclass(getattr(gear3d, n)))
+
+
+def test_the_functions_are_the_api_ones():
+    # the scan below sees every builder of the API, so a new one cannot slip past it
+    assert {"profile", "families", "body", "check_pair", "mate", "worm", "bevel", "face_gear",
+            "rack", "write"} <= set(_functions())
+
+
+@pytest.mark.parametrize("name", _functions())
+def test_every_public_function_has_parameters_returns_and_an_example(name):
+    # numpydoc: a Parameters and a Returns section (underlined heads) and a >>> example
+    doc = _doc(name)
+    for head in ("Parameters", "Returns", "Examples"):
+        assert re.search(rf"^{head}\n-+$", doc, re.M), f"gear3d.{name}: no '{head}' section"
+    assert re.search(r"^>>> ", doc, re.M), f"gear3d.{name}: no example"
+    # ... and the example runs in this suite: its module is one test_every_example_runs takes
+    home = inspect.getmodule(getattr(gear3d, name)).__name__
+    assert home in DOCTEST_MODULES, f"gear3d.{name}: its module {home} is not doctested"
