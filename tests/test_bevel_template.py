@@ -1,5 +1,5 @@
 """Bevel set parts in scene templates (``[[part]] kind = "bevel"``): spiral and Zerol members
-and a B-rep STEP (``[scene.options.step] kind = "brep"``).
+and a B-rep STEP (``[part.options.step]`` or ``[scene.options.step] kind = "brep"``).
 
 Oracle: ``gear3d bevel`` with the same keywords at the same tolerance writes the same bytes
 (STL; the B-rep STEP, whose header is fixed)."""
@@ -60,15 +60,15 @@ def test_spiral_and_zerol_parts_write_the_cli_bytes(tmp_path):
 
 
 def test_bevel_part_brep_step(tmp_path):
-    """A straight member's B-rep through a template (the part's bodies carry the pair's
-    geometry to the writer): the CLI's bytes."""
+    """A straight member's B-rep through a template (``[part.options.step] kind = "brep"``;
+    the part's bodies carry the pair's geometry to the writer): the CLI's bytes."""
     pytest.importorskip("OCP")
     from gear3d.jobs.scene import build_scene
     from gear3d.jobs.template import load_scene
     src = tmp_path / "s.toml"
-    src.write_text('[scene]\nname = "b"\ntolerance = 0.05\n[scene.options.step]\nkind = "brep"\n'
+    src.write_text('[scene]\nname = "b"\ntolerance = 0.05\n'
                    '[[part]]\nname = "straight"\nkind = "bevel"\nteeth = 10\nmate_teeth = 15\nmodule = 2\n'
-                   'face_width = 5\noutputs = ["step"]\n')
+                   'face_width = 5\noutputs = ["step"]\n[part.options.step]\nkind = "brep"\n')
     build_scene(load_scene(str(src)), tmp_path / "out")
     data = (tmp_path / "out" / "straight.step").read_bytes()
     cli = tmp_path / "cli.step"

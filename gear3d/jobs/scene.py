@@ -296,9 +296,10 @@ def set_targets(g: Graph, job: Job, part: PartSpec, out_dir, prefix) -> dict:
         tol = job.tolerance_for(kind if sec or kind != "json" else "stl")
         fname = part.name + EXT[kind]
         path = out_path(out_dir, fname, job.file, f"{prefix}.name")
-        brep = kind == "step" and job.options.get("step", {}).get("step", "faceted") != "faceted"
+        step = {**job.options.get("step", {}), **part.options.get("step", {})}      # the scene's, then the part's
+        brep = kind == "step" and step.get("step", "faceted") != "faceted"
         if brep and part.family != "bevel":
-            raise TemplateError(job.file, f"{prefix}.outputs", list(part.outputs), "no step with [scene.options.step] "
+            raise TemplateError(job.file, f"{prefix}.outputs", list(part.outputs), "no step with [options.step] "
                                 "kind = \"brep\" (this set part's STEP is faceted)")
         _plan_set(job, part, kind, tol, path, prefix, step="brep" if brep else None)
         # stage kinds as the report reads them: the section is a profile, the set a body

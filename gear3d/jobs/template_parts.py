@@ -340,6 +340,7 @@ def _set_part(file, key, raw, default_outputs, require_name):
     outs = raw.pop("outputs", None)
     if "tolerance" in raw:
         fail(file, f"{key}.tolerance", raw["tolerance"], "not a part key: set [scene] tolerance / [scene.tolerances]")
+    options = check_options(file, f"{key}.options", raw.pop("options", {}))     # as a part's: [part.options.step]
     keys, required = _set_keys(kind)
     refuse_unknown(file, key, raw, keys)
     for k in required:
@@ -350,7 +351,7 @@ def _set_part(file, key, raw, default_outputs, require_name):
     except GearError as e:
         fail(file, f"{key}.{e.param}", e.value, e.allowed, e.why)
     outs = [k for k in default_outputs if k in kinds] if outs is None else kinds_at(file, f"{key}.outputs", outs, kinds)
-    return PartSpec(name=name, family=kind, params=dict(raw), body=None, outputs=tuple(outs), options={})
+    return PartSpec(name=name, family=kind, params=dict(raw), body=None, outputs=tuple(outs), options=options)
 
 
 #: the keys of a rack part's body table (gear3d.rack_body)
