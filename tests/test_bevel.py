@@ -490,3 +490,20 @@ def test_cli_check(tmp_path, capsys):
     rc = main(["bevel", "--teeth", "16", "--mate-teeth", "24", "--module", "1", "--check", "-o", str(bad)])
     err = capsys.readouterr().err
     assert rc == 2 and err.count("\n") == 1 and "check" in err and not bad.exists()
+
+
+def test_keywords_grouped_and_unknown_refused():
+    """gear3d.bevel's keywords fill frozen groups (bevel.OPTIONS); an unknown one is a
+    TypeError naming it, before any work; a bad value is still one GearError naming it."""
+    import dataclasses
+    import gear3d
+    from gear3d.bevel import OPTIONS, split_options
+    cones, spiral, mounts = split_options({"shaft_angle_deg": 80.0, "hand": "left", "mounting_distance": 30.0})
+    assert (cones.shaft_angle_deg, spiral.hand, mounts.mounting_distance) == (80.0, "left", 30.0)
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        cones.form = "octoid"
+    assert len(OPTIONS) == 12 and "mate_mounting_distance" in OPTIONS
+    with pytest.raises(TypeError, match="colour"):
+        gear3d.bevel(teeth=12, mate_teeth=18, module=1.0, colour=3)
+    with pytest.raises(GearError, match="shaft_angle_deg"):
+        gear3d.bevel(teeth=12, mate_teeth=18, module=1.0, shaft_angle_deg=5)
