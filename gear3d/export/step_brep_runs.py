@@ -172,6 +172,54 @@ def _closest_params(Ga, ka, ta, Gb, kb, tb, ang, iters=80):
     return s, u, 0.5 * (pa + pb), float(np.hypot(*(pa - pb)))
 
 
+def _segment_crossings(P, Q):
+    """Crossings of polylines P (n,2) and Q (m,2), mm: (i, j, wp, wq) arrays, segment i of
+    P at fraction wp meeting segment j of Q at fraction wq (a box test first, then the
+    two orientations)."""
+    a, b = P[:-1], P[1:]
+    c, d = Q[:-1], Q[1:]
+    lo_p, hi_p = np.minimum(a, b), np.maximum(a, b)
+    lo_q, hi_q = np.minimum(c, d), np.maximum(c, d)
+    i, j = np.nonzero((lo_p[:, None, 0] <= hi_q[None, :, 0]) & (lo_q[None, :, 0] <= hi_p[:, None, 0])
+                      & (lo_p[:, None, 1] <= hi_q[None, :, 1]) & (lo_q[None, :, 1] <= hi_p[:, None, 1]))
+    r, s_ = (b - a)[i], (d - c)[j]
+    den = r[:, 0] * s_[:, 1] - r[:, 1] * s_[:, 0]
+    qp = (c[j] - a[i])
+    ok = np.abs(den) > 1e-300
+    den = np.where(ok, den, 1.0)
+    wp = (qp[:, 0] * s_[:, 1] - qp[:, 1] * s_[:, 0]) / den
+    wq = (qp[:, 0] * r[:, 1] - qp[:, 1] * r[:, 0]) / den
+    keep = ok & (wp >= 0) & (wp <= 1) & (wq >= 0) & (wq <= 1)
+    return i[keep], j[keep], wp[keep], wq[keep]
+
+
+def _crossing_near(Ga, ka, wa, Gb, kb, wb, ang, near, n=257):
+    """The exact crossing of piece a (copy ka) on its parameter window ``wa`` (two ends,
+    either order) and piece b (copy kb) on ``wb`` nearest to the point ``near`` (mm), or
+    None: both windows sampled densely (``n`` points), the polylines' crossings refined by
+    Newton (:func:`_corner_params`), those that stay in their windows kept. Unlike the
+    closest approach from two starts, this cannot settle on the pieces' shared end (an
+    undercut trochoid and the involute it cuts meet end to end at the period's junction,
+    below the crossing the trimmed loop has)."""
+    ta = np.linspace(wa[0], wa[1], n)
+    tb = np.linspace(wb[0], wb[1], n)
+    P, Q = rot2(Ga(ta), ka * ang), rot2(Gb(tb), kb * ang)
+    i, j, wp, wq = _segment_crossings(P, Q)
+    best, dbest = None, math.inf
+    (la, ha), (lb, hb) = sorted(wa), sorted(wb)
+    sa, sb = 1e-9 + 1e-6 * (ha - la), 1e-9 + 1e-6 * (hb - lb)
+    for k in np.argsort(np.hypot(*(P[i] + wp[:, None] * (P[i + 1] - P[i]) - near).T))[:8]:
+        s0 = ta[i[k]] + wp[k] * (ta[i[k] + 1] - ta[i[k]])
+        u0 = tb[j[k]] + wq[k] * (tb[j[k] + 1] - tb[j[k]])
+        s, u, p, gap = _corner_params(Ga, ka, s0, Gb, kb, u0, None, ang)
+        if gap > 1e-9 or not (la - sa <= s <= ha + sa and lb - sb <= u <= hb + sb):
+            continue
+        d = float(np.hypot(*(p - near)))
+        if d < dbest:
+            best, dbest = (float(np.clip(s, la, ha)), float(np.clip(u, lb, hb)), p, gap), d
+    return best
+
+
 @dataclass
 class ExactSet:
     """The exact pieces the trimmed loop is mapped onto: the profile's tooth-period
@@ -353,6 +401,18 @@ def loop_runs(profile, loop) -> list:
     return _resolve_ends(profile, S, L, runs, ang)
 
 
+def _off_loop(L, ia, ib, p) -> float:
+    """Distance (mm) from point p to the loop's edges from the vertex before ``ia`` to the
+    one after ``ib`` (cyclic): a bridge's crossing may lie past one of its ends, where the
+    polygon kept a vertex of the stretch the crossing cuts off (within its tolerance)."""
+    M = len(L)
+    idx = np.arange(ia - 1, ia + (ib - ia) % M + 2) % M
+    a, b = L[idx[:-1]], L[idx[1:]]
+    d = b - a
+    w = np.clip(np.einsum("ij,ij->i", p - a, d) / np.maximum(np.einsum("ij,ij->i", d, d), 1e-300), 0, 1)
+    return float(np.hypot(*(a + w[:, None] * d - p).T).min())
+
+
 def _resolve_ends(profile, S, L, runs, ang):
     """Exact end points of raw runs: corners by Newton, junctions by equal points, bridges by
     the closest approach of the two pieces. Returns the list of :class:`Run`."""
@@ -375,6 +435,14 @@ def _resolve_ends(profile, S, L, runs, ang):
         s, u, p, gap = memo[key]
         return s, u, rot2(p, ka * ang), gap
 
+    def searched(ja, ka, wa, jb, kb, wb, near):
+        """:func:`_crossing_near` in copy 0's frame (memoised as the corners are)."""
+        key = ("near", ja, tuple(np.round(wa, 12)), jb, tuple(np.round(wb, 12)), (kb - ka) % z)
+        if key not in memo:
+            memo[key] = _crossing_near(pieces[ja], 0, wa, pieces[jb], kb - ka, wb, ang, rot2(near, -ka * ang))
+        got = memo[key]
+        return None if got is None else (got[0], got[1], rot2(got[2], ka * ang), got[3])
+
     out = []
     n = len(runs)
     ends = [None] * n     # exact point at the end of run i (= start of run i+1)
@@ -387,11 +455,16 @@ def _resolve_ends(profile, S, L, runs, ang):
             # a bridge edge between matched vertices: the exact crossing lies near it
             # (or, where a sub-tolerance notch was pruned, the closest approach: its midpoint
             # pins both ends, and the measurement below sees how far that moved the flank)
-            s, u, p, gap = crossing(_closest_params, ja, ka, params[ja][A[7]], jb, kb, params[jb][B[4]])
             va, vb = L[A[9]], L[B[8]]
-            dv = vb - va
-            w = float(np.clip((p - va) @ dv / max(dv @ dv, 1e-300), 0, 1))
-            off = float(np.hypot(*(va + w * dv - p)))
+            # the pruned stretch, and the runs themselves: at a coarse tolerance the polygon
+            # can keep a vertex past the crossing (an undercut involute's base-circle cusp,
+            # which the trochoid cuts off just above it)
+            wa = (params[ja][A[4]], 1.0 if A[7] > A[6] else 0.0)
+            wb = (0.0 if B[5] > B[4] else 1.0, params[jb][B[7]])
+            got = searched(ja, ka, wa, jb, kb, wb, 0.5 * (va + vb))
+            s, u, p, gap = got if got is not None else crossing(_closest_params, ja, ka, params[ja][A[7]],
+                                                                  jb, kb, params[jb][B[4]])
+            off = _off_loop(L, A[9], B[8], p)
             if gap > profile.tolerance / 10 or off > 2 * profile.tolerance + 1e-9:
                 raise GearError("step", "brep", "'faceted' for this profile",
                                 f"no exact crossing of pieces {ja} and {jb} near "
@@ -411,6 +484,13 @@ def _resolve_ends(profile, S, L, runs, ang):
         lo_a, hi_a = sorted((params[ja][A[6]], params[ja][A[7]]))
         lo_b, hi_b = sorted((params[jb][B[4]], params[jb][B[5]]))
         wa, wb = 0.5 * (hi_a - lo_a) + 1e-12, 0.5 * (hi_b - lo_b) + 1e-12
+        if gap > 1e-9 or not (lo_a - wa <= s <= hi_a + wa and lo_b - wb <= u <= hi_b + wb):
+            # Newton from the chords' middles left them: search the two chords (each
+            # widened by half its length) for their crossing nearest the loop's corner
+            got = searched(ja, ka, (max(lo_a - wa, 0.0), min(hi_a + wa, 1.0)), jb, kb,
+                           (max(lo_b - wb, 0.0), min(hi_b + wb, 1.0)), L[A[9]])
+            if got is not None:
+                s, u, p, gap = got
         if gap > 1e-9 or not (lo_a - wa <= s <= hi_a + wa and lo_b - wb <= u <= hi_b + wb):
             raise GearError("step", "brep", "'faceted' for this profile",
                             f"no exact crossing of pieces {ja} and {jb} near "
