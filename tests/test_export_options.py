@@ -118,3 +118,28 @@ def test_svg_options_reach_the_file(prof, tmp_path):
     with pytest.raises(GearError) as e:
         gear3d.write(prof, str(tmp_path / "b.svg"), stroke_width=11)
     assert e.value.param == "stroke_width"
+
+
+def test_the_web_form_offers_each_downloads_options(prof, tmp_path):
+    from gear3d.export import kind_options
+    from gear3d.web import builds
+    from gear3d.web.app import job_of
+    from gear3d.web.schema import form_schema, parse_form
+    schema = form_schema("involute")
+    got = {f["name"] for f in schema["export"]}
+    want = {f"{k}.{p.name}" for k in schema["downloads"] for p in kind_options().get(k, ())}
+    assert got == want and {"dxf.kerf", "dxf.dxf_version", "svg.margin", "step.step", "3mf.arrange"} <= got
+    field = next(f for f in schema["export"] if f["name"] == "dxf.max_arc_deg")
+    assert field["range"] == "a number in [1, 180] deg" and field["group"] == "dxf"
+    query = [("teeth", "8"), ("tolerance", "0.01"), ("x.dxf.kerf", "0.05"), ("x.dxf.dxf_version", "R12"),
+             ("x.svg.margin", "2")]
+    form = dict(parse_form(schema, query), family="involute")
+    name, args = job_of("download", form, "dxf")
+    assert name == "download" and args[3] == {"kerf": 0.05, "dxf_version": "R12"}     # not svg's margin
+    reply = builds.download(*args[:-1], str(tmp_path))
+    write_dxf(prof, str(tmp_path / "api.dxf"), kerf=0.05, dxf_version="R12")
+    assert reply[0] == 200 and reply[3] == (tmp_path / "api.dxf").read_bytes()      # the API's bytes
+    bad = dict(parse_form(schema, [("x.dxf.max_arc_deg", "200")]), family="involute")
+    with pytest.raises(GearError) as e:
+        job_of("download", bad, "dxf")
+    assert e.value.param == "dxf.max_arc_deg"

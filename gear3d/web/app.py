@@ -117,7 +117,7 @@ def job_of(what: str, form: dict, fmt: str | None = None) -> tuple:
         if what == "download":
             if fmt not in SET_DOWNLOADS[fam]:
                 raise GearError("fmt", fmt, "one of " + ", ".join(SET_DOWNLOADS[fam]))
-            return "set_download", (fam, kw, fmt, None)
+            return "set_download", (fam, kw, formargs.export_kwargs(form, fmt), fmt, None)
         return ("set_preview" if what == "profile" else "set_body"), (fam, kw)
     if what == "profile":
         return "profile_preview", (fam, formargs.profile_kwargs(form))
@@ -127,9 +127,10 @@ def job_of(what: str, form: dict, fmt: str | None = None) -> tuple:
         return "pair_check", (fam, *formargs.pair_kwargs(form))
     if fmt not in FAMILY_DOWNLOADS:
         raise GearError("fmt", fmt, "one of " + ", ".join(FAMILY_DOWNLOADS))
+    opts = formargs.export_kwargs(form, fmt)
     if builds.MEDIA[fmt][0] == "body":
-        return "download", (fam, *formargs.body_kwargs(form), fmt, None)
-    return "download", (fam, formargs.profile_kwargs(form), None, fmt, None)
+        return "download", (fam, *formargs.body_kwargs(form), opts, fmt, None)
+    return "download", (fam, formargs.profile_kwargs(form), None, opts, fmt, None)
 
 
 def _response(reply):

@@ -135,19 +135,19 @@ def download_name(family: str, teeth, fmt: str, part: str | None = None) -> str:
     return f"{family}{z}{what}.{fmt}"
 
 
-def download(family: str, pk: dict, bk: dict | None, fmt: str, folder: str) -> Reply:
+def download(family: str, pk: dict, bk: dict | None, opts: dict, fmt: str, folder: str) -> Reply:
     """The file ``gear3d body FAMILY ... -o x.FMT`` (stl, 3mf, step: ``bk`` given) or
-    ``gear3d profile FAMILY ... -o x.FMT`` (dxf, svg) writes, written into ``folder`` (the
-    caller's, removed by it) and read back."""
+    ``gear3d profile FAMILY ... -o x.FMT`` (dxf, svg) writes with the exporter's options
+    ``opts``, written into ``folder`` (the caller's, removed by it) and read back."""
     from ..export import write
     kind, media = MEDIA[fmt]
     path = os.path.join(folder, "download." + fmt)
     if kind == "body":
         obj = build_body(family, pk, bk, path)
     else:
-        plan.plan_profile(family, pk, path)
+        plan.plan_profile(family, pk, path, kerf=opts.get("kerf", 0.0))
         obj = profile(family, **pk)
-    write(obj, path)
+    write(obj, path, **opts)
     teeth = pk.get("teeth", _default_teeth(family))
     return _file_reply(path, media, download_name(family, teeth, fmt))
 
@@ -212,19 +212,20 @@ def set_body(family: str, kw: dict) -> Reply:
     return _mesh_reply(bodies, rep)
 
 
-def set_download(family: str, kw: dict, fmt: str, folder: str) -> Reply:
-    """The file ``gear3d worm ... -o x.FMT`` / ``gear3d bevel ... -o x.FMT`` writes (a worm's
-    DXF: the wheel's mid-plane section at the set's tolerance)."""
+def set_download(family: str, kw: dict, opts: dict, fmt: str, folder: str) -> Reply:
+    """The file ``gear3d worm ... -o x.FMT`` / ``gear3d bevel ... -o x.FMT`` writes with the
+    exporter's options ``opts`` (a worm's DXF: the wheel's mid-plane section at the set's
+    tolerance)."""
     from ..export import write
     path = os.path.join(folder, "download." + fmt)
     if family == "worm" and fmt == "dxf":
         from ..plan_sets import plan_worm
         plan_worm(kw, path, bodies=False)            # the mid-plane section and its DXF
-        write(set_section(family, kw, kw["tolerance"]), path)
+        write(set_section(family, kw, kw["tolerance"]), path, **opts)
         part = "wheel-midplane"
     else:
         bodies, _ = _set_bodies(family, kw, path)
-        write(bodies, path)
+        write(bodies, path, **opts)
         part = kw.get("part")
     teeth = kw.get("wheel_teeth", 30) if family == "worm" else kw.get("teeth")
     media = {"dxf": "image/vnd.dxf"}.get(fmt) or MEDIA[fmt][1]

@@ -21,6 +21,7 @@ from __future__ import annotations
 
 from ..cliargs import plain_int, plain_number
 from ..errors import GearError
+from ..export import kind_options
 from ..params import (BEVEL_PARAMS, BODY, DEFAULT_TOLERANCE, FAMILY_PARAMS, MESH_TOLERANCE, PAIR, WORM_PARAMS,
                       check_excludes)
 
@@ -117,6 +118,21 @@ def pair_kwargs(form: dict) -> tuple:
         raise GearError("mate_teeth", z2, f"an integer in [{z1 + 1}, 100000] for a ring",
                         f"the ring needs more teeth than the {z1}-tooth pinion")
     return kw, z2, internal, pair.get("mate", PAIR["mate"].default)
+
+
+def export_kwargs(form: dict, fmt: str) -> dict:
+    """The options of a download as ``fmt`` (``gear3d.write`` keywords) from the form's export
+    section (``KIND.NAME`` texts, read against the exporter's table); another format's
+    options are left out."""
+    table = {p.name: p for p in kind_options().get(fmt, ())}
+    out = {}
+    for key, text in form.get("export", {}).items():       # a refusal names the field: dxf.kerf
+        kind, _, name = key.partition(".")
+        if kind == fmt:
+            if name not in table:
+                raise GearError(key, text, f"an option of the {fmt} exporter: " + ", ".join(table))
+            out[name] = read(table[name], text, key)
+    return out
 
 
 def set_kwargs(form: dict) -> dict:

@@ -12,6 +12,7 @@ Validation stays the tables' and the builders' own (see :mod:`gear3d.web.formarg
 from __future__ import annotations
 
 from ..errors import GearError
+from ..export import kind_options, output_kinds
 from ..params import BEVEL_PARAMS, BODY_PARAMS, FAMILY_PARAMS, PAIR_PARAMS, WORM_PARAMS
 
 #: parameters a section needs even when left at their default (the page always sends them)
@@ -23,7 +24,9 @@ CLI_PICKS = ("tolerance",)
 #: longest text a field may carry
 MAX_TEXT = 64
 
-SECTIONS = ("profile", "body", "pair")
+SECTIONS = ("profile", "body", "pair", "export")
+#: the query prefix of each section's fields (``b.width``, ``pair.mate_teeth``, ``x.dxf.kerf``)
+PREFIXES = {"body": "b.", "pair": "pair.", "export": "x."}
 
 #: sets (not profile families) the page builds, and the downloads each offers
 SET_DOWNLOADS = {"worm": ("stl", "3mf", "step", "dxf"), "bevel": ("stl", "3mf", "step")}
@@ -127,6 +130,15 @@ def _pair_fields() -> list:
     return [table_field(p, p.name in REQUIRED["pair"]) for p in PAIR_PARAMS]
 
 
+def export_fields(downloads) -> list:
+    """The download options: each offered format's options, read off its exporter's table
+    (the registry's :func:`gear3d.export.kind_options`), named ``KIND.NAME`` (``dxf.kerf``)
+    and grouped by the format."""
+    tables = kind_options()
+    return [dict(table_field(p), name=f"{kind}.{p.name}", group=kind, label=label_of(p.name))
+            for kind in downloads if kind in tables for p in tables[kind]]
+
+
 def form_schema(family: str) -> dict:
     """The parameter form of ``family``: ``{"family", "profile": [...], "body": [...], "pair": [...],
     "groups", "downloads", "set", "presets"}``.
@@ -146,16 +158,18 @@ def form_schema(family: str) -> dict:
     if family in SET_DOWNLOADS:
         table = WORM_PARAMS if family == "worm" else BEVEL_PARAMS
         return {"family": family, "set": True, "profile": [table_field(p, family=family) for p in table],
-                "body": [], "pair": [], "groups": list(GROUPS), "downloads": list(SET_DOWNLOADS[family]),
-                "presets": presets()}
+                "body": [], "pair": [], "export": export_fields(SET_DOWNLOADS[family]), "groups": list(GROUPS),
+                "downloads": list(SET_DOWNLOADS[family]), "presets": presets()}
     return {"family": family, "set": False, "profile": [table_field(p) for p in FAMILY_PARAMS[family]],
-            "body": _body_fields(), "pair": _pair_fields(), "groups": list(GROUPS),
-            "downloads": list(FAMILY_DOWNLOADS), "presets": presets()}
+            "body": _body_fields(), "pair": _pair_fields(), "export": export_fields(FAMILY_DOWNLOADS),
+            "groups": list(GROUPS), "downloads": list(FAMILY_DOWNLOADS),
+            "body_downloads": [k for k in FAMILY_DOWNLOADS if k in output_kinds("mesh")], "presets": presets()}
 
 
 def parse_form(schema: dict, query) -> dict:
-    """Sort a request's ``(key, text)`` pairs into ``{"profile": {...}, "body": {...}, "pair": {...}}``
-    of texts (``name`` profile, ``b.name`` body, ``pair.name`` pair; empty texts left out).
+    """Sort a request's ``(key, text)`` pairs into ``{"profile": {...}, "body": {...}, "pair": {...},
+    "export": {...}}`` of texts (``name`` profile, ``b.name`` body, ``pair.name`` pair,
+    ``x.KIND.name`` a download option; empty texts left out).
 
     Only the form's parameters are accepted, never paths: anything else is a ``GearError``.
     """
@@ -164,8 +178,8 @@ def parse_form(schema: dict, query) -> dict:
     for key, raw in query:
         if key in ("family", "fmt"):
             continue
-        sec, name = ("body", key[2:]) if key.startswith("b.") else (
-            ("pair", key[5:]) if key.startswith("pair.") else ("profile", key))
+        sec = next((s for s, pre in PREFIXES.items() if key.startswith(pre)), "profile")
+        name = key[len(PREFIXES.get(sec, "")):]
         if name not in fields[sec]:
             raise GearError(key, raw[:40], f"a parameter of the {schema['family']} form")
         text = raw.strip()

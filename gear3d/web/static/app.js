@@ -5,8 +5,8 @@
 // the API's own query keys): every change rewrites it, and opening such a link fills the form.
 
 const $ = (s) => document.querySelector(s);
-const SCOPES = ["profile", "body", "pair"];
-const PREFIX = { profile: "", body: "b.", pair: "pair." };
+const SCOPES = ["profile", "body", "pair", "export"];
+const PREFIX = { profile: "", body: "b.", pair: "pair.", export: "x." };
 let schema = null;            // current family's form schema
 const state = { anim: null, frame: 0, playing: true, timer: null };
 let presetList = [];          // the designs /api/schema offers (gear3d/web/presets.py)
@@ -409,7 +409,8 @@ async function checkPair() {
 // ------------------------------------------------------------------ downloads
 
 async function download(fmtName) {
-  const scopes = ["stl", "3mf", "step"].includes(fmtName) ? ["profile", "body"] : ["profile"];
+  // a mesh is built from the body (the schema says which downloads); every download takes its options
+  const scopes = (schema.body_downloads || []).includes(fmtName) ? ["profile", "body", "export"] : ["profile", "export"];
   const q = query(scopes, { fmt: fmtName });
   $("#err-download-general").textContent = "";
   setStatus(`building ${fmtName.toUpperCase()}...`);
@@ -478,7 +479,7 @@ function saveURL() {
 }
 
 function inputFor(key) {
-  const scope = key.startsWith("b.") ? "body" : (key.startsWith("pair.") ? "pair" : "profile");
+  const scope = SCOPES.find((s) => PREFIX[s] && key.startsWith(PREFIX[s])) || "profile";
   return document.getElementById(`in-${fieldId(scope, key.slice(PREFIX[scope].length))}`);
 }
 
