@@ -40,6 +40,7 @@ from .budget import Estimate, estimate
 from .errors import check_choice, check_number
 from .params import MESH_TOLERANCE
 from .plan import brep_estimate, write_estimate
+from .spec import GearSpec
 
 #: the builder's triangle formulas (gear3d.wormgear._check_budget) bound the measured
 #: triangles from above (measured 2026-11-26, m 2, z2 = 30..300, 1-4 starts, 0.5-10 um:
@@ -323,7 +324,6 @@ def plan_crossed(rep: dict, width: float, tolerance: float, output=None) -> Esti
     refused before any work."""
     from .analysis.crossed import member_spec
     from .plan import plan_body
-    from .spec import GearSpec
     tol = check_number("tolerance", tolerance, 1e-6, 1.0, unit="mm")
     est, tri = Estimate(), 0.0
     for key in ("gear", "mate"):

@@ -36,6 +36,7 @@ from __future__ import annotations
 import math
 
 from ..errors import GearError, check_number
+from ..spec import GearSpec
 
 
 def _member(z, beta, mn, an, ha, x):
@@ -159,7 +160,6 @@ def pair_bodies(rep: dict, width: float, tolerance: float = 0.01, mate_width=Non
     (['gear', 'mate'], 18.3848)
     """
     import numpy as np
-    from ..spec import GearSpec
     w1 = check_number("width", width, 0, 10_000, lo_open=True, unit="mm")
     w2 = w1 if mate_width is None else check_number("mate_width", mate_width, 0, 10_000, lo_open=True, unit="mm")
     sig = math.radians(rep["shaft_angle_deg"])

@@ -28,6 +28,7 @@ from dataclasses import asdict, dataclass
 
 from ..errors import GearError, check_choice, check_number
 from ..params import MESH_TOLERANCE
+from ..profiles.keywords import front
 from .geometry import FaceGeometry, face_geometry
 from .section import section
 
@@ -200,6 +201,8 @@ def geometry_of(kw: dict) -> FaceGeometry:
                          kw.get("pinion_teeth"), d.addendum_coeff, d.dedendum_coeff, d.rim)
 
 
+@front(("teeth", "shaper_teeth", "module", "pressure_angle_deg", "pinion_teeth", "tolerance", "part", "check",
+        "inner_radius", "outer_radius", "addendum_coeff", "dedendum_coeff", "rim"), Band, Depths)
 def build(teeth, shaper_teeth=None, module=1.0, pressure_angle_deg=20.0, pinion_teeth=None,
           tolerance=DEFAULT_TOLERANCE, part="gear", check=False, **options) -> FaceGear:
     """A face gear cut by an involute spur shaper at a 90° shaft angle, its body within the

@@ -35,6 +35,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..spec import GearSpec
 from .geometry import FaceGeometry
 
 #: own x -> world -z, own y -> world y, own z (the axis) -> world x
@@ -83,7 +84,6 @@ def pinion_transform(g: FaceGeometry, teeth: int, r1: float, phi1: float = 0.0) 
 
 def spec_of(g: FaceGeometry, teeth: int):
     """The pinion's :class:`gear3d.spec.GearSpec` (involute, the face gear's heights)."""
-    from ..spec import GearSpec
     return GearSpec("involute", {"teeth": int(teeth), "module": g.module,
                                  "pressure_angle_deg": math.degrees(g.pressure_angle),
                                  "addendum_coeff": g.addendum / g.module, "dedendum_coeff": g.dedendum / g.module})
