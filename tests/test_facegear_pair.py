@@ -126,10 +126,44 @@ def test_refusals(tmp_path, capsys):
     assert main(base + ["--check", "-o", str(tmp_path / "x.stl")]) == 2          # --check needs the pair
     assert main(base + ["--part", "mate", "-o", str(tmp_path / "x.stl")]) == 2
     assert main(base + ["--part", "pair", "--tolerance", "0.00001", "-o", str(tmp_path / "x.stl")]) == 2  # budget
+    # the pinion's own plan: a 200-tooth pinion at 10 nm, refused before any work
+    assert main(["face-gear", "--teeth", "1000", "--shaper-teeth", "200", "--module", "5", "--part", "pinion",
+                 "--tolerance", "0.00001", "-o", str(tmp_path / "x.stl")]) == 2
     err = capsys.readouterr().err.strip().splitlines()
-    assert "check" in err[0] and "tolerance" in err[-1]
+    assert "check" in err[0] and "tolerance" in err[-2] and "profile vertices" in err[-1]
     assert not list(tmp_path.iterdir())
     with pytest.raises(GearError, match="inner_radius"):
         gear3d.face_gear(teeth=40, shaper_teeth=18, inner_radius=5.0)
     with pytest.raises(GearError, match="clearance"):
         gear3d.face_gear(teeth=40, shaper_teeth=18, clearance=0.1)
+
+
+TEMPLATE = """
+[scene]
+name = "face-pair"
+tolerance = 0.05
+
+[[part]]
+name = "face"
+kind = "face-gear"
+teeth = 40
+shaper_teeth = 14
+module = 1
+inner_radius = 21.0
+part = "pair"
+check = true
+outputs = ["3mf", "json"]
+"""
+
+
+def test_template_face_pair_with_check(tmp_path):
+    import json
+
+    import trimesh
+    src = tmp_path / "s.toml"
+    src.write_text(TEMPLATE)
+    assert main(["build", str(src), "--out", str(tmp_path / "o")]) == 0
+    rep = json.loads((tmp_path / "o" / "face.json").read_text())
+    assert rep["part"] == "pair" and rep["inner_radius"] == 21.0 and rep["check"]["interference"] is False
+    assert rep["check"]["contact_ratio"] > 1
+    assert sorted(trimesh.load(str(tmp_path / "o" / "face.3mf"), force="scene").geometry) == ["face-gear", "pinion"]
