@@ -35,6 +35,8 @@ CASES = {
     "herringbone": (dict(teeth=24, module=1.5), dict(kind="herringbone", helix_angle_deg=25.0, width=10.0)),
     "ring": (dict(teeth=40, internal=True), dict(kind="helical", helix_angle_deg=15.0, width=6.0)),
     "bore": (dict(teeth=20), dict(kind="helical", helix_angle_deg=20.0, width=10.0, bore=5.0)),
+    # a bore near the root: the zipper faces a flank edge the wrong way, the ring strip is used
+    "large bore": (dict(teeth=20), dict(kind="helical", helix_angle_deg=20.0, width=10.0, bore=12.0)),
 }
 
 
@@ -61,6 +63,19 @@ def edge_checks(F):
     d = np.concatenate([F[:, [0, 1]], F[:, [1, 2]], F[:, [2, 0]]])
     _, counts = np.unique(np.sort(d, axis=1), axis=0, return_counts=True)
     return bool((counts == 2).all()), len(np.unique(d, axis=0)) == len(d)
+
+
+def caps_face_out(P, F) -> bool:
+    """Every triangle lying in an end plane faces out of the body: counter-clockwise seen
+    from +z on the top plane, clockwise on the bottom (a folded strip would fail here even
+    when its edges pair up and its signed areas add up)."""
+    z = P[F][:, :, 2]
+    ok = True
+    for plane, sign in ((P[:, 2].min(), -1.0), (P[:, 2].max(), 1.0)):
+        t = P[F[np.all(np.abs(z - plane) <= 1e-6, axis=1)]]
+        a = ((t[:, 1, 0] - t[:, 0, 0]) * (t[:, 2, 1] - t[:, 0, 1]) - (t[:, 1, 1] - t[:, 0, 1]) * (t[:, 2, 0] - t[:, 0, 0]))
+        ok = ok and len(t) > 0 and bool((sign * a > 0).all())
+    return ok
 
 
 def meshio_arrays(path):
@@ -97,7 +112,7 @@ def test_stl_read_back_by_two_readers(name, tmp_path):
     assert tm.is_watertight and tm.is_winding_consistent and tm.volume > 0
     P, F = meshio_arrays(path)
     closed, oriented = edge_checks(F)
-    assert closed and oriented
+    assert closed and oriented and caps_face_out(P, F)
     t = P[F]
     area2 = np.linalg.norm(np.cross(t[:, 1] - t[:, 0], t[:, 2] - t[:, 0]), axis=1)
     longest = np.max([np.linalg.norm(t[:, i] - t[:, (i + 1) % 3], axis=1) for i in range(3)], axis=0)
@@ -129,14 +144,14 @@ def test_no_manifold3d_for_plain_bodies(tmp_path):
     assert len(list(tmp_path.glob("*.stl"))) == len(CASES)
 
 
-def cap_ok(polys):
+def cap_ok(polys, got=None):
     """The cap triangulation checked against the section: every triangle CCW with a
     positive area, the areas summing to the shoelace area, each loop edge in exactly one
     triangle (in the loop's direction) and each inner edge in two, opposite ways."""
-    got = cap_triangles(polys)
+    got = cap_triangles(polys) if got is None else got
     assert got is not None
-    T, centre = got
-    P = np.concatenate([np.asarray(p, float) for p in polys] + ([np.zeros((1, 2))] if centre else []))
+    T, extra = got
+    P = np.concatenate([np.asarray(p, float) for p in polys] + [extra])
     t = P[T]
     a = 0.5 * ((t[:, 1, 0] - t[:, 0, 0]) * (t[:, 2, 1] - t[:, 0, 1]) - (t[:, 1, 1] - t[:, 0, 1]) * (t[:, 2, 0] - t[:, 0, 0]))
     assert (a > 0).all()
@@ -151,17 +166,32 @@ def cap_ok(polys):
     assert boundary <= d
     inner = d - boundary
     assert all((b, a_) in inner for a_, b in inner)
-    return T, centre
+    return T, extra
 
 
 def test_cap_triangles_on_gear_sections():
     p20 = gear3d.profile("involute", teeth=20, tolerance=0.002)
-    T, centre = cap_ok(p20.loops)                        # a fan from the axis
-    assert centre and len(T) == len(p20.loops[0])
+    T, extra = cap_ok(p20.loops)                         # a fan from the axis
+    assert extra.tolist() == [[0.0, 0.0]] and len(T) == len(p20.loops[0])
     a = np.linspace(0, 2 * np.pi, 90, endpoint=False)[::-1]
     bore = 4.0 * np.stack([np.cos(a), np.sin(a)], axis=1)
-    T, centre = cap_ok([p20.loops[0], bore])              # zipper to a bore
-    assert not centre and len(T) == len(p20.loops[0]) + len(bore)
+    T, extra = cap_ok([p20.loops[0], bore])              # zipper to a bore
+    assert len(extra) == 0 and len(T) == len(p20.loops[0]) + len(bore)
+    for turn in np.linspace(0.0, 2 * np.pi / 20, 7):     # any turn of the outline against it
+        c, s_ = math.cos(turn), math.sin(turn)
+        cap_ok([p20.loops[0] @ np.array([[c, s_], [-s_, c]]), 6.0 * bore / 4.0])
+    # the two-part strip through a ring of new vertices, on a bore near the root
+    from gear3d.polar import star_angles
+    from gear3d.solids.caps import _ring
+    p17 = gear3d.profile("involute", teeth=17, tolerance=0.003)
+    c, s_ = math.cos(0.13), math.sin(0.13)
+    outer = p17.loops[0] @ np.array([[c, s_], [-s_, c]])
+    hole = 0.9 * p17.report["root_radius"] * np.stack([np.cos(a), np.sin(a)], axis=1)
+    T, ring_v = _ring(outer, hole[::-1], star_angles(outer), star_angles(hole[::-1]),
+                      0.95 * p17.report["root_radius"])
+    assert T is not None and len(ring_v) == len(outer)
+    T = np.where((T >= len(outer)) & (T < len(outer) + len(hole)), 2 * len(outer) + len(hole) - 1 - T, T)
+    cap_ok([outer, hole], (T, ring_v))
     ring = gear3d.profile("involute", teeth=40, internal=True, tolerance=0.002)
     cap_ok(ring.loops)
     cap_ok(ring.loops[::-1])                             # either loop first
@@ -174,7 +204,7 @@ def test_undercut_body_still_closed():
     prof = gear3d.profile("involute", teeth=8, tolerance=TOL * 0.6)
     b = gear3d.body(prof, kind="helical", helix_angle_deg=20.0, width=5.0, tolerance=TOL)
     V, F = b.arrays()
-    assert edge_checks(F) == (True, True)
+    assert edge_checks(F) == (True, True) and caps_face_out(V, F)
     vol, dev = expected_volume(prof, 5.0, 0.0)
     assert abs(b.report["volume"] - vol) <= TOL * dev
 
@@ -185,7 +215,7 @@ RAN = []
 @settings(max_examples=14, deadline=None, derandomize=True,
           suppress_health_check=[HealthCheck.too_slow])
 @given(teeth=st.integers(17, 60), module=st.sampled_from([0.5, 1.0, 2.0, 3.0]),
-       helix=st.sampled_from([0.0, 10.0, 25.0, 35.0]), bore_frac=st.sampled_from([0.0, 0.3, 0.6]))
+       helix=st.sampled_from([0.0, 10.0, 25.0, 35.0]), bore_frac=st.sampled_from([0.0, 0.3, 0.6, 0.9]))
 def _property(teeth, module, helix, bore_frac):
     tol = 0.02 * module
     prof = gear3d.profile("involute", teeth=teeth, module=module, tolerance=tol * 0.6)
@@ -194,7 +224,7 @@ def _property(teeth, module, helix, bore_frac):
     kw = dict(kind="helical", helix_angle_deg=helix) if helix else dict(kind="spur")
     b = gear3d.body(prof, width=4.0 * module, tolerance=tol, bore=bore, **kw)
     V, F = b.arrays()
-    assert edge_checks(F) == (True, True)
+    assert edge_checks(F) == (True, True) and caps_face_out(V, F)
     vol, dev = expected_volume(prof, 4.0 * module, bore or 0.0)
     assert abs(signed_volume(V, F) - vol) <= tol * dev
     RAN.append((teeth, module, helix, bore_frac))

@@ -37,25 +37,36 @@ def twisted_mesh(polys, knots, law, fixed=None):
     y = s * P[None, :, 0] + c * P[None, :, 1]
     V = np.stack([x, y, np.broadcast_to(np.asarray(knots, float)[:, None], x.shape)], axis=-1).reshape(-1, 3)
     sides = _side_triangles(polys, n, K, th[:, 0])
-    T, centre = end_triangles(polys)
-    top = T + (K - 1) * n
-    if centre:                            # the fans' apexes: two new vertices on the axis
-        V = np.concatenate([V, [[0.0, 0.0, float(knots[0])], [0.0, 0.0, float(knots[-1])]]])
-        T = np.where(T == n, K * n, T)
-        top = np.where(T == K * n, K * n + 1, top)
-    F = np.concatenate([T[:, ::-1], sides, top])
+    # each end face is triangulated where its vertices are: a fixed loop (a bore) does not
+    # turn with the others, so one triangulation would not fit both ends (the turned outline
+    # meets the bore at other angles, and a strip made for one end folds over at the other)
+    cuts = np.cumsum([len(p) for p in polys])[:-1]
+    T0, extra0 = end_triangles(np.split(V[:n, :2], cuts))
+    if any(fixed) and th[-1, 0] != th[0, 0]:
+        T1, extra1 = end_triangles(np.split(V[(K - 1) * n:, :2], cuts))
+    else:                                 # the same section turned about the axis
+        c1, s1 = math.cos(th[-1, 0] - th[0, 0]), math.sin(th[-1, 0] - th[0, 0])
+        T1, extra1 = T0, extra0 @ np.array([[c1, s1], [-s1, c1]])
+    # the caps' own vertices (a fan's apex, a ring) follow the layers' vertices
+    k0 = len(extra0)
+    T0 = np.where(T0 >= n, T0 - n + K * n, T0)
+    T1 = np.where(T1 >= n, T1 - n + K * n + k0, T1 + (K - 1) * n)
+    V = np.concatenate([V, np.column_stack([extra0, np.full(k0, float(knots[0]))]),
+                        np.column_stack([extra1, np.full(len(extra1), float(knots[-1]))])])
+    F = np.concatenate([T0[:, ::-1], sides, T1])
     return V, F
 
 
 def end_triangles(polys):
-    """(CCW triangles (m, 3) int64 of the section, whether index ``sum(len(p))`` is a new
-    vertex on the axis): :func:`gear3d.solids.caps.cap_triangles`, else manifold3d's."""
+    """(CCW triangles (m, 3) int64 of the section, the caps' own new vertices (k, 2) mm,
+    indexed from ``sum(len(p))`` on): :func:`gear3d.solids.caps.cap_triangles`, else
+    manifold3d's triangulation (no new vertices)."""
     from .caps import cap_triangles
     got = cap_triangles(polys)
     if got is not None:
         return got
     from manifold3d import triangulate
-    return np.asarray(triangulate(polys), np.int64).reshape(-1, 3), False
+    return np.asarray(triangulate(polys), np.int64).reshape(-1, 3), np.zeros((0, 2))
 
 
 def _side_triangles(polys, n: int, K: int, th):
