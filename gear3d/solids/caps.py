@@ -9,9 +9,12 @@ A plain body's section is one of
   nearest approach to the axis (a bore circle in a gear; a ring gear's toothed loop inside
   its rim circle): a *zipper* strip between the two loops. The vertices of both loops are
   merged in order of polar angle; each one adds the triangle between the edge it ends and
-  the other loop's latest vertex. Each triangle's turn is checked (an edge almost along a
-  ray - a flank near the root - can face away from a vertex of the other loop a few degrees
-  off); if one is not counter-clockwise, the strip is made in two: a *ring* of new vertices
+  the other loop's latest vertex. Each triangle's turn is checked: a strip bounded by the
+  two loops whose triangles all turn counter-clockwise covers the section exactly once (a
+  point is covered as many times as the boundary winds round it: once inside, never
+  outside). An outer edge almost along a ray - a flank near the root - can face away from a
+  hole vertex a few degrees behind it; such an edge waits for the next hole vertex
+  (:data:`REPAIR_PASSES`). If a triangle still fails, the strip is made in two: a *ring* of new vertices
   on a circle between the two loops, one at each outline vertex's polar angle, joined to the
   outline by radial quads (each quad lies between the rays of its two outline vertices, and
   both of its triangles turn counter-clockwise because the outline's radius exceeds the
