@@ -584,3 +584,24 @@ def test_scene_worm_part_not_in_a_pair_and_no_dxf_of_a_lone_worm(tmp_path):
                    '[[pair]]\nname = "p"\nparts = ["set", "g"]\n')
     with pytest.raises(TemplateError, match=r"pair\[p\]\.parts\[0\]"):
         load_scene(src)
+
+
+def test_scene_worm_pair_3mf_follows_the_arrange_options(tmp_path):
+    """``[scene.options.3mf] arrange = true`` (and a part's own ``[part.options.3mf]``)
+    lays the worm and the wheel flat and apart, as for any part: each object a pure
+    translation of the unarranged file's, on the bed, the boxes ``gap`` apart and centred
+    (tests/test_arrange.py's checks, read by lib3mf and trimesh)."""
+    from gear3d.jobs.scene import build_scene
+    from gear3d.jobs.template import load_scene
+    from tests.test_arrange import assert_arranged
+    base = _SCENE.replace("check = true\n", "").replace('["3mf", "json", "dxf"]', '["3mf"]') \
+        .replace("tolerance = 0.05", "tolerance = 0.1")
+    runs = {"plain": base, "scene": base + "[scene.options.3mf]\narrange = true\ngap = 4\n",
+            "part": base + "[part.options.3mf]\narrange = true\ngap = 7\n"}
+    for name, text in runs.items():
+        (tmp_path / f"{name}.toml").write_text(text)
+        build_scene(load_scene(tmp_path / f"{name}.toml"), tmp_path / name)
+    plain = tmp_path / "plain" / "set.3mf"
+    tp, lo, hi = assert_arranged(tmp_path / "scene" / "set.3mf", plain, gap=4.0)
+    assert len(tp) == 2
+    assert_arranged(tmp_path / "part" / "set.3mf", plain, gap=7.0)

@@ -310,8 +310,12 @@ def set_targets(g: Graph, job: Job, part: PartSpec, out_dir, prefix) -> dict:
                     file=job.file, prefix=prefix, keys=tuple(part.params))
         if not sec:
             src = g.add("pick", {"kind": kind}, [src], fn=_set_output, label=f"{part.name} {kind}")
+        # exporter options as for any part: the scene's, then the part's (3mf: arrange, gap)
+        opts = {} if kind == "json" else {**job.options.get(kind, {}), **part.options.get(kind, {})}
+        if kind == "step":
+            opts = {"step": "brep"} if brep else {}
         targets[kind] = g.add("write", {"kind": kind, "file": fname, "tolerance": tol, "name": part.name,
-                                        **({"options": {"step": "brep"}} if brep else {})}, [src],
+                                        **({"options": opts} if opts else {})}, [src],
                               fn=run_write, label=fname, phase=1, path=path, out_dir=out_dir)
     return targets
 
