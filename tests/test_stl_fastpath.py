@@ -144,6 +144,34 @@ def test_no_manifold3d_for_plain_bodies(tmp_path):
     assert len(list(tmp_path.glob("*.stl"))) == len(CASES)
 
 
+def test_stl_command_imports_manifold3d_only_for_the_profile_trim(tmp_path):
+    """The whole STL command of the reference helical gear (bore 5 mm), in a fresh
+    interpreter: manifold3d, if imported at all, is first imported by the profile's trim
+    (gear3d/envelope.py, Clipper2), never by the body, its measurement or the STL writer."""
+    out = tmp_path / "g.stl"
+    code = textwrap.dedent(f"""
+        import sys, traceback
+        who = []
+        class Spy:
+            def find_spec(self, name, path=None, target=None):
+                if name == "manifold3d":
+                    who.append([f.filename for f in traceback.extract_stack() if "gear3d" in f.filename][-1])
+                return None
+        sys.meta_path.insert(0, Spy())
+        from gear3d.cli import main
+        rc = main("body involute --teeth 20 --kind helical --helix-angle-deg 20 --width 10 --bore 5 "
+                  "--tolerance 0.0025 -o {out}".split())
+        print("rc", rc, "importers", who)
+    """)
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert r.returncode == 0, r.stderr[-2000:]
+    last = r.stdout.strip().splitlines()[-1]
+    assert last.startswith("rc 0 importers"), r.stdout
+    importers = eval(last.split("importers", 1)[1])
+    assert all(f.replace("\\", "/").endswith("gear3d/envelope.py") for f in importers), importers
+    assert out.stat().st_size == 84 + 50 * int(np.frombuffer(out.read_bytes()[80:84], "<u4")[0])
+
+
 def cap_ok(polys, got=None):
     """The cap triangulation checked against the section: every triangle CCW with a
     positive area, the areas summing to the shoelace area, each loop edge in exactly one
