@@ -167,3 +167,43 @@ def test_template_face_pair_with_check(tmp_path):
     assert rep["part"] == "pair" and rep["inner_radius"] == 21.0 and rep["check"]["interference"] is False
     assert rep["check"]["contact_ratio"] > 1
     assert sorted(trimesh.load(str(tmp_path / "o" / "face.3mf"), force="scene").geometry) == ["face-gear", "pinion"]
+
+
+def _form_limit_oracle(z2, z0, m, alpha_deg):
+    """The twin pinion's form circle (the involute family's rack: dedendum 1.25 m, tip radius
+    0.25 m, its straight flank ending h = 1.25 m - 0.25 m (1 - sin α) below the pitch line)
+    and the face gear radius whose tip contact reaches it: the shaper's involute point of
+    radius r_f lying H = r_p0 - m below the shaper's axis, found by root finding on the
+    line of action's angle a (the point: base tangency at angle a, then ρ_f along the line)."""
+    from scipy.optimize import brentq
+    a0 = math.radians(alpha_deg)
+    rp, rb = m * z0 / 2, m * z0 / 2 * math.cos(a0)
+    h = 1.25 * m - 0.25 * m * (1 - math.sin(a0))
+    rf = math.hypot(rb, rp * math.sin(a0) - h / math.sin(a0))
+    rho = math.sqrt(rf * rf - rb * rb)
+    H = rp - m
+
+    def point(a):                       # (Y, depth below the axis) of the contact point
+        return -rb * math.sin(a) + rho * math.cos(a), rb * math.cos(a) + rho * math.sin(a)
+    a = brentq(lambda a: point(a)[1] - H, math.atan2(rho, rb), math.pi / 2)
+    u = m * z2 / 2 * math.cos(a0) / math.cos(a)
+    return rf, math.hypot(u, point(a)[0])
+
+
+@pytest.mark.slow
+def test_inner_edge_meets_the_rack_cut_pinions_fillet():
+    """At the default inner radius (the shaper's base-circle limit) the face gear's tip edge
+    digs into the twin pinion's fillet (a rack-cut pinion's involute starts at its form
+    circle); from the form-circle limit on, it meets only the involute."""
+    from gear3d.facegear import radius_limits
+    g = face_geometry(100, 25, 1.0)
+    lim = radius_limits(g)
+    r2 = lim["outer"] * 0.99
+    at_base = check_pair(g, 25, lim["inner"] + 1e-6, r2, samples=12)
+    rf, r_form = _form_limit_oracle(100, 25, 1.0, 20.0)
+    assert at_base["pinion_form_radius"] == pytest.approx(rf, abs=1e-6)
+    assert at_base["inner_form_limit"] == pytest.approx(r_form, abs=1e-6)
+    assert at_base["interference"] and at_base["max_penetration"] > 0.01
+    assert at_base["max_penetration_radius"] < lim["inner"] + 0.05
+    beyond = check_pair(g, 25, r_form + 0.01, r2, samples=12)
+    assert not beyond["interference"] and beyond["max_penetration"] < 1e-9

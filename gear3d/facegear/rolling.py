@@ -177,17 +177,21 @@ class Mesh:
         out = ((axial < 0) | (axial > p.width) | (R > p.tip_radius)) & reach
         return np.where(out, np.inf, plus), np.where(out, np.inf, minus), R, axial
 
-    def depth(self, J, phi1) -> float:
+    def depth(self, J, phi1) -> tuple:
         """The largest penetration (rad of the pinion's turn) of the samples of teeth J (every
-        piece) into the pinion: a point inside it has both gaps < 0, and the nearer side is
-        the smaller turn, -max(plus, minus); 0 when none is inside."""
-        worst = 0.0
+        piece) into the pinion, and the face gear radius (mm) where it is: a point inside it
+        has both gaps < 0, and the nearer side is the smaller turn, -max(plus, minus);
+        (0, None) when none is inside."""
+        worst, where = 0.0, None
         for piece in range(4):
             s, t = _grid(RADII if piece != 2 else COARSE, PIECE_SAMPLES[piece] if piece != 2 else COARSE)
             for side in (-1, 1):
                 pl, mi, _, _ = self.gaps(piece, J[:, None], side, s[None, :], t[None, :], phi1)
-                worst = max(worst, float(-np.minimum(np.maximum(pl, mi), 0.0).min()))      # pl = mi inside
-        return worst
+                d = -np.minimum(np.maximum(pl, mi), 0.0)                 # pl = mi inside
+                k = np.unravel_index(np.argmax(d), d.shape)
+                if d[k] > worst:
+                    worst, where = float(d[k]), self.surf.r1 + float(s[k[1]]) * (self.surf.r2 - self.surf.r1)
+        return worst, where
 
 
 def _grid(n, m):
@@ -196,13 +200,17 @@ def _grid(n, m):
 
 
 def _others(mesh: Mesh, J, phi1):
-    """Smallest plus and minus gaps (rad) over the root, fillet and top pieces of teeth J."""
-    best = [np.inf, np.inf]
+    """Smallest plus and minus gaps (rad) over the root, fillet and top pieces of teeth J,
+    each with the normalised radius s where it is."""
+    best = [(np.inf, None), (np.inf, None)]
     for piece in (0, 1, 3):
         s, t = _grid(RADII, PIECE_SAMPLES[piece])
         for side in (-1, 1):
-            pl, mi, _, _ = mesh.gaps(piece, J[:, None], side, s[None, :], t[None, :], phi1)
-            best = [min(best[0], float(pl.min())), min(best[1], float(mi.min()))]
+            res = mesh.gaps(piece, J[:, None], side, s[None, :], t[None, :], phi1)
+            for which in (0, 1):
+                k = np.unravel_index(np.argmin(res[which]), res[which].shape)
+                if res[which][k] < best[which][0]:
+                    best[which] = (float(res[which][k]), float(s[k[1]]))
     return best
 
 
@@ -226,7 +234,7 @@ def _zoom(mesh: Mesh, J, sides, which: int, phi1):
         k = np.argmin(v, axis=1)
         cs, ct = S[np.arange(len(J)), k], T[np.arange(len(J)), k]
         h /= 3.0
-    return mesh.gaps(2, J, sides, cs, ct, phi1)[which]
+    return mesh.gaps(2, J, sides, cs, ct, phi1)[which], cs
 
 
 def contact_line(mesh: Mesh, J, sides, phi1, u):
@@ -311,8 +319,15 @@ def state(mesh: Mesh, phi1: float) -> dict:
     Jf, Sf = np.repeat(J, 2), np.tile([-1, 1], len(J))
     others = _others(mesh, J, phi1)
     line = _conjugate(mesh, Jf, Sf, phi1)
-    return {name: min(others[which], float(_zoom(mesh, Jf, Sf, which, phi1).min()), float(line[which][0].min()))
-            for which, name in ((0, "plus"), (1, "minus"))}
+    out = {}
+    for which, name in ((0, "plus"), (1, "minus")):
+        v, cs = _zoom(mesh, Jf, Sf, which, phi1)
+        k = int(np.argmin(v))
+        cands = [others[which], (float(v[k]), float(cs[k])), (float(line[which][0].min()), None)]
+        G, s = min(cands, key=lambda c: c[0])
+        out[name] = G
+        out[name + "_radius"] = None if s is None else mesh.surf.r1 + s * (mesh.surf.r2 - mesh.surf.r1)
+    return out
 
 
 def in_contact(mesh: Mesh, phi1: float) -> dict:
@@ -371,14 +386,17 @@ def check_pair(g: FaceGeometry, z1: int, r1: float, r2: float, samples: int = SA
     phis = (np.arange(samples) + 0.5) / samples * mesh.pitch - mesh.pitch / 2
     st = [state(mesh, float(f)) for f in phis]
     gp, gm = np.array([s["plus"] for s in st]), np.array([s["minus"] for s in st])
-    depth = max(max(mesh.depth(mesh.teeth(float(f)), float(f)) for f in phis),
-                -min(float(gp.min()), float(gm.min()), 0.0)) * p.pitch_radius
+    found = [mesh.depth(mesh.teeth(float(f)), float(f)) for f in phis]
+    found += [(-x[side], x[side + "_radius"]) for x in st for side in ("plus", "minus")]
+    depth, where = max(found, key=lambda c: c[0])
+    depth = max(depth, 0.0) * p.pitch_radius
     ends = contact_intervals(mesh)
     ratios = {k: 0.0 if v is None else (v[1] - v[0]) / mesh.pitch for k, v in ends.items()}
     te = {k: float(v.max() - v.min()) for k, v in (("plus", gp), ("minus", gm))}
     return {"pinion_teeth": int(z1), "face_teeth": g.teeth, "ratio": g.teeth / z1,
             "contact": "line" if z1 == g.shaper_teeth else "point",
             "interference": depth > BAND * m, "max_penetration": depth,
+            "max_penetration_radius": where if depth > BAND * m else None,
             "backlash": float((gp + gm).min()) * p.pitch_radius,
             "backlash_max": float((gp + gm).max()) * p.pitch_radius,
             "contact_ratio": float(min(ratios.values())), "contact_ratio_plus": float(ratios["plus"]),
@@ -386,9 +404,35 @@ def check_pair(g: FaceGeometry, z1: int, r1: float, r2: float, samples: int = SA
             "contact_interval_deg": {k: None if v is None else [math.degrees(a) for a in v] for k, v in ends.items()},
             "transmission_error_urad": {k: 1e6 * v * mesh.ratio for k, v in te.items()},
             "transmission_error_um": {k: 1e3 * v * p.pitch_radius for k, v in te.items()},
-            "roll_positions": int(samples), "band": BAND * m,
+            "roll_positions": int(samples), "band": BAND * m, "note": _note(g, z1, r1, r2),
+            "pinion_form_radius": mesh.form_radius,
+            "inner_form_limit": form_limit(g, mesh.form_radius) if z1 == g.shaper_teeth else None,
             "conjugate": "exactly conjugate: the pinion and the shaper are involutes in internal tangency "
                          "(pinion = shaper: line contact; fewer teeth: point contact)"}
+
+
+def form_limit(g: FaceGeometry, form_radius: float):
+    """The face gear radius (mm) inside which its tip edge meets the twin pinion's fillet:
+    where the contact at the tip height (the shaper's flank point at the distance
+    H = r_p0 - h_a below its axis) reaches the pinion's form circle r_f (its involute starts
+    there, above the base circle): with ρ_f = sqrt(r_f² - r_b0²) and δ = atan(ρ_f / r_b0),
+    α' = δ + acos(H / r_f), u = r_p2 cos α / cos α', r = hypot(u, ρ_f cos α' - r_b0 sin α').
+    None when the tip height stays outside the form circle (H >= r_f)."""
+    rb, H = g.shaper_base_radius, g.shaper_pitch_radius - g.addendum
+    if H >= form_radius:
+        return None
+    rho = math.sqrt(max(form_radius ** 2 - rb * rb, 0.0))
+    a = math.atan2(rho, rb) + math.acos(H / form_radius)
+    u = g.pitch_radius * math.cos(g.pressure_angle) / math.cos(a)
+    return math.hypot(u, rho * math.cos(a) - rb * math.sin(a))
+
+
+def _note(g: FaceGeometry, z1: int, r1: float, r2: float):
+    """Why a pinion with fewer teeth than the shaper may have no conjugate action (or None)."""
+    if z1 < g.shaper_teeth and not r1 < g.pitch_radius < r2:
+        return (f"a pinion with fewer teeth than the shaper touches only at x = r_p2 = {g.pitch_radius:.6g} mm, "
+                f"outside its face {r1:.6g}..{r2:.6g} mm")
+    return None
 
 
 def work(g: FaceGeometry) -> float:
@@ -404,9 +448,12 @@ def summary(rep: dict) -> str:
     """One line: interference, backlash, contact ratio and transmission error."""
     te = max(rep["transmission_error_um"].values())
     return (f"face gear {rep['face_teeth']} / pinion {rep['pinion_teeth']} ({rep['contact']} contact): "
-            f"{'INTERFERENCE ' + format(rep['max_penetration'], '.4g') + ' mm' if rep['interference'] else 'no interference'}, "
-            f"backlash {rep['backlash'] * 1000:.3f} um, contact ratio {rep['contact_ratio']:.4f}, "
-            f"transmission error {te:.4f} um")
+            + (f"INTERFERENCE {rep['max_penetration']:.4g} mm at r = {rep['max_penetration_radius']:.4f} mm"
+               + (f" (the pinion's fillet: free from r = {rep['inner_form_limit']:.4f} mm)"
+                  if rep.get("inner_form_limit") else "") + ", "
+               if rep["interference"] else "no interference, ")
+            + f"backlash {rep['backlash'] * 1000:.3f} um, contact ratio {rep['contact_ratio']:.4f}, "
+            f"transmission error {te:.4f} um" + (f" ({rep['note']})" if rep.get("note") else ""))
 
 
 def finding_code(rep: dict) -> int:
