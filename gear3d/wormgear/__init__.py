@@ -17,6 +17,7 @@ Example::
 """
 from __future__ import annotations
 
+import inspect
 import math
 from dataclasses import asdict, dataclass, fields
 
@@ -147,84 +148,63 @@ def place(s: WormSet) -> list:
     return [s.wheel.placed(WHEEL_TURN, "worm-wheel"), s.worm.placed(worm_transform(d) @ s.worm.transform, "worm")]
 
 
+@dataclass(frozen=True)
+class WormFeatures:
+    """The bodies' features (mm): the worm's bore and shaft (``shaft_length`` one length or
+    two, at -z and +z), the wheel's bore, hub (centred on the mid-plane), DIN 6885 keyway,
+    web and rim (:mod:`gear3d.wormgear.rims`). None: not made."""
+    worm_bore: float | None = None
+    wheel_bore: float | None = None
+    hub_diameter: float | None = None
+    hub_length: float | None = None
+    wheel_keyway: bool = False
+    web_thickness: float | None = None
+    rim_diameter: float | None = None
+    shaft_diameter: float | None = None
+    shaft_length: object = None
+
+    @classmethod
+    def take(cls, keywords: dict) -> "WormFeatures":
+        """Pop the features out of ``keywords`` (the rest are the design's)."""
+        return cls(**{f.name: keywords.pop(f.name) for f in fields(cls) if f.name in keywords})
+
+
+#: the wheel's features (the others are the worm's)
+WHEEL_KEYS = ("wheel_bore", "hub_diameter", "hub_length", "wheel_keyway", "web_thickness", "rim_diameter")
+
+
 def worm(part="pair", tolerance=None, worm_bore=None, wheel_bore=None, hub_diameter=None, hub_length=None,
          check=False, **params) -> WormSet:
-    """Worm and worm wheel (mm, degrees): the wheel is the exact envelope of the worm.
+    """Worm and worm wheel (mm, degrees): ``part`` = worm | wheel | pair; the design keywords
+    of :func:`gear3d.wormgear.design.design` (module, starts, wheel_teeth, diameter_quotient or
+    worm_pitch_diameter, axial_ or normal_pressure_angle_deg, worm_type, addendum_coeff,
+    dedendum_coeff, hand, shift_coeff, worm_length, face_width, throat, friction, disc_radius
+    for ZK, backlash); ``tolerance`` (mm, default 0.01); ``worm_bore`` (mm), ``wheel_bore``,
+    ``hub_diameter`` and ``hub_length`` (the wheel's hub, centred on its mid-plane);
+    ``wheel_keyway``, ``web_thickness``, ``rim_diameter``, ``shaft_diameter`` and
+    ``shaft_length`` (:mod:`gear3d.wormgear.rims`); ``check`` rolls the pair
+    through one wheel pitch on the exact surfaces (``report.rolling``: interference,
+    backlash, transmission error, contact lines and pattern; see
+    :mod:`gear3d.wormgear.rolling`).
 
-    The wheel is generated section by section from the worm's thread; both bodies are
-    measured (``report.max_error``) against the closed forms.
-
-    Parameters
-    ----------
-    part : {"pair", "worm", "wheel"}, optional
-        What to build (default "pair": both, placed in mesh by :meth:`WormSet.parts`).
-    tolerance : float, optional
-        mm, in [1e-4, module/10]: the largest distance of each body from its exact surface
-        (default 0.01).
-    worm_bore, wheel_bore : float, optional
-        Bore diameters, mm (default None: solid).
-    hub_diameter, hub_length : float, optional
-        The wheel's hub, mm, centred on its mid-plane (default None: no hub).
-    check : bool, optional
-        Roll the pair through one wheel pitch on the exact surfaces (``report.rolling``:
-        interference, backlash, transmission error, contact lines and pattern; see
-        :mod:`gear3d.wormgear.rolling`; default False).
-    **params
-        The design keywords of :func:`gear3d.wormgear.design.design`: ``module`` (mm,
-        default 2), ``starts`` (default 1), ``wheel_teeth`` (default 30),
-        ``diameter_quotient`` q (default 10) or ``worm_pitch_diameter`` (mm),
-        ``axial_pressure_angle_deg`` or ``normal_pressure_angle_deg`` (default normal 20),
-        ``worm_type`` (ZA, ZN, ZI or ZK; default ZA), ``addendum_coeff`` (1.0),
-        ``dedendum_coeff`` (1.2), ``hand`` (right), ``shift_coeff`` (0), ``worm_length``
-        and ``face_width`` (mm), ``throat`` (True), ``friction`` (0.05), ``disc_radius``
-        (mm, ZK) and ``backlash`` (mm, default 0); and the features of
-        :mod:`gear3d.wormgear.rims`: ``wheel_keyway``, ``web_thickness``,
-        ``rim_diameter``, ``shaft_diameter``, ``shaft_length`` (mm).
-
-    Returns
-    -------
-    WormSet
-        ``worm`` and ``wheel`` bodies in their own frames (None when not built) and a
-        frozen :class:`WormReport` (sizes in mm, angles in degrees, ``max_error`` mm;
-        ``to_dict()`` is strict JSON).
-
-    Raises
-    ------
-    GearError
-        A parameter out of its range (or a design that cannot be cut), in one line naming
-        it, its value and the allowed range.
-
-    Examples
-    --------
-    Module 2, one start, q = 10, 30 wheel teeth: d1 = q m = 20 mm, d2 = z2 m = 60 mm,
-    a = (d1 + d2)/2, lead π m z1, lead angle atan(z1/q).
-
-    >>> import gear3d
-    >>> s = gear3d.worm(part="worm", module=2.0, starts=1, wheel_teeth=30, tolerance=0.2)
-    >>> r = s.report
-    >>> r.ratio, r.worm_pitch_diameter, r.wheel_pitch_diameter, r.center_distance
-    (30.0, 20.0, 60.0, 40.0)
-    >>> round(r.lead, 6), round(r.lead_angle_deg, 4), r.worm_tip_diameter   # d1 + 2 m
-    (6.283185, 5.7106, 24.0)
-    >>> s.wheel is None, r.max_error <= r.tolerance
-    (True, True)
-    """
+    The wheel is the exact envelope of the worm, section by section; both bodies are
+    measured (``report.max_error``) against the closed forms. Bad input raises one
+    :class:`GearError` line."""
     part = check_choice("part", part, PARTS)
     if tolerance is not None:
         params["tolerance"] = tolerance
-    extra = {k: params.pop(k) for k in EXTRA_KEYS if k in params}
-    d = validate(part, worm_bore, wheel_bore, hub_diameter, hub_length, check, **params, **extra)
+    params.update(worm_bore=worm_bore, wheel_bore=wheel_bore, hub_diameter=hub_diameter, hub_length=hub_length)
+    f = WormFeatures.take(params)
+    d = validate(part=part, check=check, **vars(f), **params)
     _check_budget(d, part)
     w = wh = None
     if part in ("worm", "pair"):
         from .worm_body import worm_body
-        w = worm_body(d, bore=worm_bore, shaft_diameter=extra.get("shaft_diameter"),
-                      shaft_length=extra.get("shaft_length"))
+        w = worm_body(d, bore=f.worm_bore, shaft_diameter=f.shaft_diameter, shaft_length=f.shaft_length)
     if part in ("wheel", "pair"):
         from .wheel_body import wheel_body
-        wh = wheel_body(d, bore=wheel_bore, hub_diameter=hub_diameter, hub_length=hub_length,
-                        keyway=extra.get("wheel_keyway", False), web_thickness=extra.get("web_thickness"),
-                        rim_diameter=extra.get("rim_diameter"))
+        wh = wheel_body(d, bore=f.wheel_bore, hub_diameter=f.hub_diameter, hub_length=f.hub_length,
+                        keyway=f.wheel_keyway, web_thickness=f.web_thickness, rim_diameter=f.rim_diameter)
     roll = None
     if check_bool("check", check):
         from .rolling import rolling_check
@@ -243,33 +223,41 @@ EXTRA_KEYS = ("wheel_keyway", "web_thickness", "rim_diameter", "shaft_diameter",
 FEATURE_KEYS = ("part", "worm_bore", "wheel_bore", "hub_diameter", "hub_length", "check") + EXTRA_KEYS
 
 
-def validate(part="pair", worm_bore=None, wheel_bore=None, hub_diameter=None, hub_length=None, check=False,
-             wheel_keyway=False, web_thickness=None, rim_diameter=None, shaft_diameter=None, shaft_length=None,
-             **params) -> WormDesign:
+def validate(part="pair", check=False, **params) -> WormDesign:
     """Check every keyword of :func:`worm` without building anything (templates check a
     scene this way before any work): the design (:func:`gear3d.wormgear.design.design`),
-    the part, the bores and hub. Returns the design; one GearError line for a bad value."""
+    the part, and the features (:class:`WormFeatures`: the bores, hub, keyway, web, rim
+    and shaft). Returns the design; one GearError line for a bad value."""
     from .wheel_body import check_features
     from .worm_body import check_bore
     part = check_choice("part", part, PARTS)
     check_bool("check", check)
+    params = dict(params)
+    f = WormFeatures.take(params)
     d = design(**params)
-    if worm_bore is not None and part == "wheel":
-        raise GearError("worm_bore", worm_bore, "None unless the worm is built")
-    check_bore(d, worm_bore)
-    wheel_only = {"wheel_bore": wheel_bore, "hub_diameter": hub_diameter, "hub_length": hub_length,
-                  "wheel_keyway": wheel_keyway or None, "web_thickness": web_thickness, "rim_diameter": rim_diameter}
-    worm_only = {"shaft_diameter": shaft_diameter, "shaft_length": shaft_length}
+    if f.worm_bore is not None and part == "wheel":
+        raise GearError("worm_bore", f.worm_bore, "None unless the worm is built")
+    check_bore(d, f.worm_bore)
+    wheel_only = {k: getattr(f, k) for k in WHEEL_KEYS} | {"wheel_keyway": f.wheel_keyway or None}
+    worm_only = {"shaft_diameter": f.shaft_diameter, "shaft_length": f.shaft_length}
     for only, other in ((wheel_only, "worm"), (worm_only, "wheel")):
         given = [k for k, v in only.items() if v is not None]
         if part == other and given:
             raise GearError(given[0], only[given[0]], f"None unless the {'wheel' if other == 'worm' else 'worm'} "
                             "is built")
-    check_features(d, d.wheel_root_radius, wheel_bore, hub_diameter, hub_length, d.tolerance, keyway=wheel_keyway,
-                   web_thickness=web_thickness, rim_diameter=rim_diameter)
+    check_features(d, d.wheel_root_radius, f.wheel_bore, f.hub_diameter, f.hub_length, d.tolerance,
+                   keyway=f.wheel_keyway, web_thickness=f.web_thickness, rim_diameter=f.rim_diameter)
     from .rims import check_worm
-    check_worm(d, worm_bore, shaft_diameter, shaft_length)
+    check_worm(d, f.worm_bore, f.shaft_diameter, f.shaft_length)
     return d
+
+
+# the signature help() shows: the part and check, every feature and every design keyword by name
+validate.__signature__ = inspect.Signature(
+    [inspect.Parameter("part", inspect.Parameter.KEYWORD_ONLY, default="pair"),
+     inspect.Parameter("check", inspect.Parameter.KEYWORD_ONLY, default=False)]
+    + [inspect.Parameter(f.name, inspect.Parameter.KEYWORD_ONLY, default=f.default) for f in fields(WormFeatures)]
+    + list(inspect.signature(design).parameters.values()), return_annotation="WormDesign")
 
 
 def _check_budget(d, part):

@@ -20,8 +20,9 @@ Example::
 """
 from __future__ import annotations
 
+import inspect
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, fields, replace
 
 from ..errors import GearError, ToleranceError, check_bool, check_choice, check_number
 
@@ -182,12 +183,67 @@ class WormDesign:
         return math.sqrt(rt * rt - d * d) if 0 <= d < rt else None
 
 
-def design(module=2.0, starts=1, wheel_teeth=30, diameter_quotient=None, worm_pitch_diameter=None,
-           axial_pressure_angle_deg=None, normal_pressure_angle_deg=None, worm_type="ZA",
-           addendum_coeff=1.0, dedendum_coeff=1.2, hand="right", shift_coeff=0.0, worm_length=None,
-           face_width=None, throat=True, tolerance=DEFAULT_TOLERANCE, friction=DEFAULT_FRICTION,
-           disc_radius=None, backlash=0.0) -> WormDesign:
-    """Validate a worm gear set (mm, degrees) and derive its sizes.
+@dataclass(frozen=True)
+class WormSizes:
+    """The set's size (mm): axial module, starts z1, wheel teeth z2, and one of the
+    diameter quotient q (default 10) or the worm's pitch diameter d1."""
+    module: float = 2.0
+    starts: int = 1
+    wheel_teeth: int = 30
+    diameter_quotient: float | None = None
+    worm_pitch_diameter: float | None = None
+
+
+@dataclass(frozen=True)
+class WormForm:
+    """The thread's form: worm type, one of the axial or normal pressure angles (degrees,
+    default normal 20), addendum and dedendum coefficients, hand, the wheel's profile shift,
+    the ZK disc's outside radius (mm) and the normal backlash (mm)."""
+    worm_type: str = "ZA"
+    axial_pressure_angle_deg: float | None = None
+    normal_pressure_angle_deg: float | None = None
+    addendum_coeff: float = 1.0
+    dedendum_coeff: float = 1.2
+    hand: str = "right"
+    shift_coeff: float = 0.0
+    disc_radius: float | None = None
+    backlash: float = 0.0
+
+
+@dataclass(frozen=True)
+class WormBlank:
+    """The lengths and the wheel's blank (mm), and how the set is made and judged: worm
+    length, face width, throated blank, tolerance (mm), friction coefficient."""
+    worm_length: float | None = None
+    face_width: float | None = None
+    throat: bool = True
+    tolerance: float = DEFAULT_TOLERANCE
+    friction: float = DEFAULT_FRICTION
+
+
+#: the groups of :func:`design`'s keywords, in the order its signature shows them
+GROUPS = (WormSizes, WormForm, WormBlank)
+#: every keyword of :func:`design`, in the order of its signature (and of the templates' keys)
+DESIGN_KEYS = ("module", "starts", "wheel_teeth", "diameter_quotient", "worm_pitch_diameter",
+               "axial_pressure_angle_deg", "normal_pressure_angle_deg", "worm_type", "addendum_coeff",
+               "dedendum_coeff", "hand", "shift_coeff", "worm_length", "face_width", "throat", "tolerance",
+               "friction", "disc_radius", "backlash")
+_DEFAULTS = {f.name: f.default for g in GROUPS for f in fields(g)}
+
+
+def split(keywords: dict) -> tuple:
+    """(sizes, form, blank) from the keywords of :func:`design`; one GearError line for a
+    keyword that is none of them."""
+    for k in keywords:
+        if k not in DESIGN_KEYS:
+            raise GearError(k, keywords[k], "no such worm keyword; one of " + ", ".join(DESIGN_KEYS))
+    return tuple(g(**{f.name: keywords[f.name] for f in fields(g) if f.name in keywords}) for g in GROUPS)
+
+
+def design(**keywords) -> WormDesign:
+    """Validate a worm gear set (mm, degrees) and derive its sizes: the keywords of
+    :class:`WormSizes`, :class:`WormForm` and :class:`WormBlank` (:func:`design_of` takes
+    the three values).
 
     One of ``diameter_quotient`` (q, default 10) or ``worm_pitch_diameter`` (d1, mm); one of
     ``axial_pressure_angle_deg`` or ``normal_pressure_angle_deg`` (default normal 20°),
@@ -198,36 +254,57 @@ def design(module=2.0, starts=1, wheel_teeth=30, diameter_quotient=None, worm_pi
     made by thinning the worm's thread (the wheel stays the envelope of the nominal worm).
     Every refusal is one :class:`GearError` line naming the parameter and its range.
     """
-    m = check_number("module", module, 0.05, 100, unit="mm")
-    z1 = int(check_number("starts", starts, 1, 8, integer=True))
-    z2 = int(check_number("wheel_teeth", wheel_teeth, 8, 1000, integer=True))
-    wt = check_choice("worm_type", worm_type, WORM_TYPES)
-    d1 = _pitch_diameter(m, diameter_quotient, worm_pitch_diameter)
-    ha = check_number("addendum_coeff", addendum_coeff, 0.5, 1.5)
-    hf = check_number("dedendum_coeff", dedendum_coeff, ha, 2.0, unit=f"(at least addendum_coeff {ha:g})")
-    R = _disc(wt, disc_radius, m, ha, hf)
-    jn = check_number("backlash", backlash, 0.0, 0.25 * m, unit=f"mm (at most a quarter module, {0.25 * m:g})")
+    return design_of(*split(keywords))
+
+
+# the signature help() and the docs show: every keyword by name, with its default
+design.__signature__ = inspect.Signature(
+    [inspect.Parameter(k, inspect.Parameter.KEYWORD_ONLY, default=_DEFAULTS[k]) for k in DESIGN_KEYS],
+    return_annotation="WormDesign")
+
+
+def _checked_sizes(s: WormSizes) -> tuple:
+    """(m, z1, z2, d1) checked (mm)."""
+    m = check_number("module", s.module, 0.05, 100, unit="mm")
+    z1 = int(check_number("starts", s.starts, 1, 8, integer=True))
+    z2 = int(check_number("wheel_teeth", s.wheel_teeth, 8, 1000, integer=True))
+    return m, z1, z2, _pitch_diameter(m, s.diameter_quotient, s.worm_pitch_diameter)
+
+
+def _checked_form(f: WormForm, m: float, d1: float, tan_gamma: float) -> tuple:
+    """(αx, αn, type, ha, hf, hand, x, disc radius, backlash) checked (rad, mm)."""
+    wt = check_choice("worm_type", f.worm_type, WORM_TYPES)
+    ha = check_number("addendum_coeff", f.addendum_coeff, 0.5, 1.5)
+    hf = check_number("dedendum_coeff", f.dedendum_coeff, ha, 2.0, unit=f"(at least addendum_coeff {ha:g})")
+    R = _disc(wt, f.disc_radius, m, ha, hf)
+    jn = check_number("backlash", f.backlash, 0.0, 0.25 * m, unit=f"mm (at most a quarter module, {0.25 * m:g})")
     if d1 / 2 - hf * m <= 0.5 * m:
         raise GearError("dedendum_coeff", hf, f"a number below {(d1 / 2 - 0.5 * m) / m:.4g}",
                         "the worm's root would come within half a module of its axis")
-    hand = check_choice("hand", hand, ("right", "left"))
-    x = check_number("shift_coeff", shift_coeff, -1.0, 1.0)
-    tol = check_number("tolerance", tolerance, 1e-4, m / 10, unit="mm (at most module/10)")
-    mu = check_number("friction", friction, 0.0, 1.0)
-    tg = z1 * m / d1
-    ax, an = _pressure_angles(axial_pressure_angle_deg, normal_pressure_angle_deg, tg)
-    throat = check_bool("throat", throat)
-    L = _length("worm_length", worm_length, max((11 + 0.06 * z2) * m, 4 * z1 * math.pi * m), 2 * math.pi * m,
-                200 * z1 * math.pi * m)
+    hand = check_choice("hand", f.hand, ("right", "left"))
+    x = check_number("shift_coeff", f.shift_coeff, -1.0, 1.0)
+    ax, an = _pressure_angles(f.axial_pressure_angle_deg, f.normal_pressure_angle_deg, tan_gamma)
+    return ax, an, wt, ha, hf, hand, x, R, jn
+
+
+def design_of(sizes: WormSizes, form: WormForm, blank: WormBlank) -> WormDesign:
+    """:func:`design` on the three grouped values."""
+    m, z1, z2, d1 = _checked_sizes(sizes)
+    ax, an, wt, ha, hf, hand, x, R, jn = _checked_form(form, m, d1, z1 * m / d1)
+    tol = check_number("tolerance", blank.tolerance, 1e-4, m / 10, unit="mm (at most module/10)")
+    mu = check_number("friction", blank.friction, 0.0, 1.0)
+    throat = check_bool("throat", blank.throat)
+    L = _length("worm_length", blank.worm_length, max((11 + 0.06 * z2) * m, 4 * z1 * math.pi * m),
+                2 * math.pi * m, 200 * z1 * math.pi * m)
     d = WormDesign(m, z1, z2, d1, ax, an, wt, ha, hf, hand, x, L, 1.0, throat, tol, mu, R, jn)
     from .thread import check_thread, max_face_width
     check_thread(d)
     bmax = max_face_width(d)
-    B = _length("face_width", face_width, min(1.5 * d.worm_tip_radius, bmax), 0.5 * m, bmax)
+    B = _length("face_width", blank.face_width, min(1.5 * d.worm_tip_radius, bmax), 0.5 * m, bmax)
     if d.throat and d.wheel_outside_radius >= d.center_distance:
         raise GearError("diameter_quotient", d.diameter_quotient, "a larger value",
                         "the wheel's rim would reach the worm axis")
-    return WormDesign(m, z1, z2, d1, ax, an, wt, ha, hf, hand, x, L, B, throat, tol, mu, R, jn)
+    return replace(d, face_width=B)
 
 
 def _disc(wt, R, m, ha, hf) -> float:
