@@ -245,6 +245,29 @@ def test_refuses_over_tolerance_and_leaves_no_file(tmp_path, monkeypatch):
     assert list(tmp_path.iterdir()) == []
 
 
+def test_section_crossing_finds_a_figure_eight():
+    """The end faces' validity check: a loop of two cubic curves that cross (an S against an
+    arch) is found, the same loop with the S turned into a second arch is not; the reference
+    gear's section does not cross itself."""
+    import types
+    from gear3d.export.step_brep_fit import FIT_SHARE, fit_runs, merge_runs
+    from gear3d.export.step_brep_runs import exact_set, loop_runs
+    from gear3d.export.step_direct_text import section_crossing
+    kn = np.array([0, 0, 0, 0, 1, 1, 1, 1.0])
+    arch = types.SimpleNamespace(knots=kn, ctrl=np.array([[2, 0], [1.3, 0.1], [0.7, 0.1], [0, 0.0]]))
+    s_curve = types.SimpleNamespace(knots=kn, ctrl=np.array([[0, 0], [0.5, 1], [1.5, -1], [2, 0.0]]))
+    below = types.SimpleNamespace(knots=kn, ctrl=np.array([[0, 0], [0.7, -1], [1.3, -1], [2, 0.0]]))
+    x, y = section_crossing([s_curve, arch], 2, 0.01)
+    assert 0 < x < 2 and 0 < y < 0.1
+    assert section_crossing([below, arch], 2, 0.01) is None
+    p = gear3d.profile("involute", teeth=20, module=1, tolerance=TOL)
+    ex = exact_set(p)
+    runs = loop_runs(ex, p.tooth_loop)
+    flanks, which = fit_runs(ex, runs, FIT_SHARE * TOL)
+    groups = merge_runs(runs, which, flanks, 2 * math.pi / 20, ex.pieces)
+    assert section_crossing(groups, len(groups) // 20, TOL / 2) is None
+
+
 def test_cli_brep_never_imports_opencascade(tmp_path):
     """The CLI command of the benchmark, in a fresh interpreter: its import list (-X importtime,
     which the forked worker inherits) has no OCP, and the file reads back as one valid solid."""

@@ -33,7 +33,9 @@ What it writes (the data the B-rep pipeline already computes with numpy):
   tooth copy, and measured against the exact profile piece by Newton (``max_error``, mm);
   the volume integrated over the surfaces (divergence theorem, Gauss points exact for the
   polynomial spans) must match the mesh body's within tolerance x area; the shell must close
-  (every edge used once in each sense). No file is written when a check fails.
+  (every edge used once in each sense) and the section loop must not cross itself (chords
+  of half the tolerance; OpenCascade's BRepCheck is not on this path). No file is written
+  when a check fails.
 
 Example::
 
@@ -59,7 +61,7 @@ from ..errors import GearError, ToleranceError
 from ..solids.convert import as_bodies, body_name
 from .step_brep_fit import FIT_SHARE, fit_runs, law_fit, law_pieces, merge_runs
 from .step_brep_runs import exact_set, loop_runs, nearest_on_piece
-from .step_direct_text import Shell, write_shell
+from .step_direct_text import Shell, section_crossing, write_shell
 from .step_part21 import framed_text
 
 #: environment variable: ``occ`` forces the OpenCascade writer for every body
@@ -365,6 +367,11 @@ def direct_shell(b):
     lp = law_pieces(law, float(rep.get("gap") or 0.0))
     groups = merge_runs(runs, which, flanks, ang, ex.pieces)
     _snap(groups)
+    n = len(groups)
+    hit = section_crossing(groups, n // prof.teeth if n % prof.teeth == 0 else n, tol / 2)
+    if hit is not None:         # the end faces would not be valid faces (OCC's BRepCheck agrees)
+        raise GearError("step", "brep", "'faceted' for this body",
+                        f"the B-rep's section crosses itself near ({hit[0]:.4g}, {hit[1]:.4g}) mm")
     pieces = [_Piece(law, za, zb, rho, tol) for za, zb, in_gap in lp if not in_gap]
     t1 = time.perf_counter()
     shell, flank_faces = _shell(b, groups, pieces, lp, tol)

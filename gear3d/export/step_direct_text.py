@@ -29,6 +29,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..bspline import evaluate
 from ..errors import GearError
 from .step_part21 import real, string
 
@@ -89,6 +90,88 @@ class Shell:
     def _ends(self, e: int, fwd: bool):
         v0, v1, _ = self.edges[e]
         return (v0, v1) if fwd else (v1, v0)
+
+
+def _polyline(groups, idx, h):
+    """Points (m+1, 2) along the groups ``idx`` in order, chords at most about ``h`` mm (at
+    least 8 a knot span), and the index of each group's first point."""
+    pts, starts = [], []
+    for g in idx:
+        kn = groups[g].knots
+        u = np.unique(kn)
+        f = np.arange(8)[None] / 8
+        coarse = evaluate(kn, groups[g].ctrl, 3, np.append((u[:-1, None] + np.diff(u)[:, None] * f).ravel(), u[-1]))
+        seg = np.hypot(*np.diff(coarse, axis=0).T).reshape(len(u) - 1, 8).sum(axis=1)
+        k = np.maximum(8, np.ceil(seg / h)).astype(int)
+        uu = np.concatenate([u[i] + (u[i + 1] - u[i]) * np.arange(k[i]) / k[i] for i in range(len(k))])
+        starts.append(sum(len(q) for q in pts))
+        pts.append(evaluate(kn, groups[g].ctrl, 3, uu))
+    last = groups[idx[-1]]
+    pts.append(evaluate(last.knots, last.ctrl, 3, np.array([last.knots[-1]])))
+    return np.concatenate(pts), np.array(starts)
+
+
+def _cross(a, b, c):
+    return (b[..., 0] - a[..., 0]) * (c[..., 1] - a[..., 1]) - (b[..., 1] - a[..., 1]) * (c[..., 0] - a[..., 0])
+
+
+def _near_pairs(mid, L):
+    """Index pairs (i, j) of points ``mid`` (m, 2) in the same or neighbouring cells of a
+    grid of cell size L (every pair closer than L is among them)."""
+    c = np.floor((mid - mid.min(axis=0)) / max(L, 1e-300)).astype(np.int64)
+    big = int(c[:, 1].max()) + 3
+    key = c[:, 0] * big + c[:, 1]
+    order = np.argsort(key, kind="stable")
+    ks = key[order]
+    ii, jj = [], []
+    for dx in (-1, 0, 1):
+        for dy in (-1, 0, 1):
+            t = key + dx * big + dy
+            lo = np.searchsorted(ks, t, side="left")
+            cnt = np.searchsorted(ks, t, side="right") - lo
+            ii.append(np.repeat(np.arange(len(mid)), cnt))
+            jj.append(order[np.repeat(lo, cnt) + np.arange(int(cnt.sum())) - np.repeat(np.cumsum(cnt) - cnt, cnt)])
+    return np.concatenate(ii), np.concatenate(jj)
+
+
+def section_crossing(groups, per_tooth: int, h: float):
+    """The first point (x, y) mm where the section loop of ``groups`` (cubic B-spline groups
+    in loop order, :class:`gear3d.export.step_brep_fit.Group`) crosses itself, else None.
+
+    The loop repeats every ``per_tooth`` groups (turned copies), so tooth 0's groups and one
+    neighbour on each side are checked: each group sampled in chords of at most about ``h``
+    mm (the writer passes half its tolerance), every pair of chords tested for a proper crossing (candidates: chords whose midpoints lie
+    within the longest chord). Chords within two of the same group joint are not compared
+    (two curves leaving one corner nearly tangent). A crossing means a plane face bounded by
+    the loop is not a valid face (OpenCascade's BRepCheck refuses such a solid)."""
+    n = len(groups)
+    idx = list(range(n)) if n <= per_tooth + 2 else [n - 1] + list(range(per_tooth + 1))
+    P, starts = _polyline(groups, idx, h)
+    if n <= per_tooth + 2:
+        P = P[:-1]
+        A, B = P, np.roll(P, -1, axis=0)
+    else:
+        A, B = P[:-1], P[1:]
+    m = len(A)
+    mid = 0.5 * (A + B)
+    i, j = _near_pairs(mid, float(np.hypot(*(B - A).T).max()))
+    gap = np.abs(i - j)
+    keep = (i < j) & (gap >= 2)
+    if n <= per_tooth + 2:
+        keep &= gap <= m - 2
+    i, j = i[keep], j[keep]
+    # chords near the same group joint: both within two chords of it
+    jn = starts[np.clip(np.searchsorted(starts, i + 0.5) - 1, 0, len(starts) - 1)]
+    jn2 = starts[np.clip(np.searchsorted(starts, i + 0.5), 0, len(starts) - 1)]
+    near = np.zeros(len(i), bool)
+    for b in (jn, jn2):
+        near |= (np.minimum(np.abs(i - b), np.abs(i + 1 - b)) <= 2) & (np.minimum(np.abs(j - b), np.abs(j + 1 - b)) <= 2)
+    i, j = i[~near], j[~near]
+    hit = (_cross(A[i], B[i], A[j]) * _cross(A[i], B[i], B[j]) < 0) & (_cross(A[j], B[j], A[i]) * _cross(A[j], B[j], B[i]) < 0)
+    if not hit.any():
+        return None
+    k = int(np.argmax(hit))
+    return tuple(float(x) for x in 0.5 * (A[i[k]] + B[i[k]]))
 
 
 def knots_mults(t):
