@@ -175,21 +175,59 @@ WHEEL_KEYS = ("wheel_bore", "hub_diameter", "hub_length", "wheel_keyway", "web_t
 
 def worm(part="pair", tolerance=None, worm_bore=None, wheel_bore=None, hub_diameter=None, hub_length=None,
          check=False, **params) -> WormSet:
-    """Worm and worm wheel (mm, degrees): ``part`` = worm | wheel | pair; the design keywords
-    of :func:`gear3d.wormgear.design.design` (module, starts, wheel_teeth, diameter_quotient or
-    worm_pitch_diameter, axial_ or normal_pressure_angle_deg, worm_type, addendum_coeff,
-    dedendum_coeff, hand, shift_coeff, worm_length, face_width, throat, friction, disc_radius
-    for ZK, backlash); ``tolerance`` (mm, default 0.01); ``worm_bore`` (mm), ``wheel_bore``,
-    ``hub_diameter`` and ``hub_length`` (the wheel's hub, centred on its mid-plane);
-    ``wheel_keyway``, ``web_thickness``, ``rim_diameter``, ``shaft_diameter`` and
-    ``shaft_length`` (:mod:`gear3d.wormgear.rims`); ``check`` rolls the pair
-    through one wheel pitch on the exact surfaces (``report.rolling``: interference,
-    backlash, transmission error, contact lines and pattern; see
-    :mod:`gear3d.wormgear.rolling`).
+    """Worm and worm wheel (mm, degrees): the wheel is the exact envelope of the worm, section
+    by section; both bodies are measured (``report.max_error``) against the closed forms.
 
-    The wheel is the exact envelope of the worm, section by section; both bodies are
-    measured (``report.max_error``) against the closed forms. Bad input raises one
-    :class:`GearError` line."""
+    Parameters
+    ----------
+    part : {"pair", "worm", "wheel"}, optional
+        What to build (default "pair": both, placed in mesh by :meth:`WormSet.parts`).
+    tolerance : float, optional
+        mm, in [1e-4, module/10]: the largest distance of each body from its exact surface
+        (default 0.01).
+    worm_bore, wheel_bore, hub_diameter, hub_length : float, optional
+        Bore diameters and the wheel's hub (centred on its mid-plane), mm (default None: none).
+    check : bool, optional
+        Roll the pair through one wheel pitch on the exact surfaces (default False):
+        ``report.rolling``, see :mod:`gear3d.wormgear.rolling`.
+    **params
+        The design keywords of :func:`gear3d.wormgear.design.design`: ``module`` (mm,
+        default 2), ``starts`` (default 1), ``wheel_teeth`` (default 30),
+        ``diameter_quotient`` q (default 10) or ``worm_pitch_diameter`` (mm),
+        ``axial_pressure_angle_deg`` or ``normal_pressure_angle_deg`` (default normal 20),
+        ``worm_type`` (ZA, ZN, ZI or ZK; default ZA), ``addendum_coeff`` (1.0),
+        ``dedendum_coeff`` (1.2), ``hand`` (right), ``shift_coeff`` (0), ``worm_length``
+        and ``face_width`` (mm), ``throat`` (True), ``friction`` (0.05), ``disc_radius``
+        (mm, ZK) and ``backlash`` (mm, default 0); and the features of
+        :mod:`gear3d.wormgear.rims`: ``wheel_keyway``, ``web_thickness``,
+        ``rim_diameter``, ``shaft_diameter``, ``shaft_length`` (mm).
+
+    Returns
+    -------
+    WormSet
+        ``worm`` and ``wheel`` bodies in their own frames (None when not built) and a
+        frozen :class:`WormReport` (sizes in mm, angles in degrees, ``max_error`` mm;
+        ``to_dict()`` is strict JSON).
+
+    Raises
+    ------
+    GearError
+        A parameter out of its range, in one line naming it, its value and the allowed range.
+
+    Examples
+    --------
+    Module 2, one start, q = 10, 30 teeth: d1 = q m, d2 = z2 m, a = (d1 + d2)/2, lead π m z1.
+
+    >>> import gear3d
+    >>> s = gear3d.worm(part="worm", module=2.0, starts=1, wheel_teeth=30, tolerance=0.2)
+    >>> r = s.report
+    >>> r.ratio, r.worm_pitch_diameter, r.wheel_pitch_diameter, r.center_distance
+    (30.0, 20.0, 60.0, 40.0)
+    >>> round(r.lead, 6), round(r.lead_angle_deg, 4), r.worm_tip_diameter   # d1 + 2 m
+    (6.283185, 5.7106, 24.0)
+    >>> s.wheel is None, r.max_error <= r.tolerance                      # part="worm" only
+    (True, True)
+    """
     part = check_choice("part", part, PARTS)
     if tolerance is not None:
         params["tolerance"] = tolerance
