@@ -130,67 +130,66 @@ def pair_placement(p1, p2, internal, center_distance=None) -> dict:
     return {"a": a, "a0": a0, "c2": c2, "phase2": pl["turn2"] - t, "ratio": pl["ratio"], "r1w": pl["r1w"]}
 
 
+#: :func:`check_pair`'s numpydoc block (assigned after it, so that its code fits on a screen)
+_CHECK_PAIR_DOC = """Roll ``p1`` against ``p2`` and report interference, clearance and contact (mm, deg).
+
+The polygons are rolled through 3.2 pitches of ``p1`` at least; contact is judged on
+the exact flanks (:mod:`gear3d.analysis.contact`).
+
+Parameters
+----------
+p1, p2 : Profile
+    The two wheels (:func:`gear3d.profile`, mm), each in its own frame (tooth 0 on +x).
+    A ring (``internal=True``) may be either one; the pinion then runs inside it.
+internal : bool, optional
+    An internal pair (default None: True when one of the profiles is a ring).
+tolerance : float, optional
+    mm, > 1e-7: sets the rolling step, the interference threshold (a penetration
+    over 2 x ``tolerance``) and the band within which two conjugate points count as
+    one contact (default: the larger of the two profiles' tolerances).
+center_distance : float, optional
+    mm (default: the sum of the pitch radii; their difference for an internal pair).
+cycles, backlash_phases : float, int, optional
+    Tooth cycles of ``p1`` rolled for interference (default 1; at least 3.2 pitches are
+    rolled) and phases at which the backlash is measured (default 8).
+contact : bool, optional
+    False: interference and clearance only, contact facts None (default True).
+
+Returns
+-------
+PairReport
+    :class:`gear3d.reports.PairReport` (a mapping, ``to_dict()`` is strict JSON):
+    ``interference``, ``max_penetration`` (mm), ``backlash`` (mm on ``p2``'s pitch
+    circle), ``contact_ratio`` with ``contact_ratio_uncertainty`` (pitches),
+    ``continuous`` (False: some part of the cycle has no tooth in conjugate contact),
+    ``edge_contact``, ``ratio`` (signed: -z2/z1 external, +z2/z1 internal), ...
+
+Raises
+------
+GearError
+    A tolerance out of range, or wheels that cannot mesh (different modules, two rings,
+    a ring with no more teeth than its pinion), in one line naming the parameter.
+
+Examples
+--------
+A standard 20-tooth pair at 20°: the contact ratio is the textbook
+(2 sqrt(ra² - rb²) - a sin α) / (π m cos α).
+
+>>> import math, gear3d
+>>> p = gear3d.profile("involute", teeth=20, module=1.0, tolerance=0.01)
+>>> r = gear3d.check_pair(p, p)
+>>> r["center_distance"], r["ratio"], r["interference"], r["continuous"]
+(20.0, -1.0, False, True)
+>>> alpha = math.radians(20.0)
+>>> rb = 10.0 * math.cos(alpha)                                 # base radius, mm
+>>> eps = (2 * math.sqrt(11.0**2 - rb**2) - 20.0 * math.sin(alpha)) / (math.pi * math.cos(alpha))
+>>> round(eps, 4), abs(r["contact_ratio"] - eps) < 1e-4
+(1.5568, True)
+"""
+
+
 def check_pair(p1, p2, internal=None, tolerance=None, center_distance=None, cycles: float = 1.0,
                backlash_phases: int = 8, contact: bool = True):
-    """Roll ``p1`` against ``p2`` and report interference, clearance and contact (mm, deg).
-
-    The second wheel is placed at the standard centre distance and turned through at
-    least one tooth cycle (3.2 pitches of ``p1``) on both polygons; contact is judged on
-    the exact flanks (:mod:`gear3d.analysis.contact`).
-
-    Parameters
-    ----------
-    p1, p2 : Profile
-        The two wheels (:func:`gear3d.profile`, mm), each in its own frame (tooth 0 on +x).
-        A ring (``internal=True``) may be either one; the pinion then runs inside it.
-    internal : bool, optional
-        An internal pair (default None: True when one of the profiles is a ring).
-    tolerance : float, optional
-        mm, > 1e-7: sets the rolling step, the interference threshold (a penetration
-        over 2 x ``tolerance``) and the band within which two conjugate points count as
-        one contact (default: the larger of the two profiles' tolerances).
-    center_distance : float, optional
-        mm (default: the standard one, the sum of the pitch radii; their difference for an
-        internal pair).
-    cycles : float, optional
-        Tooth cycles of ``p1`` to roll through for interference (default 1; at least 3.2
-        pitches are rolled whatever it is).
-    backlash_phases : int, optional
-        Phases at which the backlash is measured (default 8).
-    contact : bool, optional
-        False: interference and clearance only, the contact facts are None (default True).
-
-    Returns
-    -------
-    PairReport
-        :class:`gear3d.reports.PairReport` (a mapping, ``to_dict()`` is strict JSON):
-        ``interference``, ``max_penetration`` (mm), ``backlash`` (mm on ``p2``'s pitch
-        circle), ``contact_ratio`` with ``contact_ratio_uncertainty`` (pitches),
-        ``continuous`` (False: some part of the cycle has no tooth in conjugate contact),
-        ``edge_contact``, ``ratio`` (signed: -z2/z1 external, +z2/z1 internal), ...
-
-    Raises
-    ------
-    GearError
-        A tolerance out of range, or wheels that cannot mesh (different modules, two rings,
-        a ring with no more teeth than its pinion), in one line naming the parameter.
-
-    Examples
-    --------
-    A standard 20-tooth pair at 20°: the contact ratio is the textbook
-    (2 sqrt(ra² - rb²) - a sin α) / (π m cos α).
-
-    >>> import math, gear3d
-    >>> p = gear3d.profile("involute", teeth=20, module=1.0, tolerance=0.01)
-    >>> r = gear3d.check_pair(p, p)
-    >>> r["center_distance"], r["ratio"], r["interference"], r["continuous"]
-    (20.0, -1.0, False, True)
-    >>> alpha = math.radians(20.0)
-    >>> rb = 10.0 * math.cos(alpha)                                 # base radius, mm
-    >>> eps = (2 * math.sqrt(11.0**2 - rb**2) - 20.0 * math.sin(alpha)) / (math.pi * math.cos(alpha))
-    >>> round(eps, 4), abs(r["contact_ratio"] - eps) < 1e-4
-    (1.5568, True)
-    """
     internal, a, c2, phase2, ratio = setup(p1, p2, internal, center_distance)
     tol = max(p1.tolerance, p2.tolerance) if tolerance is None else check_number(
         "tolerance", tolerance, 1e-7, None, lo_open=True, unit="mm")
@@ -248,6 +247,9 @@ def check_pair(p1, p2, internal=None, tolerance=None, center_distance=None, cycl
         **{k: conj[k] for k in _CONJ_KEYS},
     })
     return rep
+
+
+check_pair.__doc__ = _CHECK_PAIR_DOC
 
 
 #: the report fields copied from :func:`_conjugate`'s result, in the report's order
