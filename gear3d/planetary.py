@@ -38,11 +38,12 @@ import inspect
 import math
 
 import numpy as np
-from dataclasses import dataclass, field, fields
+from dataclasses import dataclass, fields
 
 from .errors import GearError, check_bool, check_choice, check_number
 from .params import BODY, MESH_TOLERANCE, TOLERANCE, Param, check_family
-from .reports import Report
+from .reports import (BuiltCarrierReport, CarrierReport, PlanetaryReport, SetBodySummary, SetPenetration,
+                      SetWheelSummary, WheelPlacement)
 from . import profile
 from .budget import check_body
 from .conventions import to_transverse
@@ -75,48 +76,6 @@ PIN_COEFF = 0.4
 PIN_CLEARANCE = 0.1
 AXIAL_GAP = 0.25
 PLATE_MIN = 1.0
-
-
-@dataclass(eq=False, repr=False)
-class PlanetaryReport(Report):
-    """What :func:`planetary_set` built and checked (mm, degrees)."""
-    family: str
-    teeth: dict
-    planets: int
-    module: float
-    width: float
-    tolerance: float
-    spacing: str
-    #: (z_sun + z_ring)/planets and whether it is an integer (equal spacing needs it)
-    assembly_quotient: float
-    assembly_condition: bool
-    #: carrier radius a = m (z_sun + z_planet)/2
-    center_distance: float
-    planet_angles_deg: list
-    #: every wheel's centre (mm) and turn (deg, tooth 0 from +x)
-    placements: list
-    #: sun/carrier (ring held), sun/ring (carrier held), ring/carrier (sun held)
-    ratios: dict
-    ratio_definitions: dict
-    #: planet-planet: tip circles 2a sin(dθ/2) - 2 r_tip, and measured between the placed profiles
-    planet_tip_radius: float
-    planet_clearance: float | None
-    planet_gap_measured: float | None
-    #: the ring's turn from each planet against planet 1's (ring pitches; 0 = all mesh)
-    ring_phase_error: float
-    #: deepest overlap of the placed profiles (sun-planet, planet-ring), as assembled
-    placed_penetration: dict
-    #: rolling checks, one per distinct mesh (None when not run)
-    meshes: dict | None
-    meshes_note: str
-    interference: bool | None
-    max_penetration: float | None
-    profiles: dict
-    bodies: dict | None
-    carrier: dict | None
-    #: the largest measured error of the profiles and bodies (mm)
-    max_error: float
-    extra: dict = field(default_factory=dict)
 
 
 class PlanetarySet:
@@ -282,7 +241,7 @@ def planetary_set(family: str, sun: int, planet: int, ring: int, planets: int = 
     if carrier:
         dims = carrier_dimensions(a, m, width, float(p_pl.report["root_radius"]),
                                   float(p_sun.report["root_radius"]), float(p_ring.report["tip_radius"]))
-        carrier_rep = dict(dims)
+        carrier_rep = CarrierReport(**dims)
     if how.bodies:
         out_bodies, body_reps, carrier_rep = _bodies(p_sun, p_pl, p_ring, placements, width, tol, dims)
         errs += [float(r["max_error"]) for r in body_reps.values() if r.get("max_error") is not None]
@@ -292,15 +251,14 @@ def planetary_set(family: str, sun: int, planet: int, ring: int, planets: int = 
         tolerance=tol, spacing=how.spacing, assembly_quotient=(zs + zr) / n,
         assembly_condition=(zs + zr) % n == 0,
         center_distance=a, planet_angles_deg=[math.degrees(t) for t in angles],
-        placements=[{"name": q["name"], "center": [float(q["center"][0]), float(q["center"][1])],
-                     "turn_deg": math.degrees(q["turn"])} for q in placements],
+        placements=[WheelPlacement(q["name"], [float(q["center"][0]), float(q["center"][1])],
+                                   math.degrees(q["turn"])) for q in placements],
         ratios=ratios(zs, zr), ratio_definitions=dict(RATIO_DEFINITIONS),
         planet_tip_radius=r_tip, planet_clearance=clearance, planet_gap_measured=gap,
-        ring_phase_error=phase_err, placed_penetration=placed_pen,
+        ring_phase_error=phase_err, placed_penetration=SetPenetration(**placed_pen),
         meshes=meshes, meshes_note=MESHES_NOTE if how.check else "rolling checks not run",
         interference=interference, max_penetration=pen_max,
-        profiles={name: {k: p.report[k] for k in ("teeth", "pitch_radius", "tip_radius", "root_radius",
-                                                   "undercut", "pointed", "max_error", "tolerance")}
+        profiles={name: SetWheelSummary.pick(p.report)
                   for name, p in wheels.items()},
         bodies=body_reps, carrier=carrier_rep, max_error=max(errs), extra=_willis(wheels))
     return PlanetarySet(wheels, placements, out_bodies, rep)
@@ -474,17 +432,16 @@ def _bodies(p_sun, p_pl, p_ring, placements, width, tol, dims):
         if q["name"].startswith("planet-"):
             out.append(b_pl.placed(_transform(q["turn"], q["center"]), name=q["name"]))
     out.append(b_ring.placed(_transform(by["ring"]["turn"], (0, 0)), name="ring"))
-    keep = ("triangles", "volume", "max_error", "tolerance", "watertight", "genus")
-    reps = {"sun": {k: b_sun.report[k] for k in keep}, "planet": {k: b_pl.report[k] for k in keep},
-            "ring": {k: b_ring.report[k] for k in keep}}
+    reps = {name: SetBodySummary.pick(b.report)
+            for name, b in (("sun", b_sun), ("planet", b_pl), ("ring", b_ring))}
     crep = None
     if dims:
         part = _carrier(dims, [q["center"] for q in placements if q["name"].startswith("planet-")], width, tol)
         out.append(part)
-        crep = dict(dims, volume=part.report["volume"], genus=part.report["genus"],
-                    triangles=part.report["triangles"], circle_tolerance=tol)
-        reps["carrier"] = {"triangles": part.report["triangles"], "volume": part.report["volume"],
-                           "max_error": None, "tolerance": tol, "watertight": True, "genus": part.report["genus"]}
+        r = part.report
+        crep = BuiltCarrierReport(**dims, volume=r["volume"], genus=r["genus"], triangles=r["triangles"],
+                                  circle_tolerance=tol)
+        reps["carrier"] = SetBodySummary(r["triangles"], r["volume"], None, tol, True, r["genus"])
     return out, reps, crep
 
 

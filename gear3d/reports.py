@@ -23,10 +23,18 @@ class Report(Mapping):
         return [f.name for f in fields(self) if f.name != "extra"]
 
     def to_dict(self) -> dict:
-        """The report as plain JSON keys (fields in order, then the extra facts)."""
-        d = {k: getattr(self, k) for k in self._names()}
+        """The report as plain JSON keys (fields in order, then the extra facts); a report
+        held in a field (a planetary set's wheels, a scene's parts) becomes its own dict."""
+        d = {k: _plain(getattr(self, k)) for k in self._names()}
         d.update(self.extra)
         return d
+
+    @classmethod
+    def pick(cls, source, missing: bool = False):
+        """This report built from the same keys of ``source`` (a mapping: a larger report);
+        ``missing``: a key ``source`` lacks is None."""
+        get = source.get if missing else source.__getitem__
+        return cls(**{f.name: get(f.name) for f in fields(cls) if f.name != "extra" and f.init})
 
     def __getitem__(self, key):
         if key != "extra" and key in self._names():
@@ -51,6 +59,13 @@ class Report(Mapping):
 
     def __repr__(self) -> str:
         return f"{type(self).__name__}({self.to_dict()!r})"
+
+
+def _plain(v):
+    """``v`` with every :class:`Report` in it (through dicts and lists) turned into its dict."""
+    if isinstance(v, (Report, dict)):
+        return v.to_dict() if isinstance(v, Report) else {k: _plain(x) for k, x in v.items()}
+    return [_plain(x) for x in v] if isinstance(v, list) else v
 
 
 @dataclass(eq=False, repr=False)
@@ -410,3 +425,174 @@ class BearingRingReport(Report):
     genus: int | None = None
     triangles: int | None = None
     extra: dict = field(default_factory=dict)
+
+
+# ----------------------------------------------------------------- planetary sets
+
+@dataclass(frozen=True, eq=False, repr=False)
+class WheelPlacement(Report):
+    """A planetary wheel as placed: ``center`` (mm), ``turn_deg`` (deg, tooth 0 from +x)."""
+    name: str
+    center: list
+    turn_deg: float
+    extra: dict = field(default_factory=dict)
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class SetPenetration(Report):
+    """Deepest overlap (mm) of the placed profiles of a planetary set, per mesh."""
+    sun_planet: float
+    planet_ring: float
+    extra: dict = field(default_factory=dict)
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class SetWheelSummary(Report):
+    """A planetary wheel's profile, as the set's report keeps it (mm)."""
+    teeth: int
+    pitch_radius: float
+    tip_radius: float
+    root_radius: float
+    undercut: bool
+    pointed: bool
+    max_error: float
+    tolerance: float
+    extra: dict = field(default_factory=dict)
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class SetBodySummary(Report):
+    """A planetary part's body (mm, mm³; ``max_error`` None for the carrier: its circles are
+    inscribed polygons within ``tolerance``)."""
+    triangles: int
+    volume: float
+    max_error: float | None
+    tolerance: float
+    watertight: bool
+    genus: int
+    extra: dict = field(default_factory=dict)
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class CarrierReport(Report):
+    """A planetary carrier's sizes (mm, :func:`gear3d.planetary.carrier_dimensions`)."""
+    pin_radius: float
+    bore_radius: float
+    plate_thickness: float
+    axial_gap: float
+    inner_radius: float
+    outer_radius: float
+    extra: dict = field(default_factory=dict)
+
+
+@dataclass(frozen=True, eq=False, repr=False, kw_only=True)
+class BuiltCarrierReport(CarrierReport):
+    """A built carrier: its sizes, what the solid measured and its circles' tolerance (mm)."""
+    volume: float
+    genus: int
+    triangles: int
+    circle_tolerance: float
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class PlanetaryReport(Report):
+    """What :func:`gear3d.planetary.planetary_set` built and checked (mm, degrees)."""
+    family: str
+    teeth: dict
+    planets: int
+    module: float
+    width: float
+    tolerance: float
+    spacing: str
+    #: (z_sun + z_ring)/planets and whether it is an integer (equal spacing needs it)
+    assembly_quotient: float
+    assembly_condition: bool
+    #: carrier radius a = m (z_sun + z_planet)/2
+    center_distance: float
+    planet_angles_deg: list
+    #: every wheel's centre (mm) and turn (deg, tooth 0 from +x)
+    placements: list
+    #: sun/carrier (ring held), sun/ring (carrier held), ring/carrier (sun held)
+    ratios: dict
+    ratio_definitions: dict
+    #: planet-planet: tip circles 2a sin(dθ/2) - 2 r_tip, and measured between the placed profiles
+    planet_tip_radius: float
+    planet_clearance: float | None
+    planet_gap_measured: float | None
+    #: the ring's turn from each planet against planet 1's (ring pitches; 0 = all mesh)
+    ring_phase_error: float
+    #: deepest overlap of the placed profiles (sun-planet, planet-ring), as assembled
+    placed_penetration: SetPenetration
+    #: rolling checks, one per distinct mesh (None when not run)
+    meshes: dict | None
+    meshes_note: str
+    interference: bool | None
+    max_penetration: float | None
+    profiles: dict
+    bodies: dict | None
+    carrier: CarrierReport | None
+    #: the largest measured error of the profiles and bodies (mm)
+    max_error: float
+    extra: dict = field(default_factory=dict)
+
+
+# ---------------------------------------------------------------------- scene builds
+
+@dataclass(frozen=True, eq=False, repr=False)
+class SceneBodySummary(Report):
+    """A scene part's body at one tolerance (mm, mm³; None: a fact the body lacks)."""
+    kind: str
+    width: float
+    helix_angle_deg: float | None
+    volume: float
+    triangles: int
+    max_error: float | None
+    max_error_bound: float | None
+    tolerance: float
+    profile_max_error: float | None
+    watertight: bool | None
+    genus: int | None
+    extra: dict = field(default_factory=dict)
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class ScenePartReport(Report):
+    """A scene part: profile summaries (dicts: a rack's keys differ) and bodies' (by tolerance,
+    mm as text), and its files (kind -> file facts: name, sha256, bytes, ...)."""
+    profiles: dict
+    bodies: dict
+    outputs: dict
+    extra: dict = field(default_factory=dict)
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class SceneGroupReport(Report):
+    """A scene's pair or assembly: its files; in ``extra`` a pair's placed ``max_error`` (mm)
+    and ``check`` (the rolling check's main facts), an assembly's ``parts`` and ``ratio``."""
+    outputs: dict
+    extra: dict = field(default_factory=dict)
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class SceneReport(Report):
+    """What :func:`gear3d.jobs.scene.build_scene` built (``<scene>.report.json``; mm).
+    ``graph`` and ``owners`` (the stages, each output's stage key: report.html) are not JSON."""
+    scene: str
+    file: str
+    tolerance: float | None
+    tolerances: dict
+    max_error: float | None
+    stages: dict
+    parts: dict
+    pairs: dict
+    assemblies: dict
+    extra: dict = field(default_factory=dict)
+    graph: object = field(default=None, repr=False)
+    owners: dict | None = None
+
+    def _names(self) -> list:
+        return [n for n in super()._names() if n not in ("graph", "owners")]
+
+    def __getitem__(self, key):
+        return getattr(self, key) if key in ("graph", "owners") else super().__getitem__(key)
+

@@ -21,8 +21,10 @@ import hashlib
 import json
 import os
 from collections.abc import Mapping
+from dataclasses import replace
 
 from ..errors import GearError
+from ..reports import SceneBodySummary, SceneGroupReport, ScenePartReport, SceneReport
 from .graph import Graph, first_upstream
 from .specs import AssemblySpec, Job, PartSpec, Scene
 from .template import MESH_KINDS, TemplateError
@@ -513,9 +515,8 @@ def build_scene(scene: Scene, out_dir, only=None, dry_run=False, log=None) -> di
                 pass
         remove_dirs(made)      # ... and no empty folder behind
         raise
-    report["graph"] = g
-    report["owners"] = owners      # output kind -> stage key of each part/pair/assembly (report.html)
-    return report
+    # the stage graph and each part/pair/assembly's output kind -> stage key (report.html)
+    return replace(report, graph=g, owners=owners)
 
 
 def _profile_summary(p) -> dict:
@@ -525,35 +526,28 @@ def _profile_summary(p) -> dict:
     return {k: r.get(k) for k in keep if k in r}
 
 
-def _body_summary(b) -> dict:
-    r = b.report
-    keep = ("kind", "width", "helix_angle_deg", "volume", "triangles", "max_error", "max_error_bound",
-            "tolerance", "profile_max_error", "watertight", "genus")
-    return {k: r.get(k) for k in keep}
-
-
-def _report(scene: Scene, g, owners, res) -> dict:
+def _report(scene: Scene, g, owners, res) -> SceneReport:
     parts = {}
     errs = []
     for name, t in owners["parts"].items():
-        d = {"profiles": {}, "bodies": {}, "outputs": {}}
+        d = ScenePartReport({}, {}, {})
         for kind, key in t.items():
             info = res[key]
-            d["outputs"][kind] = info
+            d.outputs[kind] = info
             p = first_upstream(g, key, "profile")
             if p is not None:
-                d["profiles"][f"{p.tolerance:g}"] = _profile_summary(p)
+                d.profiles[f"{p.tolerance:g}"] = _profile_summary(p)
                 errs.append(p.report["max_error"])
             b = first_upstream(g, key, "body")
             if b is not None:
-                d["bodies"][f"{b.report['tolerance']:g}"] = _body_summary(b)
+                d.bodies[f"{b.report['tolerance']:g}"] = SceneBodySummary.pick(b.report, missing=True)
                 errs.append(b.report["max_error"])
             if "max_error" in info:
                 errs.append(info["max_error"])
         parts[name] = d
     pairs = {}
     for name, t in owners["pairs"].items():
-        d = {"outputs": {k: res[v] for k, v in t.items() if k != "check"}}
+        d = SceneGroupReport({k: res[v] for k, v in t.items() if k != "check"})
         placed = [b for k, v in t.items() if k != "check" for b in (first_upstream(g, v, "place") or ())]
         if placed:             # the placed bodies' measured errors count like a part's
             d["max_error"] = max(b.report["max_error"] for b in placed)
@@ -568,7 +562,7 @@ def _report(scene: Scene, g, owners, res) -> dict:
         pairs[name] = d
     asms = {}
     for name, t in owners["assemblies"].items():
-        d = {"outputs": {k: res[v] for k, v in t.items()}}
+        d = SceneGroupReport({k: res[v] for k, v in t.items()})
         for k in t:
             built = first_upstream(g, t[k], "harmonic")
             if built is not None:
@@ -579,8 +573,5 @@ def _report(scene: Scene, g, owners, res) -> dict:
                 errs.extend(p.report["profile_max_error"] for p in built[1] if p.report.get("profile_max_error") is not None)
                 break
         asms[name] = d
-    return {"scene": scene.name, "file": os.path.basename(scene.file),
-            "tolerance": scene.tolerance, "tolerances": scene.tolerances,
-            "max_error": max(errs) if errs else None,
-            "stages": dict(sorted(g.counts.items())),
-            "parts": parts, "pairs": pairs, "assemblies": asms}
+    return SceneReport(scene.name, os.path.basename(scene.file), scene.tolerance, scene.tolerances,
+                       max(errs) if errs else None, dict(sorted(g.counts.items())), parts, pairs, asms)
