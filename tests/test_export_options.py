@@ -143,3 +143,22 @@ def test_the_web_form_offers_each_downloads_options(prof, tmp_path):
     with pytest.raises(GearError) as e:
         job_of("download", bad, "dxf")
     assert e.value.param == "dxf.max_arc_deg"
+
+
+def test_dxf_bytes_do_not_follow_the_hash_seed(tmp_path):
+    # ezdxf adds the CLASSES of the entity types in use from a set: R2007+ files (here R2018
+    # with construction geometry) differed between interpreters until the order was fixed;
+    # seeds 1 and 4 gave different bytes before
+    import os
+    import subprocess
+    import sys
+    code = ("import sys, gear3d\nfrom gear3d.export.dxf import write_dxf\n"
+            "write_dxf(gear3d.profile('involute', teeth=9, tolerance=0.01), sys.argv[1], dxf_version='R2018', "
+            "construction=True)\n")
+    out = []
+    for seed in ("1", "4"):
+        path = tmp_path / f"s{seed}.dxf"
+        subprocess.run([sys.executable, "-c", code, str(path)], check=True, cwd=tmp_path,
+                       env=dict(os.environ, PYTHONHASHSEED=seed))
+        out.append(path.read_bytes())
+    assert out[0] == out[1] and b"ACDBPLACEHOLDER" in out[0]

@@ -68,10 +68,8 @@ from .dxfread import joint_jumps, measure, measure_segments, read_back, read_seg
 from .outline import profile_outline, start_point
 from .rackoutline import rack_outline
 
-VERSIONS = DXF_VERSIONS
-#: the keywords :func:`write_dxf` takes: the tolerance and the options' table
-#: (:data:`gear3d.params.exporters.DXF_PARAMS`, :class:`DxfOptions`)
-OPTIONS = ("tolerance",) + tuple(DXF)
+#: the versions written; the keywords :func:`write_dxf` takes (the tolerance, :class:`DxfOptions`)
+VERSIONS, OPTIONS = DXF_VERSIONS, ("tolerance",) + tuple(DXF)
 LAYERS = {"OUTER": 7, "INNER": 5, "CONSTRUCTION": 8, "LEAD_IN": 3}
 #: mm: the finest DXF tolerance, 20x the engine's finest (the fallback's reference is 20x finer)
 DXF_MIN_TOLERANCE = 2e-6
@@ -528,10 +526,21 @@ def _write_doc(path, *args):
     log.setLevel(logging.ERROR)                              # R12: "$INSUNITS not exported"
     try:
         doc = _make_doc(*args)
+        _class_order(doc)
         doc.saveas(path)
     finally:
         ezdxf.options.write_fixed_meta_data_for_testing = fixed
         log.setLevel(level)
+
+
+def _class_order(doc) -> None:
+    """CLASSES in a fixed order (ezdxf adds one per type in use from a set: R2007+ bytes followed
+    the string hash seed): ezdxf's required classes first, then by name; saving adds none."""
+    from ezdxf.sections.classes import REQ_R2004, REQUIRED_CLASSES
+    doc.classes.add_required_classes(doc.dxfversion)
+    rank = {n: i for i, n in enumerate(REQUIRED_CLASSES.get(doc.dxfversion, REQ_R2004))}
+    doc.classes.classes = dict(sorted(doc.classes.classes.items(),
+                                      key=lambda kv: (rank.get(kv[0][0], len(rank)), kv[0])))
 
 
 def _make_doc(fits, profile, version, spline, pitch_circle, construction, leads, box):
