@@ -28,33 +28,39 @@ class Format:
     kind: str = ""        # the output kind of templates: the extension without its dot, or the
     #                       kind it spells another way (".stp" -> "step")
     options: tuple = ()   # its options (gear3d.params.Param: the keywords write() passes on)
+    media: str = "application/octet-stream"   # its media type (a download's Content-Type)
 
 
 #: extension -> Format, in the order formats are listed everywhere (help, messages, docs)
 FORMATS: dict = {}
 
 
-def register(ext: str, module: str, kinds, doc: str = "", role: str = "mesh", kind: str = "", options=()):
+def register(ext: str, module: str, kinds, doc: str = "", role: str = "mesh", kind: str = "", options=(),
+             media: str = "application/octet-stream"):
     """Register an exporter module for ``ext`` (e.g. ``".dxf"``) taking ``kinds``; ``role``
     one of :data:`ROLES`; ``kind``: the output kind when ``ext`` spells another one;
-    ``options``: the table of its options (:mod:`gear3d.params.exporters`)."""
+    ``options``: the table of its options (:mod:`gear3d.params.exporters`); ``media``: its
+    media type."""
     if role not in ROLES:
         raise GearError("role", role, "one of " + ", ".join(ROLES))
     FORMATS[ext.lower()] = Format(ext.lower(), module, tuple(kinds), doc, role, kind or ext.lower().lstrip("."),
-                                  tuple(options))
+                                  tuple(options), media)
 
 
-register(".json", "json_format", ("profile", "body"), "profile loops + report (body: report)", "data")
+register(".json", "json_format", ("profile", "body"), "profile loops + report (body: report)", "data",
+         media="application/json")
 register(".dxf", "dxf", ("profile",), "DXF lines+arcs for wire EDM / laser / waterjet", "outline",
-         options=DXF_PARAMS)
+         options=DXF_PARAMS, media="image/vnd.dxf")
 register(".svg", "svg_outline", ("profile",), "1:1 cut outline in mm (paths only) for laser cutters", "outline",
-         options=SVG_PARAMS)
-register(".png", "svg_png", ("profile", "body"), "profile figure / body preview", "figure")
-register(".stl", "stl", ("profile", "body"), "binary STL")
-register(".3mf", "threemf", ("profile", "body"), "3MF with names, units and metadata", options=THREEMF_PARAMS)
-register(".step", "step", ("profile", "body"), "STEP AP214 faceted B-rep", options=STEP_PARAMS)
-register(".stp", "step", ("profile", "body"), "STEP AP214 faceted B-rep", kind="step", options=STEP_PARAMS)
-register(".obj", "meshio_formats", ("profile", "body"), "Wavefront OBJ (meshio)")
+         options=SVG_PARAMS, media="image/svg+xml")
+register(".png", "svg_png", ("profile", "body"), "profile figure / body preview", "figure", media="image/png")
+register(".stl", "stl", ("profile", "body"), "binary STL", media="model/stl")
+register(".3mf", "threemf", ("profile", "body"), "3MF with names, units and metadata", options=THREEMF_PARAMS,
+         media="model/3mf")
+register(".step", "step", ("profile", "body"), "STEP AP214 faceted B-rep", options=STEP_PARAMS, media="model/step")
+register(".stp", "step", ("profile", "body"), "STEP AP214 faceted B-rep", kind="step", options=STEP_PARAMS,
+         media="model/step")
+register(".obj", "meshio_formats", ("profile", "body"), "Wavefront OBJ (meshio)", media="model/obj")
 register(".ply", "meshio_formats", ("profile", "body"), "PLY (meshio)")
 register(".vtu", "meshio_formats", ("profile", "body"), "VTK unstructured grid (meshio)")
 

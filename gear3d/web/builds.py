@@ -28,6 +28,7 @@ import time
 
 from .. import plan, profile
 from ..errors import GearError
+from ..export import FORMATS
 from ..params import DEFAULT_TOLERANCE, MESH_TOLERANCE
 from ..spec import GearSpec
 from ..watchdog import LimitError
@@ -39,9 +40,9 @@ Reply = tuple
 #: the 3D preview's tolerance (mm): plenty for a print, fast to build
 PREVIEW_TOLERANCE = MESH_TOLERANCE
 
-#: download format -> (what is built, media type)
-MEDIA = {"stl": ("body", "model/stl"), "3mf": ("body", "model/3mf"), "step": ("body", "model/step"),
-         "dxf": ("profile", "image/vnd.dxf"), "svg": ("profile", "image/svg+xml")}
+#: download format -> (what is built: a mesh from the body, the rest from the profile; media
+#: type), read off the format registry
+MEDIA = {f.kind: ("body" if f.role == "mesh" else "profile", f.media) for f in FORMATS.values()}
 
 
 def json_reply(obj, status: int = 200, headers: dict | None = None) -> Reply:
@@ -228,7 +229,7 @@ def set_download(family: str, kw: dict, opts: dict, fmt: str, folder: str) -> Re
         write(bodies, path, **opts)
         part = kw.get("part")
     teeth = kw.get("wheel_teeth", 30) if family == "worm" else kw.get("teeth")
-    media = {"dxf": "image/vnd.dxf"}.get(fmt) or MEDIA[fmt][1]
+    media = MEDIA[fmt][1]
     return _file_reply(path, media, f"{family}-z{teeth}-{part}.{fmt}")
 
 
