@@ -24,11 +24,14 @@ circle is inside it; points beyond its tip or ends are out of its reach.
   the roll; **interference** when a gap is below -:data:`BAND` m (the depth in mm of arc).
 * **Transmission error**: the variation of G+ (and of G-) over one pitch (the pinion
   loaded on that side), in µrad of the face gear and µm of arc at r_p1.
-* **Contact** (conjugate action only): a flank is in conjugate contact on a side when its
-  refined minimum is within BAND of the side's gap and lies inside the flank (not at the
-  face gear's tip edge, fillet junction or inner/outer radius), on the pinion's involute
-  (between its base circle and its tip) and inside the pinion's face. Tooth 0's interval of
-  conjugate contact is found by a scan and bisected at its ends; the contact ratio is its
+* **Contact** (conjugate action only). At each roll position the shaper's line of contact
+  on each flank is known in closed form (:func:`contact_line`); the pinion, the shaper's
+  internal-tangency twin, touches the face gear on it. The flank is in conjugate action
+  when the smallest gap along that line's valid part (inside the face gear's flank, on the
+  pinion's involute between its form and tip circles, inside its face) is an inner
+  minimum: its neighbours EDGE m away are valid and no lower (a minimum pushed against the
+  valid part's end is an edge contact). Tooth 0's interval of conjugate action is found by
+  a scan and bisected at its ends; the contact ratio is its
   length over the pitch. A pinion with fewer teeth than the shaper touches the face gear
   only where the shaper's line of contact crosses the pinion's (x = r_p2, α' = α): its
   face (R1..R2) must hold r_p2, or there is no conjugate action (contact ratio 0).
@@ -61,9 +64,13 @@ PIECE_SAMPLES = (3, 12, 24, 3)
 COARSE = 16
 ZOOM = 7
 LEVELS = 14
-#: samples along the line of contact; mm per module: a conjugate flank's gap is within it of G
-LINE_SAMPLES = 48
-CONJUGATE = 1e-11
+#: samples along the line of contact: for conjugate action (a line contact's ends come from
+#: where the line's valid part vanishes: 60/20 gives 1.9643 / 1.9666 / 1.9672 with 256 /
+#: 1024 / 4096) and for the gaps
+LINE_SAMPLES = 2048
+GAP_LINE_SAMPLES = 64
+#: rad: gaps closer than this are equal (a line contact's are all 0 to rounding)
+NOISE = 1e-14
 #: roll positions a pitch for the transmission error, scan steps a pitch, bisection rounds
 SAMPLES = 24
 SCAN = 8
@@ -154,10 +161,8 @@ class Mesh:
         r, th, z = self.surf.points(piece, s, t)
         return self.gaps_at(r, th, z, j, side, phi1)
 
-    def gaps_at(self, r, th, z, j, side, phi1, reach: bool = True):
-        """:meth:`gaps` of the face gear points (r, θ in the generating frame, z) (mm, rad);
-        ``reach`` False: against the pinion's involute teeth extended beyond its tip, ends,
-        form and root circles (a smooth function: where the line of contact touches them)."""
+    def gaps_at(self, r, th, z, j, side, phi1):
+        """:meth:`gaps` of the face gear points (r, θ in the generating frame, z) (mm, rad)."""
         g, p = self.g, self.p
         tt = math.pi / g.teeth
         psi = side * (th - tt) + 2 * tt * j + self.ratio * phi1
@@ -166,15 +171,15 @@ class Mesh:
         R, axial = np.hypot(X, y), x - p.start
         az = np.arctan2(y, X) - math.pi / p.teeth - phi1
         w = (az + self.pitch / 2) % self.pitch - self.pitch / 2
-        u = np.where(reach, self.side(R), p.half_tooth(np.maximum(R, p.base_radius)))
+        u = self.side(R)
         plus = np.where(w > -u, w - u, w - u + self.pitch)
         minus = np.where(w < u, -u - w, -u - w + self.pitch)
-        root = (R < p.root_radius) & reach
+        root = R < p.root_radius
         plus = np.where(root, -(p.root_radius - R) / p.pitch_radius, plus)
         minus = np.where(root, -(p.root_radius - R) / p.pitch_radius, minus)
         inside = (plus < 0) & (minus < 0)            # the nearer side: the penetration
         plus, minus = np.where(inside, np.maximum(plus, minus), plus), np.where(inside, np.maximum(plus, minus), minus)
-        out = ((axial < 0) | (axial > p.width) | (R > p.tip_radius)) & reach
+        out = (axial < 0) | (axial > p.width) | (R > p.tip_radius)
         return np.where(out, np.inf, plus), np.where(out, np.inf, minus), R, axial
 
     def depth(self, J, phi1) -> tuple:
@@ -260,55 +265,50 @@ def contact_line(mesh: Mesh, J, sides, phi1, u):
     return r, th, z, on
 
 
-def _line_min(vals, lo, hi):
-    """The smallest of ``vals(U)`` (U: (F, n) positions, row i in [lo[i], hi[i]] mm) per
-    row: a grid of LINE_SAMPLES, then a zoom of LEVELS levels around the best point."""
-    F, n = len(lo), LINE_SAMPLES
-    rows = np.arange(F)
-    u0 = lo[:, None] + (hi - lo)[:, None] * np.linspace(0, 1, n)[None, :]
+def _line_min(vals, lo: float, hi: float, rows: int, n: int):
+    """Per row, the smallest of ``vals(U)`` (U: (rows, n) positions in [lo, hi] mm; +inf
+    where invalid) and where it is: a grid of LINE_SAMPLES (of the points within NOISE of the
+    smallest, the middle one: a line contact's gaps are all 0), then a zoom of LEVELS levels."""
+    r = np.arange(rows)
+    u0 = np.broadcast_to(np.linspace(lo, hi, n)[None, :], (rows, n))
     v = vals(u0)
-    k = np.argmin(v, axis=1)
-    c, best = u0[rows, k], v[rows, k]
+    near = v <= v.min(axis=1, keepdims=True) + NOISE
+    order = np.cumsum(near, axis=1)
+    k = np.argmax(order >= (near.sum(axis=1, keepdims=True) + 1) // 2, axis=1)
+    c, best = u0[r, k], v[r, k]
     h = 2 * (hi - lo) / (n - 1)
     off = np.linspace(-1, 1, 9)[None, :]
     for _ in range(LEVELS):
-        U = np.clip(c[:, None] + h[:, None] * off, lo[:, None], hi[:, None])
+        U = np.clip(c[:, None] + h * off, lo, hi)
         v = vals(U)
         k = np.argmin(v, axis=1)
-        c = np.where(v[rows, k] < best, U[rows, k], c)
-        best = np.minimum(best, v[rows, k])
-        h = h / 3.0
-    return best
+        take = v[r, k] < best - NOISE
+        c, best = np.where(take, U[r, k], c), np.where(take, v[r, k], best)
+        h /= 3.0
+    return best, c
 
 
-def _conjugate(mesh: Mesh, J, sides, phi1):
-    """Per side of the pinion (plus, minus), per flank (J[i], sides[i]): (the smallest gap
+def _conjugate(mesh: Mesh, J, sides, phi1, samples: int = LINE_SAMPLES):
+    """Per side of the pinion (plus, minus): per flank (J[i], sides[i]), (the smallest gap
     (rad) of the shaper's line of contact where it lies inside the face gear's flank and
-    meets the pinion's involute inside its face, +inf where none does; whether that is the
-    line's tangency, i.e. within CONJUGATE m of the line's smallest gap against the
-    pinion's involute teeth extended). The pinion touches the face gear on that line
-    (module doc): a flank is in conjugate action when its tangency point is a valid one.
-    The four minimisations (valid/extended x plus/minus) run as the rows of one."""
+    meets the pinion's involute inside its face, +inf where none does; whether that minimum
+    is a tangency inside that region: its neighbours EDGE m away along x are valid and no
+    lower). The pinion touches the face gear on that line (module doc): a flank is in
+    conjugate action when the touching point is such an inner minimum."""
     p, m = mesh.p, mesh.g.module
-    F = len(J)
     e = EDGE * m
-    Jr, Sr = np.tile(J, 4)[:, None], np.tile(sides, 4)[:, None]
-    plus = np.repeat([True, False, True, False], F)[:, None]
-    valid = np.repeat([True, True, False, False], F)[:, None]
-
-    def vals(u):
-        r, th, z, on = contact_line(mesh, Jr, Sr, phi1, u)
-        pl, mi, R, ax = mesh.gaps_at(r, th, z, Jr, Sr, phi1, reach=valid)
-        v = np.where(plus, pl, mi)
-        ok = on & (R > mesh.form_radius + e) & (R < p.tip_radius - e) & (ax > e) & (ax < p.width - e)
-        return np.where(np.where(valid, ok, R >= p.base_radius), v, np.inf)     # extended: the involute's domain
-    lo = np.where(valid[:, 0], p.start, p.start - p.width)
-    best = _line_min(vals, lo, lo + np.where(valid[:, 0], p.width, 3 * p.width))
-    band = CONJUGATE * m / p.pitch_radius
+    J, sides = J[:, None], sides[:, None]
     out = []
     for which in (0, 1):
-        v, anywhere = best[which * F:(which + 1) * F], best[(2 + which) * F:(3 + which) * F]
-        out.append((v, np.isfinite(v) & (v <= anywhere + band)))
+        def vals(u):
+            r, th, z, on = contact_line(mesh, J, sides, phi1, u)
+            v = mesh.gaps_at(r, th, z, J, sides, phi1)
+            ok = on & (v[2] > mesh.form_radius + e) & (v[2] < p.tip_radius - e) & (v[3] > e) & (v[3] < p.width - e)
+            return np.where(ok, v[which], np.inf)
+        best, c = _line_min(vals, p.start, p.start + p.width, len(J), samples)
+        side_v = vals(np.stack([c - e, c + e], axis=1))
+        inner = np.isfinite(best) & np.all(np.isfinite(side_v) & (side_v >= best[:, None] - NOISE), axis=1)
+        out.append((best, inner))
     return out
 
 
@@ -318,7 +318,7 @@ def state(mesh: Mesh, phi1: float) -> dict:
     J = mesh.teeth(phi1)
     Jf, Sf = np.repeat(J, 2), np.tile([-1, 1], len(J))
     others = _others(mesh, J, phi1)
-    line = _conjugate(mesh, Jf, Sf, phi1)
+    line = _conjugate(mesh, Jf, Sf, phi1, GAP_LINE_SAMPLES)
     out = {}
     for which, name in ((0, "plus"), (1, "minus")):
         v, cs = _zoom(mesh, Jf, Sf, which, phi1)
