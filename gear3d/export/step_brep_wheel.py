@@ -102,9 +102,10 @@ def _is_pointed(d, h: float, tol_s: float) -> bool:
 
 
 def pointed_band(d, tol_s: float, steps: int = 48):
-    """(h0, h1) (mm, 0 <= h0 <= h1 <= B/2): the heights |h| between which the wheel's
-    sections come to a point below the blank's tip, found on ``steps`` heights and the
-    throat's kink, the first one bisected to 1e-4 mm; None when none is pointed. A throated
+    """(h_ok, h0, h1) (mm, 0 <= h_ok <= h0 <= h1 <= B/2): the heights |h| between which
+    the wheel's sections come to a point below the blank's tip, found on ``steps`` heights
+    and the throat's kink, the first one bisected to 1e-4 mm (``h_ok``: the last height
+    before it that is not pointed, or h0 at h = 0); None when none is pointed. A throated
     wheel of few teeth points near the kink, where the blank's tip is highest over its
     narrowest teeth."""
     half = d.face_width / 2
@@ -121,7 +122,7 @@ def pointed_band(d, tol_s: float, steps: int = 48):
     while hi - lo > 1e-4 and lo < hi:
         mid = 0.5 * (lo + hi)
         lo, hi = (lo, mid) if _is_pointed(d, mid, tol_s) else (mid, hi)
-    return hi, bad[-1]
+    return lo, hi, bad[-1]
 
 
 def refuse_pointed(d, tol_s: float) -> None:
@@ -131,8 +132,8 @@ def refuse_pointed(d, tol_s: float) -> None:
     band = pointed_band(d, tol_s)
     if band is None:
         return
-    h0, h1 = band
-    fix = f"--face-width {math.floor(2 * h0 * 100) / 100:g} mm or less, " if h0 > 0.25 * d.module else ""
+    ok, h0, h1 = band
+    fix = f"--face-width {math.floor(2 * ok * 100) / 100:g} mm or less, " if ok > 0.25 * d.module else ""
     raise GearError("step", "brep", "'faceted' for this wheel",
                     f"its teeth come to a point below the blank's tip at |h| = {h0:.3g} to {h1:.3g} mm "
                     f"(the throat's kink is at {d.throat_break() or 0:.3g} mm); for a B-rep give {fix}"
