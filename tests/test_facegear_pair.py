@@ -207,3 +207,12 @@ def test_inner_edge_meets_the_rack_cut_pinions_fillet():
     assert at_base["max_penetration_radius"] < lim["inner"] + 0.05
     beyond = check_pair(g, 25, r_form + 0.01, r2, samples=12)
     assert not beyond["interference"] and beyond["max_penetration"] < 1e-9
+
+
+def test_pinion_at_thirty_degrees_has_a_fillet_that_fits():
+    """The family's 0.25 m rack tip fillet does not fit a 30° rack of dedendum 1.25 m (its tip's
+    half width π/4 - 1.25 tan 30° = 0.0637 m): the pinion's rack takes 95 % of what fits."""
+    f = gear3d.face_gear(teeth=60, shaper_teeth=20, module=1.0, pressure_angle_deg=30.0, part="pinion", tolerance=0.02)
+    fits = (math.pi / 4 - 1.25 * math.tan(math.radians(30))) / math.tan(math.radians(30))
+    assert f.bodies[0].profile.params["tip_radius_coeff"] == pytest.approx(0.95 * fits, rel=1e-12)
+    assert f.report.pinion["max_error"] <= 0.02 and f.report.part == "pinion" and f.report.triangles is None

@@ -82,11 +82,21 @@ def pinion_transform(g: FaceGeometry, teeth: int, r1: float, phi1: float = 0.0) 
     return T
 
 
+#: the rack's tip fillet (x m) of the pinion's generating rack, as the involute family's default
+TIP_FILLET = 0.25
+
+
 def spec_of(g: FaceGeometry, teeth: int):
-    """The pinion's :class:`gear3d.spec.GearSpec` (involute, the face gear's heights)."""
+    """The pinion's :class:`gear3d.spec.GearSpec` (involute, the face gear's heights). Its
+    generating rack's tip fillet is the family's 0.25 m, or what fits the rack's tip at
+    high pressure angles: the tip's half width π m/4 - h_f tan α over tan(π/4 - α/2),
+    95 % of it (0.105 m at 30°)."""
+    a, hf = g.pressure_angle, g.dedendum / g.module
+    fits = (math.pi / 4 - hf * math.tan(a)) / math.tan(math.pi / 4 - a / 2)
     return GearSpec("involute", {"teeth": int(teeth), "module": g.module,
-                                 "pressure_angle_deg": math.degrees(g.pressure_angle),
-                                 "addendum_coeff": g.addendum / g.module, "dedendum_coeff": g.dedendum / g.module})
+                                 "pressure_angle_deg": math.degrees(a),
+                                 "addendum_coeff": g.addendum / g.module, "dedendum_coeff": hf,
+                                 "tip_radius_coeff": max(0.0, min(TIP_FILLET, 0.95 * fits))})
 
 
 def pinion_body(g: FaceGeometry, teeth: int, r1: float, r2: float, tolerance: float, placed: bool):
