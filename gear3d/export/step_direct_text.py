@@ -134,6 +134,11 @@ def _near_pairs(mid, L):
     return np.concatenate(ii), np.concatenate(jj)
 
 
+#: a chord crossing counts when each chord's ends lie farther than this (mm) on both sides of
+#: the other chord: ten times the STEP file's distance uncertainty (1e-7 mm)
+CROSS_MARGIN = 1e-6
+
+
 def section_crossing(groups, per_tooth: int, h: float):
     """The first point (x, y) mm where the section loop of ``groups`` (cubic B-spline groups
     in loop order, :class:`gear3d.export.step_brep_fit.Group`) crosses itself, else None.
@@ -142,7 +147,8 @@ def section_crossing(groups, per_tooth: int, h: float):
     neighbour on each side are checked: each group sampled in chords of at most about ``h``
     mm (the writer passes half its tolerance), every pair of chords tested for a proper crossing (candidates: chords whose midpoints lie
     within the longest chord). Chords within two of the same group joint are not compared
-    (two curves leaving one corner nearly tangent). A crossing means a plane face bounded by
+    (two curves leaving one corner nearly tangent), and chords that cross by less than
+    :data:`CROSS_MARGIN` touch rather than cross. A crossing means a plane face bounded by
     the loop is not a valid face (OpenCascade's BRepCheck refuses such a solid)."""
     n = len(groups)
     idx = list(range(n)) if n <= per_tooth + 2 else [n - 1] + list(range(per_tooth + 1))
@@ -167,7 +173,13 @@ def section_crossing(groups, per_tooth: int, h: float):
     for b in (jn, jn2):
         near |= (np.minimum(np.abs(i - b), np.abs(i + 1 - b)) <= 2) & (np.minimum(np.abs(j - b), np.abs(j + 1 - b)) <= 2)
     i, j = i[~near], j[~near]
-    hit = (_cross(A[i], B[i], A[j]) * _cross(A[i], B[i], B[j]) < 0) & (_cross(A[j], B[j], A[i]) * _cross(A[j], B[j], B[i]) < 0)
+    # a proper crossing, by more than CROSS_MARGIN on both sides of both chords (curves that
+    # run within 1e-7 mm of each other - the file's distance uncertainty - touch, not cross)
+    li, lj = np.hypot(*(B[i] - A[i]).T), np.hypot(*(B[j] - A[j]).T)
+    c1, c2 = _cross(A[i], B[i], A[j]) / li, _cross(A[i], B[i], B[j]) / li
+    c3, c4 = _cross(A[j], B[j], A[i]) / lj, _cross(A[j], B[j], B[i]) / lj
+    hit = ((c1 * c2 < 0) & (c3 * c4 < 0) & (np.minimum(np.abs(c1), np.abs(c2)) > CROSS_MARGIN)
+           & (np.minimum(np.abs(c3), np.abs(c4)) > CROSS_MARGIN))
     if not hit.any():
         return None
     k = int(np.argmax(hit))
