@@ -279,13 +279,8 @@ def test_wheel_stl_watertight_with_bore_and_hub(tmp_path):
 # ------------------------------------------------------------------ slow: conjugate action, hobbing
 
 def _rot(axis, ang, about=(0.0, 0.0, 0.0)):
-    c, s = math.cos(ang), math.sin(ang)
-    R = np.eye(4)
-    i, j = {"x": (1, 2), "z": (0, 1)}[axis]
-    R[i, i], R[i, j], R[j, i], R[j, j] = c, -s, s, c
-    T, Ti = np.eye(4), np.eye(4)
-    T[:3, 3], Ti[:3, 3] = about, -np.asarray(about)
-    return T @ R @ Ti
+    from tests.wormhob import rot
+    return rot(axis, ang, about)
 
 
 @pytest.mark.slow

@@ -7,10 +7,11 @@ checked against numbers written here:
 * **bore and keyway** from OCC's section of the wheel at its mid-plane: the inner loop's
   points lie on the bore circle (radius 6) except the groove, whose walls are at |y| = b/2
   and whose bottom is at x = 6 + t2 (DIN 6885-1 for a 12 mm bore: b = 4, t2 = 1.8 mm);
-* **hub** (diameter 30, length 24 centred on the mid-plane) and **web** (8 mm thick between
-  the hub and the rim diameter 46): the volume of the solid inside a tube about the axis is
-  the tube's annulus times the length there (π(r_o² - r_i²)·L), and a tube just outside the
-  hub, past the face width, holds nothing;
+* **hub** (diameter 30, length 24 centred on the mid-plane), **web** (8 mm thick between
+  the hub and the rim diameter 46) and **rim**: the volume of the solid inside a tube about
+  the axis is the tube's annulus times the length there (π(r_o² - r_i²)·L), and a tube
+  just outside the hub past the face width, or just inside the rim beside the web, holds
+  nothing (the face width is 18 mm, the root radius 27.6 mm);
 * **shaft** (diameter 14, 10 mm at -x and 15 mm at +x of a 30 mm thread, bore 8): the solid's
   extent along the worm axis, the annulus volume from the bore to just under the shaft over
   the whole length, nothing just outside the shaft, and the bore circle in a section.
@@ -120,6 +121,10 @@ def test_wheel_and_worm_features_in_the_brep(tmp_path):
     # web: 8 mm thick between the hub and the rim diameter
     web = _common_volume(wheel, _tube(15.2, 22.8, (0, 0, -40), (0, 0, 1), 80))
     assert web == pytest.approx(math.pi * (22.8 ** 2 - 15.2 ** 2) * 8, rel=1e-6)
+    # rim: the recess beside the web (z from 4 to 9) ends at the rim diameter 46, full beyond it
+    assert _common_volume(wheel, _tube(22.85, 22.95, (0, 0, 4.5), (0, 0, 1), 4)) < 1e-6
+    rim = _common_volume(wheel, _tube(23.05, 24, (0, 0, 4.5), (0, 0, 1), 4))
+    assert rim == pytest.approx(math.pi * (24 ** 2 - 23.05 ** 2) * 4, rel=1e-6)
 
     # worm: axis along x through (0, 40, 0), thread in x in [-15, 15], shafts 10 and 15 mm
     bb = _bbox(worm)
