@@ -86,6 +86,10 @@ def test_pair_output_refusals(tmp_path, capsys):
     assert main(base + ["-o", str(tmp_path / "p.stl")]) == 2               # no --width
     assert main(base + ["--width", "3"]) == 2                               # --width without a 3D output
     assert main(base + ["-o", str(tmp_path / "p.stl"), "--width", "5", "--tolerance", "1e-6"]) == 2   # over budget
+    # a steep helix: the transverse pressure angle atan(tan 20° / cos 75°) = 54.6° is beyond 45°,
+    # |beta| <= acos(tan 20° / tan 45°) = 68.66°
+    assert main(base[:-1] + ["75", "--shaft-angle-deg", "120", "-o", str(tmp_path / "p.stl"), "--width", "3"]) == 2
     err = capsys.readouterr().err.strip().splitlines()
-    assert len(err) == 3 and "width" in err[0] and "width" in err[1] and "tolerance" in err[2]
+    assert len(err) == 4 and "width" in err[0] and "width" in err[1] and "tolerance" in err[2]
+    assert "helix_angle_deg = 75.0" in err[3] and "68.66" in err[3]
     assert not list(tmp_path.iterdir())

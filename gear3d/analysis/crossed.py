@@ -124,6 +124,10 @@ def _rz(a: float):
     return T
 
 
+#: deg: the involute family's largest transverse pressure angle (a body's limit on |β|)
+MAX_TRANSVERSE_DEG = 45.0
+
+
 def member_spec(rep: dict, key: str, width: float, tolerance: float) -> tuple:
     """(involute family keywords, body keywords) of member ``key`` ("gear" or "mate") of a
     crossed pair ``rep``: the transverse module m_n / cos β and pressure angle
@@ -132,6 +136,12 @@ def member_spec(rep: dict, key: str, width: float, tolerance: float) -> tuple:
     g = rep[key]
     mn, an = rep["normal_module"], math.radians(rep["normal_pressure_angle_deg"])
     cb = math.cos(math.radians(g["helix_angle_deg"]))
+    if math.tan(an) / cb > math.tan(math.radians(MAX_TRANSVERSE_DEG)):
+        lim = math.degrees(math.acos(math.tan(an) / math.tan(math.radians(MAX_TRANSVERSE_DEG))))
+        raise GearError("helix_angle_deg", round(rep["gear"]["helix_angle_deg"], 9),
+                        f"a value that keeps |beta| <= {lim:.4g} deg on both wheels for their bodies (the transverse "
+                        f"pressure angle atan(tan a_n / cos beta) within {MAX_TRANSVERSE_DEG:g} deg)",
+                        f"wheel {1 if key == 'gear' else 2} has beta = {g['helix_angle_deg']:.6g} deg")
     ha = (g["tip_radius"] - g["pitch_radius"]) / mn
     params = {"teeth": g["teeth"], "module": mn / cb, "pressure_angle_deg": math.degrees(math.atan(math.tan(an) / cb)),
               "addendum_coeff": ha * cb, "dedendum_coeff": 1.25 * cb}
