@@ -22,6 +22,7 @@ from gear3d.errors import GearError
 from gear3d.wormgear.design import design
 from gear3d.wormgear.thread import section_rack, section_shift
 from gear3d.wormgear.wheel import section
+from tests.wormhob import rot as _rot
 
 
 def _inv(a):
@@ -277,11 +278,6 @@ def test_wheel_stl_watertight_with_bore_and_hub(tmp_path):
 
 
 # ------------------------------------------------------------------ slow: conjugate action, hobbing
-
-def _rot(axis, ang, about=(0.0, 0.0, 0.0)):
-    from tests.wormhob import rot
-    return rot(axis, ang, about)
-
 
 @pytest.mark.slow
 @pytest.mark.parametrize("hand", ["right", "left"])
