@@ -604,7 +604,8 @@ FITTED = ("gear3d.model", "gear3d.buildsteps", "gear3d.spec", "gear3d.solids.bod
           "gear3d.params.bodies", "gear3d.params.sets", "gear3d.params.reference", "gear3d.params.exporters", "gear3d.export.registry",
           "gear3d.export.dxfoptions", "gear3d.rack_part",
           "gear3d.rackpieces", "gear3d.reports", "gear3d.shift", "gear3d.harmonic.parts", "gear3d.profiles",
-          "gear3d.profiles.keywords", "gear3d.profiles.involute", "gear3d.profiles.sine", "gear3d.profiles.cycloid")
+          "gear3d.profiles.keywords", "gear3d.profiles.involute", "gear3d.profiles.sine", "gear3d.profiles.cycloid",
+          "gear3d.profiles.mate")
 MAX_FILE_LINES, MAX_FUNCTION_LINES, MAX_PARAMETERS = 600, 80, 10
 
 
