@@ -193,14 +193,15 @@ def _segment_crossings(P, Q):
     return i[keep], j[keep], wp[keep], wq[keep]
 
 
-def _crossing_near(Ga, ka, wa, Gb, kb, wb, ang, near, n=257):
+def _crossing_near(Ga, ka, wa, Gb, kb, wb, ang, near, n=257, exclude=None):
     """The exact crossing of piece a (copy ka) on its parameter window ``wa`` (two ends,
     either order) and piece b (copy kb) on ``wb`` nearest to the point ``near`` (mm), or
     None: both windows sampled densely (``n`` points), the polylines' crossings refined by
     Newton (:func:`_corner_params`), those that stay in their windows kept. Unlike the
     closest approach from two starts, this cannot settle on the pieces' shared end (an
     undercut trochoid and the involute it cuts meet end to end at the period's junction,
-    below the crossing the trimmed loop has)."""
+    below the crossing the trimmed loop has). ``exclude``: a point (mm) whose crossing does
+    not count (that junction, when the crossing away from it is sought)."""
     ta = np.linspace(wa[0], wa[1], n)
     tb = np.linspace(wb[0], wb[1], n)
     P, Q = rot2(Ga(ta), ka * ang), rot2(Gb(tb), kb * ang)
@@ -208,13 +209,18 @@ def _crossing_near(Ga, ka, wa, Gb, kb, wb, ang, near, n=257):
     best, dbest = None, math.inf
     (la, ha), (lb, hb) = sorted(wa), sorted(wb)
     sa, sb = 1e-9 + 1e-6 * (ha - la), 1e-9 + 1e-6 * (hb - lb)
-    for k in np.argsort(np.hypot(*(P[i] + wp[:, None] * (P[i + 1] - P[i]) - near).T))[:8]:
+    X = P[i] + wp[:, None] * (P[i + 1] - P[i])
+    away = 1e-5 * (1.0 + float(np.abs(near).max()))      # the excluded point's neighbourhood (mm)
+    cand = np.arange(len(X)) if exclude is None else np.nonzero(np.hypot(*(X - exclude).T) > away)[0]
+    for k in cand[np.argsort(np.hypot(*(X[cand] - near).T))[:8]]:
         s0 = ta[i[k]] + wp[k] * (ta[i[k] + 1] - ta[i[k]])
         u0 = tb[j[k]] + wq[k] * (tb[j[k] + 1] - tb[j[k]])
         s, u, p, gap = _corner_params(Ga, ka, s0, Gb, kb, u0, None, ang)
         if gap > 1e-9 or not (la - sa <= s <= ha + sa and lb - sb <= u <= hb + sb):
             continue
         d = float(np.hypot(*(p - near)))
+        if exclude is not None and np.hypot(*(p - exclude)) <= away:
+            continue
         if d < dbest:
             best, dbest = (float(np.clip(s, la, ha)), float(np.clip(u, lb, hb)), p, gap), d
     return best
@@ -403,8 +409,9 @@ def loop_runs(profile, loop) -> list:
 
 def _off_loop(L, ia, ib, p) -> float:
     """Distance (mm) from point p to the loop's edges from the vertex before ``ia`` to the
-    one after ``ib`` (cyclic): a bridge's crossing may lie past one of its ends, where the
-    polygon kept a vertex of the stretch the crossing cuts off (within its tolerance)."""
+    one after ``ib`` (cyclic; the two runs around a bridge or junction): the crossing may
+    lie before a bridge's near end or past its far end, where the polygon kept vertices of
+    the stretch the crossing cuts off (within its tolerance)."""
     M = len(L)
     idx = np.arange(ia - 1, ia + (ib - ia) % M + 2) % M
     a, b = L[idx[:-1]], L[idx[1:]]
@@ -413,89 +420,132 @@ def _off_loop(L, ia, ib, p) -> float:
     return float(np.hypot(*(a + w[:, None] * d - p).T).min())
 
 
+class _Ends:
+    """The exact ends of a loop's raw runs (see :func:`_resolve_ends`): crossings found once
+    for tooth 0 and turned to every copy (every tooth repeats tooth 0's corners)."""
+
+    def __init__(self, profile, S, L, ang):
+        self.pieces, self.params, self.z = profile.pieces, profile.piece_params, profile.teeth
+        self.tol, self.S, self.L, self.ang = profile.tolerance, S, L, ang
+        self.memo = {}
+
+    def crossing(self, fn, ja, ka, ta, jb, kb, tb):
+        """``fn`` (:func:`_corner_params` or :func:`_closest_params`) of pieces ja (copy ka)
+        and jb (copy kb) from parameters ta, tb: (s, u, point, gap)."""
+        key = (fn.__name__, ja, round(float(ta), 12), jb, round(float(tb), 12), (kb - ka) % self.z)
+        if key not in self.memo:
+            if fn is _corner_params:
+                self.memo[key] = fn(self.pieces[ja], 0, ta, self.pieces[jb], kb - ka, tb, None, self.ang)
+            else:
+                self.memo[key] = fn(self.pieces[ja], 0, ta, self.pieces[jb], kb - ka, tb, self.ang)
+        s, u, p, gap = self.memo[key]
+        return s, u, rot2(p, ka * self.ang), gap
+
+    def searched(self, ja, ka, wa, jb, kb, wb, near, exclude=None):
+        """:func:`_crossing_near` in copy 0's frame, turned to copy ka (None: no crossing)."""
+        key = ("near", ja, tuple(np.round(wa, 12)), jb, tuple(np.round(wb, 12)), (kb - ka) % self.z,
+               exclude is None)
+        if key not in self.memo:
+            ex = None if exclude is None else rot2(exclude, -ka * self.ang)
+            self.memo[key] = _crossing_near(self.pieces[ja], 0, wa, self.pieces[jb], kb - ka, wb, self.ang,
+                                            rot2(near, -ka * self.ang), exclude=ex)
+        got = self.memo[key]
+        return None if got is None else (got[0], got[1], rot2(got[2], ka * self.ang), got[3])
+
+    def fail(self, ja, jb, v):
+        return GearError("step", "brep", "'faceted' for this profile",
+                         f"no exact crossing of pieces {ja} and {jb} near ({v[0]:.4g}, {v[1]:.4g})")
+
+    def bridge(self, A, B):
+        """(s, u, point) where run A's piece meets run B's across a bridge edge: the exact
+        crossing near it, sought over the pruned stretch and the runs themselves (at a
+        coarse tolerance the polygon can keep a vertex past the crossing: an undercut
+        involute's base-circle cusp, which the trochoid cuts off just above it); where a
+        sub-tolerance notch was pruned, the closest approach (its midpoint pins both ends,
+        and the writer's measurement sees how far that moved the flank)."""
+        ja, ka, jb, kb, params = A[0], A[1], B[0], B[1], self.params
+        va, vb = self.L[A[9]], self.L[B[8]]
+        wa = (params[ja][A[4]], 1.0 if A[7] > A[6] else 0.0)
+        wb = (0.0 if B[5] > B[4] else 1.0, params[jb][B[7]])
+        got = self.searched(ja, ka, wa, jb, kb, wb, 0.5 * (va + vb))
+        s, u, p, gap = got if got is not None else self.crossing(_closest_params, ja, ka, params[ja][A[7]],
+                                                                 jb, kb, params[jb][B[4]])
+        if gap > self.tol / 10 or _off_loop(self.L, A[8], B[9], p) > 2 * self.tol + 1e-9:
+            raise self.fail(ja, jb, va)
+        return s, u, p
+
+    def junction(self, A, B):
+        """(s, u, point) where run A's piece hands over to run B's at a shared vertex: the
+        pieces' shared end, unless they also cross within the two runs (an undercut
+        involute continued past its base-circle cusp back to the trochoid: a swallowtail
+        under the tolerance that the polygon kept), where the boundary turns at that
+        crossing, within twice the tolerance of the loop."""
+        ja, ka, jb, kb, params = A[0], A[1], B[0], B[1], self.params
+        p = rot2(self.S[ja][A[7]], ka * self.ang)
+        if ja != jb:
+            got = self.searched(ja, ka, (params[ja][A[4]], A[3]), jb, kb, (B[2], params[jb][B[7]]), p, exclude=p)
+            if got is not None and _off_loop(self.L, A[8], B[9], got[2]) <= 2 * self.tol:
+                return got[0], got[1], got[2]
+        return A[3], B[2], p
+
+    def corner(self, A, B):
+        """(s, u, point) where A's last chord (A[6]->A[7]) meets B's first chord
+        (B[4]->B[5]): Newton from the chords' middles, else the chords (each widened by
+        half its length) searched for their crossing nearest the loop's corner."""
+        ja, ka, jb, kb, params = A[0], A[1], B[0], B[1], self.params
+        ta = 0.5 * (params[ja][A[6]] + params[ja][A[7]])
+        tb = 0.5 * (params[jb][B[4]] + params[jb][B[5]])
+        s, u, p, gap = self.crossing(_corner_params, ja, ka, ta, jb, kb, tb)
+        lo_a, hi_a = sorted((params[ja][A[6]], params[ja][A[7]]))
+        lo_b, hi_b = sorted((params[jb][B[4]], params[jb][B[5]]))
+        wa, wb = 0.5 * (hi_a - lo_a) + 1e-12, 0.5 * (hi_b - lo_b) + 1e-12
+
+        def inside(s, u, gap):
+            return gap <= 1e-9 and lo_a - wa <= s <= hi_a + wa and lo_b - wb <= u <= hi_b + wb
+        if not inside(s, u, gap):
+            got = self.searched(ja, ka, (max(lo_a - wa, 0.0), min(hi_a + wa, 1.0)), jb, kb,
+                                (max(lo_b - wb, 0.0), min(hi_b + wb, 1.0)), self.L[A[9]])
+            if got is not None:
+                s, u, p, gap = got
+        if not inside(s, u, gap):
+            raise self.fail(ja, jb, self.L[A[9]])
+        return s, u, p
+
+
+def _merge_split(runs) -> list:
+    """Raw runs with consecutive runs on the same piece, copy and direction joined into one,
+    so that the piece is followed exactly through: where trimming pruned a sub-tolerance
+    stretch of it between them (a bridge), or where the loop's vertex matched two adjacent
+    samples of it at one point (an undercut involute's base-circle cusp, sampled twice).
+    A piece's self-crossing (samples skipped at a shared vertex) stays two runs."""
+    out = []
+    for r in runs:
+        if out:
+            a = out[-1]
+            same = a[0] == r[0] and a[1] == r[1] and (a[7] > a[6]) == (r[5] > r[4])
+            on = (a[7] - a[6]) * (r[4] - a[7]) >= 0 and (a[9] != r[8] or abs(r[4] - a[7]) == 1)
+            if same and on:
+                out[-1] = [a[0], a[1], a[2], r[3], a[4], a[5], r[6], r[7], a[8], r[9]]
+                continue
+        out.append(list(r))
+    return out
+
+
 def _resolve_ends(profile, S, L, runs, ang):
     """Exact end points of raw runs: corners by Newton, junctions by equal points, bridges by
-    the closest approach of the two pieces. Returns the list of :class:`Run`."""
-    pieces, params, z = profile.pieces, profile.piece_params, profile.teeth
-
-    def pt(j, n, k):
-        return rot2(S[j][n], k * ang)
-
-    # resolve the ends: corners by Newton, junctions by equal points. Every tooth repeats
-    # tooth 0's corners turned: solve each distinct one once
-    memo = {}
-
-    def crossing(fn, ja, ka, ta, jb, kb, tb):
-        key = (fn.__name__, ja, round(float(ta), 12), jb, round(float(tb), 12), (kb - ka) % z)
-        if key not in memo:
-            if fn is _corner_params:
-                memo[key] = fn(pieces[ja], 0, ta, pieces[jb], kb - ka, tb, None, ang)
-            else:
-                memo[key] = fn(pieces[ja], 0, ta, pieces[jb], kb - ka, tb, ang)
-        s, u, p, gap = memo[key]
-        return s, u, rot2(p, ka * ang), gap
-
-    def searched(ja, ka, wa, jb, kb, wb, near):
-        """:func:`_crossing_near` in copy 0's frame (memoised as the corners are)."""
-        key = ("near", ja, tuple(np.round(wa, 12)), jb, tuple(np.round(wb, 12)), (kb - ka) % z)
-        if key not in memo:
-            memo[key] = _crossing_near(pieces[ja], 0, wa, pieces[jb], kb - ka, wb, ang, rot2(near, -ka * ang))
-        got = memo[key]
-        return None if got is None else (got[0], got[1], rot2(got[2], ka * ang), got[3])
-
-    out = []
+    the pieces' crossing near them (:class:`_Ends`). Returns the list of :class:`Run`."""
+    e = _Ends(profile, S, L, ang)
+    runs = _merge_split(runs)
     n = len(runs)
     ends = [None] * n     # exact point at the end of run i (= start of run i+1)
     t_end = [None] * n
     t_start = [None] * n
     for i in range(n):
         A, B = runs[i], runs[(i + 1) % n]
-        ja, ka, jb, kb = A[0], A[1], B[0], B[1]
-        if A[9] != B[8]:
-            # a bridge edge between matched vertices: the exact crossing lies near it
-            # (or, where a sub-tolerance notch was pruned, the closest approach: its midpoint
-            # pins both ends, and the measurement below sees how far that moved the flank)
-            va, vb = L[A[9]], L[B[8]]
-            # the pruned stretch, and the runs themselves: at a coarse tolerance the polygon
-            # can keep a vertex past the crossing (an undercut involute's base-circle cusp,
-            # which the trochoid cuts off just above it)
-            wa = (params[ja][A[4]], 1.0 if A[7] > A[6] else 0.0)
-            wb = (0.0 if B[5] > B[4] else 1.0, params[jb][B[7]])
-            got = searched(ja, ka, wa, jb, kb, wb, 0.5 * (va + vb))
-            s, u, p, gap = got if got is not None else crossing(_closest_params, ja, ka, params[ja][A[7]],
-                                                                  jb, kb, params[jb][B[4]])
-            off = _off_loop(L, A[9], B[8], p)
-            if gap > profile.tolerance / 10 or off > 2 * profile.tolerance + 1e-9:
-                raise GearError("step", "brep", "'faceted' for this profile",
-                                f"no exact crossing of pieces {ja} and {jb} near "
-                                f"({va[0]:.4g}, {va[1]:.4g})")
-            t_end[i], t_start[(i + 1) % n], ends[i] = s, u, p
-            continue
-        if A[3] is not None and B[2] is not None:
-            # both matched at the shared vertex: a junction of pieces
-            pa = pt(ja, A[7], ka)
-            t_end[i], t_start[(i + 1) % n] = A[3], B[2]
-            ends[i] = pa
-            continue
-        # a corner: A's last chord (A[6]->A[7]) meets B's first chord (B[4]->B[5])
-        ta = 0.5 * (params[ja][A[6]] + params[ja][A[7]])
-        tb = 0.5 * (params[jb][B[4]] + params[jb][B[5]])
-        s, u, p, gap = crossing(_corner_params, ja, ka, ta, jb, kb, tb)
-        lo_a, hi_a = sorted((params[ja][A[6]], params[ja][A[7]]))
-        lo_b, hi_b = sorted((params[jb][B[4]], params[jb][B[5]]))
-        wa, wb = 0.5 * (hi_a - lo_a) + 1e-12, 0.5 * (hi_b - lo_b) + 1e-12
-        if gap > 1e-9 or not (lo_a - wa <= s <= hi_a + wa and lo_b - wb <= u <= hi_b + wb):
-            # Newton from the chords' middles left them: search the two chords (each
-            # widened by half its length) for their crossing nearest the loop's corner
-            got = searched(ja, ka, (max(lo_a - wa, 0.0), min(hi_a + wa, 1.0)), jb, kb,
-                           (max(lo_b - wb, 0.0), min(hi_b + wb, 1.0)), L[A[9]])
-            if got is not None:
-                s, u, p, gap = got
-        if gap > 1e-9 or not (lo_a - wa <= s <= hi_a + wa and lo_b - wb <= u <= hi_b + wb):
-            raise GearError("step", "brep", "'faceted' for this profile",
-                            f"no exact crossing of pieces {ja} and {jb} near "
-                            f"({L[A[9]][0]:.4g}, {L[A[9]][1]:.4g})")
-        t_end[i], t_start[(i + 1) % n], ends[i] = s, u, p
-    for i, r in enumerate(runs):
-        out.append(Run(r[0], r[1], float(t_start[i]), float(t_end[i]), ends[i - 1], ends[i]))
-    return out
+        if A[9] != B[8]:                  # a bridge edge between matched vertices
+            t_end[i], t_start[(i + 1) % n], ends[i] = e.bridge(A, B)
+        elif A[3] is not None and B[2] is not None:     # both matched at the shared vertex: a junction
+            t_end[i], t_start[(i + 1) % n], ends[i] = e.junction(A, B)
+        else:                             # a trimmed corner
+            t_end[i], t_start[(i + 1) % n], ends[i] = e.corner(A, B)
+    return [Run(r[0], r[1], float(t_start[i]), float(t_end[i]), ends[i - 1], ends[i]) for i, r in enumerate(runs)]
