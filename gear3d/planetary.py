@@ -230,7 +230,7 @@ def planetary_set(family: str, sun: int, planet: int, ring: int, planets: int = 
         from .analysis.pairs import check_pair
         sp = check_pair(p_sun, p_pl, tolerance=tol)
         pr = check_pair(p_pl, p_ring, internal=True, tolerance=tol)
-        meshes = {"sun_planet": sp.to_dict(), "planet_ring": pr.to_dict()}
+        meshes = {"sun_planet": sp, "planet_ring": pr}          # PairReport each
         interference = bool(sp["interference"] or pr["interference"])
         pen_max = float(max(sp["max_penetration"], pr["max_penetration"]))
 

@@ -523,7 +523,7 @@ class PlanetaryReport(Report):
     ring_phase_error: float
     #: deepest overlap of the placed profiles (sun-planet, planet-ring), as assembled
     placed_penetration: SetPenetration
-    #: rolling checks, one per distinct mesh (None when not run)
+    #: rolling checks, one :class:`PairReport` per distinct mesh (None when not run)
     meshes: dict | None
     meshes_note: str
     interference: bool | None

@@ -113,3 +113,17 @@ def test_scene_report_is_typed_and_the_file_is_its_json(tmp_path):
     on_disk = json.loads((tmp_path / "out" / "typed.report.json").read_text())
     assert json.loads(json.dumps(rep.to_dict())) == on_disk       # the file is the report, graph left out
     assert list(on_disk) == list(rep) and "graph" not in on_disk
+
+
+def test_planetary_meshes_are_pair_reports():
+    # 20-20-60 with 4 planets: (20 + 60)/4 = 20, equally spaced; each mesh checked once
+    s = planetary_set("involute", 20, 20, 60, 4, module=1.0, tolerance=0.01, bodies=False)
+    m = s.report.meshes
+    assert list(m) == ["sun_planet", "planet_ring"]
+    assert all(type(x) is reports.PairReport for x in m.values())
+    # standard centre distances: m (20 + 20)/2 outside, m (60 - 20)/2 inside; ratios -1 and +3
+    assert (m["sun_planet"]["center_distance"], m["planet_ring"]["center_distance"]) == (20.0, 20.0)
+    assert (m["sun_planet"]["ratio"], m["planet_ring"]["ratio"], m["planet_ring"]["internal"]) == (-1.0, 3.0, True)
+    d = s.report.to_dict()
+    assert type(d["meshes"]["sun_planet"]) is dict
+    json.dumps(d, allow_nan=False)
