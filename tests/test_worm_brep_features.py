@@ -178,3 +178,29 @@ def test_pointed_wheel_brep_with_the_suggested_changes(tmp_path):
         gear3d.write(s.parts(), tmp_path / "w.step", step="brep", geometry=s.design)
         (w,) = sub_shapes(read_step(tmp_path / "w.step"), "solid")
         assert is_valid(w) and 0 < s.wheel.report["brep"]["max_error"] <= Z20["tolerance"]
+
+
+@pytest.mark.slow
+def test_scene_worm_set_brep_step_is_the_cli_s(tmp_path):
+    """``[[part]] kind = "worm"`` with ``[part.options.step] kind = "brep"``: the template
+    writes the pair's B-rep STEP (the bodies carry the set's design to the writer), byte
+    for byte the CLI's (run in its own process: OpenCascade numbers an assembly's usages
+    per process), two valid solids read back."""
+    import subprocess
+    import sys
+    from gear3d.jobs.scene import build_scene
+    from gear3d.jobs.template import load_scene
+    src = tmp_path / "s.toml"
+    src.write_text('[scene]\nname = "w"\ntolerance = 0.1\n[[part]]\nname = "set"\nkind = "worm"\npart = "pair"\n'
+                   'module = 1\nstarts = 1\nwheel_teeth = 30\nwheel_bore = 6\nshaft_diameter = 6\n'
+                   'shaft_length = 5\noutputs = ["step"]\n[part.options.step]\nkind = "brep"\n')
+    build_scene(load_scene(src), tmp_path / "out")
+    cli = tmp_path / "cli.step"
+    r = subprocess.run([sys.executable, "-m", "gear3d.cli", "worm", "--module", "1", "--starts", "1",
+                        "--wheel-teeth", "30", "--tolerance", "0.1", "--part", "pair", "--wheel-bore", "6",
+                        "--shaft-diameter", "6", "--shaft-length", "5", "-o", str(cli), "--step", "brep"],
+                       capture_output=True, text=True, timeout=300)
+    assert r.returncode == 0, r.stderr
+    assert (tmp_path / "out" / "set.step").read_bytes() == cli.read_bytes()
+    solids = sub_shapes(read_step(cli), "solid")
+    assert len(solids) == 2 and all(is_valid(x) for x in solids)

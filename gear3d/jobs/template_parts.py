@@ -253,8 +253,9 @@ def _outputs(file, key, outs, b, default_outputs):
     return tuple(outs)
 
 
-#: the output kinds of a ``kind = "worm"`` part: its bodies, its report, the wheel's mid-plane
-WORM_KINDS = ("stl", "3mf", "json", "dxf", "png")
+#: the output kinds of a ``kind = "worm"`` part: its bodies (STEP faceted, or exact with
+#: ``[options.step] kind = "brep"``), its report, the wheel's mid-plane
+WORM_KINDS = ("stl", "3mf", "json", "dxf", "png", "step")
 #: the output kinds of a ``kind = "bevel"`` part: its bodies (STEP faceted), its report
 BEVEL_KINDS = ("stl", "3mf", "json", "step")
 #: the output kinds of a ``kind = "face-gear"`` part: its body, its report
@@ -292,7 +293,7 @@ def _set_check(kind, kw) -> tuple:
     if kind == "worm":
         from ..wormgear import validate
         validate(**kw)
-        return WORM_KINDS if kw.get("part", "pair") != "worm" else ("stl", "3mf", "json")
+        return WORM_KINDS if kw.get("part", "pair") != "worm" else ("stl", "3mf", "json", "step")
     if kind == "bevel":
         _bevel_check(kw)
     else:

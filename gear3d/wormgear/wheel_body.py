@@ -42,15 +42,18 @@ MAX_PARTS = 8
 class WormPart(Solid):
     """A worm or wheel body for the exporters (a :class:`gear3d.solids.solid.Solid`): mesh
     arrays (float64 vertices mm, int64 faces), ``name``, ``report`` (dict) and ``transform``
-    (4x4, the placement); the base makes ``manifold`` and ``mesh`` from the arrays."""
+    (4x4, the placement); the base makes ``manifold`` and ``mesh`` from the arrays.
+    ``design``: the worm set's :class:`~gear3d.wormgear.design.WormDesign` (the B-rep
+    writer rebuilds the wheel's exact sections from it)."""
 
-    def __init__(self, V, F, name: str, report: dict, transform=None, manifold=None):
+    def __init__(self, V, F, name: str, report: dict, transform=None, manifold=None, design=None):
         super().__init__(name, report, transform, manifold=manifold,
                          arrays=(np.asarray(V, float), np.asarray(F, np.int64)))
+        self.design = design
 
     def placed(self, transform, name=None) -> "WormPart":
         V, F = self.arrays()
-        return WormPart(V, F, name or self.name, self.report, transform, self._manifold)
+        return WormPart(V, F, name or self.name, self.report, transform, self._manifold, self.design)
 
 
 def _initial_heights(d, tol) -> list:
@@ -224,7 +227,7 @@ def wheel_body(d, tolerance=None, bore=None, hub_diameter=None, hub_length=None,
            "max_error": max(sec_err, band_err), "tolerance": tol, "triangles": int(len(F)), "vertices": int(len(V)),
            "volume": props["volume"], "genus": props["genus"], "root_radius_min": info["root_radius_min"],
            "features": feats, "section_heights": [float(h) for h in info["heights"]]}
-    return WormPart(V, F, name, rep, manifold=man)
+    return WormPart(V, F, name, rep, manifold=man, design=d)
 
 
 def _build(d, tol):
