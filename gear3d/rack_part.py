@@ -268,8 +268,6 @@ def rack(family: str, teeth: int = 10, module: float = 1.0, tolerance: float = D
     cycloidal; ``half_angle_deg``, ``thickness_coeff`` for the triangular). ``shift_coeff``
     (involute, sine) does not change the rack: it is the pinion's profile shift, used by
     :func:`gear3d.analysis.rack_mesh.rack_pair` to place the pinion at y = r + x m.
-    Raises :class:`GearError` on bad input, :class:`ToleranceError` when the tolerance
-    cannot be met.
 
     Parameters
     ----------
@@ -292,6 +290,13 @@ def rack(family: str, teeth: int = 10, module: float = 1.0, tolerance: float = D
     RackPart
         The closed outline (mm; the pitch line is y = 0, the teeth point to +y) and its
         report.
+
+    Raises
+    ------
+    GearError
+        A parameter out of its range, named with its value and the allowed range.
+    ToleranceError
+        A tolerance that cannot be met.
 
     Examples
     --------
@@ -480,6 +485,11 @@ def rack_body(part: RackPart, width: float = 10.0, helix_angle_deg: float = 0.0,
     -------
     RackBody
         The solid and its report (volume, triangles, measured ``max_error`` in mm).
+
+    Raises
+    ------
+    GearError
+        A parameter out of its range, named with its value and the allowed range.
 
     Examples
     --------

@@ -92,9 +92,9 @@ def test_the_functions_are_the_api_ones():
 
 @pytest.mark.parametrize("name", _functions())
 def test_every_public_function_has_parameters_returns_and_an_example(name):
-    # numpydoc: a Parameters and a Returns section (underlined heads) and a >>> example
+    # numpydoc: Parameters, Returns, Raises and Examples sections (underlined heads), a >>> example
     doc = _doc(name)
-    for head in ("Parameters", "Returns", "Examples"):
+    for head in ("Parameters", "Returns", "Raises", "Examples"):
         assert re.search(rf"^{head}\n-+$", doc, re.M), f"gear3d.{name}: no '{head}' section"
     assert re.search(r"^>>> ", doc, re.M), f"gear3d.{name}: no example"
     # ... and the example runs in this suite: its module is one test_every_example_runs takes

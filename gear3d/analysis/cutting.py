@@ -39,14 +39,9 @@ def simulate_cut(rack: Rack, teeth: int, module: float, shift_coeff: float = 0.0
                  samples: int = 200, window: float | None = None):
     """Gear region (shapely geometry, mm) left by a rack rolled on the pitch circle.
 
-    ``positions`` rack positions evenly spread over ``±rolls`` pitches of travel (enough
-    to finish tooth 0 and its neighbours). Returns (region, blank_radius): compare only
-    the neighbourhood of tooth 0. ``window`` (pitches) keeps only the rack part within
-    that distance of the pitch point at each position: a straight rack inside a ring cuts
-    through the far teeth, so rings are simulated with a local rack segment (default 0.75).
-
-    Seed 001's brute-force method, independent of the envelope engine: the tests and the
-    benchmark compare the engine's profiles against it.
+    Compare only the neighbourhood of tooth 0. A straight rack inside a ring cuts through the
+    far teeth, so rings are cut by a local rack segment (``window``). A brute-force method,
+    independent of the envelope engine: the tests and the benchmark check the engine with it.
 
     Parameters
     ----------
@@ -75,6 +70,11 @@ def simulate_cut(rack: Rack, teeth: int, module: float, shift_coeff: float = 0.0
         What is left of the blank, mm.
     blank_radius : float
         The blank's radius, mm.
+
+    Raises
+    ------
+    GearError
+        A parameter out of its range (one line: name, value, range), or a cut over the budget.
 
     Examples
     --------

@@ -102,10 +102,8 @@ def check_rack_pair(pinion, rack, shift: float | None = None, x0: float | None =
                     tolerance: float | None = None, backlash_phases: int = 4) -> dict:
     """Roll ``pinion`` (a Profile) along ``rack`` (a RackPart) and report (mm, deg).
 
-    ``shift`` (mm): the pinion's profile shift x m (its centre sits at y = r + shift;
-    default: the pinion's own ``shift_coeff`` times its module); ``x0`` (mm): x of the
-    centre at roll 0 (default: the rack's ``phase_x``, the mesh phase); ``tolerance`` (mm)
-    sets the step and the contact threshold (default: the larger of the two tolerances).
+    The pinion's centre sits at y = r + ``shift`` (default: its own ``shift_coeff`` times
+    its module), at x = ``x0`` at roll 0 (default: the rack's ``phase_x``, the mesh phase).
     Keys: ``interference``, ``max_penetration``, ``interference_at``, ``backlash`` (rack
     play along the pitch line, min over ``backlash_phases`` roll positions; None when
     interfering), ``contact_ratio`` (tooth 0's leading flank in contact, in pitches),
@@ -130,6 +128,11 @@ def check_rack_pair(pinion, rack, shift: float | None = None, x0: float | None =
     -------
     dict
         The keys above (mm, deg, pitches).
+
+    Raises
+    ------
+    GearError
+        Not a Profile and a RackPart, a ring, different modules, or a value out of range.
 
     Examples
     --------
@@ -309,6 +312,11 @@ def rack_pair(family: str, teeth: int = 20, rack_teeth: int | None = None, **par
     -------
     tuple
         (pinion Profile, RackPart, report dict).
+
+    Raises
+    ------
+    GearError
+        A parameter out of its range, named with its value and the allowed range.
 
     Examples
     --------
