@@ -37,7 +37,7 @@ import os
 
 from . import budget
 from .budget import Estimate, estimate
-from .errors import check_choice, check_number
+from .errors import GearError, check_choice, check_number
 from .params import MESH_TOLERANCE
 from .plan import brep_estimate, write_estimate
 from .spec import GearSpec
@@ -325,6 +325,7 @@ def plan_crossed(rep: dict, width: float, tolerance: float, output=None) -> Esti
     from .analysis.crossed import member_spec
     from .plan import plan_body
     tol = check_number("tolerance", tolerance, 1e-6, 1.0, unit="mm")
+    _crossed_helix_range(rep)
     est, tri = Estimate(), 0.0
     for key in ("gear", "mate"):
         params, body_kw = member_spec(rep, key, width, tol)
@@ -337,6 +338,26 @@ def plan_crossed(rep: dict, width: float, tolerance: float, output=None) -> Esti
         est = est.then(mesh_write(ext, tri))
     z = max(rep["gear"]["teeth"], rep["mate"]["teeth"])
     return _decide(est, "tolerance", tol) if z <= 1000 else _decide(est, "teeth", z)
+
+
+def _crossed_helix_range(rep: dict) -> None:
+    """Refuse, naming ``helix_angle_deg`` (or ``shaft_angle_deg``), a crossed pair whose
+    bodies cannot be cut: a wheel's transverse pressure angle atan(tan a_n / cos b) above
+    the involute family's bound (45 deg) for |b| > acos(tan a_n / tan 45 deg) (a_n = 20 deg:
+    68.7 deg). The rolling report takes any b in [-80, 80]; only the bodies need this."""
+    from .params import PRESSURE
+    an = math.radians(rep["normal_pressure_angle_deg"])
+    bmax = math.degrees(math.acos(min(1.0, math.tan(an) / math.tan(math.radians(PRESSURE.hi)))))
+    b1, sigma = rep["gear"]["helix_angle_deg"], rep["shaft_angle_deg"]
+    lo, hi = max(-bmax, sigma - bmax), min(bmax, sigma + bmax)
+    why = (f"a wheel's transverse pressure angle atan(tan {rep['normal_pressure_angle_deg']:g} deg / cos b) "
+           f"stays within {PRESSURE.hi:g} deg for |b| <= {bmax:.4g} deg; wheel 2 has b = shaft angle - helix angle")
+    if lo > hi:
+        raise GearError("shaft_angle_deg", sigma, f"a number in [{-2 * bmax:.4g}, {2 * bmax:.4g}] deg "
+                        "for crossed bodies (-o)", why)
+    if not lo - 1e-9 <= b1 <= hi + 1e-9:
+        raise GearError("helix_angle_deg", b1, f"a number in [{lo:.4g}, {hi:.4g}] deg for crossed bodies (-o) "
+                        f"at a shaft angle of {sigma:g} deg", why)
 
 
 # ------------------------------------------------------------------ the planned API
