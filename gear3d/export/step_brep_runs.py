@@ -512,22 +512,30 @@ class _Ends:
         return s, u, p
 
 
+def _joinable(a, r) -> bool:
+    """Whether raw run ``r`` continues raw run ``a`` on the same piece, copy and direction
+    (see :func:`_merge_split`)."""
+    same = a[0] == r[0] and a[1] == r[1] and (a[7] > a[6]) == (r[5] > r[4])
+    return same and (a[7] - a[6]) * (r[4] - a[7]) >= 0 and (a[9] != r[8] or abs(r[4] - a[7]) == 1)
+
+
 def _merge_split(runs) -> list:
     """Raw runs with consecutive runs on the same piece, copy and direction joined into one,
     so that the piece is followed exactly through: where trimming pruned a sub-tolerance
     stretch of it between them (a bridge), or where the loop's vertex matched two adjacent
     samples of it at one point (an undercut involute's base-circle cusp, sampled twice).
-    A piece's self-crossing (samples skipped at a shared vertex) stays two runs."""
+    A piece's self-crossing (samples skipped at a shared vertex) stays two runs. The loop
+    is cyclic: its last run may continue into its first."""
     out = []
     for r in runs:
-        if out:
+        if out and _joinable(out[-1], r):
             a = out[-1]
-            same = a[0] == r[0] and a[1] == r[1] and (a[7] > a[6]) == (r[5] > r[4])
-            on = (a[7] - a[6]) * (r[4] - a[7]) >= 0 and (a[9] != r[8] or abs(r[4] - a[7]) == 1)
-            if same and on:
-                out[-1] = [a[0], a[1], a[2], r[3], a[4], a[5], r[6], r[7], a[8], r[9]]
-                continue
-        out.append(list(r))
+            out[-1] = [a[0], a[1], a[2], r[3], a[4], a[5], r[6], r[7], a[8], r[9]]
+        else:
+            out.append(list(r))
+    if len(out) > 2 and _joinable(out[-1], out[0]):
+        a, r = out.pop(), out[0]
+        out[0] = [a[0], a[1], a[2], r[3], a[4], a[5], r[6], r[7], a[8], r[9]]
     return out
 
 
