@@ -41,7 +41,8 @@ import numpy as np
 from dataclasses import dataclass, fields
 
 from .errors import GearError, check_bool, check_choice, check_number
-from .params import BODY, MESH_TOLERANCE, TOLERANCE, Param, check_family
+from .params import (BODY, MESH_TOLERANCE, PLANETARY, PLANETARY_FAMILIES, SPACINGS,
+                     TOLERANCE, check_family)
 from .reports import (BuiltCarrierReport, CarrierReport, PlanetaryReport, SetBodySummary, SetPenetration,
                       SetWheelSummary, WheelPlacement)
 from . import profile
@@ -49,22 +50,6 @@ from .budget import check_body
 from .conventions import to_transverse
 from .placement import mesh_phase, standard_center_distance
 
-#: rack-generated families with a module whose same-family pairs mesh
-PLANETARY_FAMILIES = ("cycloidal", "involute", "sine", "triangular")
-SPACINGS = ("equal", "nearest")
-
-#: the set's own parameters (CLI flag = ``--`` + name, as gear3d.params)
-PLANETARY_PARAMS: tuple = (
-    Param("sun", int, "", 1, 10_000, help="teeth of the sun", default=None),
-    Param("planet", int, "", 1, 10_000, help="teeth of each planet", default=None),
-    Param("ring", int, "", 3, 30_000, help="teeth of the ring (standard set: sun + 2 planet)", default=None),
-    Param("planets", int, "", 1, 1000, default=3, help="number of planets"),
-    Param("spacing", str, default="equal", choices=SPACINGS,
-          help="equal: planets at 2 pi k/N, needs (sun + ring)/N integer; nearest: each at the "
-               "allowed angle (a multiple of 2 pi/(sun + ring)) nearest 2 pi k/N"),
-    Param("carrier", bool, default=False, help="add a carrier: a plate below the wheels with a pin per planet"),
-)
-PLANETARY = {p.name: p for p in PLANETARY_PARAMS}
 
 #: family parameters a set fixes itself (each wheel's teeth and kind, the placement)
 RESERVED = ("teeth", "internal", "tolerance", "mate_teeth", "center_distance", "tip_radius", "rim_radius",
@@ -172,7 +157,7 @@ def _list(ns) -> str:
 @dataclass(frozen=True)
 class SetChoices:
     """How a planetary set is placed and what is built: ``spacing`` (``equal`` or
-    ``nearest``, see :data:`PLANETARY_PARAMS`), ``check`` (run the rolling checks),
+    ``nearest``, see :data:`gear3d.params.PLANETARY_PARAMS`), ``check`` (run the rolling checks),
     ``bodies`` (build the 3D bodies).
 
     >>> SetChoices().spacing

@@ -36,6 +36,7 @@ from __future__ import annotations
 import math
 
 from ..errors import GearError, check_number
+from ..params import MESH_TOLERANCE
 from ..spec import GearSpec
 
 
@@ -149,7 +150,7 @@ def member_spec(rep: dict, key: str, width: float, tolerance: float) -> tuple:
                     "width": width, "hand": g["hand"]}
 
 
-def pair_bodies(rep: dict, width: float, tolerance: float = 0.01, mate_width=None) -> list:
+def pair_bodies(rep: dict, width: float, tolerance: float = MESH_TOLERANCE, mate_width=None) -> list:
     """[wheel 1, wheel 2]: the helical bodies of a crossed pair (``rep`` from
     :func:`crossed_pair`), ``width`` mm wide (``mate_width`` for wheel 2, default the same),
     placed in mesh (mm, world frame):

@@ -26,8 +26,9 @@ import math
 from dataclasses import dataclass
 
 from ..errors import GearError, check_choice, check_number
+from ..params import BEVEL_FORMS
 
-FORMS = ("spherical-involute", "octoid")
+FORMS = BEVEL_FORMS
 CLEARANCES = ("standard", "uniform")
 #: degrees: the largest face (tip) cone angle built (the section is a central projection
 #: onto a plane normal to the axis, which needs every tooth point short of 90°)

@@ -18,7 +18,7 @@ import sys
 from ..errors import GearError
 from ..export import check_output, write
 from ..filesafe import atomic_path, check_path
-from ..params import BEVEL_PARAMS
+from ..params import BEVEL_FORMS, BEVEL_PARAMS
 
 
 #: flags the command needs (the table's defaults serve the web form and the Python API)
@@ -26,7 +26,6 @@ REQUIRED = ("teeth", "mate_teeth", "module")
 
 
 def add_parser(sub):
-    from ..bevel.geometry import FORMS
     from .profile import arg_type
     p = sub.add_parser("bevel", help="bevel gears: straight, spiral, Zerol (spherical-involute or octoid) -> .stl .3mf .step + .json")
     for prm in BEVEL_PARAMS:          # the set's table (gear3d.params): flags, ranges, defaults, help
@@ -37,7 +36,7 @@ def add_parser(sub):
             p.add_argument(prm.flag, type=arg_type(prm), default=None if need else prm.default, required=need,
                            help=prm.help_text(default_text="" if need else None))
         if prm.name == "form":
-            p.add_argument("--mate-form", default=None, choices=list(FORMS),
+            p.add_argument("--mate-form", default=None, choices=list(BEVEL_FORMS),
                            help="the mate's tooth form (default --form; an octoid is not conjugate to a "
                                 "spherical involute)")
     p.add_argument("-o", "--output", required=True, help="output file; extension picks the format")

@@ -27,7 +27,6 @@ from ..cliargs import number
 from ..errors import GearError
 from ..export import check_output, exts, write
 from ..filesafe import atomic_path, check_path
-from ..export.json_format import dumps
 
 #: the 3D outputs of a crossed pair (-o, with --width): both helical bodies placed in mesh
 MESH_EXTS = exts("mesh")
@@ -90,8 +89,8 @@ def run_crossed(args, alias: bool = False) -> int:
         _write_bodies(args, rep, out)
     if js is not None:
         with atomic_path(js, "json") as tmp, open(tmp, "w", encoding="utf-8") as f:
-            f.write(dumps(rep) + "\n")
-    sys.stdout.write((dumps(rep) if alias and js is None else summary(rep)) + "\n")
+            f.write(_dumps(rep) + "\n")
+    sys.stdout.write((_dumps(rep) if alias and js is None else summary(rep)) + "\n")
     return 0 if rep["contact_ratio"] >= 1 else 1
 
 
@@ -108,3 +107,9 @@ def _write_bodies(args, rep: dict, out: str) -> None:
                      f"a = {rep['center_distance']:.6g} mm, shaft angle {rep['shaft_angle_deg']:g} deg, "
                      f"{sum(b.report['triangles'] for b in bodies)} triangles (tolerance {tol:g} mm)"
                      + (f" {info}" if info else "") + "\n")
+
+
+def _dumps(rep) -> str:
+    """Strict JSON of a report (json_format imports numpy: not at start-up, so ``--help`` stays light)."""
+    from ..export.json_format import dumps
+    return dumps(rep)

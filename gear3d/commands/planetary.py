@@ -27,7 +27,8 @@ import sys
 from ..errors import GearError
 from ..export import write
 from ..filesafe import check_out_dir, check_path, make_out_dir, remove_dirs
-from ..params import BODY, DEFAULT_TOLERANCE, MESH_TOLERANCE, TOLERANCE, check_family
+from ..params import (BODY, DEFAULT_TOLERANCE, MESH_TOLERANCE, PLANETARY, PLANETARY_FAMILIES, PLANETARY_PARAMS,
+                      TOLERANCE, check_family)
 
 #: family flags a set does not take (hidden from --help, refused by the library)
 HIDDEN = ("teeth", "internal", "mate_teeth", "center_distance", "shift_coeff", "tip_radius", "rim_radius",
@@ -35,7 +36,6 @@ HIDDEN = ("teeth", "internal", "mate_teeth", "center_distance", "shift_coeff", "
 
 
 def add_parser(sub):
-    from ..planetary import PLANETARY_PARAMS
     from .profile import MESH_EXTS, add_param_flag, add_profile_flags
     p = sub.add_parser("planetary", add_help=False,
                        help="a planetary set: sun, planets, ring (+ carrier) in phase, checked -> .3mf + .json")
@@ -71,7 +71,6 @@ def read_template(path) -> dict:
     ranged, the family's parameters checked against its table. Every problem names the
     file and the key (:class:`gear3d.jobs.template.TemplateError`)."""
     from ..jobs.template import fail, read_toml
-    from ..planetary import PLANETARY, PLANETARY_FAMILIES
     file = str(path)
     data = read_toml(file)
     for k in data:
@@ -141,7 +140,7 @@ def _check_new(path, param, exts, note=""):
 
 
 def run(args) -> int:
-    from ..planetary import PLANETARY, planetary_set, summary
+    from ..planetary import planetary_set, summary
     from .check import write_report
     from .profile import default_tolerance, family_params, print_notes
     out, js = _outputs(args)

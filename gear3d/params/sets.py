@@ -1,5 +1,5 @@
-"""The keyword tables of the worm and bevel sets (``gear3d.worm``, ``gear3d.bevel``; their
-CLI flags, template keys and web forms)."""
+"""The keyword tables of the worm, bevel and planetary sets (``gear3d.worm``, ``gear3d.bevel``,
+``gear3d.planetary.planetary_set``; their CLI flags, template keys and web forms)."""
 from __future__ import annotations
 
 from .param import declare as _p
@@ -93,3 +93,23 @@ BEVEL_PARAMS: tuple = (
     _p("tolerance", float, "mm", 0, 1, lo_open=True, default=MESH_TOLERANCE,
        help="max deviation of the mesh from the exact surfaces", limits="at least 1e-6 mm"),
 )
+
+#: the generation forms of a bevel tooth (:mod:`gear3d.bevel.geometry`)
+BEVEL_FORMS = ("spherical-involute", "octoid")
+
+#: rack-generated families with a module whose same-family pairs mesh
+PLANETARY_FAMILIES = ("cycloidal", "involute", "sine", "triangular")
+SPACINGS = ("equal", "nearest")
+
+#: the set's own parameters (CLI flag = ``--`` + name, as gear3d.params)
+PLANETARY_PARAMS: tuple = (
+    _p("sun", int, "", 1, 10_000, help="teeth of the sun", default=None),
+    _p("planet", int, "", 1, 10_000, help="teeth of each planet", default=None),
+    _p("ring", int, "", 3, 30_000, help="teeth of the ring (standard set: sun + 2 planet)", default=None),
+    _p("planets", int, "", 1, 1000, default=3, help="number of planets"),
+    _p("spacing", str, default="equal", choices=SPACINGS,
+       help="equal: planets at 2 pi k/N, needs (sun + ring)/N integer; nearest: each at the "
+            "allowed angle (a multiple of 2 pi/(sun + ring)) nearest 2 pi k/N"),
+    _p("carrier", bool, default=False, help="add a carrier: a plate below the wheels with a pin per planet"),
+)
+PLANETARY = {p.name: p for p in PLANETARY_PARAMS}
