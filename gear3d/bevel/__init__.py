@@ -86,6 +86,7 @@ from dataclasses import asdict, dataclass, fields
 import numpy as np
 
 from ..errors import GearError, check_choice, check_number
+from ..profiles.keywords import front
 
 PARTS = ("gear", "mate", "pair")
 #: mm: default tolerance (bodies are meshes)
@@ -213,6 +214,7 @@ def split_options(options: dict) -> tuple:
     return tuple(g(**{f.name: options[f.name] for f in fields(g) if f.name in options}) for g in GROUPS)
 
 
+@front(("teeth", "mate_teeth", "module", "part", "tolerance", "check") + OPTIONS, *GROUPS)
 def build(teeth, mate_teeth, module, part="gear", tolerance=DEFAULT_TOLERANCE, check=False, **options) -> Bevel:
     """Bevel member(s) (mm, degrees); see the package doc. ``part``: gear | mate | pair (the
     mate placed on its axis at the shaft angle, in mesh). ``check`` (pair only): roll the
@@ -378,5 +380,7 @@ class _CallableModule(types.ModuleType):
 
 
 sys.modules[__name__].__class__ = _CallableModule
+#: ``inspect.signature(gear3d.bevel)`` and ``help`` show :func:`build`'s keywords
+__signature__ = build.__signature__
 #: ``gear3d.bevel`` resolves to this (callable) package through gear3d's lazy names
 bevel = sys.modules[__name__]
