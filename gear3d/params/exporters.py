@@ -18,7 +18,7 @@ from .param import declare as _p
 
 #: the DXF versions written (R12: LINE/ARC entities in cutting order; the others LWPOLYLINE)
 DXF_VERSIONS = ("R12", "R2000", "R2004", "R2007", "R2010", "R2013", "R2018")
-#: the STEP flavours: planar facets, or exact B-rep surfaces (OpenCascade)
+#: the STEP flavours: planar facets, or exact B-rep surfaces
 STEP_KINDS = ("faceted", "brep")
 #: mm between the parts of an arranged 3MF, and the largest gap accepted
 ARRANGE_GAP = 5.0
@@ -61,7 +61,8 @@ SVG_PARAMS: tuple = (
 
 STEP_PARAMS: tuple = (
     _p("step", str, default="faceted", choices=STEP_KINDS,
-       help="faceted: planar facets; brep: exact B-spline surfaces (OpenCascade: pip install 'gear3d[cad]')"),
+       help="faceted: planar facets; brep: exact B-spline surfaces (plain gear bodies by gear3d's own "
+            "writer; features, bevels and worms through OpenCascade: pip install 'gear3d[cad]')"),
 )
 
 THREEMF_PARAMS: tuple = (
