@@ -118,6 +118,17 @@ COSTS = {
     "bevel.spiral": Cost(1.2e-5, 1500.0, 0.4, 60e6, "measured 2026-11-26 (CPU, peak RSS): spiral bevel 20/40 m 2, "
                          "35 deg, gear at 10 / 3 um, 136k / 399k triangles: 1.2 / 4.6 s (1.05e-5 s a triangle), "
                          "131 / 318 MB; per planned triangle (layers x warped vertices, plan_sets)"),
+    "bevel.spiral.internal": Cost(2.0e-5, 1500.0, 0.4, 60e6, "measured 2026-11-26 (CPU, peak RSS): the internal "
+                                  "mate of a spiral pair 20/30 m 2, 35 deg, shaft 150 deg at 10 / 5 / 2 um, 211k / "
+                                  "391k / 924k planned triangles: 5.4 / 13.1 / 44.7 s (25 / 33 / 48 us a triangle: "
+                                  "the rim cone minus the teeth, then the caps), 186 / 318 / 617 MB; per planned "
+                                  "triangle x (1 + triangles / plan_sets.INTERNAL_SPIRAL_KNEE)"),
+    # the direct B-rep writer's section check (gear3d.export.step_direct_text.section_crossing):
+    # per chord of half the tolerance along tooth 0 and its neighbours (plan.direct_section_points)
+    "brep.direct.section": Cost(1.2e-6, 210.0, 0.0, 0.0, "measured 2026-11-26 in process (CPU, tracemalloc "
+                                "peak): involute z = 14 (14.5 deg, undercut) / 100 at 10 um, 8 at 30 um, 1000 at "
+                                "100 um: 0.25-2.5 M chords, 0.87-1.2 us and 207-212 B a chord; the plan's count "
+                                "is 1.5-2.3x the chords"),
     "bevel.brep": Cost(0.16, 2e6, 1.2, 300e6, "measured 2026-11-26 (CPU, peak RSS): B-rep STEP of a 20-tooth "
                        "gear (20/40 m 2, 10 um) 3.95 s in all, of the 100/100 pair at 50 um 30 s and 492 MB: "
                        "0.12-0.15 s and about 2 MB a tooth, plus OpenCascade's import"),

@@ -204,6 +204,24 @@ def bevel_member_counts(geo, which: str, tol: float) -> tuple:
     return nv, n_seg, layers
 
 
+#: an internal spiral/Zerol member (the rim's cone minus the warped teeth, then the caps)
+#: costs more a triangle as the triangles grow: COSTS["bevel.spiral.internal"] x (1 + t / this)
+INTERNAL_SPIRAL_KNEE = 5e5
+
+
+def _spiral_member(geo, which: str, t: float, what: str) -> Estimate:
+    """A spiral/Zerol member's body of ``t`` planned triangles (COSTS["bevel.spiral"], an
+    internal member's COSTS["bevel.spiral.internal"], superlinear past :data:`INTERNAL_SPIRAL_KNEE`)."""
+    from .bevel.section import member
+    if member(geo, which).internal:
+        c = budget.COSTS["bevel.spiral.internal"]
+        sec = c.seconds * t * (1.0 + t / INTERNAL_SPIRAL_KNEE)
+    else:
+        c = budget.COSTS["bevel.spiral"]
+        sec = c.seconds * t
+    return Estimate(c.fixed_seconds + sec, c.fixed_bytes + c.bytes * t, t, what)
+
+
 def plan_bevel(kw: dict, output=None, step=None, png=None, json=None, preview=None) -> Estimate:
     """``gear3d bevel ...`` / ``gear3d.bevel(**kw)``: each member's body (its section's
     vertices x cap segments, COSTS["bevel.body"]), the rolling check, the export and the
@@ -218,9 +236,8 @@ def plan_bevel(kw: dict, output=None, step=None, png=None, json=None, preview=No
         nv, n_seg, layers = bevel_member_counts(geo, which, tol)
         if layers < 0:                    # spiral / Zerol: a warped layered mesh cut by the caps
             t = 2.0 * nv * (4 - layers) + 4 * n_seg
-            sp = budget.COSTS["bevel.spiral"]
-            est = est.then(Estimate(sp.fixed_seconds + sp.seconds * t, sp.fixed_bytes + sp.bytes * t, t,
-                                    f"the {which}'s warped teeth of {nv:,.0f} vertices x {-layers:,} layers"))
+            est = est.then(_spiral_member(geo, which, t, f"the {which}'s warped teeth of {nv:,.0f} vertices x "
+                                                         f"{-layers:,} layers"))
         else:
             t = 2.0 * (2 * nv * (layers + 2) + 2 * n_seg * (4 + 2 * layers))
             work = nv * n_seg * (1 if layers else 2)          # unsplit: twice the cost a pair (COSTS)
