@@ -194,13 +194,13 @@ def test_scene_worm_set_brep_step_is_the_cli_s(tmp_path):
     src.write_text('[scene]\nname = "w"\ntolerance = 0.1\n[[part]]\nname = "set"\nkind = "worm"\npart = "pair"\n'
                    'module = 1\nstarts = 1\nwheel_teeth = 30\nwheel_bore = 6\nshaft_diameter = 6\n'
                    'shaft_length = 5\noutputs = ["step"]\n[part.options.step]\nkind = "brep"\n')
-    build_scene(load_scene(src), tmp_path / "out")
     cli = tmp_path / "cli.step"
-    r = subprocess.run([sys.executable, "-m", "gear3d.cli", "worm", "--module", "1", "--starts", "1",
-                        "--wheel-teeth", "30", "--tolerance", "0.1", "--part", "pair", "--wheel-bore", "6",
-                        "--shaft-diameter", "6", "--shaft-length", "5", "-o", str(cli), "--step", "brep"],
-                       capture_output=True, text=True, timeout=300)
-    assert r.returncode == 0, r.stderr
+    for args in (["build", str(src), "--out", str(tmp_path / "out")],
+                 ["worm", "--module", "1", "--starts", "1", "--wheel-teeth", "30", "--tolerance", "0.1", "--part",
+                  "pair", "--wheel-bore", "6", "--shaft-diameter", "6", "--shaft-length", "5", "-o", str(cli),
+                  "--step", "brep"]):
+        r = subprocess.run([sys.executable, "-m", "gear3d.cli", *args], capture_output=True, text=True, timeout=300)
+        assert r.returncode == 0, r.stderr
     assert (tmp_path / "out" / "set.step").read_bytes() == cli.read_bytes()
     solids = sub_shapes(read_step(cli), "solid")
     assert len(solids) == 2 and all(is_valid(x) for x in solids)
