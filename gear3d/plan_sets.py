@@ -38,7 +38,7 @@ import os
 from . import budget
 from .budget import Estimate, estimate
 from .errors import GearError, check_choice, check_number
-from .params import MESH_TOLERANCE
+from .params import MESH_TOLERANCE, PRESSURE
 from .plan import brep_estimate, write_estimate
 from .spec import GearSpec
 
@@ -362,7 +362,6 @@ def _crossed_helix_range(rep: dict) -> None:
     bodies cannot be cut: a wheel's transverse pressure angle atan(tan a_n / cos b) above
     the involute family's bound (45 deg) for |b| > acos(tan a_n / tan 45 deg) (a_n = 20 deg:
     68.7 deg). The rolling report takes any b in [-80, 80]; only the bodies need this."""
-    from .params import PRESSURE
     an = math.radians(rep["normal_pressure_angle_deg"])
     bmax = math.degrees(math.acos(min(1.0, math.tan(an) / math.tan(math.radians(PRESSURE.hi)))))
     b1, sigma = rep["gear"]["helix_angle_deg"], rep["shaft_angle_deg"]
