@@ -372,7 +372,7 @@ def _crossed_helix_range(rep: dict) -> None:
         raise GearError("shaft_angle_deg", sigma, f"a number in [{-2 * bmax:.4g}, {2 * bmax:.4g}] deg "
                         "for crossed bodies (-o)", why)
     if not lo - 1e-9 <= b1 <= hi + 1e-9:
-        raise GearError("helix_angle_deg", b1, f"a number in [{lo:.4g}, {hi:.4g}] deg for crossed bodies (-o) "
+        raise GearError("helix_angle_deg", round(b1, 9), f"a number in [{lo:.4g}, {hi:.4g}] deg for crossed bodies (-o) "
                         f"at a shaft angle of {sigma:g} deg", why)
 
 
