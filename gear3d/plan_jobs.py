@@ -32,6 +32,8 @@ from __future__ import annotations
 
 from . import budget
 from .budget import Estimate, estimate
+from .errors import GearError, check_number
+from .params import MIN_TOLERANCE
 from .plan import (Sketch, kerf_of, body_layers, pair_estimate, probe_call, probe_profile, sketch_contact,
                    write_estimate)
 
@@ -144,15 +146,15 @@ def spread_order(n: int) -> list:
     return out
 
 
-def _part_plan(job, part, out_dir, probes: dict) -> Estimate | None:
+def _part_plan(job, part, out_dir, probes: dict, targets_of) -> Estimate | None:
     """One library part's plan (its stage graph walked, :class:`_Walk`); None when its
-    values are refused (the part fails in its worker and is recorded, as before)."""
-    from .errors import GearError
+    values are refused (the part fails in its worker and is recorded, as before).
+    ``targets_of``: :func:`gear3d.jobs.scene.part_targets` (passed in: the planner does not
+    import the builders)."""
     from .jobs.graph import Graph
-    from .jobs.scene import part_targets
     g = Graph()
     try:
-        targets = part_targets(g, job, part, out_dir, prefix=f"part {part.name}")
+        targets = targets_of(g, job, part, out_dir, prefix=f"part {part.name}")
         w = _Walk(g, "library.tolerance", job.tolerance, probes)
         for k in g.needed(list(targets.values())):
             w.stage(k)
@@ -163,9 +165,10 @@ def _part_plan(job, part, out_dir, probes: dict) -> Estimate | None:
     return w.total.then(estimate("library.part", 1, 0.0, f"part {part.name}"))
 
 
-def plan_library(job, parts, out_dir, workers: int = 1) -> Estimate:
+def plan_library(job, parts, out_dir, targets_of, workers: int = 1) -> Estimate:
     """A library batch (``gear3d batch``, :func:`gear3d.jobs.batch.run_library`) of
-    ``parts`` (those still to build) into ``out_dir`` on ``workers`` processes, charged per
+    ``parts`` (those still to build) into ``out_dir`` on ``workers`` processes
+    (``targets_of``: :func:`gear3d.jobs.scene.part_targets`), charged per
     part: each part's own plan (its profile probed, its body's layers, its files, as
     :func:`plan_scene`; probes shared by parts of the same profile), the once-only seconds
     (imports, first calls) once a worker, the rest summed; memory and triangles the
@@ -178,12 +181,12 @@ def plan_library(job, parts, out_dir, workers: int = 1) -> Estimate:
     if not n:
         return Estimate()
     t0, probes = time.process_time(), {}
-    first = _part_plan(job, parts[0], out_dir, {}) or Estimate()
+    first = _part_plan(job, parts[0], out_dir, {}, targets_of) or Estimate()
     with budget.once_paid():
-        once = first.seconds - (_part_plan(job, parts[0], out_dir, probes) or Estimate()).seconds
+        once = first.seconds - (_part_plan(job, parts[0], out_dir, probes, targets_of) or Estimate()).seconds
         total, planned = Estimate(once * max(1, min(int(workers) or 1, n))), 0
         for i in spread_order(n):
-            est = _part_plan(job, parts[i], out_dir, probes)
+            est = _part_plan(job, parts[i], out_dir, probes, targets_of)
             planned += 1
             if est is not None:
                 total = total.then(est)
@@ -291,19 +294,17 @@ def harmonic_check_counts(flex: Sketch, rigid: Sketch, positions: int) -> tuple:
     return items, flex.teeth * region + rigid.layer_vertices
 
 
-def plan_harmonic_check(design, stage: int, tooth: str, tolerance: float, positions: int,
-                        tooth_params: dict | None = None, figure: bool = False) -> Estimate:
-    """The deformed-state mesh check of ``design``'s ``stage`` (0-based) at ``tolerance``
-    (mm) over ``positions`` flex rotations (``gear3d harmonic check``,
-    :func:`gear3d.harmonic.deform.mesh_check`): the flex and rigid profiles probed, the
+def plan_harmonic_check(flex_call, rigid_call, tolerance: float, positions: int,
+                        figure: bool = False) -> Estimate:
+    """The deformed-state mesh check of a strain-wave stage at ``tolerance`` (mm) over
+    ``positions`` flex rotations (``gear3d harmonic check``,
+    :func:`gear3d.harmonic.deform.mesh_check`; ``flex_call``, ``rigid_call``: the calls that
+    build the stage's two profiles, :func:`gear3d.harmonic.deform.stage_builders`, passed in
+    by the caller so the planner does not import the builders): the two profiles probed, the
     rolling (:func:`harmonic_check_counts` x COSTS["harmonic.check"]) and, with ``figure``,
     its figure; logged and checked (BudgetError naming the positions, or the tolerance when
     one position is already over)."""
-    from .errors import check_number
-    from .harmonic.deform import stage_builders
-    from .params import MIN_TOLERANCE
     tol = check_number("tolerance", tolerance, MIN_TOLERANCE, 0.05, unit="mm")
-    _, flex_call, rigid_call, _ = stage_builders(design, stage, tooth, tol, dict(tooth_params or {}))
     flex, rigid = probe_call(flex_call, tol), probe_call(rigid_call, tol)
     if flex is None or rigid is None:
         return Estimate()

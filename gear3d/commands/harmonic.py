@@ -148,13 +148,14 @@ def run(args) -> int:
             raise
         return 0
     # check
-    from ..harmonic.deform import mesh_check, mesh_figure, public_report
+    from ..harmonic.deform import mesh_check, mesh_figure, public_report, stage_builders
     n = len(design.stages)
     if args.stage not in range(1, n + 1):
         raise GearError("stage", args.stage, f"1..{n}")
     if args.png:                          # the check and its figure, planned before either
         from ..plan_jobs import plan_harmonic_check
-        plan_harmonic_check(design, args.stage - 1, args.tooth, args.tolerance, args.positions, figure=True)
+        _, flex_call, rigid_call, _ = stage_builders(design, args.stage - 1, args.tooth, args.tolerance, {})
+        plan_harmonic_check(flex_call, rigid_call, args.tolerance, args.positions, figure=True)
     chk = mesh_check(design, args.stage - 1, tooth=args.tooth, tolerance=args.tolerance,
                      w0=args.deflection, positions=args.positions)
     if args.png:

@@ -127,7 +127,8 @@ def mesh_check(design: HarmonicDesign, stage=0, *, tooth="triangular", tolerance
     tol = check_number("tolerance", tolerance, MIN_TOLERANCE, 0.05, unit="mm")
     npos = check_number("positions", positions, 1, 10_000, integer=True)
     from ..plan_jobs import plan_harmonic_check
-    plan_harmonic_check(design, stage, tooth, tol, npos, tooth_params)      # refused before any work
+    _, flex_call, rigid_call, _ = stage_builders(design, stage, tooth, tol, dict(tooth_params or {}))
+    plan_harmonic_check(flex_call, rigid_call, tol, npos)      # refused before any work
     st, pf, pr, r_n = _stage_geometry(design, stage, tooth, tol, tooth_params)
     w = st.w0 if w0 is None else check_number("w0", w0, 0, r_n / 4, unit="mm")
     gap = 2 * tol + 1e-3 if contact_gap is None else check_number("contact_gap", contact_gap, 0, None, unit="mm")

@@ -299,15 +299,18 @@ def run_library(lib: Library, out_dir, workers: int = 2, engine: str = "local", 
     :func:`gear3d.plan_jobs.plan_library`), an unwritable ``out_dir``, Dask missing or an
     unreachable scheduler raise GearError before anything is written.
 
-    >>> from gear3d.jobs.template import load_library  # doctest: +SKIP
-    >>> run_library(load_library("templates/sine-spur-library.toml"), "out/s")["built"]  # doctest: +SKIP
-    51
+    >>> import tempfile
+    >>> from gear3d.jobs.template import load_library
+    >>> lib = load_library("templates/sine-spur-library.toml")      # from the repository's root
+    >>> r = run_library(lib, tempfile.mkdtemp(), workers=0, progress=False)
+    >>> r["built"], r["failed"]
+    (51, 0)
     """
     engine, workers = _checked_engine(engine, workers, scheduler)
     out_dir, job = str(out_dir), job_header(lib)
     records, todo = _resume_scan(lib, job, out_dir)
     from ..plan_jobs import plan_library
-    plan_library(job, todo, out_dir, workers)      # the whole batch, before its first part
+    plan_library(job, todo, out_dir, part_targets, workers)      # the whole batch, before its first part
     preflight(lib)
     check_out_dir(out_dir, "out")
     runner = _open_runner(lib, todo, out_dir, engine, workers, scheduler, processes)
