@@ -24,6 +24,7 @@ The charged API wrappers (:func:`check_pair`, :func:`largest_addendum`,
 from __future__ import annotations
 
 import math
+import sys
 from dataclasses import dataclass
 
 from . import budget
@@ -178,6 +179,19 @@ def law_pieces(kind) -> int:
     return 3 if kind == "chevron-arch" else (2 if kind == "herringbone" else 1)
 
 
+#: a worm set's B-rep fits fewer poles than its mesh's vertices (the wheel's columns and rows
+#: grown from the measured error): surface samples counted as this share of the mesh-based
+#: count, measured 2026-11-26 (CPU, peak RSS; m 2, z2 = 30, features on): wheel at 1 um 26.5 s
+#: and 0.90 GB for 94.7 s and 6.7 GiB planned at share 1, worm at 1 um 7.4 s and 1.09 GB for
+#: 93.7 s and 6.5 GiB, the pair at 10 um 7.9 s and 0.49 GB for 23.6 s and 2.0 GiB; 0.35 keeps
+#: the wheel's time (the tightest) an upper bound (plan_sets.plan_worm and the export's charge)
+WORM_BREP_SAMPLES = 0.35
+#: bytes a (shared) worm B-rep sample, beyond COSTS["write.brep"]'s fixed bytes: measured at
+#: that share 4.2-8.2 kB (wheel z2 = 30 at 1 um, z2 = 100 at 5 um, worm at 1 um, the pair with
+#: features at 10 um: the last the largest, 0.49 GB), with a margin
+WORM_BREP_BYTES = 12000.0
+
+
 def body_brep_estimate(b) -> Estimate:
     """:func:`brep_estimate` of a built body ``b`` (its profile's tooth period sampled as the
     plan sampled it: the same counts, so the charge agrees with the plan)."""
@@ -186,7 +200,13 @@ def body_brep_estimate(b) -> Estimate:
     teeth = int(getattr(prof, "teeth", 1) or 1)
     v = float(pr.get("vertices") or 0.0)
     law = law_pieces(r.get("kind"))
-    est = brep_estimate(teeth, law, v * law * max(1.0, float(r.get("layers") or 1) / 5.0))
+    samples = v * law * max(1.0, float(r.get("layers") or 1) / 5.0)
+    worm = sys.modules.get("gear3d.wormgear.wheel_body")      # loaded when b is a worm set's part
+    if worm is not None and isinstance(b, worm.WormPart) or r.get("lead") is not None:   # a wheel, a worm
+        est = brep_estimate(teeth, law, WORM_BREP_SAMPLES * samples)
+        return Estimate(est.seconds, budget.COSTS["write.brep"].fixed_bytes + WORM_BREP_BYTES * samples,
+                        0.0, est.what)
+    est = brep_estimate(teeth, law, samples)
     from .export import step_direct
     if prof is None or step_direct.reason(b) is not None:
         return est

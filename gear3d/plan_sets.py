@@ -39,7 +39,7 @@ from . import budget
 from .budget import Estimate, estimate
 from .errors import GearError, check_choice, check_number
 from .params import MESH_TOLERANCE, PRESSURE
-from .plan import brep_estimate, write_estimate
+from .plan import WORM_BREP_BYTES, WORM_BREP_SAMPLES, brep_estimate, write_estimate
 from .spec import GearSpec
 
 #: the builder's triangle formulas (gear3d.wormgear._check_budget) bound the measured
@@ -107,14 +107,16 @@ def _worm_export(d, c: dict, ext: str, step, tri: float, part: str) -> Estimate:
         return budget.profile_estimate(v, c["per_tooth"]).then(write_estimate(".dxf", vertices=v,
                                                                               per_tooth=c["per_tooth"]))
     if step == "brep" and ext in (".step", ".stp"):
-        est = Estimate()
+        est, k, n = Estimate(), WORM_BREP_SAMPLES, 0.0
         if part != "worm":
-            est = brep_estimate(d.wheel_teeth, 1, c["layers"] * c["per_tooth"] * d.wheel_teeth / 4)
+            n = k * c["layers"] * c["per_tooth"] * d.wheel_teeth / 4
+            est = brep_estimate(d.wheel_teeth, 1, n)
         if part != "wheel":
-            w = brep_estimate(d.starts, 1, c["per_layer"] * c["worm_layers"] / 4)
-            est = w if part == "worm" else Estimate(est.seconds + w.seconds, est.bytes + w.bytes, 0.0,
-                                                     est.what + "; " + w.what)
-        return est
+            w_n = k * c["per_layer"] * c["worm_layers"] / 4
+            w = brep_estimate(d.starts, 1, w_n)
+            est = w if part == "worm" else Estimate(est.seconds + w.seconds, 0.0, 0.0, est.what + "; " + w.what)
+            n += w_n
+        return Estimate(est.seconds, budget.COSTS["write.brep"].fixed_bytes + WORM_BREP_BYTES * n, 0.0, est.what)
     return mesh_write(ext, tri) if ext else Estimate()
 
 
