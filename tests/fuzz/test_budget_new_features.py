@@ -47,8 +47,8 @@ OVER = [
      "-o b.step --step brep", "time", "--max-seconds"),
     ("body involute --teeth 14 --pressure-angle-deg 14.5 --width 10 --tolerance 1e-6 -o g.step --step brep",
      "memory", "--max-memory"),
-    ("worm --module 1 --starts 1 --wheel-teeth 1000 --part wheel -o w.step --step brep --wheel-bore 10 "
-     "--tolerance 0.05", "memory", "--max-memory"),
+    ("worm --module 2 --starts 1 --wheel-teeth 30 --part wheel -o w.step --step brep --wheel-bore 10 "
+     "--tolerance 0.0003", "memory", "--max-memory"),
 ]
 
 #: the budget's refusal: one line naming the parameter, the resource's budget, the estimate and
