@@ -216,3 +216,17 @@ def test_pinion_at_thirty_degrees_has_a_fillet_that_fits():
     fits = (math.pi / 4 - 1.25 * math.tan(math.radians(30))) / math.tan(math.radians(30))
     assert f.bodies[0].profile.params["tip_radius_coeff"] == pytest.approx(0.95 * fits, rel=1e-12)
     assert f.report.pinion["max_error"] <= 0.02 and f.report.part == "pinion" and f.report.triangles is None
+
+
+@pytest.mark.parametrize("z2, z0, alpha", [(60, 20, 20.0), (100, 25, 20.0), (80, 30, 22.0)])
+def test_default_pair_starts_at_the_form_limit_and_does_not_interfere(z2, z0, alpha):
+    """Without --inner-radius a pair starts at the twin pinion's form limit (the oracle's
+    root finding above), and its rolling check finds no interference; the face gear alone
+    keeps the shaper's limit."""
+    f = gear3d.face_gear(teeth=z2, shaper_teeth=z0, module=1.0, pressure_angle_deg=alpha, tolerance=0.05,
+                         part="pair", check=True)
+    _rf, r_form = _form_limit_oracle(z2, z0, 1.0, alpha)
+    assert f.report.inner_radius == pytest.approx(r_form, abs=2e-6)
+    assert f.report.inner_radius > f.report.limits["inner"] + 0.2
+    assert not f.report.check["interference"] and f.report.check["max_penetration"] < 1e-4
+    assert f.report.check["contact_ratio"] > 1

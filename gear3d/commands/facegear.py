@@ -14,6 +14,7 @@ and outer radius, unrolled. Bad input: one line on stderr, exit 2, no file.
 """
 from __future__ import annotations
 
+import math
 import sys
 
 from ..cliargs import number
@@ -35,7 +36,9 @@ def add_parser(sub):
     p.add_argument("--pressure-angle-deg", type=number("float", 14, 30, unit="deg"), default=20.0,
                    help="pressure angle of the shaper (deg), default 20")
     p.add_argument("--inner-radius", type=number("float", 0, None, lo_open=True, unit="mm"), default=None,
-                   help="inner radius R1 (mm); default the inner limit (undercut or the shaper's base circle)")
+                   help="inner radius R1 (mm); default the inner limit (undercut or the shaper's base circle); "
+                        "with --part pinion|pair and the twin pinion: the form limit (the face gear's tip "
+                        "edge clear of the pinion's fillet)")
     p.add_argument("--outer-radius", type=number("float", 0, None, lo_open=True, unit="mm"), default=None,
                    help="outer radius R2 (mm); default where the tip land has narrowed to 0.25 m "
                         "(at most the pointing limit)")
@@ -88,7 +91,10 @@ def run(args) -> int:
             "pair": f"face gear {r.teeth} teeth (shaper {r.shaper_teeth}) and pinion "
                     f"{r.pinion['teeth'] if r.pinion else ''} in mesh"}[r.part]
     tri = sum(b.report["triangles"] for b in f.bodies)
-    sys.stdout.write(f"wrote {out}: {what}, r {r.inner_radius:.4f}..{r.outer_radius:.4f} mm (limits {lim['inner']:.4f}.."
+    form = lim.get("inner_form_limit")
+    src = (" (inner radius: the pinion's form limit)" if args.inner_radius is None and form is not None
+           and r.inner_radius == math.ceil(form * 1e6) / 1e6 else "")
+    sys.stdout.write(f"wrote {out}: {what}, r {r.inner_radius:.4f}..{r.outer_radius:.4f} mm{src} (limits {lim['inner']:.4f}.."
                      f"{lim['outer']:.4f}), {tri} triangles, max_error={r.max_error:.3g} mm (tolerance {r.tolerance:g} mm)"
                      + (f" {info}" if info else "") + "\n")
     if r.check is None:

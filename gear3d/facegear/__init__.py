@@ -148,6 +148,20 @@ def check_radii(g: FaceGeometry, inner_radius=None, outer_radius=None, lim=None)
     return r1, r2
 
 
+def pair_inner_default(g: FaceGeometry, lim: dict):
+    """The default inner radius (mm) of a pinion or a pair: the twin pinion's form limit
+    (:func:`gear3d.facegear.rolling.twin_form_limit`: inside it the face gear's tip edge
+    digs into a rack-cut pinion's fillet), rounded up to the µm and recorded as
+    ``lim["inner_form_limit"]``; None (the face gear's own default) for a pinion with fewer
+    teeth than the shaper or a form limit inside the inner limit."""
+    from .rolling import twin_form_limit
+    r = twin_form_limit(g)
+    lim["inner_form_limit"] = r
+    if r is None or r <= lim["inner"] or r >= lim["outer"]:
+        return None
+    return math.ceil(r * 1e6) / 1e6
+
+
 def _default_outer(g, inner, outer):
     """The radius (mm) where the tip land has narrowed to DEFAULT_TIP_LAND × m."""
     want = DEFAULT_TIP_LAND * g.module
@@ -230,8 +244,9 @@ def build(teeth, shaper_teeth=None, module=1.0, pressure_angle_deg=20.0, pinion_
         With ``part="pair"``: roll the pair (:mod:`gear3d.facegear.rolling`: interference,
         backlash, contact ratio, transmission error) into ``report.check``.
     **options
-        :class:`Band` ``inner_radius``, ``outer_radius`` (mm; defaults: the inner limit,
-        and where the tip land has narrowed to ``DEFAULT_TIP_LAND`` m; each refused beyond
+        :class:`Band` ``inner_radius``, ``outer_radius`` (mm; defaults: the inner limit
+        (for ``part="pinion"``/``"pair"`` with the twin pinion: its form limit,
+        :func:`pair_inner_default`, so the pair does not interfere), and where the tip land has narrowed to ``DEFAULT_TIP_LAND`` m; each refused beyond
         its limit) and :class:`Depths` ``addendum_coeff``, ``dedendum_coeff`` (tip and root
         plane heights, modules: 1 and 1.25), ``rim`` (mm below the root plane, default 2 m).
 
@@ -262,7 +277,10 @@ def build(teeth, shaper_teeth=None, module=1.0, pressure_angle_deg=20.0, pinion_
     if not isinstance(check, bool) or (check and part != "pair"):
         raise GearError("check", check, "true only with part='pair' (the check rolls the pair), else false")
     lim = radius_limits(g)
-    r1, r2 = check_radii(g, band.inner_radius, band.outer_radius, lim)
+    inner = band.inner_radius
+    if part != "gear" and inner is None:
+        inner = pair_inner_default(g, lim)
+    r1, r2 = check_radii(g, inner, band.outer_radius, lim)
     r2 = _default_outer(g, r1, lim["outer"]) if r2 is None else r2
     bodies, face = [], None
     if part != "pinion":

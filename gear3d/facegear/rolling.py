@@ -113,6 +113,34 @@ class Surface:
         return r, th0 + t * (tt - th0), np.full(np.broadcast(r, t).shape, g.addendum)
 
 
+def fillet_table(g: FaceGeometry, z1: int):
+    """(form radius (mm), R, az): the pinion's side below its form circle (where its
+    involute starts: the polygon's vertices lie on the involute to 1e-8 rad above it), from a
+    1e-4 m polygon of its profile; R (mm) rising, az (rad) the half tooth angle there."""
+    p = pinion_geometry(g, z1, 0.0, 1.0)
+    pitch = 2 * math.pi / z1
+    loop = spec_of(g, z1).profile(1e-4 * g.module).loops[0]
+    R, az = np.hypot(loop[:, 0], loop[:, 1]), np.arctan2(loop[:, 1], loop[:, 0])
+    sel = (az >= 0) & (az <= pitch / 2) & (R > p.root_radius + 1e-9) & (R < p.tip_radius - 1e-6 * p.module)
+    R, az = R[sel], az[sel]
+    k = np.argsort(R)
+    R, az = R[k], az[k]
+    off = ((R < p.base_radius) | (np.abs(az - p.half_tooth(np.maximum(R, p.base_radius))) > 1e-8)) & \
+        (R < p.pitch_radius)                      # the fillet ends below the pitch circle
+    i = int(np.nonzero(off)[0].max()) + 1 if off.any() else 0
+    keep = np.concatenate([[True], np.diff(R[:i + 1]) > 0])
+    return float(R[min(i, len(R) - 1)]), R[:i + 1][keep], az[:i + 1][keep]
+
+
+def twin_form_limit(g: FaceGeometry):
+    """The face gear radius (mm) from which its tip edge meets only the involute of the
+    twin pinion (z1 = z0, :func:`form_limit` of its form circle), or None (another pinion,
+    or a tip height outside the form circle)."""
+    if (g.pinion_teeth or g.shaper_teeth) != g.shaper_teeth:
+        return None
+    return form_limit(g, fillet_table(g, g.shaper_teeth)[0])
+
+
 class Mesh:
     """The pair at roll positions: the face gear's surface, the pinion (its geometry and
     side function u(R)) and the gap formulas of the module doc."""
@@ -127,21 +155,8 @@ class Mesh:
         self.reach = int(math.ceil(reach)) + 1
 
     def _fillet(self, z1):
-        """The pinion's side below its form circle (where its involute starts: the polygon's
-        vertices lie on the involute to 1e-8 rad above it), from a 1e-4 m polygon of its profile."""
-        p = self.p
-        loop = spec_of(self.g, z1).profile(1e-4 * self.g.module).loops[0]
-        R, az = np.hypot(loop[:, 0], loop[:, 1]), np.arctan2(loop[:, 1], loop[:, 0])
-        sel = (az >= 0) & (az <= self.pitch / 2) & (R > p.root_radius + 1e-9) & (R < p.tip_radius - 1e-6 * p.module)
-        R, az = R[sel], az[sel]
-        k = np.argsort(R)
-        R, az = R[k], az[k]
-        off = ((R < p.base_radius) | (np.abs(az - p.half_tooth(np.maximum(R, p.base_radius))) > 1e-8)) & \
-            (R < p.pitch_radius)                      # the fillet ends below the pitch circle
-        i = int(np.nonzero(off)[0].max()) + 1 if off.any() else 0
-        self.form_radius = float(R[min(i, len(R) - 1)])
-        keep = np.concatenate([[True], np.diff(R[:i + 1]) > 0])
-        self.fR, self.faz = R[:i + 1][keep], az[:i + 1][keep]
+        """The pinion's side below its form circle (:func:`fillet_table`)."""
+        self.form_radius, self.fR, self.faz = fillet_table(self.g, z1)
 
     def side(self, R):
         """u(R) (rad): the pinion's half tooth angle at radii R (root..tip): the involute
