@@ -22,7 +22,7 @@ PKG = ROOT / "gear3d"
 CHOSEN = {
     ("commands/check.py", (".json", ".png", ".svg")): "a pair check's report or its figure (matplotlib)",
     ("commands/worm.py", (".stl", ".3mf", ".dxf", ".step", ".stp")): "what a worm set builds",
-    ("jobs/template_parts.py", ("stl", "3mf", "json", "dxf", "png")): "a worm part's outputs",
+    ("jobs/template_parts.py", ("stl", "3mf", "json", "dxf", "png", "step")): "a worm part's outputs",
     ("jobs/template_parts.py", ("stl", "3mf", "json", "step")): "a bevel part's outputs",
     ("jobs/template_parts.py", ("stl", "3mf", "json")): "a face gear's / a worm alone's outputs",
     ("web/schema.py", ("stl", "3mf", "step", "dxf", "svg")): "the page's download buttons",
