@@ -48,6 +48,7 @@ from .step_brep_fit import (FIT_SHARE, SMOOTH_JOINT, FaceRec, Flank, Group, fit_
 from .step_brep_occ import (SEW_TOL, bspline_curve, bspline_surface, circle_wire, count,
                             cylinder_face, features, plane_face, sew_solid, static_method,
                             transformed, volume, wire_of_curves, write_shape)
+from .step_brep_face import face_solid, is_face
 from .step_brep_wheel import is_wheel, wheel_solid
 from .step_brep_runs import ExactSet, Run, exact_set, loop_runs, nearest_on_piece, rot2
 
@@ -265,6 +266,8 @@ def solid_of(b, geometry=None):
     for spiral and Zerol members), a worm wheel through
     :func:`gear3d.export.step_brep_wheel.wheel_solid` (``geometry``: the worm set's design), a
     gear, ring or worm body through :func:`brep_solid`."""
+    if is_face(b):
+        return face_solid(b, geometry)
     if is_bevel(b):
         return bevel_solid(b, geometry)
     if is_wheel(b):

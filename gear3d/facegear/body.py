@@ -256,4 +256,6 @@ def face_body(g: FaceGeometry, r1: float, r2: float, tolerance: float, name: str
     rep = {"name": name, **errs, "max_error": float(max_err), "tolerance": float(tolerance),
            "sections": int(len(radii)), "section_vertices": int(nh), "volume": float(man.volume()),
            "triangles": int(man.num_tri()), "genus": int(man.genus())}
-    return BevelBody(man, name, rep)
+    body = BevelBody(man, name, rep)
+    body.geometry = g           # the B-rep writer's (gear3d.export.step_brep_face) exact sections
+    return body
