@@ -174,7 +174,10 @@ def main(argv=None) -> int:
                                  work / "bosl2.stl", "slices=20"),
             "python -c 'import numpy, manifold3d'": ([sys.executable, "-c", "import numpy, manifold3d"],
                                                       None, None, "(floor)"),
-            "python -c 'import numpy'": ([sys.executable, "-c", "import numpy"], None, None, "(floor)")}
+            "python -c 'import numpy'": ([sys.executable, "-c", "import numpy"], None, None, "(floor)"),
+            "python -c 'import numpy', one BLAS thread": (["env", "OPENBLAS_NUM_THREADS=1", "OMP_NUM_THREADS=1",
+                                                         sys.executable, "-c", "import numpy"], None, None,
+                                                        "(floor as gear3d imports it)")}
     for t in TOLS:
         out = work / f"gear3d_{t}.stl"
         jobs[f"gear3d tol {t:g}"] = ([gear3d, "body", "involute", "--teeth", str(Z), "--module", str(M),
