@@ -404,7 +404,13 @@ def _charged_check_pair():
     return check_pair
 
 
-check_pair = _charged_check_pair()
+def __getattr__(name):
+    # ``check_pair`` is made on first use: a command that rolls no pair (a profile, a body,
+    # an STL) does not load the pair checker and its report
+    if name == "check_pair":
+        globals()[name] = f = _charged_check_pair()
+        return f
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 def search_iterations(span: float, precision: float, extra: int = 2) -> int:
