@@ -137,7 +137,9 @@ COSTS = {
     "facegear.plan": Cost(2.5e-4, 0.0, 0.4, 40e6, "measured 2026-11-26 (CPU): z2 = 60, z0 = 20 at 0.1 um: 177 "
                           "sections x 93 vertices, about 4 s beyond the body (2.4e-4 s an item); the limits' scan "
                           "0.3 s"),
-    "facegear.body": Cost(3e-6, 400.0, 0.0, 150e6, "measured 2026-11-26 (CPU): z2 = 300 / 1000 at 1 um, 1.26 / "
+    "facegear.body": Cost(3e-6, 650.0, 0.0, 150e6, "measured 2026-11-26 (CPU): z2 = 300 / 1000 at 1 um, 1.26 / "
                           "4.2 M triangles: 3.6 / 11.7 s (2.8 us a triangle, plan included); 260 B a triangle "
-                          "charged by the builder, 400 B kept; small gears peak at 50-220 MB"),
+                          "charged by the builder; small gears peak at 50-220 MB; per planned triangle (with "
+                          "plan_sets.face_shaper_factor) peak RSS: z2/z0 = 1000/100 at 5 um 1.31 GB (577 B), "
+                          "1000/200 pair 0.85 GB (524 B), 300/150 at 1 um 1.48 GB (380 B): 650 B kept"),
 }
