@@ -60,6 +60,10 @@ COSTS = {
                               "0.32 ms, triangular z=4000 0.11 ms, sine z=300 0.32 ms, cycloidal z=1000 rc 100 "
                               "1.4 ms a vertex (3 tries, 43 s); taken unforced by gears of 5 teeth or fewer (sine "
                               "z=4 at 0.1 um: 1.7-2.0 s, 238 MB peak with shapely)"),
+    # --max-arc-deg below its default: per arc of at most that turning (plan.dxf_arcs)
+    "write.dxf.arcs": Cost(3e-6, 450.0, 0.0, 0.0, "measured 2026-11-26 (CPU, peak RSS): involute z = 5000 / "
+                           "20,000 at 1 um with --max-arc-deg 1: 1.16 / 4.64 M arcs, +2.0 / +11.4 s and 463 MB "
+                           "/ 1.5 GB peak over the default's 60,000 / 240,000 (1.7-2.5 us, 320-400 B an arc)"),
     "write.png": Cost(5e-5, 3000.0, 1.0, 70e6, "profile figure, triangular z=4000 (20,000 vertices): 0.8 s "
                       "with matplotlib's import; body preview, 10,000-56,000 triangles: 0.65-0.82 s, +47-68 MB"),
     "write.stl": Cost(1.0e-6, 130.0, 0.05, 0.0, "binary STL, helical z=40..1000 (10,000-56,000 triangles): "

@@ -153,6 +153,10 @@ def charge_write(obj, kind: str, ext: str, opts: dict) -> Estimate:
         per = float(r.get("vertices_per_tooth") or 0.0)
         tri = 4.0 * v if FORMATS[ext].role == "mesh" else 0.0
         est = write_estimate(ext, vertices=v, per_tooth=per, triangles=tri, kerf=kerf_of(opts))
+        arc = opts.get("max_arc_deg")
+        if ext == ".dxf" and isinstance(arc, (int, float)) and 0 < arc < DXF_ARC_DEFAULT:
+            n = dxf_arcs(obj, float(arc))
+            est = est.then(estimate("write.dxf.arcs", n, 0.0, f"a DXF of {n:,.0f} arcs of at most {arc:g} deg"))
     else:
         bodies = list(obj) if isinstance(obj, (list, tuple)) else [obj]
         tri, brep = 0.0, None
@@ -165,6 +169,26 @@ def charge_write(obj, kind: str, ext: str, opts: dict) -> Estimate:
                                                        max(brep.bytes, e.bytes), 0.0, brep.what + "; " + e.what)
         est = write_estimate(ext, triangles=tri, brep=brep)
     return budget.charge(est, "output", opts.get("_path", ext), key="write")
+
+
+#: the DXF writer's default largest arc (deg): smaller values are charged by :func:`dxf_arcs`
+DXF_ARC_DEFAULT = 90.0
+
+
+def dxf_arcs(profile, max_arc_deg: float) -> float:
+    """Arcs a DXF of ``profile`` needs when no arc may turn more than ``max_arc_deg`` (deg,
+    ``--max-arc-deg``): the outline's absolute tangent turning (its loops' polylines,
+    corners included: an upper bound) over ``max_arc_deg``."""
+    import numpy as np
+    total = 0.0
+    for loop in getattr(profile, "loops", []) or []:
+        P = np.asarray(loop, float)
+        if len(P) < 3:
+            continue
+        d = np.diff(np.vstack([P, P[:1]]), axis=0)
+        h = np.arctan2(d[:, 1], d[:, 0])
+        total += float(np.abs(np.angle(np.exp(1j * np.diff(np.append(h, h[0]))))).sum())
+    return math.degrees(total) / max_arc_deg
 
 
 def kerf_of(opts) -> float:
