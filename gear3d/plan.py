@@ -30,6 +30,8 @@ from dataclasses import dataclass
 from . import budget
 from .budget import Estimate, estimate
 from .export.registry import FORMATS
+from .plan_writes import (DXF_ARC_DEFAULT, WORM_BREP_BYTES, WORM_BREP_SAMPLES, direct_section_estimate,
+                          dxf_arcs)
 
 #: the DXF and SVG writers' sampled fallback fits a reference profile built this much finer
 #: (gear3d.export.dxf), which has sqrt(20) times the vertices
@@ -171,26 +173,6 @@ def charge_write(obj, kind: str, ext: str, opts: dict) -> Estimate:
     return budget.charge(est, "output", opts.get("_path", ext), key="write")
 
 
-#: the DXF writer's default largest arc (deg): smaller values are charged by :func:`dxf_arcs`
-DXF_ARC_DEFAULT = 90.0
-
-
-def dxf_arcs(profile, max_arc_deg: float) -> float:
-    """Arcs a DXF of ``profile`` needs when no arc may turn more than ``max_arc_deg`` (deg,
-    ``--max-arc-deg``): the outline's absolute tangent turning (its loops' polylines,
-    corners included: an upper bound) over ``max_arc_deg``."""
-    import numpy as np
-    total = 0.0
-    for loop in getattr(profile, "loops", []) or []:
-        P = np.asarray(loop, float)
-        if len(P) < 3:
-            continue
-        d = np.diff(np.vstack([P, P[:1]]), axis=0)
-        h = np.arctan2(d[:, 1], d[:, 0])
-        total += float(np.abs(np.angle(np.exp(1j * np.diff(np.append(h, h[0]))))).sum())
-    return math.degrees(total) / max_arc_deg
-
-
 def kerf_of(opts) -> float:
     """The exporter options' ``kerf`` (mm; 0 when absent or not a number: the writer
     refuses a bad one itself)."""
@@ -201,19 +183,6 @@ def kerf_of(opts) -> float:
 def law_pieces(kind) -> int:
     """Smooth pieces of a twist law: chevron-arch 3, herringbone 2, others 1."""
     return 3 if kind == "chevron-arch" else (2 if kind == "herringbone" else 1)
-
-
-#: a worm set's B-rep fits fewer poles than its mesh's vertices (the wheel's columns and rows
-#: grown from the measured error): surface samples counted as this share of the mesh-based
-#: count, measured 2026-11-26 (CPU, peak RSS; m 2, z2 = 30, features on): wheel at 1 um 26.5 s
-#: and 0.90 GB for 94.7 s and 6.7 GiB planned at share 1, worm at 1 um 7.4 s and 1.09 GB for
-#: 93.7 s and 6.5 GiB, the pair at 10 um 7.9 s and 0.49 GB for 23.6 s and 2.0 GiB; 0.35 keeps
-#: the wheel's time (the tightest) an upper bound (plan_sets.plan_worm and the export's charge)
-WORM_BREP_SAMPLES = 0.35
-#: bytes a (shared) worm B-rep sample, beyond COSTS["write.brep"]'s fixed bytes: measured at
-#: that share 4.2-8.2 kB (wheel z2 = 30 at 1 um, z2 = 100 at 5 um, worm at 1 um, the pair with
-#: features at 10 um: the last the largest, 0.49 GB), with a margin
-WORM_BREP_BYTES = 12000.0
 
 
 def body_brep_estimate(b) -> Estimate:
@@ -239,31 +208,6 @@ def body_brep_estimate(b) -> Estimate:
                       else prof.loops[0], float)
     perimeter = float(np.hypot(*np.diff(np.vstack([loop, loop[:1]]), axis=0).T).sum())
     return est.then(direct_section_estimate(teeth, perimeter, float(r.get("tolerance") or pr.get("tolerance"))))
-
-
-def direct_section_points(teeth: int, perimeter: float, tol: float) -> float:
-    """Chords the direct B-rep writer's section check samples (:func:`gear3d.export.
-    step_direct_text.section_crossing`: tooth 0 and a group on each side, chords of ``tol``
-    / 2 mm): :data:`DIRECT_SECTION_SHARE` of three teeth's share of the loop's ``perimeter``
-    (mm) over ``tol`` / 2.
-
-    >>> round(direct_section_points(14, 90.0, 1e-5))
-    2700000
-    """
-    return DIRECT_SECTION_SHARE * min(3, teeth) / max(teeth, 1) * perimeter / (tol / 2)
-
-
-#: chords sampled over three teeth's perimeter / (tol / 2), the largest measured (2026-11-26:
-#: involute z = 14 undercut 0.44, z = 8 0.56, z = 100 and 1000 0.67), rounded up
-DIRECT_SECTION_SHARE = 0.7
-
-
-def direct_section_estimate(teeth: int, perimeter: float, tol: float) -> Estimate:
-    """The direct B-rep writer's section check (COSTS["brep.direct.section"] a chord of
-    :func:`direct_section_points`): linear in 1 / ``tol``; 2 GiB at about 10 M chords (an
-    undercut 14-tooth m 1 spur at 1 um would need 8 GB)."""
-    n = direct_section_points(teeth, perimeter, tol)
-    return estimate("brep.direct.section", n, 0.0, f"the B-rep section check of {n:,.0f} chords")
 
 
 def brep_samples(sk: Sketch, law_pieces: int, layers: float) -> float:

@@ -39,7 +39,8 @@ from . import budget
 from .budget import Estimate, estimate
 from .errors import GearError, check_choice, check_number
 from .params import MESH_TOLERANCE, PRESSURE
-from .plan import WORM_BREP_BYTES, WORM_BREP_SAMPLES, brep_estimate, write_estimate
+from .plan import brep_estimate, write_estimate
+from .plan_writes import WORM_BREP_BYTES, WORM_BREP_SAMPLES
 from .spec import GearSpec
 
 #: the builder's triangle formulas (gear3d.wormgear._check_budget) bound the measured
