@@ -302,7 +302,22 @@ def face_shaper_factor(shaper_teeth: int) -> float:
     return 1.0 + min(1.0, max(0.0, (shaper_teeth - 20) / 20.0))
 
 
-def plan_face_gear(kw: dict, output=None, png=None, json=None) -> Estimate:
+#: a face gear's B-rep faces a tooth (4 B-spline surfaces, 2 root halves, tip, 2 walls, bottom:
+#: gear3d.export.step_brep_face), counted as law pieces of BREP_FACES_PER_TOOTH = 4 faces
+FACE_BREP_PIECES = 3
+#: surface samples the face gear's B-rep fit measures (2 surfaces x 4 per knot span x 2 per
+#: row, over its rounds; measured 2026-11-26: 5-10 rows, 8-20 columns, 1.5-4.3 s for z2 = 24..60)
+FACE_BREP_SAMPLES = 4000.0
+
+
+def face_brep_estimate(teeth: int, pinion_teeth=None) -> Estimate:
+    """A face gear's B-rep STEP (:func:`gear3d.plan.brep_estimate` of its 10 faces a tooth
+    and its fit's samples), plus the pinion's (a spur gear's) in a pair."""
+    est = brep_estimate(teeth, FACE_BREP_PIECES, FACE_BREP_SAMPLES)
+    return est if pinion_teeth is None else est.then(brep_estimate(pinion_teeth, 1, FACE_BREP_SAMPLES))
+
+
+def plan_face_gear(kw: dict, output=None, png=None, json=None, step=None) -> Estimate:
     """``gear3d face-gear ...`` / ``gear3d.face_gear(**kw)``: the radius limits (a fixed
     scan of sections), the loft plan (sections x vertices, COSTS["facegear.plan"]), the body
     (triangles, COSTS["facegear.body"]), the pinion's spur body (:func:`gear3d.plan.plan_body`),
@@ -330,7 +345,11 @@ def plan_face_gear(kw: dict, output=None, png=None, json=None) -> Estimate:
         from .facegear.rolling import work
         est = est.then(Estimate(work(g), 50e6, 0.0, "the rolling check"))
     ext = _ext(output)
-    if ext:
+    if step == "brep" and ext in (".step", ".stp"):     # bicubic flanks through exact rows, sewn tooth by tooth
+        z1 = g.pinion_teeth or g.shaper_teeth
+        est = est.then(face_brep_estimate(g.teeth, None if part == "gear" else z1) if part != "pinion"
+                       else brep_estimate(z1, 1, FACE_BREP_SAMPLES))
+    elif ext:
         est = est.then(mesh_write(ext, tri))
     if png:
         est = est.then(estimate("figure", 3 * g.teeth * nh, 0.0, "the sections figure"))

@@ -77,7 +77,7 @@ def run(args) -> int:
     kw = {k: getattr(args, k) for k in ("teeth", "shaper_teeth", "module", "pressure_angle_deg", "pinion_teeth",
                                         "tolerance", "part", "check", "inner_radius", "outer_radius", "rim")}
     from ..plan_sets import plan_face_gear        # the whole command planned first: refused before any work
-    plan_face_gear({k: v for k, v in kw.items() if v is not None}, out, args.png, args.json)
+    plan_face_gear({k: v for k, v in kw.items() if v is not None}, out, args.png, args.json, args.step)
     brep = args.step == "brep" and out.lower().endswith((".step", ".stp"))
     if brep:
         from ..export.step_brep import require_occ
