@@ -189,6 +189,9 @@ def body_brep_estimate(b) -> Estimate:
     """:func:`brep_estimate` of a built body ``b`` (its profile's tooth period sampled as the
     plan sampled it: the same counts, so the charge agrees with the plan)."""
     r, prof = _report(b), getattr(b, "profile", None)
+    if type(getattr(b, "geometry", None)).__name__ == "FaceGeometry":     # a face gear: step_brep_face
+        from .plan_sets import face_brep_estimate
+        return face_brep_estimate(b.geometry.teeth)
     pr = _report(prof)
     teeth = int(getattr(prof, "teeth", 1) or 1)
     v = float(pr.get("vertices") or 0.0)
