@@ -190,7 +190,6 @@ def body_brep_estimate(b) -> Estimate:
     plan sampled it: the same counts, so the charge agrees with the plan)."""
     r, prof = _report(b), getattr(b, "profile", None)
     if type(getattr(b, "geometry", None)).__name__ == "FaceGeometry":     # a face gear: step_brep_face
-        from .plan_sets import face_brep_estimate
         return face_brep_estimate(b.geometry.teeth)
     pr = _report(prof)
     teeth = int(getattr(prof, "teeth", 1) or 1)
@@ -238,6 +237,21 @@ def brep_estimate(teeth: int, law_pieces: int, samples: float) -> Estimate:
     sec = c.fixed_seconds + c.seconds * samples + f.seconds * runs * (1.0 + runs / BREP_SEW_FACES)
     return Estimate(sec, c.fixed_bytes + c.bytes * samples + f.bytes * runs, 0.0,
                     f"a B-rep STEP of {runs:,.0f} faces and {samples:,.0f} surface samples")
+
+
+#: a face gear's B-rep faces a tooth (4 B-spline surfaces, 2 root halves, tip, 2 walls, bottom:
+#: gear3d.export.step_brep_face), counted as law pieces of BREP_FACES_PER_TOOTH = 4 faces
+FACE_BREP_PIECES = 3
+#: surface samples the face gear's B-rep fit measures (2 surfaces x 4 per knot span x 2 per
+#: row, over its rounds; measured 2026-11-26: 5-10 rows, 8-20 columns, 1.5-4.3 s for z2 = 24..60)
+FACE_BREP_SAMPLES = 4000.0
+
+
+def face_brep_estimate(teeth: int, pinion_teeth=None) -> Estimate:
+    """A face gear's B-rep STEP (:func:`brep_estimate` of its 10 faces a tooth
+    and its fit's samples), plus the pinion's (a spur gear's) in a pair."""
+    est = brep_estimate(teeth, FACE_BREP_PIECES, FACE_BREP_SAMPLES)
+    return est if pinion_teeth is None else est.then(brep_estimate(pinion_teeth, 1, FACE_BREP_SAMPLES))
 
 
 # --------------------------------------------------------------------- rolling checks

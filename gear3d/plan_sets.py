@@ -39,7 +39,7 @@ from . import budget
 from .budget import Estimate, estimate
 from .errors import GearError, check_choice, check_number
 from .params import MESH_TOLERANCE, PRESSURE
-from .plan import brep_estimate, write_estimate
+from .plan import FACE_BREP_SAMPLES, brep_estimate, face_brep_estimate, write_estimate
 from .plan_writes import WORM_BREP_BYTES, WORM_BREP_SAMPLES
 from .spec import GearSpec
 
@@ -300,21 +300,6 @@ def face_shaper_factor(shaper_teeth: int) -> float:
     (1.0, 1.5, 2.0)
     """
     return 1.0 + min(1.0, max(0.0, (shaper_teeth - 20) / 20.0))
-
-
-#: a face gear's B-rep faces a tooth (4 B-spline surfaces, 2 root halves, tip, 2 walls, bottom:
-#: gear3d.export.step_brep_face), counted as law pieces of BREP_FACES_PER_TOOTH = 4 faces
-FACE_BREP_PIECES = 3
-#: surface samples the face gear's B-rep fit measures (2 surfaces x 4 per knot span x 2 per
-#: row, over its rounds; measured 2026-11-26: 5-10 rows, 8-20 columns, 1.5-4.3 s for z2 = 24..60)
-FACE_BREP_SAMPLES = 4000.0
-
-
-def face_brep_estimate(teeth: int, pinion_teeth=None) -> Estimate:
-    """A face gear's B-rep STEP (:func:`gear3d.plan.brep_estimate` of its 10 faces a tooth
-    and its fit's samples), plus the pinion's (a spur gear's) in a pair."""
-    est = brep_estimate(teeth, FACE_BREP_PIECES, FACE_BREP_SAMPLES)
-    return est if pinion_teeth is None else est.then(brep_estimate(pinion_teeth, 1, FACE_BREP_SAMPLES))
 
 
 def plan_face_gear(kw: dict, output=None, png=None, json=None, step=None) -> Estimate:

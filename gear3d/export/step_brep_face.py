@@ -56,7 +56,7 @@ U_SHARE = 0.5
 TARGET = 0.6
 #: relative precision of the volume check
 VOLUME_EPS = 1e-5
-#: the surfaces' pieces (indices of :func:`gear3d.facegear.body._exact_piece`)
+#: the surfaces' pieces (indices of :func:`gear3d.facegear.body.exact_piece`)
 PIECES = (1, 2)
 
 
@@ -74,13 +74,13 @@ def _xyz(r, th, z, tt):
 def _row_points(g, s, p, n_u):
     """(n_u, 3) exact points (mm, face gear frame) of piece ``p`` of section ``s`` at equally
     spaced normalised parameters; the corner-flank junction is the two formulas' mean."""
-    from ..facegear.body import _exact_piece
+    from ..facegear.body import exact_piece
     tt = math.pi / g.teeth
-    E = _exact_piece(g, s, p, np.linspace(0.0, 1.0, n_u))
+    E = exact_piece(g, s, p, np.linspace(0.0, 1.0, n_u))
     if p == 1:
-        E[-1] = 0.5 * (E[-1] + _exact_piece(g, s, 2, np.zeros(1))[0])
+        E[-1] = 0.5 * (E[-1] + exact_piece(g, s, 2, np.zeros(1))[0])
     else:
-        E[0] = 0.5 * (E[0] + _exact_piece(g, s, 1, np.ones(1))[0])
+        E[0] = 0.5 * (E[0] + exact_piece(g, s, 1, np.ones(1))[0])
     return _xyz(s.r, E[:, 0], E[:, 1], tt)
 
 
@@ -148,25 +148,30 @@ def _measure(g, nets, secs, mids):
     return on, between
 
 
+def _more(n: int, err: float, target: float) -> int:
+    """Points for a cubic interpolation whose error ``err`` (mm) with ``n`` points should
+    fall to ``target`` (the error falls like the 4th power of the spacing); at least n + 1."""
+    return max(n + 1, int(math.ceil((n - 1) * (err / target) ** 0.25)) + 1)
+
+
 def fit(g, r1: float, r2: float, tol: float):
     """(nets, rows, max_error): the corner and flank surfaces of tooth 0's left half,
     refined until both measure within ``tol`` (mm); ToleranceError otherwise."""
-    from ..facegear.body import _sections
-    from .step_brep_wheel import _grown
+    from ..facegear.body import sections_at
     n_v, n_u, cache = START_ROWS, [START_COLUMNS] * len(PIECES), {}
     for _round in range(MAX_ROUNDS + 1):
         radii = np.linspace(r1, r2, n_v)
-        secs = _sections(g, radii, cache)
-        mids = _sections(g, 0.5 * (radii[:-1] + radii[1:]), cache)
+        secs = sections_at(g, radii, cache)
+        mids = sections_at(g, 0.5 * (radii[:-1] + radii[1:]), cache)
         nets = _nets(g, secs, n_u)
         on, between = _measure(g, nets, secs, mids)
         err = float(max(on.max(), between.max()))
         if err <= tol:
             return nets, len(secs), err
-        n_u = [_grown(n, e, TARGET * U_SHARE * tol) if e > U_SHARE * tol else n for n, e in zip(n_u, on)]
+        n_u = [_more(n, e, TARGET * U_SHARE * tol) if e > U_SHARE * tol else n for n, e in zip(n_u, on)]
         if between.max() > tol:
             room = max(tol - on.max(), 0.1 * tol)
-            n_v = _grown(n_v, max(between.max() - on.max(), 0.0), TARGET * room)
+            n_v = _more(n_v, max(between.max() - on.max(), 0.0), TARGET * room)
     raise ToleranceError("tolerance", tol, "a coarser value",
                          f"the face gear's B-rep surfaces still miss it by {err:.3g} mm")
 

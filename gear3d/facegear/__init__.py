@@ -277,9 +277,7 @@ def build(teeth, shaper_teeth=None, module=1.0, pressure_angle_deg=20.0, pinion_
     if not isinstance(check, bool) or (check and part != "pair"):
         raise GearError("check", check, "true only with part='pair' (the check rolls the pair), else false")
     lim = radius_limits(g)
-    inner = band.inner_radius
-    if part != "gear" and inner is None:
-        inner = pair_inner_default(g, lim)
+    inner = band.inner_radius if band.inner_radius is not None or part == "gear" else pair_inner_default(g, lim)
     r1, r2 = check_radii(g, inner, band.outer_radius, lim)
     r2 = _default_outer(g, r1, lim["outer"]) if r2 is None else r2
     bodies, face = [], None

@@ -74,7 +74,7 @@ def _probe_params(grid):
     return grid[:-1, None] + f * np.diff(grid)[:, None]
 
 
-def _exact_piece(g, s, p, t):
+def exact_piece(g, s, p, t):
     """Exact points (θ, z), (N, 2), of piece ``p`` (0 root, 1 corner, 2 flank, 3 top) of
     section ``s`` at normalised parameters ``t``."""
     t = np.asarray(t, float)
@@ -104,8 +104,8 @@ def _chord_errors(g, s, grids):
     tt = math.pi / g.teeth
     out = []
     for p, grid in enumerate(grids):
-        E = _exact_piece(g, s, p, grid)
-        M = _exact_piece(g, s, p, _probe_params(grid).ravel())
+        E = exact_piece(g, s, p, grid)
+        M = exact_piece(g, s, p, _probe_params(grid).ravel())
         E3, M3 = _to_xyz(s.r, E[:, 0], E[:, 1], tt), _to_xyz(s.r, M[:, 0], M[:, 1], tt)
         A, B = np.repeat(E3[:-1], PROBES, 0), np.repeat(E3[1:], PROBES, 0)
         out.append(_seg_dist(M3, A, B).reshape(-1, PROBES).max(1))
@@ -116,7 +116,7 @@ def _wall_sag(g, s, grids):
     """Per piece, per interval: the sag (mm) of the wall chord at radius s.r."""
     out = []
     for p, grid in enumerate(grids):
-        th = _exact_piece(g, s, p, grid)[:, 0]
+        th = exact_piece(g, s, p, grid)[:, 0]
         out.append(s.r * (1 - np.cos(0.5 * np.abs(np.diff(th)))))
     return out
 
@@ -133,7 +133,7 @@ def _loft_error(g, s0, s1, sm, grids):
         t = np.concatenate([grid, _probe_params(grid).ravel()])
         k = np.concatenate([np.minimum(np.arange(len(grid)), len(grid) - 2),
                             np.repeat(np.arange(len(grid) - 1), PROBES)]) + off
-        P = _to_xyz(sm.r, *_exact_piece(g, sm, p, t).T, tt)
+        P = _to_xyz(sm.r, *exact_piece(g, sm, p, t).T, tt)
         best = np.full(len(P), np.inf)
         for dk in (-1, 0, 1):
             q = np.clip(k + dk, 0, nq - 1)
@@ -150,7 +150,7 @@ def _refine(grid, bad):
     return np.unique(np.concatenate([grid, mids]))
 
 
-def _sections(g, radii, cache):
+def sections_at(g, radii, cache):
     """The sections at ``radii`` (cached by radius); a flagged one is refused."""
     out = []
     for r in radii:
@@ -176,7 +176,7 @@ def plan(g: FaceGeometry, r1: float, r2: float, tolerance: float):
     grids = [np.linspace(0, 1, n) for n in (3, 5, 9, 3)]
     chord_lim, loft_lim = CHORD_SHARE * tolerance, LOFT_SHARE * tolerance
     for _ in range(MAX_ROUNDS * 4):
-        secs = _sections(g, radii, cache)
+        secs = sections_at(g, radii, cache)
         changed = False
         for s in secs:
             errs = _chord_errors(g, s, grids)
@@ -189,7 +189,7 @@ def plan(g: FaceGeometry, r1: float, r2: float, tolerance: float):
         if changed:
             continue
         mids = 0.5 * (radii[:-1] + radii[1:])
-        msecs = _sections(g, mids, cache)
+        msecs = sections_at(g, mids, cache)
         loft = np.array([_loft_error(g, a, b, m, grids) for a, b, m in zip(secs[:-1], secs[1:], msecs)])
         bad = loft > loft_lim
         if not bad.any():
@@ -245,7 +245,7 @@ def face_body(g: FaceGeometry, r1: float, r2: float, tolerance: float, name: str
     nh = sum(len(x) for x in grids) - 3
     budget.check_body(2.0 * g.teeth * (2 * nh - 2) * (len(radii) + 3), "tolerance", tolerance)
     stage("body")
-    secs = _sections(g, radii, {})
+    secs = sections_at(g, radii, {})
     V, F = assemble(g, secs, grids)
     man = Manifold(Mesh64(vert_properties=V, tri_verts=F.astype(np.uint64)))
     if man.volume() < 0 or man.is_empty():
