@@ -180,3 +180,32 @@ def test_cli_face_gear_step_brep(tmp_path):
     assert main(["face-gear", "--teeth", str(Z2), "--shaper-teeth", str(Z0), "--module", "1", "--tolerance", "0.02",
                  "-o", str(out), "--step", "brep"]) == 0
     assert b"B_SPLINE_SURFACE" in out.read_bytes() and b"CYLINDRICAL_SURFACE" in out.read_bytes()
+
+
+def test_pair_brep_places_the_pinion_on_its_axis(tmp_path):
+    """A pair's STEP holds two valid solids; the pinion's centre of mass lies on its axis
+    (docs/face-gear.md's frame: parallel to x at the height m z1/2, in y = 0, its face
+    spanning R1..R2), and its volume is its mesh's within (tol + bound) x area."""
+    from OCP.BRepCheck import BRepCheck_Analyzer
+    from OCP.BRepGProp import BRepGProp
+    from OCP.GProp import GProp_GProps
+    from OCP.TopAbs import TopAbs_SOLID
+    from OCP.TopExp import TopExp_Explorer
+    f = gear3d.face_gear(teeth=40, shaper_teeth=16, module=M, tolerance=0.05, part="pair")
+    out = tmp_path / "pair.step"
+    gear3d.write(list(f.bodies), str(out), step="brep")
+    ex, props = TopExp_Explorer(_read(out), TopAbs_SOLID), []
+    while ex.More():
+        assert BRepCheck_Analyzer(ex.Current()).IsValid()
+        p = GProp_GProps()
+        (getattr(BRepGProp, "VolumeProperties_s", None) or BRepGProp.VolumeProperties)(ex.Current(), p, 1e-6, True)
+        c = p.CentreOfMass()
+        props.append((p.Mass(), np.array([c.X(), c.Y(), c.Z()])))
+        ex.Next()
+    assert len(props) == 2
+    pin = f.bodies[1]
+    vol, com = min(props, key=lambda t: abs(t[1][2] - M * 16 / 2))
+    r1, r2 = f.report.inner_radius, f.report.outer_radius
+    assert np.allclose(com, [(r1 + r2) / 2, 0.0, M * 16 / 2], atol=1e-3)
+    area = pin.manifold.surface_area()
+    assert abs(vol - pin.manifold.volume()) <= (0.05 + pin.report["max_error"]) * area
