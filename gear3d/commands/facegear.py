@@ -107,6 +107,9 @@ def run(args) -> int:
     sys.stdout.write(f"wrote {out}: {what}, r {r.inner_radius:.4f}..{r.outer_radius:.4f} mm{src} (limits {lim['inner']:.4f}.."
                      f"{lim['outer']:.4f}), {tri_s}max_error={r.max_error:.3g} mm (tolerance {r.tolerance:g} mm)"
                      + (f" {info}" if info else "") + "\n")
+    if src and r.face_width < r.module:           # a small z2/z0: the form limit nearly meets the outer default
+        sys.stdout.write(f"note: the pinion's form limit leaves a face of {r.face_width:.3g} mm (under one module); "
+                         "more face gear teeth widen it, a smaller --inner-radius brings back the fillet contact\n")
     if r.check is None:
         return 0
     from ..facegear.rolling import finding_code, summary
