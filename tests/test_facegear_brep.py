@@ -209,3 +209,14 @@ def test_pair_brep_places_the_pinion_on_its_axis(tmp_path):
     assert np.allclose(com, [(r1 + r2) / 2, 0.0, M * 16 / 2], atol=1e-3)
     area = pin.manifold.surface_area()
     assert abs(vol - pin.manifold.volume()) <= (0.05 + pin.report["max_error"]) * area
+
+
+def test_brep_of_a_tooth_pointed_at_the_outer_radius(tmp_path):
+    """20/8 at m = 2: the tip land is under 0.25 m everywhere, so the default outer radius
+    is the pointing limit; the top face closes without an arc there, one valid solid."""
+    from OCP.BRepCheck import BRepCheck_Analyzer
+    f = gear3d.face_gear(teeth=20, shaper_teeth=8, module=2.0, tolerance=0.01)
+    assert f.report.tip_land_outer < 1e-6
+    out = tmp_path / "p.step"
+    gear3d.write(f.bodies[0], str(out), step="brep")
+    assert BRepCheck_Analyzer(_read(out)).IsValid() and f.bodies[0].report["brep"]["solids"] == 1

@@ -181,10 +181,23 @@ def _pt(r, a, z):
     return gp_Pnt(r * math.cos(a), r * math.sin(a), z)
 
 
+#: arcs shorter than this (mm) are left out of a wire: a tooth pointed at the outer radius
+#: (the default outer radius is the pointing limit when the tip land is narrow everywhere)
+MIN_ARC = 1e-7
+
+
 def _arc(r, a0, a1, z):
-    """Arc (Geom curve) of radius ``r`` about z at height ``z`` from angle a0 to a1 (rad)."""
+    """Arc (Geom curve) of radius ``r`` about z at height ``z`` from angle a0 to a1 (rad);
+    None when shorter than MIN_ARC."""
     from OCP.GC import GC_MakeArcOfCircle
+    if r * abs(a1 - a0) < MIN_ARC:
+        return None
     return GC_MakeArcOfCircle(_pt(r, a0, z), _pt(r, 0.5 * (a0 + a1), z), _pt(r, a1, z)).Value()
+
+
+def _wire(curves):
+    """The wire of the curves that are not None (:func:`_arc`'s degenerate arcs left out)."""
+    return wire_of_curves([c for c in curves if c is not None])
 
 
 def _line(p, q):
@@ -194,7 +207,7 @@ def _line(p, q):
 
 def _sector(r1, r2, a0, a1, z):
     """Planar face z = const: the annular sector r1..r2, a0..a1 (rad)."""
-    return plane_face(z, wire_of_curves([_line(_pt(r1, a0, z), _pt(r2, a0, z)), _arc(r2, a0, a1, z),
+    return plane_face(z, _wire([_line(_pt(r1, a0, z), _pt(r2, a0, z)), _arc(r2, a0, a1, z),
                                          _line(_pt(r2, a1, z), _pt(r1, a1, z)), _arc(r1, a1, a0, z)]))
 
 
@@ -208,7 +221,7 @@ def _wall(r, curves, a_top, ac, g):
     from OCP.ShapeFix import ShapeFix_Shape
     tt, hf, zb = math.pi / g.teeth, -g.dedendum, -g.dedendum - g.rim
     cl, fl, fr, cr = curves
-    wire = wire_of_curves([_arc(r, -tt, tt, zb), _line(_pt(r, tt, zb), _pt(r, tt, hf)), _arc(r, tt, -ac, hf), cr, fr,
+    wire = _wire([_arc(r, -tt, tt, zb), _line(_pt(r, tt, zb), _pt(r, tt, hf)), _arc(r, tt, -ac, hf), cr, fr,
                            _arc(r, -a_top, a_top, g.addendum), fl, cl, _arc(r, ac, -tt, hf),
                            _line(_pt(r, -tt, hf), _pt(r, -tt, zb))])
     cyl = Geom_CylindricalSurface(gp_Ax3(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1), gp_Dir(-1, 0, 0)), r)   # seam at -x
@@ -234,7 +247,7 @@ def tooth_faces(g, nets, r1: float, r2: float):
     top_l, top_r = (bspline_curve(s[1][0][-1], s[1][2], 3) for s in both)
     a1 = math.atan2(nets[1][0][-1, 0, 1], nets[1][0][-1, 0, 0])
     a2 = math.atan2(nets[1][0][-1, -1, 1], nets[1][0][-1, -1, 0])
-    faces.append(plane_face(g.addendum, wire_of_curves([top_l, _arc(r2, a2, -a2, g.addendum), top_r,
+    faces.append(plane_face(g.addendum, _wire([top_l, _arc(r2, a2, -a2, g.addendum), top_r,
                                                         _arc(r1, -a1, a1, g.addendum)])))
     for r, end, a in ((r1, 0, a1), (r2, -1, a2)):
         rows = [[bspline_curve(n[:, end], uk, 3) for n, uk, _ in side] for side in both]
