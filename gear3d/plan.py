@@ -245,12 +245,16 @@ FACE_BREP_PIECES = 3
 #: surface samples the face gear's B-rep fit measures (2 surfaces x 4 per knot span x 2 per
 #: row, over its rounds; measured 2026-11-26: 5-10 rows, 8-20 columns, 1.5-4.3 s for z2 = 24..60)
 FACE_BREP_SAMPLES = 4000.0
+#: memory a face gear's B-rep face takes beyond brep_estimate's (measured 2026-11-26: z2 = 200 /
+#: 500, 2,000 / 5,000 faces: 0.49 / 0.74 GB peak, 5.3 / 14.7 s; planned 0.56 / 0.83 GB, 7.7 / 19.7 s)
+FACE_BREP_FACE_BYTES = 30e3
 
 
 def face_brep_estimate(teeth: int, pinion_teeth=None) -> Estimate:
     """A face gear's B-rep STEP (:func:`brep_estimate` of its 10 faces a tooth
     and its fit's samples), plus the pinion's (a spur gear's) in a pair."""
     est = brep_estimate(teeth, FACE_BREP_PIECES, FACE_BREP_SAMPLES)
+    est = Estimate(est.seconds, est.bytes + FACE_BREP_FACE_BYTES * 10 * teeth, 0.0, est.what)
     return est if pinion_teeth is None else est.then(brep_estimate(pinion_teeth, 1, FACE_BREP_SAMPLES))
 
 
