@@ -265,6 +265,8 @@ def solid_of(b, geometry=None):
     :func:`gear3d.export.step_brep_bevel.bevel_solid` (``geometry``: the bevel pair's, needed
     for spiral and Zerol members), a worm wheel through
     :func:`gear3d.export.step_brep_wheel.wheel_solid` (``geometry``: the worm set's design), a
+    face gear through :func:`gear3d.export.step_brep_face.face_solid` (its body carries its
+    geometry), a
     gear, ring or worm body through :func:`brep_solid`."""
     if is_face(b):
         return face_solid(b, geometry)

@@ -43,7 +43,7 @@ import time
 
 import numpy as np
 
-from ..errors import GearError, ToleranceError
+from ..errors import ToleranceError
 from .step_brep_occ import bspline_curve, bspline_surface, plane_face, sew_solid, validate_solid, wire_of_curves
 
 #: rounds of adding rows and columns before the tolerance is refused
@@ -292,9 +292,3 @@ def face_solid(b, geometry=None):
                  "seconds": {"fit": t1 - t0, "build": t2 - t1, "total": t2 - t0}})
     return shape, info
 
-
-def refuse_pinion(b) -> None:
-    """One GearError line for the face gear's pinion in a B-rep STEP (not built yet)."""
-    if (getattr(b, "report", None) or {}).get("part") == "pinion" or getattr(b, "name", "") == "pinion":
-        raise GearError("step", "brep", "'faceted' for the face gear's pinion",
-                        "the B-rep is built for the face gear alone (--part gear)")
