@@ -133,6 +133,19 @@ COSTS = {
                                 "peak): involute z = 14 (14.5 deg, undercut) / 100 at 10 um, 8 at 30 um, 1000 at "
                                 "100 um: 0.25-2.5 M chords, 0.87-1.2 us and 207-212 B a chord; the plan's count "
                                 "is 1.5-2.3x the chords"),
+    # the direct B-rep writer itself (gear3d.export.step_direct, no OpenCascade; plan_writes.
+    # direct_brep_estimate): per profile vertex x law piece (the flank fits, the measurement)
+    "brep.direct": Cost(2.5e-5, 600.0, 0.1, 30e6, "measured 2026-11-26 in a subprocess (CPU of direct_text, "
+                        "section check included; RSS over the built body): spur z = 200 at 0.1 um... 1000 at 10 "
+                        "um 1.0 / 8.6 s (800 / 4,000 face runs, 18,800 / 202,000 vertices, +48 / +406 MB, the "
+                        "section's chords most of it), helical z = 40 at 0.1 mm 0.49 s, herringbone z = 60 0.92 "
+                        "s, chevron-arch z = 100 at 1 um 1.56 s, helical z = 30 at 30 um (10.5 M triangles) "
+                        "2.64 s: 1 ms a face run + 25 us a vertex x law piece + 0.25 us a mesh triangle"),
+    "brep.direct.face": Cost(1e-3, 2000.0, 0.0, 0.0, "the same measurement: per face run (teeth x 4 x law "
+                             "pieces, as plan.brep_estimate counts them), 1 ms"),
+    "brep.direct.mesh": Cost(2.5e-7, 300.0, 0.0, 0.0, "the same measurement: the mesh body's volume and area "
+                             "(the volume check) on 10.5 M triangles about 1.9 s (0.18 us a triangle); bytes: the "
+                             "body held while the writer works (260 B a triangle) and the check's arrays"),
     "bevel.brep": Cost(0.16, 2e6, 1.2, 300e6, "measured 2026-11-26 (CPU, peak RSS): B-rep STEP of a 20-tooth "
                        "gear (20/40 m 2, 10 um) 3.95 s in all, of the 100/100 pair at 50 um 30 s and 492 MB: "
                        "0.12-0.15 s and about 2 MB a tooth, plus OpenCascade's import"),

@@ -30,8 +30,8 @@ from dataclasses import dataclass
 from . import budget
 from .budget import Estimate, estimate
 from .export.registry import FORMATS
-from .plan_writes import (DXF_ARC_DEFAULT, WORM_BREP_BYTES, WORM_BREP_SAMPLES, direct_section_estimate,
-                          dxf_arcs)
+from .plan_writes import (DXF_ARC_DEFAULT, WORM_BREP_BYTES, WORM_BREP_SAMPLES, all_direct,
+                          direct_brep_estimate, direct_planned, direct_section_estimate, dxf_arcs)
 
 #: the DXF and SVG writers' sampled fallback fits a reference profile built this much finer
 #: (gear3d.export.dxf), which has sqrt(20) times the vertices
@@ -100,7 +100,6 @@ def probe_call(build, tolerance=1e-3) -> Sketch | None:
                   float(info.get("rim_vertices", 0.0)), r_lo)
 
 
-
 def write_estimate(ext: str, *, vertices: float = 0.0, per_tooth: float = 0.0, triangles: float = 0.0,
                    brep: Estimate | None = None, kerf: float = 0.0) -> Estimate:
     """An export's estimate: 2D formats from the profile's ``vertices`` (``per_tooth``: of
@@ -157,18 +156,22 @@ def charge_write(obj, kind: str, ext: str, opts: dict) -> Estimate:
         est = write_estimate(ext, vertices=v, per_tooth=per, triangles=tri, kerf=kerf_of(opts))
         arc = opts.get("max_arc_deg")
         if ext == ".dxf" and isinstance(arc, (int, float)) and 0 < arc < DXF_ARC_DEFAULT:
-            n = dxf_arcs(obj, float(arc))
+            n = dxf_arcs(obj, float(arc))       # refused naming the parameter the user can change
             est = est.then(estimate("write.dxf.arcs", n, 0.0, f"a DXF of {n:,.0f} arcs of at most {arc:g} deg"))
+            return budget.charge(est, "max_arc_deg", arc, key="write")
     else:
         bodies = list(obj) if isinstance(obj, (list, tuple)) else [obj]
         tri, brep = 0.0, None
+        direct = opts.get("step") == "brep" and all_direct(bodies)
         for b in bodies:
             r = _report(b)
             tri += float(r.get("triangles") or 0.0)
             if opts.get("step") == "brep":
-                e = body_brep_estimate(b)
-                brep = e if brep is None else Estimate(brep.seconds + e.seconds - budget.COSTS["write.brep"].fixed_seconds,
-                                                       max(brep.bytes, e.bytes), 0.0, brep.what + "; " + e.what)
+                e = body_brep_estimate(b, direct)
+                once = budget.COSTS["brep.direct" if direct else "write.brep"].fixed_seconds
+                brep = e if brep is None else Estimate(brep.seconds + e.seconds - once,
+                                                       (brep.bytes + e.bytes) if direct else max(brep.bytes, e.bytes),
+                                                       0.0, brep.what + "; " + e.what)
         est = write_estimate(ext, triangles=tri, brep=brep)
     return budget.charge(est, "output", opts.get("_path", ext), key="write")
 
@@ -185,9 +188,11 @@ def law_pieces(kind) -> int:
     return 3 if kind == "chevron-arch" else (2 if kind == "herringbone" else 1)
 
 
-def body_brep_estimate(b) -> Estimate:
+def body_brep_estimate(b, direct: bool = True) -> Estimate:
     """:func:`brep_estimate` of a built body ``b`` (its profile's tooth period sampled as the
-    plan sampled it: the same counts, so the charge agrees with the plan)."""
+    plan sampled it: the same counts, so the charge agrees with the plan); the direct writer's
+    own (:func:`direct_brep_estimate`) when it takes ``b`` (``direct``: it takes the whole
+    list ``b`` is in: one body it refuses sends all to OpenCascade)."""
     r, prof = _report(b), getattr(b, "profile", None)
     if type(getattr(b, "geometry", None)).__name__ == "FaceGeometry":     # a face gear: step_brep_face
         return face_brep_estimate(b.geometry.teeth)
@@ -196,20 +201,20 @@ def body_brep_estimate(b) -> Estimate:
     v = float(pr.get("vertices") or 0.0)
     law = law_pieces(r.get("kind"))
     samples = v * law * max(1.0, float(r.get("layers") or 1) / 5.0)
+    from .export import step_direct
+    if direct and prof is not None and step_direct.reason(b) is None:     # a plain Body: its own cost
+        import numpy as np
+        loop = np.asarray(getattr(prof, "tooth_loop", None) if getattr(prof, "tooth_loop", None) is not None
+                          else prof.loops[0], float)
+        perimeter = float(np.hypot(*np.diff(np.vstack([loop, loop[:1]]), axis=0).T).sum())
+        return direct_brep_estimate(teeth, law, v, float(r.get("triangles") or 0.0), perimeter,
+                                    float(r.get("tolerance") or pr.get("tolerance")))
     worm = sys.modules.get("gear3d.wormgear.wheel_body")      # loaded when b is a worm set's part
     if worm is not None and isinstance(b, worm.WormPart) or r.get("lead") is not None:   # a wheel, a worm
         est = brep_estimate(teeth, law, WORM_BREP_SAMPLES * samples)
         return Estimate(est.seconds, budget.COSTS["write.brep"].fixed_bytes + WORM_BREP_BYTES * samples,
                         0.0, est.what)
-    est = brep_estimate(teeth, law, samples)
-    from .export import step_direct
-    if prof is None or step_direct.reason(b) is not None:
-        return est
-    import numpy as np
-    loop = np.asarray(getattr(prof, "tooth_loop", None) if getattr(prof, "tooth_loop", None) is not None
-                      else prof.loops[0], float)
-    perimeter = float(np.hypot(*np.diff(np.vstack([loop, loop[:1]]), axis=0).T).sum())
-    return est.then(direct_section_estimate(teeth, perimeter, float(r.get("tolerance") or pr.get("tolerance"))))
+    return brep_estimate(teeth, law, samples)
 
 
 def brep_samples(sk: Sketch, law_pieces: int, layers: float) -> float:
@@ -566,10 +571,13 @@ def plan_body(family: str, params: dict, body_kw: dict, output=None, step=None) 
     if ext:
         brep = None
         if step == "brep" and ext in (".step", ".stp"):
-            brep = brep_estimate(sk.teeth, law_pieces(body_kw.get("kind")),
-                                 brep_samples(sk, law_pieces(body_kw.get("kind")), layers))
-            if not features:                # plain bodies: gear3d.export.step_direct's section check
-                brep = brep.then(direct_section_estimate(sk.teeth, sk.perimeter, tol))
+            law = law_pieces(body_kw.get("kind"))
+            if direct_planned(sk.period, params, body_kw):     # gear3d.export.step_direct's own cost
+                brep = direct_brep_estimate(sk.teeth, law, sk.vertices, tri, sk.perimeter, tol)
+            else:
+                brep = brep_estimate(sk.teeth, law, brep_samples(sk, law, layers))
+                if not features:            # plain bodies: gear3d.export.step_direct's section check
+                    brep = brep.then(direct_section_estimate(sk.teeth, sk.perimeter, tol))
         est = est.then(write_estimate(ext, triangles=tri, brep=brep))
     return _decide(est, *(("teeth", sk.teeth) if sk.teeth > 1000 else ("tolerance", tol)))
 

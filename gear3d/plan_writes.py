@@ -51,6 +51,62 @@ def direct_section_estimate(teeth: int, perimeter: float, tol: float) -> Estimat
     return estimate("brep.direct.section", n, 0.0, f"the B-rep section check of {n:,.0f} chords")
 
 
+def direct_brep_estimate(teeth: int, law: int, vertices: float, triangles: float, perimeter: float,
+                         tol: float) -> Estimate:
+    """The direct B-rep writer (:mod:`gear3d.export.step_direct`, no OpenCascade) of a plain
+    body: COSTS["brep.direct.face"] a face run (``teeth`` x 4 x ``law`` pieces),
+    COSTS["brep.direct"] a profile vertex (``vertices``, all teeth) x law piece,
+    COSTS["brep.direct.mesh"] a mesh triangle (the volume check; the body held), plus its
+    section check (:func:`direct_section_estimate`, bytes added: all are held at once).
+
+    >>> e = direct_brep_estimate(200, 1, 18800, 75200, 900.0, 1e-4)
+    >>> 1.0 < e.seconds < 3.0
+    True
+    """
+    runs = float(teeth) * 4 * max(1, int(law))
+    samples = float(vertices) * max(1, int(law))
+    e = estimate("brep.direct", samples, 0.0, f"a direct B-rep STEP of {runs:,.0f} face runs and "
+                                              f"{samples:,.0f} profile samples")
+    f, m = estimate("brep.direct.face", runs), estimate("brep.direct.mesh", triangles)
+    s = direct_section_estimate(teeth, perimeter, tol)
+    return Estimate(e.seconds + f.seconds + m.seconds + s.seconds, e.bytes + f.bytes + m.bytes + s.bytes, 0.0,
+                    e.what + "; " + s.what)
+
+
+#: body options that send a body to the OpenCascade B-rep writer (step_direct.reason: print
+#: compensation, hub features; a herringbone's groove is planned there too, an over-estimate)
+OCC_BODY_OPTIONS = ("xy_offset", "chamfer", "elephant_foot", "gap", "hub_length", "keyway", "set_screw",
+                    "lightening_holes", "web_thickness")
+
+
+def direct_planned(period, params: dict, body_kw: dict) -> bool:
+    """Whether a planned body will take the direct B-rep writer (what
+    :func:`gear3d.export.step_direct.reason` decides on the built body): its profile has exact
+    pieces (``period``, the probe's sampled period, comes from their sampling in
+    :func:`gear3d.buildsteps.sample_pieces`, so a profile that was probed has them), no extra
+    holes in the profile (``params``), no print compensation or hub feature (``body_kw``) and
+    no ``GEAR3D_BREP_WRITER=occ``. When unsure, False: the OpenCascade path costs more.
+
+    >>> direct_planned([[0.0, 1.0]], {"teeth": 20}, {"kind": "spur"})
+    True
+    >>> direct_planned([[0.0, 1.0]], {"teeth": 20}, {"chamfer": 0.5})
+    False
+    """
+    import os
+    if os.environ.get("GEAR3D_BREP_WRITER", "").strip().lower() == "occ" or period is None or not len(period):
+        return False
+    if any(v for k, v in (params or {}).items() if "hole" in k):
+        return False
+    return not any((body_kw or {}).get(k) for k in OCC_BODY_OPTIONS)
+
+
+def all_direct(bodies) -> bool:
+    """Whether the direct B-rep writer takes every body of ``bodies`` (one it refuses sends
+    them all to OpenCascade: :func:`gear3d.export.step_direct.write`)."""
+    from .export import step_direct
+    return all(step_direct.reason(b) is None for b in bodies)
+
+
 #: the DXF writer's default largest arc (deg): smaller values are charged by :func:`dxf_arcs`
 DXF_ARC_DEFAULT = float(MAX_ARC.default)
 
