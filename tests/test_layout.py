@@ -319,6 +319,7 @@ LIGHT = {
     "gear3d.reports.pairs": "the pair check's report (dataclasses)",
     "gear3d.reports.bevel": "the bevel set's reports (dataclasses)",
     "gear3d.reports.worm": "the worm set's report (dataclasses, numpy)",
+    "gear3d.reports.facegear": "the face gear set's report (dataclasses)",
     "gear3d.reports.racks": "rack reports (dataclasses)",
     "gear3d.reports.harmonic": "strain-wave part reports (dataclasses)",
     "gear3d.reports.planetary": "planetary set reports (dataclasses)",

@@ -7,7 +7,7 @@ keys. Reports also read like a mapping (``report["max_error"]``, ``report.get(..
 templates, the web page and user code that index them keep working.
 
 Each domain's reports live in their own submodule (:mod:`~gear3d.reports.base`,
-``profile``, ``pairs``, ``bevel``, ``worm``, ``racks``, ``harmonic``, ``planetary``, ``scene``);
+``profile``, ``pairs``, ``bevel``, ``worm``, ``facegear``, ``racks``, ``harmonic``, ``planetary``, ``scene``);
 ``from gear3d.reports import X`` loads only X's submodule, on first use, so a profile or
 body command does not create the dataclasses of sets, scenes and strain-wave parts (each
 dataclass compiles its generated methods when it is made).
@@ -28,6 +28,7 @@ _LAZY = {
     "MemberReport": "gear3d.reports.bevel",
     "BevelReport": "gear3d.reports.bevel",
     "WormReport": "gear3d.reports.worm",
+    "FaceGearReport": "gear3d.reports.facegear",
     "RackReport": "gear3d.reports.racks",
     "RackBodyReport": "gear3d.reports.racks",
     "FlexTubeReport": "gear3d.reports.harmonic",
