@@ -120,3 +120,50 @@ def test_accepted_new_features_keep_their_estimates(tmp_path):
         if v:
             bad.append(f"{line}: {v}")
     assert not bad, "\n".join(bad)
+
+
+#: refusals that name the parameter the user gave (2026-11-26: a DXF's arcs under --max-arc-deg
+#: were refused naming ``output = 'g.dxf'``, a value no budget flag changes)
+NAMED = [
+    ("profile involute --teeth 20000 --max-arc-deg 1 -o g.dxf", "max_arc_deg", "memory", "--max-memory"),
+    ("--max-seconds 2 profile involute --teeth 3000 --max-arc-deg 1 -o g.dxf", "max_arc_deg", "time",
+     "--max-seconds"),
+]
+
+
+@pytest.mark.parametrize("line,param,resource,flag", NAMED, ids=[c[0][:48] for c in NAMED])
+def test_refusals_name_the_parameter_the_user_gave(line, param, resource, flag, tmp_path):
+    r = run(_argv(line), tmp_path)
+    m = LINE.match(r.err.strip())
+    assert r.rc == 2 and m and r.err.strip().count("\n") == 0, r.err
+    assert m.groups() == (param, resource, flag), r.err
+    assert r.new_files == [] and verdict(r) == "", (r.new_files, verdict(r))
+
+
+#: a plain body the direct B-rep writer takes (gear3d.export.step_direct), refused before at the
+#: OpenCascade path's cost (9.84 GiB planned; measured 2026-11-26: 2.2 s CPU, 0.45 GB peak)
+DIRECT = ("body involute --teeth 60 --kind herringbone --helix-angle-deg 30 --width 20 --tolerance 1e-4 "
+          "-o g.step --step brep")
+
+
+def test_direct_brep_bodies_are_planned_at_their_own_cost(tmp_path):
+    r = run(_argv(DIRECT), tmp_path)
+    assert r.rc == 0 and r.new_files, r.err
+    assert r.estimate > 0 and r.rss < MAX_RSS, (r.estimate, r.rss)
+    assert verdict(r) == "", verdict(r)                 # CPU <= 2 x estimate (+ start-up), RSS < 2 GiB
+
+
+@pytest.mark.parametrize("body_kw", [{"kind": "helical", "helix_angle_deg": 20.0},
+                                     {"kind": "spur", "chamfer": 0.2}])
+def test_the_plan_takes_the_writer_the_body_will_take(body_kw):
+    """The plan's choice (plan_writes.direct_planned) against the writer's own predicate
+    (step_direct.reason) on the body built from the same inputs."""
+    import gear3d
+    from gear3d.export import step_direct
+    from gear3d.plan import plan_body
+    kw = dict(body_kw, width=6.0, tolerance=0.01)
+    est = plan_body("involute", {"teeth": 20, "module": 1.0, "tolerance": 0.003}, kw, "g.step", "brep")
+    b = gear3d.body(gear3d.profile("involute", teeth=20, module=1.0, tolerance=0.003), **kw)
+    direct = step_direct.reason(b) is None
+    assert direct == (body_kw.get("chamfer") is None)
+    assert ("a direct B-rep STEP" in est.what) == direct, est.what
