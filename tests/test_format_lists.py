@@ -24,7 +24,6 @@ CHOSEN = {
     ("commands/worm.py", (".stl", ".3mf", ".dxf", ".step", ".stp")): "what a worm set builds",
     ("jobs/template_parts.py", ("stl", "3mf", "json", "dxf", "png", "step")): "a worm part's outputs",
     ("jobs/template_parts.py", ("stl", "3mf", "json", "step")): "a bevel part's outputs",
-    ("jobs/template_parts.py", ("stl", "3mf", "json")): "a face gear's / a worm alone's outputs",
     ("web/schema.py", ("stl", "3mf", "step", "dxf", "svg")): "the page's download buttons",
     ("web/schema.py", ("stl", "3mf", "step", "dxf")): "the worm set's download buttons",
     ("web/schema.py", ("stl", "3mf", "step")): "the bevel set's download buttons",

@@ -56,7 +56,7 @@ def _variant(tmp_path, old, new):
     ("mate_teeth = 18\n", "mate_teeth = 18\ncolour = 3\n", "part[bevel-pair].colour"),
     ("teeth = 12\n", "teeth = 2\n", "part[bevel-pair].teeth"),
     ("teeth = 40\n", "teeth = 4\n", "part[face].teeth"),
-    ('outputs = ["stl", "json"]', 'outputs = ["stl", "step"]', "part[face].outputs"),
+    ('outputs = ["stl", "json"]', 'outputs = ["stl", "dxf"]', "part[face].outputs"),
     ("tolerance = 0.05", "tolerance = 0.00001", "part[bevel-pair].tolerance"),   # the plan: over budget
     ("shaper_teeth = 14\n", "shaper_teeth = 14\nouter_radius = 100\n", "part[face].outer_radius"),
 ])

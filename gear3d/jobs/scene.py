@@ -277,7 +277,7 @@ def _plan_set(job: Job, part: PartSpec, kind, tol, path, prefix, step=None):
     out = {"json": {"json": path}, "png": {"png": path}}.get(kind, {"output": path})
     if part.family == "worm" and kind in ("dxf", "png"):
         out = {"output": path, "bodies": False} if kind == "dxf" else dict(out, bodies=False)
-    if step is not None:                 # a bevel or worm set's B-rep STEP (gear3d bevel/worm --step brep)
+    if step is not None:                 # a set's B-rep STEP (gear3d bevel/worm/face-gear --step brep)
         out = dict(out, step=step)
     try:
         plan[part.family](dict(part.params, tolerance=tol), **out)
@@ -300,9 +300,6 @@ def set_targets(g: Graph, job: Job, part: PartSpec, out_dir, prefix) -> dict:
         path = out_path(out_dir, fname, job.file, f"{prefix}.name")
         step = {**job.options.get("step", {}), **part.options.get("step", {})}      # the scene's, then the part's
         brep = kind == "step" and step.get("step", "faceted") != "faceted"
-        if brep and part.family == "face-gear":       # bevel and worm sets have exact B-rep writers
-            raise TemplateError(job.file, f"{prefix}.outputs", list(part.outputs), "no step with [options.step] "
-                                "kind = \"brep\" (this set part's STEP is faceted)")
         _plan_set(job, part, kind, tol, path, prefix, step="brep" if brep else None)
         # stage kinds as the report reads them: the section is a profile, the set a body
         src = g.add("profile" if sec else "body", {"params": part.params, "tolerance": tol, "section": sec,

@@ -258,8 +258,9 @@ def _outputs(file, key, outs, b, default_outputs):
 WORM_KINDS = ("stl", "3mf", "json", "dxf", "png", "step")
 #: the output kinds of a ``kind = "bevel"`` part: its bodies (STEP faceted), its report
 BEVEL_KINDS = ("stl", "3mf", "json", "step")
-#: the output kinds of a ``kind = "face-gear"`` part: its body, its report
-FACE_KINDS = ("stl", "3mf", "json")
+#: the output kinds of a ``kind = "face-gear"`` part: its bodies (STEP faceted, or exact with
+#: ``[options.step] kind = "brep"``), its report
+FACE_KINDS = ("stl", "3mf", "json", "step")
 #: the set part kinds: a scene's ``[[part]] kind = ...``, built by its own builder
 SET_KINDS = {"worm": WORM_KINDS, "bevel": BEVEL_KINDS, "face-gear": FACE_KINDS}
 
