@@ -15,7 +15,7 @@ import numpy as np
 
 from .errors import GearError, check_choice
 from . import profile as make
-from .export import is_body
+from .solids.kinds import is_body, is_rack
 from .filesafe import atomic_path, check_path
 from .solids.convert import as_bodies, body_mesh
 
@@ -89,15 +89,14 @@ def figure(obj, path, **opts) -> str:
     from .model import Profile
     check_path(path, "figure", exts=tuple("." + e for e in FIGURE_EXTS))
     bodies = list(obj) if isinstance(obj, (list, tuple)) else [obj]
-    if not (isinstance(obj, Profile) or type(obj).__name__ == "RackPart"
+    if not (isinstance(obj, Profile) or is_rack(obj)
             or (bodies and all(is_body(b) for b in bodies))):
         raise GearError("obj", type(obj).__name__, "a Profile, a rack, a body or a list of bodies")
     with atomic_path(path, "figure") as tmp:
         if isinstance(obj, Profile):
             profile_figure(obj, tmp, **opts)
-        elif type(obj).__name__ == "RackPart":
-            from .rack_part import rack_figure
-            rack_figure(obj, tmp, **opts)
+        elif is_rack(obj):                  # its own figure (gear3d.rack_part.rack_figure)
+            obj.figure(tmp, **opts)
         else:
             mesh_preview(obj, tmp, **opts)
     return str(path)
@@ -375,3 +374,17 @@ def pair_figure(p1, p2, report: dict, path=None, *, positions: int = 60):
                  f"interference={report['interference']} (max {report['max_penetration'] * 1000:.1f} um), "
                  f"contact ratio {report['contact_ratio']:.3f}", fontsize=9)
     return _save(fig, path)
+
+
+def write(obj, path, **opts) -> None:
+    """The PNG writer of :func:`gear3d.write` (the figures register it: the format registry
+    names this module for ``.png``): a profile's figure (:func:`profile_figure`), a rack
+    part's (its ``figure``) or a body's preview (:func:`mesh_preview`), at ``path`` (the
+    temporary file :func:`gear3d.write` renames)."""
+    from .model import Profile
+    if isinstance(obj, Profile):
+        profile_figure(obj, path, **opts)
+    elif is_rack(obj):
+        obj.figure(path, **opts)
+    else:
+        mesh_preview(obj, path, **opts)

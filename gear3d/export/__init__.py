@@ -22,6 +22,7 @@ from __future__ import annotations
 from ..errors import GearError
 from .. import budget
 from ..filesafe import atomic_path, check_path, ext_of
+from ..solids.kinds import is_body, is_rack
 from .registry import FORMATS, ROLES, Format, exts, formats_for, kind_ext, kind_options, output_kinds, register
 from ..progress import stage
 
@@ -54,22 +55,6 @@ def _kind(obj) -> str:
     elif is_body(obj):
         return "body"
     raise GearError("obj", type(obj).__name__, "a Profile, a rack part, a body (with .mesh) or a list of bodies")
-
-
-def is_rack(obj) -> bool:
-    """A rack part (:class:`gear3d.rack_part.RackPart`: a 2D outline written like a profile,
-    extruded by its own ``extrude``), told by its interface: importing rack_part here would
-    close an import circle (it writes through this module)."""
-    return all(hasattr(obj, a) for a in ("straight_edges", "extrude", "loops", "report")) \
-        and not hasattr(obj, "pitch_radius")
-
-
-def is_body(obj) -> bool:
-    """A body has a ``manifold``, ``mesh`` or ``arrays``; asked of the class and the instance
-    dictionary, so that lazy properties (which would build a manifold or a trimesh) are not
-    evaluated just to tell."""
-    names = ("manifold", "mesh", "arrays")
-    return any(hasattr(type(obj), a) for a in names) or any(a in getattr(obj, "__dict__", {}) for a in names)
 
 
 def write(obj, path, **opts):
@@ -122,6 +107,9 @@ def write(obj, path, **opts):
     from ..plan import charge_write
     with budget.stage():        # the export's estimate from the object's counts, before it runs
         charge_write(obj, kind, ext, dict(opts, _path=str(path)))
-        mod = importlib.import_module(f"{__name__}.{fmt.module}")
+        if fmt.module_name == "gear3d.figures":      # the figures' own writer (PNG)
+            from .. import figures as mod
+        else:
+            mod = importlib.import_module(f"{__name__}.{fmt.module}")
         with atomic_path(path) as tmp:
             return mod.write(obj, tmp, **opts)

@@ -56,13 +56,13 @@ checks the certificate independently.
 from __future__ import annotations
 
 import math
-
 import numpy as np
 
 from ..errors import GearError, ToleranceError, check_number
 from ..params.exporters import DXF, DXF_VERSIONS
 from .dxfoptions import DxfOptions, options_of  # noqa: F401  (DxfOptions: part of this module's API)
-from . import arccert, biarcfit, is_rack
+from . import arccert, biarcfit
+from ..solids.kinds import is_rack
 from .arcfit import ArcSpline, fit_arcs, segments_distance, tangent_jumps
 from .dxfread import joint_jumps, measure, measure_segments, read_back, read_segments, sample_segments  # noqa: F401
 from .outline import profile_outline, start_point

@@ -8,7 +8,7 @@ from collections.abc import Mapping
 import numpy as np
 
 from ..errors import GearError
-from . import is_rack
+from ..solids.kinds import is_rack
 from ..solids.convert import as_bodies, body_name
 
 

@@ -21,7 +21,7 @@ ROLES = ("data", "outline", "figure", "mesh")
 @dataclass(frozen=True)
 class Format:
     ext: str          # ".dxf"
-    module: str       # module under gear3d.export defining write(obj, tmp_path, **opts)
+    module: str       # module defining write(obj, tmp_path, **opts): under gear3d.export, or gear3d.figures (PNG)
     kinds: tuple      # which objects it takes: "profile", "body"
     doc: str = ""
     role: str = "mesh"    # one of ROLES
@@ -29,6 +29,11 @@ class Format:
     #                       kind it spells another way (".stp" -> "step")
     options: tuple = ()   # its options (gear3d.params.Param: the keywords write() passes on)
     media: str = "application/octet-stream"   # its media type (a download's Content-Type)
+
+    @property
+    def module_name(self) -> str:
+        """The writer module's full dotted name (``gear3d.export.dxf``, ``gear3d.figures``)."""
+        return self.module if self.module.startswith("gear3d.") else f"gear3d.export.{self.module}"
 
 
 #: extension -> Format, in the order formats are listed everywhere (help, messages, docs)
@@ -53,7 +58,7 @@ register(".dxf", "dxf", ("profile",), "DXF lines+arcs for wire EDM / laser / wat
          options=DXF_PARAMS, media="image/vnd.dxf")
 register(".svg", "svg_outline", ("profile",), "1:1 cut outline in mm (paths only) for laser cutters", "outline",
          options=SVG_PARAMS, media="image/svg+xml")
-register(".png", "svg_png", ("profile", "body"), "profile figure / body preview", "figure", media="image/png")
+register(".png", "gear3d.figures", ("profile", "body"), "profile figure / body preview", "figure", media="image/png")
 register(".stl", "stl", ("profile", "body"), "binary STL", media="model/stl")
 register(".3mf", "threemf", ("profile", "body"), "3MF with names, units and metadata", options=THREEMF_PARAMS,
          media="model/3mf")

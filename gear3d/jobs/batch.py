@@ -262,7 +262,7 @@ def worker_modules(lib: Library) -> list:
     for k in sorted(kinds):
         fmt = FORMATS.get(EXT[k])
         if fmt is not None:
-            mods.append(f"gear3d.export.{fmt.module}")
+            mods.append(fmt.module_name)
     return list(dict.fromkeys(mods))
 
 
