@@ -135,12 +135,14 @@ COSTS = {
                                 "is 1.5-2.3x the chords"),
     # the direct B-rep writer itself (gear3d.export.step_direct, no OpenCascade; plan_writes.
     # direct_brep_estimate): per profile vertex x law piece (the flank fits, the measurement)
-    "brep.direct": Cost(2.5e-5, 600.0, 0.1, 30e6, "measured 2026-11-26 in a subprocess (CPU of direct_text, "
+    "brep.direct": Cost(2.5e-5, 1500.0, 0.1, 60e6, "measured 2026-11-26 in a subprocess (CPU of direct_text, "
                         "section check included; RSS over the built body): spur z = 200 at 0.1 um... 1000 at 10 "
                         "um 1.0 / 8.6 s (800 / 4,000 face runs, 18,800 / 202,000 vertices, +48 / +406 MB, the "
                         "section's chords most of it), helical z = 40 at 0.1 mm 0.49 s, herringbone z = 60 0.92 "
                         "s, chevron-arch z = 100 at 1 um 1.56 s, helical z = 30 at 30 um (10.5 M triangles) "
-                        "2.64 s: 1 ms a face run + 25 us a vertex x law piece + 0.25 us a mesh triangle"),
+                        "2.64 s: 1 ms a face run + 25 us a vertex x law piece + 0.25 us a mesh triangle; the writer's "
+                        "estimate 1.2-2.1x its CPU; peak RSS of spur z = 1000 at 0.1 um 213 MB (209 MiB planned at "
+                        "600 B a vertex and 30 MB: 1500 B and 60 MB kept)"),
     "brep.direct.face": Cost(1e-3, 2000.0, 0.0, 0.0, "the same measurement: per face run (teeth x 4 x law "
                              "pieces, as plan.brep_estimate counts them), 1 ms"),
     "brep.direct.mesh": Cost(2.5e-7, 300.0, 0.0, 0.0, "the same measurement: the mesh body's volume and area "
