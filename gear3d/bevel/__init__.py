@@ -18,9 +18,8 @@ returns a :class:`Bevel`: the bodies and a typed, frozen :class:`BevelReport` wh
   transmission error).
 
 Internal bevels (a pitch cone beyond 90°) are built in their own frame turned by π about x
-(straight, spiral and Zerol; rolling check and figures). Not built (refused with one line):
-crown gears (a face cone within 3° of 90°: ``gear3d face-gear``), uniform clearance on an
-internal pair.
+(straight, spiral and Zerol; uniform clearance; rolling check and figures). Not built
+(refused with one line): crown gears (a face cone within 3° of 90°: ``gear3d face-gear``).
 
 ``gear3d.bevel(teeth, mate_teeth, module, part="gear", tolerance=0.01, check=False,
 **options)`` calls :func:`build`, planned against the budget first.

@@ -101,6 +101,14 @@ def _internal_caps(geo: PairGeometry, c) -> Caps:
     b_lo = max(d - c.addendum_angle - 0.5 * (d - c.addendum_angle), 0.01)
     b_hi = min(rim_polar(c) + 0.02, math.radians(89.0))
     pts = [_ray_point(ri, b_lo, d), _ray_point(ri, b_hi, d), _ray_point(re, b_hi, d), _ray_point(re, b_lo, d)]
+    if c.uniform_face_angle is not None:
+        # uniform clearance: the inner face is the face cone through the heel tip H at polar
+        # angle π - (δ + θ_f(mate)) (own frame), parallel to the mate's root cone; it meets the
+        # front cone at F, outside the tip cone (which the teeth's hole still reaches at H)
+        H = np.array(_ray_point(re, d - c.addendum_angle, d))
+        g = math.pi - c.uniform_face_angle
+        e_g, e_d = np.array([math.sin(g), math.cos(g)]), np.array([math.sin(d), math.cos(d)])
+        pts[0], pts[3] = H + (ri - H @ e_d) / (e_g @ e_d) * e_g, H
     outline = np.array(pts)
     z_lo = min(_ray_point(ri, b, d)[1] for b in (d - c.addendum_angle, rim_polar(c)))
     z_hi = max(_ray_point(re, b, d)[1] for b in (d - c.addendum_angle, rim_polar(c)))

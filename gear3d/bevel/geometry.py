@@ -49,7 +49,10 @@ class GearCone:
     dedendum: float
     shift_coeff: float
     #: uniform clearance: the face cone's angle δ + θ_f(mate) (rad), parallel to the mate's
-    #: root cone, through the heel tip; None: standard (the face cone δ + θ_a through the apex)
+    #: root cone, through the heel tip; None: standard (the face cone δ + θ_a through the apex).
+    #: The same formula for an internal member (δ > 90°): measured from its axis, its tip lies
+    #: at δ + θ_a and its root at δ - θ_f as an external member's, so δ + θ_f(mate) is parallel
+    #: to the mate's root cone δ' - θ_f(mate) (π - δ - θ_f(mate) in its own turned frame)
     uniform_face_angle: float | None = None
 
     @property
@@ -146,14 +149,14 @@ def pair_geometry(teeth, mate_teeth, module, face_width=None, pressure_angle_deg
         cone = GearCone(z, d, math.atan(h_a / re), math.atan(h_f / re), h_a, h_f, xs)
         _check_cone(name, z, cone, sig, a, form)
         cones.append(cone)
-    if clearance == "uniform" and any(c.internal for c in cones):
-        raise GearError("clearance", clearance, "standard for an internal bevel pair")
     if clearance == "uniform":
         from dataclasses import replace
         cones = [replace(c, uniform_face_angle=c.pitch_angle + o.dedendum_angle)
                  for c, o in (cones, cones[::-1])]
         for name, c in zip(("teeth", "mate_teeth"), cones):
-            if math.degrees(c.face_cone_angle) >= MAX_FACE_ANGLE_DEG:
+            # an internal member's uniform face cone lies outside its tip cone (away from its
+            # own axis) everywhere but at the heel: nothing new to refuse there
+            if not c.internal and math.degrees(c.face_cone_angle) >= MAX_FACE_ANGLE_DEG:
                 raise GearError("clearance", clearance, "standard for this pair",
                                 f"the uniform face cone of the member with {c.teeth} teeth would reach "
                                 f"{math.degrees(c.face_cone_angle):.4g} deg")
