@@ -90,9 +90,47 @@ def radius_limits(g):
     ``inner`` (the larger measured inner limit) and ``outer`` (the pointing limit)."""
     lim = {**g.limits(), **measured_limits(g)}
     inner = max(v for k, v in lim.items() if k.startswith("inner") and k.endswith("measured") and v is not None)
-    lim["inner"] = inner
-    lim["outer"] = lim["outer_pointing_measured"]
+    lim["inner"], lim["outer"] = _clear_band(g, inner, lim["outer_pointing_measured"])
     return lim
+
+
+def _clear_band(g, lo: float, hi: float, scan: int = 128) -> tuple:
+    """(inner, outer) (mm): the widest band inside [lo, hi] whose sections are all clear
+    (``section.ok``) on a scan of ``scan`` steps, its ends bisected on the same flag; (lo, hi)
+    when the whole scan is clear. A large shaper can leave the flank undercut or the tooth
+    pointed inside the limits each measured alone (64/28 teeth at 25°), and the builder
+    would meet those sections after its work; (hi, lo) when no section is clear."""
+    import numpy as np
+    rs = np.linspace(lo, hi, scan + 1)[1:-1]
+    ok = np.array([section(g, float(r)).ok for r in rs])
+    if ok.all():
+        return lo, hi
+    if not ok.any():
+        return hi, lo
+    runs, start = [], None                        # (first, last) index of each clear run
+    for i, v in enumerate(ok):
+        if v and start is None:
+            start = i
+        if not v and start is not None:
+            runs.append((start, i - 1))
+            start = None
+    if start is not None:
+        runs.append((start, len(ok) - 1))
+    a, b = max(runs, key=lambda r: r[1] - r[0])
+    inner = lo if a == 0 else _bisect_ok(g, float(rs[a - 1]), float(rs[a]))
+    outer = hi if b == len(ok) - 1 else _bisect_ok(g, float(rs[b + 1]), float(rs[b]))
+    return inner, outer
+
+
+def _bisect_ok(g, bad: float, good: float, tol: float = 1e-9) -> float:
+    """The clear end (mm) of [bad, good] (either order) where ``section.ok`` turns true."""
+    while abs(good - bad) > tol * abs(good):
+        mid = 0.5 * (bad + good)
+        if section(g, mid).ok:
+            good = mid
+        else:
+            bad = mid
+    return good
 
 
 def check_radii(g: FaceGeometry, inner_radius=None, outer_radius=None, lim=None) -> tuple:
@@ -101,6 +139,10 @@ def check_radii(g: FaceGeometry, inner_radius=None, outer_radius=None, lim=None)
     when not given), rounded inwards to the µm; a radius outside them is refused, naming it."""
     lim = radius_limits(g) if lim is None else lim
     lo, hi = math.ceil(lim["inner"] * 1e6) / 1e6, math.floor(lim["outer"] * 1e6) / 1e6
+    if lo >= hi:
+        raise GearError("shaper_teeth", g.shaper_teeth, "a shaper that leaves a clear band of radii",
+                        f"with {g.teeth} face gear teeth every section between {lim['outer']:.6g} and "
+                        f"{lim['inner']:.6g} mm is undercut or pointed")
     r1 = lo if inner_radius is None else check_number("inner_radius", inner_radius, lo, hi, unit="mm")
     r2 = None if outer_radius is None else check_number("outer_radius", outer_radius, r1, hi, lo_open=True, unit="mm")
     return r1, r2
