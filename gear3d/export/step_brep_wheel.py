@@ -101,10 +101,10 @@ def _is_pointed(d, h: float, tol_s: float) -> bool:
     return not bool(np.any(np.abs(np.hypot(L[:, 0], L[:, 1]) - rt) <= 1e-9 * rt))
 
 
-def pointed_band(d, tol_s: float, steps: int = 48):
+def pointed_band(d, tol_s: float, steps: int = 48, h_tol: float = 1e-4):
     """(h_ok, h0, h1) (mm, 0 <= h_ok <= h0 <= h1 <= B/2): the heights |h| between which
     the wheel's sections come to a point below the blank's tip, found on ``steps`` heights
-    and the throat's kink, the first one bisected to 1e-4 mm (``h_ok``: the last height
+    and the throat's kink, the first one bisected to ``h_tol`` mm (``h_ok``: the last height
     before it that is not pointed, or h0 at h = 0); None when none is pointed. A throated
     wheel of few teeth points near the kink, where the blank's tip is highest over its
     narrowest teeth."""
@@ -119,17 +119,18 @@ def pointed_band(d, tol_s: float, steps: int = 48):
         return None
     hi = bad[0]
     lo = max([h for h in hs if h < hi], default=hi)
-    while hi - lo > 1e-4 and lo < hi:
+    while hi - lo > h_tol and lo < hi:
         mid = 0.5 * (lo + hi)
         lo, hi = (lo, mid) if _is_pointed(d, mid, tol_s) else (mid, hi)
     return lo, hi, bad[-1]
 
 
-def refuse_pointed(d, tol_s: float) -> None:
+def refuse_pointed(d, tol_s: float, steps: int = 48, h_tol: float = 1e-4) -> None:
     """One GearError line, before any surface is fitted, for a wheel whose teeth come to a
     point below the blank's tip somewhere across the face width (the tip's surface would
-    shrink to an edge there): it names the heights and what to change."""
-    band = pointed_band(d, tol_s)
+    shrink to an edge there): it names the heights and what to change. ``steps``, ``h_tol``:
+    :func:`pointed_band`'s scan."""
+    band = pointed_band(d, tol_s, steps, h_tol)
     if band is None:
         return
     ok, h0, h1 = band
@@ -310,6 +311,19 @@ def wheel_features(shape, d, feats: dict, tol: float):
     up, down = np.eye(4), np.eye(4)
     up[2, 3], down[2, 3] = W / 2, -W / 2
     return transformed(features(transformed(shape, up), {"features": cuts}, W, tol), down)
+
+
+def precheck(d) -> None:
+    """Refuse a worm set's wheel B-rep before any body is built (the CLI, before the mesh
+    and OCC's import): :func:`refuse_pointed` of design ``d``
+    (:class:`gear3d.wormgear.design.WormDesign`) at the wheel's section tolerance on a
+    coarser scan (16 heights, the kink's three, the first pointed one bisected to 1e-3 mm;
+    about 0.4 s). A band the coarse scan misses is still refused by :func:`wheel_solid`.
+
+    >>> from gear3d.wormgear.design import design
+    >>> precheck(design(module=2, starts=1, wheel_teeth=30, diameter_quotient=10, worm_type="ZA"))
+    """
+    refuse_pointed(d, SECTION_SHARE * float(d.tolerance), steps=16, h_tol=1e-3)
 
 
 def wheel_solid(w, design=None):
