@@ -281,6 +281,10 @@ def _plan_set(job: Job, part: PartSpec, kind, tol, path, prefix, step=None):
         out = dict(out, step=step)
     try:
         plan[part.family](dict(part.params, tolerance=tol), **out)
+        if part.family == "worm" and step == "brep" and part.params.get("part", "pair") != "worm":
+            from ..export.step_brep_wheel import precheck      # a pointed wheel, before its mesh (#27)
+            from ..wormgear import validate
+            precheck(validate(**dict(part.params, tolerance=tol)))
     except GearError as e:
         p = getattr(e, "param", None)
         raise TemplateError(job.file, f"{prefix}.{p}" if p else prefix, getattr(e, "value", None),
