@@ -18,6 +18,8 @@
   (and the other way round half a pitch later), cut by the line at cone distance R;
 * no interference: the common volume of the bodies at two roll positions stays within the
   chords, and a turn of 4 mrad either way makes them overlap (teeth in contact);
+* spiral and Zerol internal pairs with uniform clearance: in mesh, and the internal body's
+  volume the straight one's;
 * the B-rep STEP (slow): one valid solid whose volume is the mesh body's, and its face cone
   an exact cone of half angle π - δ2 - θ_f1 (own frame) through the heel tip point.
 """
@@ -145,6 +147,32 @@ def test_internal_uniform_no_interference(z1, z2):
             assert lo <= (gear.manifold.transform(T1[:3, :4]) ^ m2).volume() < hi
     r = check_pair(b.geometry, grid=8)
     assert not r["interference"] and r["max_penetration"] < 2e-6
+
+
+@pytest.mark.parametrize("z1, z2, psi, rc", [(20, 30, 35.0, None), (30, 20, 0.0, 30.0)])
+def test_internal_uniform_spiral_in_mesh(z1, z2, psi, rc):
+    """Spiral (gear 1 external) and Zerol (gear 1 internal) pairs with uniform clearance: no
+    common volume beyond the chords at two roll positions (< 0.02 mm³; 0.004-0.008 measured),
+    contact when gear 1 turns 4 mrad either way (> 1 mm³); the internal body's volume is the
+    straight uniform one's (each sphere turned rigidly about the axis, which keeps the
+    revolved face cone) within its surface x tolerance."""
+    tol = 0.05
+    b = gear3d.bevel(teeth=z1, mate_teeth=z2, module=M, shaft_angle_deg=SIG, part="pair", tolerance=tol,
+                     spiral_angle_deg=psi, cutter_radius=rc, clearance="uniform")
+    gear, mate = b.bodies
+    assert b.report.max_error <= tol and b.report.clearance == "uniform"
+    for turn in (0.0, 0.1):
+        T1, R2 = np.eye(4), np.eye(4)
+        R2[:3, :3] = _rot(turn * z1 / z2)
+        m2 = mate.manifold.transform((mate.transform @ R2)[:3, :4])
+        for extra, lo, hi in ((0.0, 0.0, 0.02), (4e-3, 1.0, math.inf), (-4e-3, 1.0, math.inf)):
+            T1[:3, :3] = _rot(turn + extra)
+            assert lo <= (gear.manifold.transform(T1[:3, :4]) ^ m2).volume() < hi
+    inner = [x for x in b.bodies if x.manifold.genus() == 1][0]
+    straight = gear3d.bevel(teeth=z1, mate_teeth=z2, module=M, shaft_angle_deg=SIG, part=inner.name, tolerance=tol,
+                            clearance="uniform")
+    area = inner.manifold.surface_area()
+    assert inner.manifold.volume() == pytest.approx(straight.bodies[0].manifold.volume(), abs=area * tol)
 
 
 def test_internal_uniform_cli(tmp_path, capsys):
