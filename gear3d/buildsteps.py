@@ -521,7 +521,7 @@ def measure_corners(fs, ts, corners, teeth, cuts=None, pairs=None):
                 ta0, ta1 = ts[pa][ja], ts[pa][ja + 1]
                 tb0, tb1 = ts[pb][jb], ts[pb][jb + 1]
                 # work in the frame of copy ka: rotate q back
-                qa = _rotate_pt(q, -ra)
+                qa = rotate(q, -ra)
                 res = exact_crossing(fa, ta0, ta1, fs[pb], tb0, tb1, 2 * math.pi * (kb - ka) / teeth, qa,
                                      params=True)
                 if res is None:
@@ -559,11 +559,6 @@ def chords_through(q, near, fs, ts, teeth):
     d = point_segment_distance(np.asarray(q, float)[None, :], ends[:, 0], ends[:, 1]).ravel()
     keep = [n for n, di in zip(near, d) if di <= THROUGH_CORNER]
     return keep if len(keep) >= 2 else near
-
-
-def _rotate_pt(p, a):
-    c, s = math.cos(a), math.sin(a)
-    return np.array([c * p[0] - s * p[1], s * p[0] + c * p[1]])
 
 
 def finite(G):

@@ -85,12 +85,13 @@ from dataclasses import asdict, dataclass, fields
 import numpy as np
 
 from ..errors import GearError, check_choice, check_number
+from ..params import MESH_TOLERANCE
 from ..reports import BevelReport, MemberReport
 from ..profiles.keywords import front
 
 PARTS = ("gear", "mate", "pair")
 #: mm: default tolerance (bodies are meshes)
-DEFAULT_TOLERANCE = 0.01
+DEFAULT_TOLERANCE = MESH_TOLERANCE
 
 
 @dataclass(frozen=True)

@@ -21,6 +21,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..geometry import rotate as rot2          # points (..., 2) mm turned by ang rad
 from ..errors import GearError
 
 
@@ -35,13 +36,6 @@ class Run:
     t1: float
     p0: np.ndarray | None = None   # exact start point (mm, in copy k's frame, i.e. turned)
     p1: np.ndarray | None = None
-
-
-def rot2(pts, ang):
-    """Points (..., 2) mm turned by ``ang`` rad about the origin."""
-    c, s = math.cos(ang), math.sin(ang)
-    pts = np.asarray(pts, float)
-    return np.stack([c * pts[..., 0] - s * pts[..., 1], s * pts[..., 0] + c * pts[..., 1]], axis=-1)
 
 
 def _deriv(G, t, h=1e-6):

@@ -64,7 +64,7 @@ Scene (``[scene]``, ``[[part]]``, ``[[pair]]``, ``[[assembly]]``)::
     module = 2
     face_width = 6                 # also shaft_angle_deg, form, shift_coeff, spiral_angle_deg, ...
     check = true                   # pair: the rolling check in the json
-    outputs = ["stl", "3mf", "json"]   # stl 3mf json step (faceted)
+    outputs = ["stl", "3mf", "json"]   # stl 3mf json step (faceted; exact with [scene.options.step] kind = "brep")
 
     [[part]]                       # a face gear: gear3d.face_gear's keywords but tolerance
     name = "face"
@@ -72,7 +72,7 @@ Scene (``[scene]``, ``[[part]]``, ``[[pair]]``, ``[[assembly]]``)::
     teeth = 40
     shaper_teeth = 14              # or pinion_teeth
     module = 1
-    outputs = ["stl", "json"]      # stl 3mf json
+    outputs = ["stl", "json"]      # stl 3mf json step (faceted, or exact as above)
 
     [[pair]]                       # placed (place_pair) and checked (check_pair)
     name = "mesh"

@@ -25,6 +25,7 @@ import math
 from dataclasses import dataclass, fields, replace
 
 from ..errors import GearError, ToleranceError, check_bool, check_choice, check_number
+from ..params import MESH_TOLERANCE
 
 WORM_TYPES = ("ZA", "ZN", "ZI", "ZK")
 #: the worm types built (all four: ZK's axial profile is solved in :mod:`.zk`)
@@ -35,7 +36,7 @@ DEFAULT_DISC_RADIUS = 125.0
 #: default friction coefficient for the self-locking flag (tan γ < μ)
 DEFAULT_FRICTION = 0.05
 #: mm: default tolerance of worm and wheel meshes (printing)
-DEFAULT_TOLERANCE = 0.01
+DEFAULT_TOLERANCE = MESH_TOLERANCE
 
 
 @dataclass(frozen=True)

@@ -30,6 +30,7 @@ from dataclasses import dataclass, field, fields
 import numpy as np
 
 from ..envelope import rack_envelope
+from ..geometry import rotate as _rot
 from ..errors import ToleranceError
 from ..model import Profile, build_profile
 from .thread import section_rack, section_shift
@@ -233,9 +234,3 @@ def _land_distance(prof, pts, tip_radius):
     ang = np.arctan2(pts[:, 1], pts[:, 0])
     on = (ang >= a1) & (ang <= a2) & (c2 > c1)
     return np.where(on, np.abs(np.hypot(pts[:, 0], pts[:, 1]) - tip_radius), np.inf)
-
-
-def _rot(p, a):
-    c, s = math.cos(a), math.sin(a)
-    p = np.asarray(p, float)
-    return np.stack([c * p[..., 0] - s * p[..., 1], s * p[..., 0] + c * p[..., 1]], axis=-1)
