@@ -25,6 +25,7 @@ import pytest
 
 import gear3d
 from occread import is_valid, read_step, sub_shapes
+from oracles import involute_distance  # noqa: E402
 
 pytest.importorskip("OCP")
 
@@ -257,19 +258,6 @@ def test_worm_thread_is_the_helicoid(tmp_path, capsys):
     assert max(bad) > 3 * tol
 
 
-def involute_distance(xy, z, m, alpha):
-    """Closed-form distance (mm) from points (N, 2), folded onto tooth 0 (on +x), to the
-    flanks of a standard involute gear (no shift, no backlash; α rad): r_b |roll difference|."""
-    r = np.hypot(xy[:, 0], xy[:, 1])
-    ang = 2 * math.pi / z
-    phi = np.arctan2(xy[:, 1], xy[:, 0])
-    phi = np.abs(phi - np.round(phi / ang) * ang)
-    rb = z * m / 2 * math.cos(alpha)
-    c = math.pi / (2 * z) + math.tan(alpha) - alpha
-    al = np.arccos(np.clip(rb / r, -1, 1))
-    return rb * np.abs(phi + np.tan(al) - al - c)
-
-
 def midplane_points(shape, n=60):
     """(N, 3) points of the solid's section by the plane z = 0 (OCC's section edges, each
     sampled at n parameters)."""
@@ -306,8 +294,8 @@ def test_worm_wheel_midplane_is_the_involute(tmp_path):
     assert np.abs(P[:, 2]).max() < 1e-6
     r = np.hypot(P[:, 0], P[:, 1])
     flank = (r > 30 - 0.8 * 2) & (r < 30 + 0.9 * 2)
-    d = involute_distance(P[flank, :2], 30, 2.0, math.radians(20))
+    d = involute_distance(P[flank, :2], 30, 2.0, 20.0)
     assert flank.sum() > 1000 and d.max() <= tol
     assert 0 < w.report["brep"]["max_error"] <= tol
     # sharp: half a degree off in the pressure angle is seen
-    assert involute_distance(P[flank, :2], 30, 2.0, math.radians(20.5)).max() > 2 * d.max()
+    assert involute_distance(P[flank, :2], 30, 2.0, 20.5).max() > 2 * d.max()

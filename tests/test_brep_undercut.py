@@ -37,27 +37,13 @@ from gear3d.solids.body import body
 
 pytest.importorskip("OCP")
 from occread import is_valid, read_step, sub_shapes  # noqa: E402
+from oracles import involute_distance  # noqa: E402
 
 WIDTH = 5.0
 #: the involute is checked from this far (mm, module 1) above the pitch circle
 ZONE = 0.1
 TEETH = list(range(6, 18))
 ANGLES = (20.0, 14.5)
-
-
-def involute_distance(xy, z, m, alpha_deg):
-    """Closed-form distance (mm) from points (N,2), folded onto tooth 0, to the flank of a
-    standard involute gear of ``z`` teeth, module ``m`` and pressure angle ``alpha_deg``
-    (no shift, no backlash): r_b |tan a_r - a_r + phi - (pi/(2z) + inv a)|."""
-    r = np.hypot(xy[:, 0], xy[:, 1])
-    ang = 2 * math.pi / z
-    phi = np.arctan2(xy[:, 1], xy[:, 0])
-    phi = np.abs(phi - np.round(phi / ang) * ang)
-    a0 = math.radians(alpha_deg)
-    rb = z * m / 2 * math.cos(a0)
-    c = math.pi / (2 * z) + math.tan(a0) - a0
-    al = np.arccos(np.clip(rb / r, -1, 1))
-    return rb * np.abs(phi + np.tan(al) - al - c)
 
 
 def flank_points(shape, n=25, m=3):

@@ -15,6 +15,7 @@ import pytest
 
 import gear3d
 from occread import is_valid, read_step, sub_shapes
+from oracles import involute_distance  # noqa: E402
 from gear3d.errors import GearError, ToleranceError
 from gear3d.export import write
 from gear3d.solids.body import body
@@ -54,20 +55,6 @@ def face_samples(shape, n=9):
         P = [s.Value(float(u), float(v)) for u in us for v in vs]
         out.setdefault(kind, []).append(np.array([[p.X(), p.Y(), p.Z()] for p in P]))
     return {k: np.concatenate(v) for k, v in out.items()}
-
-
-def involute_distance(xy, z, m, alpha_deg=20.0):
-    """Closed-form distance (mm) from points (N,2), folded onto tooth 0, to the flank of a
-    standard involute gear (no shift, no backlash): r_b · |roll angle difference|."""
-    r = np.hypot(xy[:, 0], xy[:, 1])
-    ang = 2 * math.pi / z
-    phi = np.arctan2(xy[:, 1], xy[:, 0])
-    phi = np.abs(phi - np.round(phi / ang) * ang)
-    a0 = math.radians(alpha_deg)
-    rb = z * m / 2 * math.cos(a0)
-    c = math.pi / (2 * z) + math.tan(a0) - a0
-    al = np.arccos(np.clip(rb / r, -1, 1))
-    return rb * np.abs(phi + np.tan(al) - al - c)
 
 
 def turned_back(P, tan_beta, r_pitch, sign=1.0):

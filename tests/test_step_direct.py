@@ -30,28 +30,9 @@ from gear3d.solids.body import body
 
 pytest.importorskip("OCP")
 from occread import is_valid, read_step, sub_shapes  # noqa: E402
+from oracles import involute_distance  # noqa: E402
 
 TOL = 0.01
-ALPHA = math.radians(20.0)
-
-
-def inv(a):
-    return np.tan(a) - a
-
-
-def involute_distance(xy, z, m, internal=False):
-    """Distance (mm) from points (N, 2) to the flanks of a standard 20° involute gear of z
-    teeth, module m (no shift, no backlash), tooth 0 centred on +x: a point at radius r and
-    angle φ folded onto the nearest tooth (external) or tooth space (a ring's space is an
-    external tooth's shape, centred half a pitch from its tooth 0) lies on a flank when
-    φ + inv(α(r)) = π/(2z) + inv(α), cos α(r) = r_b / r."""
-    r = np.hypot(xy[:, 0], xy[:, 1])
-    pitch = 2 * math.pi / z
-    phi = np.arctan2(xy[:, 1], xy[:, 0]) - (pitch / 2 if internal else 0.0)
-    phi = np.abs(phi - np.round(phi / pitch) * pitch)
-    rb = z * m / 2 * math.cos(ALPHA)
-    al = np.arccos(np.clip(rb / r, -1, 1))
-    return rb * np.abs(phi + inv(al) - (math.pi / (2 * z) + inv(ALPHA)))
 
 
 def occ_volume(shape):
@@ -136,14 +117,14 @@ def test_direct_brep_reads_back_exact(name, pkw, bkw, theta, faces, tmp_path, mo
     r = np.hypot(xy[:, 0], xy[:, 1])
     z = pkw["teeth"]
     band = (r > 19.2) & (r < 20.9) if internal else (r > 9.5) & (r < 10.95)   # clear of fillets and tips
-    d = involute_distance(xy[band], z, 1.0, internal)
+    d = involute_distance(xy[band], z, 1.0, internal=internal)
     assert band.sum() > 500 and d.max() <= TOL
     # the check is sharp: half as much twist again moves the flank far off
     if name != "spur" and name != "ring":
         th2 = th * 1.5
         xy2 = np.stack([np.cos(th2) * P[:, 0] - np.sin(th2) * P[:, 1],
                         np.sin(th2) * P[:, 0] + np.cos(th2) * P[:, 1]], 1)
-        assert involute_distance(xy2[band], z, 1.0, internal).max() > 5 * TOL
+        assert involute_distance(xy2[band], z, 1.0, internal=internal).max() > 5 * TOL
 
 
 @pytest.mark.parametrize("kw", [
