@@ -96,12 +96,14 @@ def radius_limits(g):
 
 def _clear_band(g, lo: float, hi: float, scan: int = 128) -> tuple:
     """(inner, outer) (mm): the widest band inside [lo, hi] whose sections are all clear
-    (``section.ok``) on a scan of ``scan`` steps, its ends bisected on the same flag; (lo, hi)
+    (``section.ok``) on a scan of ``scan`` steps (and 24 geometric steps into each end, down
+    to 1e-7 of the band), its ends bisected on the same flag; (lo, hi)
     when the whole scan is clear. A large shaper can leave the flank undercut or the tooth
     pointed inside the limits each measured alone (64/28 teeth at 25°), and the builder
     would meet those sections after its work; (hi, lo) when no section is clear."""
     import numpy as np
-    rs = np.linspace(lo, hi, scan + 1)[1:-1]
+    ends = (hi - lo) * np.geomspace(1e-7, 1.0 / scan, 24)          # thin bands at either end
+    rs = np.unique(np.concatenate([np.linspace(lo, hi, scan + 1)[1:-1], lo + ends, hi - ends]))
     ok = np.array([section(g, float(r)).ok for r in rs])
     if ok.all():
         return lo, hi

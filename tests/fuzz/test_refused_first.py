@@ -79,17 +79,19 @@ def test_bevel_mounting_distance_refused_first(tmp_path):
     assert hi == pytest.approx(100 * r_e, rel=1e-5)
 
 
-def test_face_gear_inner_radius_inside_the_undercut_refused_first(tmp_path):
+@pytest.mark.parametrize("z2, z0, alpha, r1", [(64, 28, 25.0, 30.2), (51, 23, 30.0, 23.45)])
+def test_face_gear_inner_radius_inside_the_undercut_refused_first(tmp_path, z2, z0, alpha, r1):
     """64/28 at 25 deg: sections at r = 30.2 mm are undercut (Litvin's limit about 30.245 mm),
-    though the base-circle limit measured alone was 30.18 mm."""
-    value, allowed = _refused("face-gear --teeth 64 --shaper-teeth 28 --module 1 --pressure-angle-deg 25 "
-                              "--inner-radius 30.2 -o f.stl", tmp_path, "inner_radius")
+    though the base-circle limit measured alone was 30.18 mm; 51/23 at 30 deg: a band of
+    undercut sections 0.03 mm wide (23.438..23.467 mm) above the base-circle limit."""
+    value, allowed = _refused(f"face-gear --teeth {z2} --shaper-teeth {z0} --module 1 --pressure-angle-deg {alpha:g} "
+                              f"--inner-radius {r1:g} -o f.stl", tmp_path, "inner_radius")
     lo, hi = _interval(allowed)
-    assert float(value) == 30.2 and 30.2 < lo < hi
+    assert float(value) == r1 and r1 < lo < hi
     from gear3d.facegear.geometry import face_geometry
     from gear3d.facegear.section import section
-    g = face_geometry(64, 28, 1.0, 25.0)
-    assert section(g, 30.2).undercut                     # the value is truly inside the undercut
+    g = face_geometry(z2, z0, 1.0, alpha)
+    assert section(g, r1).undercut                       # the value is truly inside the undercut
     assert all(section(g, r).ok for r in (lo, 0.5 * (lo + hi), hi))   # the range is clear
 
 
