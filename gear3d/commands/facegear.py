@@ -17,39 +17,27 @@ from __future__ import annotations
 import math
 import sys
 
-from ..cliargs import number
 from ..errors import GearError
 from ..export import check_output, write
 from ..filesafe import atomic_path, check_path
+from ..params import FACE_GEAR_PARAMS
+
+
+#: flags the command needs (the page starts from the table's defaults)
+REQUIRED = ("teeth", "module")
 
 
 def add_parser(sub):
+    from .profile import arg_type
     p = sub.add_parser("face-gear", help="face (crown) gears cut by an involute spur shaper, 90° shafts "
                                          "-> .stl .3mf + .json (radius limits: undercut, pointing)")
-    p.add_argument("--teeth", type=number("int", 10, 1000), required=True, help="teeth of the face gear (z2)")
-    p.add_argument("--shaper-teeth", type=number("int", 8, 200), default=None,
-                   help="teeth of the generating shaper (z0); default the pinion's + 2")
-    p.add_argument("--pinion-teeth", type=number("int", 6, 200), default=None,
-                   help="teeth of the mating spur pinion (z1 <= z0 <= z1 + 5)")
-    p.add_argument("--module", type=number("float", 0, 1000, lo_open=True, unit="mm"), required=True,
-                   help="module m (mm)")
-    p.add_argument("--pressure-angle-deg", type=number("float", 14, 30, unit="deg"), default=20.0,
-                   help="pressure angle of the shaper (deg), default 20")
-    p.add_argument("--inner-radius", type=number("float", 0, None, lo_open=True, unit="mm"), default=None,
-                   help="inner radius R1 (mm); default the inner limit (undercut or the shaper's base circle); "
-                        "with --part pinion|pair and the twin pinion: the form limit (the face gear's tip "
-                        "edge clear of the pinion's fillet)")
-    p.add_argument("--outer-radius", type=number("float", 0, None, lo_open=True, unit="mm"), default=None,
-                   help="outer radius R2 (mm); default where the tip land has narrowed to 0.25 m "
-                        "(at most the pointing limit)")
-    p.add_argument("--rim", type=number("float", 0, None, lo_open=True, unit="mm"), default=None,
-                   help="thickness below the root plane (mm), default 2 m")
-    p.add_argument("--tolerance", type=number("float", 1e-5, 1, unit="mm"), default=0.01,
-                   help="max deviation of the mesh from the exact tooth surfaces (mm), default 0.01")
-    p.add_argument("--part", choices=["gear", "pinion", "pair"], default="gear",
-                   help="gear (the face gear, default), pinion (its spur pinion: the shaper's twin with "
-                        "--pinion-teeth teeth, default the shaper's, R2 - R1 wide, own frame) or pair (both, "
-                        "the pinion placed in mesh)")
+    for prm in FACE_GEAR_PARAMS:      # the set's table (gear3d.params): flags, ranges, defaults, help
+        if prm.choices:
+            p.add_argument(prm.flag, default=prm.default, choices=list(prm.choices), help=prm.help_text())
+        else:
+            need = prm.name in REQUIRED
+            p.add_argument(prm.flag, type=arg_type(prm), default=None if need else prm.default, required=need,
+                           help=prm.help_text(default_text="" if need else None))
     p.add_argument("--check", action="store_true",
                    help="--part pair: roll the pair (interference, backlash, contact ratio of conjugate action, "
                         "transmission error): one summary line, the numbers under 'check' in --json; exit 1 on "

@@ -1,5 +1,5 @@
-"""The keyword tables of the worm, bevel and planetary sets (``gear3d.worm``, ``gear3d.bevel``,
-``gear3d.planetary.planetary_set``; their CLI flags, template keys and web forms)."""
+"""The keyword tables of the worm, bevel, face gear and planetary sets (``gear3d.worm``, ``gear3d.bevel``,
+``gear3d.face_gear``, ``gear3d.planetary.planetary_set``; their CLI flags, template keys and web forms)."""
 from __future__ import annotations
 
 from .param import declare as _p
@@ -92,6 +92,30 @@ BEVEL_PARAMS: tuple = (
        help="gear (z1), mate (z2, own frame) or pair (the mate placed in mesh)"),
     _p("tolerance", float, "mm", 0, 1, lo_open=True, default=MESH_TOLERANCE,
        help="max deviation of the mesh from the exact surfaces", limits="at least 1e-6 mm"),
+)
+
+#: ``gear3d.face_gear(...)`` keywords the CLI and the page offer (:mod:`gear3d.facegear`; ranges checked
+#: again by its geometry; ``check`` and the depth coefficients stay the API's)
+FACE_GEAR_PARAMS: tuple = (
+    _p("teeth", int, "", 10, 1000, default=40, help="teeth of the face gear (z2)"),
+    _p("shaper_teeth", int, "", 8, 200, help="teeth of the generating shaper (z0); default the pinion's + 2",
+       limits="at most z2/2; z1 <= z0 <= z1 + 5"),
+    _p("pinion_teeth", int, "", 6, 200, help="teeth of the mating spur pinion (z1 <= z0 <= z1 + 5)"),
+    _p("module", float, "mm", 0, 1000, lo_open=True, default=1.0, help="module m"),
+    _p("pressure_angle_deg", float, "deg", 14, 30, default=20.0, help="pressure angle of the shaper"),
+    _p("inner_radius", float, "mm", 0, None, lo_open=True,
+       help="inner radius R1; default the inner limit (undercut or the shaper's base circle); with part "
+            "pinion|pair and the twin pinion: the form limit (the face gear's tip edge clear of the pinion's fillet)",
+       limits="at least the inner limit (undercut)"),
+    _p("outer_radius", float, "mm", 0, None, lo_open=True,
+       help="outer radius R2; default where the tip land has narrowed to 0.25 m (at most the pointing limit)",
+       limits="at most the pointing limit"),
+    _p("rim", float, "mm", 0, None, lo_open=True, help="thickness below the root plane (default 2 m)"),
+    _p("part", str, default="gear", choices=("gear", "pinion", "pair"),
+       help="gear (the face gear), pinion (its spur pinion: the shaper's twin with pinion_teeth teeth, default "
+            "the shaper's, R2 - R1 wide, own frame) or pair (both, the pinion placed in mesh)"),
+    _p("tolerance", float, "mm", 1e-5, 1, default=MESH_TOLERANCE,
+       help="max deviation of the mesh from the exact tooth surfaces"),
 )
 
 #: the generation forms of a bevel tooth (:mod:`gear3d.bevel.geometry`)
