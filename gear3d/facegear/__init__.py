@@ -217,6 +217,15 @@ def geometry_of(kw: dict) -> FaceGeometry:
                          kw.get("pinion_teeth"), d.addendum_coeff, d.dedendum_coeff, d.rim)
 
 
+def band_of(g: FaceGeometry, band: Band, part: str) -> tuple:
+    """(radius limits, R1, R2) (mm) of a face :class:`Band` for ``part``: each radius its
+    default when None (see :func:`build`), checked against the limits."""
+    lim = radius_limits(g)
+    inner = band.inner_radius if band.inner_radius is not None or part == "gear" else pair_inner_default(g, lim)
+    r1, r2 = check_radii(g, inner, band.outer_radius, lim)
+    return lim, r1, (_default_outer(g, r1, lim["outer"]) if r2 is None else r2)
+
+
 @front(("teeth", "shaper_teeth", "module", "pressure_angle_deg", "pinion_teeth", "tolerance", "part", "check",
         "inner_radius", "outer_radius", "addendum_coeff", "dedendum_coeff", "rim"), Band, Depths)
 def build(teeth, shaper_teeth=None, module=1.0, pressure_angle_deg=20.0, pinion_teeth=None,
@@ -278,10 +287,7 @@ def build(teeth, shaper_teeth=None, module=1.0, pressure_angle_deg=20.0, pinion_
     part = check_choice("part", part, PARTS)
     if not isinstance(check, bool) or (check and part != "pair"):
         raise GearError("check", check, "true only with part='pair' (the check rolls the pair), else false")
-    lim = radius_limits(g)
-    inner = band.inner_radius if band.inner_radius is not None or part == "gear" else pair_inner_default(g, lim)
-    r1, r2 = check_radii(g, inner, band.outer_radius, lim)
-    r2 = _default_outer(g, r1, lim["outer"]) if r2 is None else r2
+    lim, r1, r2 = band_of(g, band, part)
     bodies, face = [], None
     if part != "pinion":
         face = face_body(g, r1, r2, tol)
