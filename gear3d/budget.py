@@ -262,10 +262,11 @@ def profile_estimate(vertices: float, per_tooth: float = 0.0) -> Estimate:
 
 
 def body_estimate(triangles: float, manifold: bool = False, what: str = "", layer_vertices: float = 0.0,
-                  teeth: int = 0) -> Estimate:
+                  teeth: int = 0, star: bool = False) -> Estimate:
     """A body of ``triangles`` (direct mesh, or manifold3d booleans when ``manifold``) whose
     layers have ``layer_vertices`` vertices (0: unknown): the end faces' polygon
-    triangulation grows with their square, and the measurement of tooth 0's side surface
+    triangulation grows with their square, unless the section is ``star``-shaped about the
+    axis and the mesh is direct (a fan or strip, linear), and the measurement of tooth 0's side surface
     meets 7 points a triangle with the profile's chords near it (all of them for gears of
     6 teeth or fewer, ``gear3d.exact``)."""
     e = estimate("body.manifold" if manifold else "body", triangles, triangles,
@@ -275,7 +276,8 @@ def body_estimate(triangles: float, manifold: bool = False, what: str = "", laye
         z = max(int(teeth), 1)
         pts = 7 * 2 * (n if z <= 2 else n / z)           # tooth 0's side: 2 triangles a quad
         pairs = pts * (n if z <= 6 else 3 * n / z)       # all chords up to 6 teeth, else a window
-        e = Estimate(e.seconds + COSTS["body.caps"].seconds * n * n + COSTS["measure"].seconds * pairs,
+        caps = COSTS["body.caps.star"].seconds * n if star and not manifold else COSTS["body.caps"].seconds * n * n
+        e = Estimate(e.seconds + caps + COSTS["measure"].seconds * pairs,
                      e.bytes, e.triangles, e.what)
     return e
 
@@ -534,7 +536,17 @@ def _period_radius(pieces) -> float:
 
 
 def check_body(triangles: float, param: str, value, manifold: bool = False, what: str = "",
-               layer_vertices: float = 0.0, teeth: int = 0) -> Estimate:
+               layer_vertices: float = 0.0, teeth: int = 0, star: bool = False) -> Estimate:
     """Charge a body of ``triangles`` before it is extruded (``what``: how they were counted;
-    ``layer_vertices``: the vertices of one layer and ``teeth``, see :func:`body_estimate`)."""
-    return charge(body_estimate(triangles, manifold, what, layer_vertices, teeth), param, value, key="body")
+    ``layer_vertices``: the vertices of one layer, ``teeth`` and ``star``, see :func:`body_estimate`)."""
+    return charge(body_estimate(triangles, manifold, what, layer_vertices, teeth, star), param, value, key="body")
+
+
+def check_caps_fallback(vertices: float, param: str = "tolerance", value=None) -> Estimate:
+    """Charge manifold3d's triangulation of an end face of ``vertices`` vertices (quadratic,
+    ``COSTS["body.caps"]``) when the fan or strip was expected and did not fit: the
+    builder's own check before it triangulates (a plan that guessed the linear cost cannot
+    run away)."""
+    n = float(vertices)
+    return charge(Estimate(COSTS["body.caps"].seconds * n * n, 0.0, 0.0,
+                           f"the end faces' polygon triangulation of {n:,.0f} vertices"), param, value)

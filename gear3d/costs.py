@@ -38,9 +38,17 @@ COSTS = {
     # solids.body: the layer mesh (float64 V, int64 F, intermediates) and its measurement
     "body": Cost(1.2e-6, 260.0, 0.1, 60e6, "helical z=20..400 at 2-10 um: 0.6-0.9 us and 180-240 B "
                  "a triangle"),
-    # manifold3d's polygon triangulation of the end faces: per (layer vertices)^2
+    # manifold3d's polygon triangulation of the end faces (gear3d.solids.layers.end_triangles'
+    # fallback: sections not star-shaped about the axis, manifold3d's extrusions): per (layer vertices)^2
     "body.caps": Cost(4e-9, 0.0, 0.0, 0.0, "triangular z=2500..10,000 (12,500-60,000 vertices a layer): "
-                      "2.0-2.2e-9 s x n^2, z=20,000 (100,000): about 4e-9; involute z=1000-2000: 0.8-0.9e-9"),
+                      "2.0-2.2e-9 s x n^2, z=20,000 (100,000): about 4e-9; involute z=1000-2000: 0.8-0.9e-9; "
+                      "re-measured 2026-11-26: triangular z=2500 / 10,000 1.97 / 1.61e-9, involute z=8 / 12 "
+                      "(undercut, 1,792 / 7,128 vertices) 0.93 / 0.38e-9, z=1000 0.14e-9, cycloidal z=1000 0.20e-9"),
+    # gear3d.solids.caps.cap_triangles: a fan or a zipper strip, per layer vertex (linear)
+    "body.caps.star": Cost(1e-6, 0.0, 0.0, 0.0, "measured 2026-11-26 (CPU, best of 3): fans of involute z=300 / "
+                           "1000 at 0.1 um, triangular z=2500 / 10,000, cycloidal z=1000: 0.03-0.16 us a vertex; "
+                           "zippers to a bore (involute z=1000, triangular z=10,000, cycloidal z=1000; 55,000-75,000 "
+                           "vertices) and a ring z=200's rim: 0.22-0.36 us; x3 for the strip's repair passes"),
     # gear3d.exact distance: per (point, chord) pair of the brute-force window
     "measure": Cost(2e-8, 0.0, 0.0, 0.0, "moineau-stator rho=288, e=0.1 at 0.3 um: 76,000 points x 5,452 "
                     "chords in 6.2 s (15 ns a pair); involute z=6 at 10 um: 7.4 s in all"),

@@ -85,6 +85,54 @@ def cap_triangles(polys):
     return idx.astype(np.int64), extra
 
 
+def star_period(pieces, teeth: int) -> bool:
+    """Whether the outline patterned from one tooth period's sampled ``pieces`` (a list of
+    (n_i, 2) mm point chains following the outline from one period edge to the next, as a
+    profile's builder samples them, before trimming) will be star-shaped about the axis, so
+    that :func:`cap_triangles` takes a fan or strip: the positive fill of the chain closed
+    through the axis (the trim of the tip and of loops) is bounded, apart from the two rays,
+    by a chain of edges that all turn positively (:func:`gear3d.polar.star_angles`' test),
+    spanning one period. False when a point lies outside the period's wedge (a neighbour may
+    trim it), a fillet turns back (an undercut), or anything is unsure: a planner then
+    charges the quadratic triangulation (an over-estimate is safe).
+
+    >>> a = np.linspace(-np.pi / 4, np.pi / 4, 5)
+    >>> arc = np.stack([np.cos(a), np.sin(a)], axis=1)
+    >>> star_period([arc[:3], arc[2:]], 4), star_period([arc], 8)    # 8 teeth: wider than a period
+    (True, False)
+    """
+    from manifold3d import CrossSection, FillRule
+
+    from ..polar import MIN_SINE
+    try:
+        P = np.concatenate([np.asarray(p, float).reshape(-1, 2) for p in pieces])
+    except ValueError:
+        return False
+    if teeth < 1 or len(P) < 2 or not np.isfinite(P).all():
+        return False
+    t = 2 * np.pi / teeth
+    a = np.arctan2(P[:, 1], P[:, 0])
+    mid = math.atan2(P[0, 1] + P[-1, 1], P[0, 0] + P[-1, 0]) if teeth > 1 else 0.0
+    rel = (a - mid + np.pi) % (2 * np.pi) - np.pi
+    if teeth < 3 or np.abs(rel).max() > t / 2 * (1 + 1e-9):
+        return False
+    loop = np.concatenate([[[0.0, 0.0]], P])
+    if _area(loop) < 0:
+        loop = loop[::-1]
+    polys = [np.asarray(q, float) for q in CrossSection([loop], FillRule.Positive).to_polygons()]
+    if len(polys) != 1:
+        return False
+    Q = polys[0]
+    k = int(np.argmin(np.hypot(Q[:, 0], Q[:, 1])))
+    Q = np.roll(Q, -k, axis=0)[1:]                  # the chain without the axis vertex
+    if len(Q) < 2 or float(np.hypot(*polys[0][k])) > 1e-9 * float(np.abs(P).max()):
+        return False
+    A, B = Q[:-1], Q[1:]
+    cross = A[:, 0] * B[:, 1] - A[:, 1] * B[:, 0]
+    scale = np.hypot(A[:, 0], A[:, 1]) * np.hypot(B[:, 0], B[:, 1])
+    return bool((scale > 0).all() and (cross > MIN_SINE * scale).all())
+
+
 def _ring(outer, hole, ao, ah, rho: float):
     """The two-part strip (module doc): radial quads from ``outer`` to a ring of radius
     ``rho`` (mm), a zipper from the ring to ``hole``. Indices: outer, hole, then the ring
