@@ -27,6 +27,7 @@ CHOSEN = {
     ("web/schema.py", ("stl", "3mf", "step", "dxf", "svg")): "the page's download buttons",
     ("web/schema.py", ("stl", "3mf", "step", "dxf")): "the worm set's download buttons",
     ("web/schema.py", ("stl", "3mf", "step")): "the bevel set's download buttons",
+    ("web/schema.py", ("stl", "3mf", "step", "json")): "the face gear set's download buttons (json: its report)",
 }
 
 

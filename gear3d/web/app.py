@@ -16,9 +16,11 @@ body parameters as ``b.<name>``, pair parameters as ``pair.<name>``; never paths
 The page is a sibling of the command line, not a layer on it: the form's texts become the
 library's keywords through the parameter tables (:mod:`gear3d.web.formargs`), and the builds
 (:mod:`gear3d.web.builds`) call the library, each planned against the budget before it
-builds. The worm and bevel sets (``family=worm``, ``family=bevel``) have one form (their
-table, in the profile section): the 2D preview is the worm wheel's mid-plane section or the
-bevel gear's heel section; body and downloads are the set's bodies.
+builds. The worm, bevel and face gear sets (``family=worm``, ``family=bevel``,
+``family=face-gear``) have one form (their table, in the profile section): the 2D preview is
+the worm wheel's mid-plane section, the bevel gear's heel section or the face gear's sections
+at R1, mid and R2 unrolled; body and downloads are the set's bodies (the face gear's JSON: its
+report).
 
 Builds run in worker processes (``create_app(workers=True)``, as ``gear3d serve`` does:
 :mod:`gear3d.web.workers`), each under the watchdog: a build that runs past its CPU-time or
@@ -203,7 +205,8 @@ def create_app(max_builds: int = 2, log=None, workers: bool = False):
 
     async def families(request):
         from .schema import families as names
-        return _json({"families": names(), "downloads": list(FAMILY_DOWNLOADS), "limits": budget.limits(),
+        return _json({"families": names(), "downloads": list(dict.fromkeys(FAMILY_DOWNLOADS + tuple(
+            k for v in SET_DOWNLOADS.values() for k in v))), "limits": budget.limits(),
                       "preview_tolerance": PREVIEW_TOLERANCE, "max_builds": n})
 
     async def schema(request):

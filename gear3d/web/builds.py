@@ -11,8 +11,9 @@ status, media type, headers and bytes out), so a worker's answer crosses a pipe 
 * :func:`pair_check` - ``{"report", "summary", "animation"}`` (``gear3d.check_pair``);
 * :func:`download` - the file ``gear3d body``/``gear3d profile ... -o`` writes, from the same
   library calls, written into a folder the caller owns;
-* :func:`set_preview`, :func:`set_body`, :func:`set_download` - the same for worm and bevel
-  sets (the wheel's mid-plane section; the bevel gear's heel section).
+* :func:`set_preview`, :func:`set_body`, :func:`set_download` - the same for worm, bevel and
+  face gear sets (the wheel's mid-plane section; the bevel gear's heel section; the face
+  gear's sections at R1, mid and R2, :mod:`gear3d.web.faceset`).
 
 Example::
 
@@ -158,7 +159,10 @@ def _default_teeth(family: str):
     return next((p.default for p in FAMILY_PARAMS.get(family, ()) if p.name == "teeth"), None)
 
 
-# ------------------------------------------------------------------ worm and bevel sets
+# ------------------------------------------------------------------ worm, bevel and face gear sets
+
+#: the face gear set's family name on the page (its CLI command's)
+FACE = "face-gear"
 
 def _worm_design(kw: dict):
     from ..wormgear import validate
@@ -182,15 +186,23 @@ def set_preview(family: str, kw: dict) -> Reply:
     """The 2D preview of a set at the form's tolerance or 1 um, the finer (see :func:`set_section`)."""
     from .svg import neck, profile_svg
     t0 = time.perf_counter()
+    if family == FACE:
+        from .faceset import face_preview
+        rep, svg = face_preview(kw)
+        return json_reply({"svg": svg, "report": rep, "neck": None, "ms": round(1000 * (time.perf_counter() - t0), 1)})
     p = set_section(family, kw, min(kw.get("tolerance", DEFAULT_TOLERANCE), DEFAULT_TOLERANCE))
     what = "wheel mid-plane section" if family == "worm" else "gear heel section"
     return json_reply({"svg": profile_svg(p), "report": dict(p.report, section=what), "neck": neck(p),
                        "ms": round(1000 * (time.perf_counter() - t0), 1)})
 
 
-def _set_bodies(family: str, kw: dict, output=None) -> tuple:
-    """(bodies placed, report dict) of ``gear3d.worm(**kw)`` / ``gear3d.bevel(**kw)``, the
+def _set_bodies(family: str, kw: dict, output=None, step=None) -> tuple:
+    """(bodies placed, report dict) of ``gear3d.worm(**kw)`` / ``gear3d.bevel(**kw)`` /
+    ``gear3d.face_gear(**kw)`` (``step``: the face gear's STEP flavour), the
     whole build (and its export to ``output``) planned first (:mod:`gear3d.plan_sets`)."""
+    if family == FACE:
+        from .faceset import face_bodies
+        return face_bodies(kw, output, step)
     from ..plan_sets import plan_bevel, plan_worm
     (plan_worm if family == "worm" else plan_bevel)(kw, output)
     if family == "worm":
@@ -224,6 +236,10 @@ def set_download(family: str, kw: dict, opts: dict, fmt: str, folder: str) -> Re
         plan_worm(kw, path, bodies=False)            # the mid-plane section and its DXF
         write(set_section(family, kw, kw["tolerance"]), path, **opts)
         part = "wheel-midplane"
+    elif family == FACE:
+        from .faceset import face_download
+        face_download(kw, opts, fmt, path)
+        part = kw.get("part")
     else:
         bodies, _ = _set_bodies(family, kw, path)
         write(bodies, path, **opts)

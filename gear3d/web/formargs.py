@@ -22,13 +22,17 @@ from __future__ import annotations
 from ..cliargs import plain_int, plain_number
 from ..errors import GearError
 from ..export import kind_options
-from ..params import (BEVEL_PARAMS, BODY, DEFAULT_TOLERANCE, FAMILY_PARAMS, MESH_TOLERANCE, PAIR, WORM_PARAMS,
-                      check_excludes)
+from ..params import (BEVEL_PARAMS, BODY, DEFAULT_TOLERANCE, FACE_GEAR_PARAMS, FAMILY_PARAMS, MESH_TOLERANCE, PAIR,
+                      WORM_PARAMS, check_excludes)
 
 _TRUE, _FALSE = ("1", "true", "on", "yes"), ("0", "false", "off", "no")
 
 #: sets built by their own function (not a profile family): name -> their table
-SETS = {"worm": WORM_PARAMS, "bevel": BEVEL_PARAMS}
+SETS = {"worm": WORM_PARAMS, "bevel": BEVEL_PARAMS, "face-gear": FACE_GEAR_PARAMS}
+#: keywords a set's function needs even at their default (the table's)
+SET_NEEDS = {"bevel": ("teeth", "mate_teeth", "module"), "face-gear": ("teeth", "module")}
+#: the face gear's shaper when the form names neither shaper nor pinion (the builder needs one)
+FACE_START_SHAPER = 20
 
 #: families whose builder takes ``center_distance`` itself (a pair's is its placement)
 CENTER_DISTANCE_FAMILIES = ("ec-pinion", "ec-wheel")
@@ -143,7 +147,8 @@ def set_kwargs(form: dict) -> dict:
     kw = _section(tab, form["profile"], form["family"])
     check_excludes(kw, table)
     for p in table:                        # what the set's function needs even at its default
-        if p.name in ("part", "tolerance") or (form["family"] == "bevel" and p.name in ("teeth", "mate_teeth",
-                                                                                        "module")):
+        if p.name in ("part", "tolerance") or p.name in SET_NEEDS.get(form["family"], ()):
             kw.setdefault(p.name, p.default)
+    if form["family"] == "face-gear" and "shaper_teeth" not in kw and "pinion_teeth" not in kw:
+        kw["shaper_teeth"] = FACE_START_SHAPER
     return kw

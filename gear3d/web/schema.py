@@ -3,8 +3,8 @@
 Each form is read off the one parameter table (:mod:`gear3d.params`) that also drives the
 builders' validation, the CLI flags and the TOML schema: names, flags, types, units, ranges,
 defaults and help (``FAMILY_PARAMS[family]`` for the profile, ``BODY_PARAMS`` for the body,
-``PAIR_PARAMS`` for the pair; a worm or bevel set's form is ``WORM_PARAMS`` /
-``BEVEL_PARAMS`` in its profile section, and it has no body or pair section).
+``PAIR_PARAMS`` for the pair; a worm, bevel or face gear set's form is ``WORM_PARAMS`` /
+``BEVEL_PARAMS`` / ``FACE_GEAR_PARAMS`` in its profile section, and it has no body or pair section).
 
 Validation stays the tables' and the builders' own (see :mod:`gear3d.web.formargs`): a
 ``GearError`` naming the parameter, shown next to that field.
@@ -13,7 +13,8 @@ from __future__ import annotations
 
 from ..errors import GearError
 from ..export import kind_options, output_kinds
-from ..params import BEVEL_PARAMS, BODY_PARAMS, FAMILY_PARAMS, PAIR_PARAMS, WORM_PARAMS
+from ..params import BODY_PARAMS, FAMILY_PARAMS, PAIR_PARAMS
+from .formargs import SETS
 
 #: parameters a section needs even when left at their default (the page always sends them)
 REQUIRED = {"body": ("width",), "pair": ("mate_teeth",)}
@@ -29,7 +30,8 @@ SECTIONS = ("profile", "body", "pair", "export")
 PREFIXES = {"body": "b.", "pair": "pair.", "export": "x."}
 
 #: sets (not profile families) the page builds, and the downloads each offers
-SET_DOWNLOADS = {"worm": ("stl", "3mf", "step", "dxf"), "bevel": ("stl", "3mf", "step")}
+SET_DOWNLOADS = {"worm": ("stl", "3mf", "step", "dxf"), "bevel": ("stl", "3mf", "step"),
+                 "face-gear": ("stl", "3mf", "step", "json")}
 #: downloads of a profile family (body: stl 3mf step; profile: dxf svg)
 FAMILY_DOWNLOADS = ("stl", "3mf", "step", "dxf", "svg")
 
@@ -63,11 +65,14 @@ LABELS = {
     "shaft_angle_deg": "Shaft angle", "spiral_angle_deg": "Spiral angle", "cutter_radius": "Cutter radius",
     "disc_radius": "Grinding disc radius", "wheel_keyway": "Wheel keyway", "shaft_diameter": "Worm shaft diameter",
     "shaft_length": "Worm shaft length", "clearance": "Tip clearance", "mounting_distance": "Mounting distance",
-    "mate_mounting_distance": "Mate's mounting distance",
+    "mate_mounting_distance": "Mate's mounting distance", "shaper_teeth": "Shaper teeth",
+    "pinion_teeth": "Pinion teeth", "inner_radius": "Inner radius", "outer_radius": "Outer radius",
+    "rim": "Rim below the root",
 }
 #: labels a set words its own way
 SET_LABELS = {"bevel": {"form": "Tooth form", "teeth": "Teeth of the gear", "hand": "Spiral hand"},
-              "worm": {"module": "Axial module", "hand": "Hand", "tolerance": "Tolerance"}}
+              "worm": {"module": "Axial module", "hand": "Hand", "tolerance": "Tolerance"},
+              "face-gear": {"teeth": "Teeth of the face gear", "pressure_angle_deg": "Shaper pressure angle"}}
 #: form groups, in order; a parameter not named here is "tooth form"
 GROUPS = ("size", "tooth form", "body", "print compensation", "pair", "accuracy")
 _GROUP_OF = {
@@ -82,7 +87,8 @@ _GROUP_OF = {
     **dict.fromkeys(("starts", "wheel_teeth", "diameter_quotient", "worm_pitch_diameter", "worm_length",
                      "face_width", "shaft_angle_deg"), "size"),
     **dict.fromkeys(("worm_bore", "wheel_bore", "part", "wheel_keyway", "shaft_diameter", "shaft_length",
-                     "mounting_distance", "mate_mounting_distance"), "body"),
+                     "mounting_distance", "mate_mounting_distance", "rim"), "body"),
+    **dict.fromkeys(("shaper_teeth", "pinion_teeth", "inner_radius", "outer_radius"), "size"),
     "tolerance": "accuracy",
 }
 
@@ -156,7 +162,7 @@ def form_schema(family: str) -> dict:
         raise GearError("family", family, "one of " + ", ".join(names))
     from .presets import presets
     if family in SET_DOWNLOADS:
-        table = WORM_PARAMS if family == "worm" else BEVEL_PARAMS
+        table = SETS[family]
         return {"family": family, "set": True, "profile": [table_field(p, family=family) for p in table],
                 "body": [], "pair": [], "export": export_fields(SET_DOWNLOADS[family]), "groups": list(GROUPS),
                 "downloads": list(SET_DOWNLOADS[family]), "presets": presets()}

@@ -456,11 +456,13 @@ async function loadFamily(name) {
   if (res.status !== 200) { setStatus(res.body.error); return false; }
   schema = res.body;
   for (const s of SCOPES) buildForm(s, schema[s]);
-  // a worm or bevel set: one form (its table), no body or pair form, its own downloads
+  // a worm, bevel or face gear set: one form (its table), no body or pair form, its own downloads
   const isSet = !!schema.set;
   for (const id of ["#section-body", "#section-pair", "#pair-panel"]) $(id).hidden = isSet;
-  $("#title-profile").textContent = isSet ? (name === "worm" ? "Worm pair" : "Bevel pair") : "Profile";
-  $("#preview-title").textContent = isSet ? (name === "worm" ? "Wheel mid-plane section" : "Gear heel section") : "Profile";
+  const titles = {worm: ["Worm pair", "Wheel mid-plane section"], bevel: ["Bevel pair", "Gear heel section"],
+                  "face-gear": ["Face gear set", "Sections at R1, mid-radius and R2, unrolled"]};
+  $("#title-profile").textContent = isSet ? titles[name][0] : "Profile";
+  $("#preview-title").textContent = isSet ? titles[name][1] : "Profile";
   for (const b of document.querySelectorAll("#downloads button")) b.hidden = !(schema.downloads || []).includes(b.dataset.fmt);
   document.body.dataset.family = name;
   document.body.dataset.set = isSet ? "1" : "";
