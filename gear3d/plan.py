@@ -31,7 +31,7 @@ from . import budget
 from .budget import Estimate, estimate
 from .export.registry import FORMATS
 from .plan_writes import (DXF_ARC_DEFAULT, WORM_BREP_BYTES, WORM_BREP_SAMPLES, all_direct,
-                          direct_brep_estimate, direct_planned, direct_section_estimate, dxf_arcs)
+                          direct_brep_estimate, direct_planned, direct_section_estimate, dxf_arcs, sketch_star)
 
 #: the DXF and SVG writers' sampled fallback fits a reference profile built this much finer
 #: (gear3d.export.dxf), which has sqrt(20) times the vertices
@@ -495,7 +495,7 @@ def plan_profile(family: str, params: dict, output=None, width=None, figure=None
     ext = os.path.splitext(str(output))[1].lower() if output else ""
     if ext and width is not None:                   # a spur body of the profile, then its mesh
         tri = 4.0 * sk.layer_vertices
-        est = est.then(budget.body_estimate(tri, layer_vertices=sk.layer_vertices, teeth=sk.teeth))
+        est = est.then(budget.body_estimate(tri, layer_vertices=sk.layer_vertices, teeth=sk.teeth, star=sketch_star(sk)))
         est = est.then(write_estimate(ext, triangles=tri))
     elif ext:
         est = est.then(write_estimate(ext, vertices=sk.vertices, per_tooth=sk.per_tooth, kerf=kerf_of({"kerf": kerf})))
@@ -565,8 +565,8 @@ def plan_body(family: str, params: dict, body_kw: dict, output=None, step=None) 
     if rim_d:
         budget.rim_range(float(rim_d) / 2, max(sk.pitch_radius, sk.r_max), "rim_diameter", rim_d, 2)
         est = est.then(budget.profile_estimate(sk.vertices + budget.circle_vertices(float(rim_d) / 2, tol)))
-    est = est.then(budget.body_estimate(tri, features, f"a body of {nv:,.0f} vertices a layer x "
-                                                       f"{layers:,} layers", layer_vertices=nv, teeth=sk.teeth))
+    est = est.then(budget.body_estimate(tri, features, f"a body of {nv:,.0f} vertices a layer x {layers:,} layers",
+                                        layer_vertices=nv, teeth=sk.teeth, star=sketch_star(sk)))
     ext = os.path.splitext(str(output))[1].lower() if output else ""
     if ext:
         brep = None

@@ -36,6 +36,7 @@ from .errors import GearError, check_number
 from .params import MIN_TOLERANCE
 from .plan import (Sketch, kerf_of, body_layers, pair_estimate, probe_call, probe_profile, sketch_contact,
                    write_estimate)
+from .plan_writes import sketch_star
 
 #: body keywords that make the builder use manifold3d booleans (COSTS["body.manifold"])
 FEATURES = ("chamfer", "elephant_foot", "gap", "hub_length", "keyway", "set_screw", "lightening_holes",
@@ -49,7 +50,7 @@ def body_counts(sk: Sketch, body_kw: dict, tol: float) -> tuple:
     tri = 2 * nv * layers + 2 * nv
     manifold = any(body_kw.get(k) for k in FEATURES)
     return tri, budget.body_estimate(tri, manifold, f"a body of {nv:,.0f} vertices a layer x {layers:,} layers",
-                                     layer_vertices=nv, teeth=sk.teeth)
+                                     layer_vertices=nv, teeth=sk.teeth, star=sketch_star(sk))
 
 
 def _ext(kind: str) -> str:

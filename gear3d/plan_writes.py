@@ -125,3 +125,17 @@ def dxf_arcs(profile, max_arc_deg: float) -> float:
         h = np.arctan2(d[:, 1], d[:, 0])
         total += float(np.abs(np.angle(np.exp(1j * np.diff(np.append(h, h[0]))))).sum())
     return math.degrees(total) / max_arc_deg
+
+
+def sketch_star(sk) -> bool:
+    """Whether a body of the sketched profile ``sk`` (:class:`gear3d.plan.Sketch`) will have
+    end faces made as a fan or strip (linear cost) rather than by manifold3d's triangulation
+    (quadratic): :func:`gear3d.solids.caps.star_period` on its sampled period; False when
+    unsure (an over-estimate is safe; the builder charges its fallback before it runs)."""
+    if sk is None or getattr(sk, "period", None) is None:
+        return False
+    from .solids.caps import star_period
+    try:
+        return star_period([sk.period], int(sk.teeth))
+    except Exception:        # a degenerate sample: charge the quadratic cost
+        return False

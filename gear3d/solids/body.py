@@ -464,13 +464,13 @@ def _build(prof, plan: BuildPlan, share: float = 1.0) -> Built:
     def charge(nv, layers):      # before the layers and the subdivided loops are made
         budget.check_body(2 * nv * layers + 2 * nv, "tolerance", tol, manifold=direct is None,
                           what=f"a body of {nv:,} vertices a layer x {layers:,} layers", layer_vertices=nv,
-                          teeth=prof.teeth)
+                          teeth=prof.teeth, star=True)     # a direct mesh's fallback: end_triangles
     knots, max_len, bound = plan_layers(law, W, rho, loops, e_z, (cb, ct), charge)
     loops = subdivide(loops, max_len)
     cs, polys = _section(loops, direct is not None and not delta)
     nv = sum(len(p) for p in polys)
     est = 2 * nv * (len(knots) - 1) + 2 * nv
-    budget.check_body(est, "tolerance", tol, manifold=direct is None, layer_vertices=nv, teeth=prof.teeth)
+    budget.check_body(est, "tolerance", tol, manifold=direct is None, layer_vertices=nv, teeth=prof.teeth, star=True)
     skip = list(plan.skip)
     if direct is not None:
         # plain body: the closed mesh straight from the layers (a bore is one more loop,
@@ -479,7 +479,7 @@ def _build(prof, plan: BuildPlan, share: float = 1.0) -> Built:
         if direct:
             polys.append(circle_loop(direct, tol, ccw=False))
             fixed.append(True)
-        V, F = twisted_mesh(polys, knots, law, fixed)
+        V, F = twisted_mesh(polys, knots, law, fixed, ("tolerance", tol))
         max_err, heights = measure_mesh(V, F, law, prof, knots, delta, skip, min_radius=direct + tol if direct else 0.0)
         return Built((V, F), knots, max_len, bound, max_err, heights, e_p)
     vecs = None

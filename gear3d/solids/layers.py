@@ -19,14 +19,15 @@ from ..progress import stage
 from .twist import TwistLaw
 
 
-def twisted_mesh(polys, knots, law, fixed=None):
+def twisted_mesh(polys, knots, law, fixed=None, param=None):
     """Closed triangle mesh (V (n, 3) float64 mm, F (m, 3) int64) of polygons ``polys``
     (outer loops CCW, holes CW, mm) stacked at heights ``knots`` (mm), each layer turned by
     ``law(z)`` (rad) except the loops flagged in ``fixed``. Side quads are split into two
     triangles; the end faces come from :func:`gear3d.solids.caps.cap_triangles` (a fan from
     one vertex on the axis, or a strip between the outline and a bore or rim), else from
     manifold3d's polygon triangulation (no new vertices), so every edge is shared by
-    exactly two triangles, all facing outwards."""
+    exactly two triangles, all facing outwards. ``param``: (name, value) a refusal of the
+    triangulation's quadratic cost names (:func:`end_triangles`)."""
     fixed = [False] * len(polys) if fixed is None else fixed
     P = np.concatenate(polys)
     n, K = len(P), len(knots)
@@ -41,9 +42,9 @@ def twisted_mesh(polys, knots, law, fixed=None):
     # turn with the others, so one triangulation would not fit both ends (the turned outline
     # meets the bore at other angles, and a strip made for one end folds over at the other)
     cuts = np.cumsum([len(p) for p in polys])[:-1]
-    T0, extra0 = end_triangles(np.split(V[:n, :2], cuts))
+    T0, extra0 = end_triangles(np.split(V[:n, :2], cuts), param)
     if any(fixed) and th[-1, 0] != th[0, 0]:
-        T1, extra1 = end_triangles(np.split(V[(K - 1) * n:, :2], cuts))
+        T1, extra1 = end_triangles(np.split(V[(K - 1) * n:, :2], cuts), param)
     else:                                 # the same section turned about the axis
         c1, s1 = math.cos(th[-1, 0] - th[0, 0]), math.sin(th[-1, 0] - th[0, 0])
         T1, extra1 = T0, extra0 @ np.array([[c1, s1], [-s1, c1]])
@@ -57,14 +58,19 @@ def twisted_mesh(polys, knots, law, fixed=None):
     return V, F
 
 
-def end_triangles(polys):
+def end_triangles(polys, param=None):
     """(CCW triangles (m, 3) int64 of the section, the caps' own new vertices (k, 2) mm,
     indexed from ``sum(len(p))`` on): :func:`gear3d.solids.caps.cap_triangles`, else
-    manifold3d's triangulation (no new vertices)."""
+    manifold3d's triangulation (no new vertices), whose quadratic cost is charged first
+    (:func:`gear3d.budget.check_caps_fallback`, refused naming ``param`` = (name, value);
+    default: the section's vertex count)."""
     from .caps import cap_triangles
     got = cap_triangles(polys)
     if got is not None:
         return got
+    from .. import budget
+    n = sum(len(p) for p in polys)
+    budget.check_caps_fallback(n, *(param or ("section_vertices", n)))
     from manifold3d import triangulate
     return np.asarray(triangulate(polys), np.int64).reshape(-1, 3), np.zeros((0, 2))
 
