@@ -13,6 +13,7 @@ import math
 
 import numpy as np
 
+from .. import budget
 from ..errors import GearError, ToleranceError
 from ..geometry import first_unique_rows, rotate
 from ..progress import stage
@@ -68,7 +69,6 @@ def end_triangles(polys, param=None):
     got = cap_triangles(polys)
     if got is not None:
         return got
-    from .. import budget
     n = sum(len(p) for p in polys)
     budget.check_caps_fallback(n, *(param or ("section_vertices", n)))
     from manifold3d import triangulate
