@@ -6,7 +6,7 @@ planned first by :func:`gear3d.plan_sets.plan_face_gear` like the command.
 Example::
 
     >>> rep, svg = face_preview({"teeth": 40, "shaper_teeth": 20, "module": 1.0, "part": "gear"})
-    >>> rep["inner_radius"] < rep["mid_radius"] < rep["outer_radius"], svg.startswith("<?xml")
+    >>> rep["inner_radius"] < rep["mid_radius"] < rep["outer_radius"], svg.startswith("<svg class")
     (True, True)
 """
 from __future__ import annotations
@@ -37,7 +37,9 @@ def face_preview(kw: dict) -> tuple:
     fig.savefig(buf, format="svg", bbox_inches="tight")
     import matplotlib.pyplot as plt
     plt.close(fig)
-    return rep, buf.getvalue()
+    svg = buf.getvalue()                # inline in the page: no XML prolog, the preview's class
+    svg = svg[svg.index("<svg"):].replace("<svg", f'<svg class="gear3d-preview gear3d-sections" data-teeth="{g.teeth}"', 1)
+    return rep, svg
 
 
 def face_build(kw: dict, output=None, step=None):

@@ -200,6 +200,18 @@ async function preview() {
   $("#preview-info").textContent = `built in ${res.body.ms} ms, shown in ${shown} ms`;
   $("#preview").dataset.ms = String(shown);
   $("#preview").dataset.query = q;         // what is drawn (the browser test waits on it)
+  if (r.limits) {           // a face gear: its band of radii and their limits (no body measured here)
+    table($("#report"), [
+      ["section", r.section], ["R1 (inner radius)", fmt(r.inner_radius, " mm")],
+      ["R2 (outer radius)", fmt(r.outer_radius, " mm")], ["pitch_radius", fmt(r.pitch_radius, " mm")],
+      ["inner limit (undercut, base circle)", fmt(r.limits.inner, " mm")],
+      ["outer limit (pointing)", fmt(r.limits.outer, " mm")],
+      ["tip land at R1", fmt(r.tip_land_inner, " mm")], ["tip land at R2", fmt(r.tip_land_outer, " mm")],
+      ["tolerance", fmt(r.tolerance * 1000, " um")],
+    ]);
+    setStatus(`preview ${res.body.ms} ms`);
+    return;
+  }
   table($("#report"), [
     ...(r.section ? [["section", r.section]] : []),
     ["max_error (measured)", fmt(r.max_error * 1000, " um")], ["tolerance", fmt(r.tolerance * 1000, " um")],
