@@ -455,9 +455,26 @@ def _check_worm_and_bevel(page, tmp_path, capsys):
     assert main(["bevel", "--teeth", "20", "--mate-teeth", "40", "--module", "2", "-o", str(cli)]) == 0
     capsys.readouterr()
     assert web.read_bytes() == cli.read_bytes() and dl.value.suggested_filename == "bevel-z20-gear.stl"
+    _check_face_gear(page, tmp_path, capsys, main)
     page.select_option("#family", "involute")
     page.wait_for_selector("body[data-family='involute'] #preview svg.gear3d-preview")
     assert page.is_visible("#section-body") and page.is_visible("#download-svg")
+
+
+def _check_face_gear(page, tmp_path, capsys, main):
+    """The face gear set: its sections drawn, its own downloads (JSON, no DXF), an STL that is
+    ``gear3d face-gear``'s bytes for the form's defaults (40 teeth, the page's 20-tooth shaper)."""
+    page.select_option("#family", "face-gear")
+    page.wait_for_selector("body[data-family='face-gear'] #preview svg.gear3d-preview[data-teeth='40']")
+    assert page.is_visible("#download-json") and page.is_hidden("#download-dxf")
+    with page.expect_download(timeout=TIMEOUT_MS) as dl:
+        page.click("#download-stl")
+    web = tmp_path / "face-web.stl"
+    dl.value.save_as(web)
+    cli = tmp_path / "face-cli.stl"
+    assert main(["face-gear", "--teeth", "40", "--shaper-teeth", "20", "--module", "1", "-o", str(cli)]) == 0
+    capsys.readouterr()
+    assert web.read_bytes() == cli.read_bytes() and dl.value.suggested_filename == "face-gear-z40-gear.stl"
 
 
 def _check_one_log_line_a_request(server):
