@@ -62,8 +62,7 @@ def run(args) -> int:
         check_path(args.png, "png", (".png", ".svg"))
     if args.check and args.part != "pair":
         raise GearError("check", True, "only with --part pair (the check rolls the pair)")
-    kw = {k: getattr(args, k) for k in ("teeth", "shaper_teeth", "module", "pressure_angle_deg", "pinion_teeth",
-                                        "tolerance", "part", "check", "inner_radius", "outer_radius", "rim")}
+    kw = {k: getattr(args, k) for k in [p.name for p in FACE_GEAR_PARAMS] + ["check"]}
     from ..plan_sets import plan_face_gear        # the whole command planned first: refused before any work
     plan_face_gear({k: v for k, v in kw.items() if v is not None}, out, args.png, args.json, args.step)
     brep = args.step == "brep" and out.lower().endswith((".step", ".stp"))
