@@ -566,7 +566,7 @@ def plan_body(family: str, params: dict, body_kw: dict, output=None, step=None) 
         budget.rim_range(float(rim_d) / 2, max(sk.pitch_radius, sk.r_max), "rim_diameter", rim_d, 2)
         est = est.then(budget.profile_estimate(sk.vertices + budget.circle_vertices(float(rim_d) / 2, tol)))
     est = est.then(budget.body_estimate(tri, features, f"a body of {nv:,.0f} vertices a layer x {layers:,} layers",
-                                        layer_vertices=nv, teeth=sk.teeth, star=sketch_star(sk)))
+                                        layer_vertices=nv, teeth=sk.teeth, star=sketch_star(sk, nv)))
     ext = os.path.splitext(str(output))[1].lower() if output else ""
     if ext:
         brep = None

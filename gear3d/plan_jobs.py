@@ -50,7 +50,7 @@ def body_counts(sk: Sketch, body_kw: dict, tol: float) -> tuple:
     tri = 2 * nv * layers + 2 * nv
     manifold = any(body_kw.get(k) for k in FEATURES)
     return tri, budget.body_estimate(tri, manifold, f"a body of {nv:,.0f} vertices a layer x {layers:,} layers",
-                                     layer_vertices=nv, teeth=sk.teeth, star=sketch_star(sk))
+                                     layer_vertices=nv, teeth=sk.teeth, star=sketch_star(sk, nv))
 
 
 def _ext(kind: str) -> str:

@@ -10,6 +10,7 @@ from __future__ import annotations
 import math
 
 from .budget import Estimate, estimate
+from .costs import COSTS
 from .params.exporters import MAX_ARC
 
 
@@ -127,12 +128,22 @@ def dxf_arcs(profile, max_arc_deg: float) -> float:
     return math.degrees(total) / max_arc_deg
 
 
-def sketch_star(sk) -> bool:
-    """Whether a body of the sketched profile ``sk`` (:class:`gear3d.plan.Sketch`) will have
-    end faces made as a fan or strip (linear cost) rather than by manifold3d's triangulation
-    (quadratic): :func:`gear3d.solids.caps.star_period` on its sampled period; False when
-    unsure (an over-estimate is safe; the builder charges its fallback before it runs)."""
+#: CPU seconds of the quadratic end-face charge below which a plan charges it without asking
+#: whether the fan or strip applies (the test imports manifold3d: about 0.1 s)
+STAR_TEST_ABOVE = 0.5
+
+
+def sketch_star(sk, layer_vertices: float = 0.0) -> bool:
+    """Whether a body of the sketched profile ``sk`` (:class:`gear3d.plan.Sketch`) whose
+    layers have ``layer_vertices`` vertices (0: the sketch's) will have end faces made as a
+    fan or strip (linear cost) rather than by manifold3d's triangulation (quadratic):
+    :func:`gear3d.solids.caps.star_period` on its sampled period, asked only when the
+    quadratic charge is above :data:`STAR_TEST_ABOVE`; False when unsure (an over-estimate
+    is safe; the builder charges its fallback before it runs it)."""
     if sk is None or getattr(sk, "period", None) is None:
+        return False
+    n = float(layer_vertices or sk.layer_vertices)
+    if COSTS["body.caps"].seconds * n * n < STAR_TEST_ABOVE:
         return False
     from .solids.caps import star_period
     try:

@@ -86,9 +86,9 @@ def test_plan_predicts_the_builders_route(family, kw):
     on the whole profile; a wrong 'star' would under-charge (a wrong 'not star' is safe)."""
     import gear3d
     from gear3d.plan import probe_profile
-    from gear3d.plan_writes import sketch_star
-    from gear3d.solids.caps import cap_triangles
-    pred = sketch_star(probe_profile(family, kw))
+    from gear3d.solids.caps import cap_triangles, star_period
+    sk = probe_profile(family, kw)
+    pred = star_period([sk.period], sk.teeth)
     p = gear3d.profile(family, **kw)
     assert pred == (cap_triangles([np.asarray(lp, float) for lp in p.loops]) is not None)
 
