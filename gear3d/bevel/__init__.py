@@ -41,7 +41,8 @@ check : bool, optional
 **options
     ``face_width`` (mm, default R_e/3), ``pressure_angle_deg`` (default 20),
     ``shaft_angle_deg`` (default 90), ``form`` ("spherical-involute" or "octoid"),
-    ``mate_form`` (default ``form``), ``shift_coeff`` (default 0), ``clearance``
+    ``mate_form`` (default ``form``), ``shift_coeff`` (default 0), ``thickness_coeff`` (x_s,
+    default 0, |x_s| <= 0.25: the gear's heel pitch arc thickness + x_s m, the mate's - x_s m), ``clearance``
     ("standard" or "uniform"), ``spiral_angle_deg`` (at mid-face), ``cutter_radius`` (mm)
     and ``hand`` (spiral and Zerol bevels), ``mounting_distance`` and
     ``mate_mounting_distance`` (mm, apex to the back mounting face: a hub out to it).
@@ -115,6 +116,7 @@ class Cones:
     shift_coeff: float = 0.0
     mate_form: str | None = None
     clearance: str = "standard"
+    thickness_coeff: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -182,17 +184,18 @@ def build(teeth, mate_teeth, module, part="gear", tolerance=DEFAULT_TOLERANCE, c
 def _geometries(teeth, mate_teeth, module, cones: Cones, spiral: Spiral) -> tuple:
     """(the pair's geometry with its tooth line, the same in the mate's form), validated."""
     from dataclasses import replace
-    from .geometry import FORMS, pair_geometry
+    from .geometry import FORMS, ToothDepth, pair_geometry
     from .spiral import with_tooth_line
     c = cones
+    depth = ToothDepth(thickness_coeff=c.thickness_coeff)
     geo = pair_geometry(teeth, mate_teeth, module, c.face_width, c.pressure_angle_deg, c.shaft_angle_deg,
-                        c.shift_coeff, c.form, clearance=c.clearance)
+                        c.shift_coeff, c.form, depth, clearance=c.clearance)
     geo = with_tooth_line(geo, spiral.spiral_angle_deg, spiral.cutter_radius, spiral.hand)
     mform = geo.form if c.mate_form is None else check_choice("mate_form", c.mate_form, FORMS)
     if mform == geo.form:
         return geo, geo
     pair_geometry(teeth, mate_teeth, module, c.face_width, c.pressure_angle_deg, c.shaft_angle_deg, c.shift_coeff,
-                  mform, clearance=c.clearance)
+                  mform, depth, clearance=c.clearance)
     return geo, replace(geo, form=mform)
 
 
@@ -280,7 +283,7 @@ def _params(geo, tol, w) -> dict:
     return {"teeth": geo.gear.teeth, "mate_teeth": geo.mate.teeth, "module": geo.module,
             "pressure_angle_deg": math.degrees(geo.pressure_angle), "shaft_angle_deg": math.degrees(geo.shaft_angle),
             "face_width": geo.face_width, "form": geo.form, "shift_coeff": geo.gear.shift_coeff,
-            "tolerance": tol, "member": w, "clearance": geo.clearance}
+            "thickness_coeff": geo.gear.thickness_coeff, "tolerance": tol, "member": w, "clearance": geo.clearance}
 
 
 def _member_report(geo, which, body) -> MemberReport:
@@ -302,7 +305,7 @@ def _member_report(geo, which, body) -> MemberReport:
                         geo.module * c.teeth + 2 * c.addendum * math.cos(d), c.teeth / math.cos(d), base,
                         float(thick), bool(sec.report["undercut"]), bool(sec.report["pointed"]),
                         r["section_error"], r["cap_error"], r["max_error"], r["volume"], r["triangles"], r["genus"],
-                        r.get("warp_error"), twist, r.get("mounting_distance"))
+                        r.get("warp_error"), twist, r.get("mounting_distance"), c.thickness_coeff)
 
 
 class _CallableModule(types.ModuleType):

@@ -54,6 +54,9 @@ class GearCone:
     #: at δ + θ_a and its root at δ - θ_f as an external member's, so δ + θ_f(mate) is parallel
     #: to the mate's root cone δ' - θ_f(mate) (π - δ - θ_f(mate) in its own turned frame)
     uniform_face_angle: float | None = None
+    #: tooth thickness modification x_s of this member (the heel pitch arc thickness changes
+    #: by x_s m; the gear's x_s, the mate's -x_s)
+    thickness_coeff: float = 0.0
 
     @property
     def face_angle(self) -> float:
@@ -113,9 +116,26 @@ def pitch_angles(z1: int, z2: int, shaft_angle: float) -> tuple:
 @dataclass(frozen=True)
 class ToothDepth:
     """The generating crown tooth's depth in modules: addendum h_a* and dedendum h_f*
-    (the gear's addendum and dedendum at the heel before the shift)."""
+    (the gear's addendum and dedendum at the heel before the shift), and the tooth
+    thickness modification coefficient x_s (ISO 23509's "thickness factor"): the crown's
+    tooth space widened by x_s m at the heel (each flank turned by x_s m / (2 R_e) about the
+    crown axis), so the gear's heel pitch arc thickness grows by x_s m and the mate's shrinks
+    by x_s m (the pair still meshes without backlash); |x_s| <= 0.25."""
     addendum_coeff: float = 1.0
     dedendum_coeff: float = 1.25
+    thickness_coeff: float = 0.0
+
+
+#: the largest |x_s| accepted (tooth thickness modification coefficient)
+THICKNESS_LIMIT = 0.25
+
+
+def flank_turn(geo, cone) -> float:
+    """The turn (rad) of each generating crown flank about the crown axis towards its tooth
+    for member ``cone`` of ``geo``: (x tan α + x_s / 2) m / R_e (profile shift and tooth
+    thickness modification; positive thickens the member's tooth)."""
+    return (cone.shift_coeff * math.tan(geo.pressure_angle) + 0.5 * cone.thickness_coeff) * geo.module \
+        / geo.cone_distance
 
 
 def pair_geometry(teeth, mate_teeth, module, face_width=None, pressure_angle_deg=20.0,
@@ -138,15 +158,21 @@ def pair_geometry(teeth, mate_teeth, module, face_width=None, pressure_angle_deg
     form = check_choice("form", form, FORMS)
     lim = min(ha, hf) - 0.05
     x = check_number("shift_coeff", shift_coeff, -lim, lim)
+    xs = check_number("thickness_coeff", depth.thickness_coeff, -THICKNESS_LIMIT, THICKNESS_LIMIT)
+    land = math.pi / 2 - 2 * hf * math.tan(a)           # the crown's heel tip land / m at x_s = 0
+    if abs(xs) >= land:
+        raise GearError("thickness_coeff", xs, f"|x_s| below {math.floor(land * 1e4) / 1e4:g} at this pressure angle",
+                        "the generating crown tooth of the thickened member would come to a point: "
+                        "no tip land is left")
     clearance = check_choice("clearance", clearance, CLEARANCES)
     d1, d2 = pitch_angles(z1, z2, sig)
     re = m * z1 / (2 * math.sin(d1))
     b = re / 3 if face_width is None else check_number("face_width", face_width, 0, re / 3, lo_open=True,
                                                           unit="mm")
     cones = []
-    for name, z, d, xs in (("teeth", z1, d1, x), ("mate_teeth", z2, d2, 0.0 - x)):
-        h_a, h_f = (ha + xs) * m, (hf - xs) * m
-        cone = GearCone(z, d, math.atan(h_a / re), math.atan(h_f / re), h_a, h_f, xs)
+    for name, z, d, xx, ts in (("teeth", z1, d1, x, xs), ("mate_teeth", z2, d2, 0.0 - x, 0.0 - xs)):
+        h_a, h_f = (ha + xx) * m, (hf - xx) * m
+        cone = GearCone(z, d, math.atan(h_a / re), math.atan(h_f / re), h_a, h_f, xx, thickness_coeff=ts)
         _check_cone(name, z, cone, sig, a, form)
         cones.append(cone)
     if clearance == "uniform":

@@ -49,6 +49,7 @@ import numpy as np
 
 from ..errors import check_choice, check_number
 from .crown import crown_elements, element_xt
+from .geometry import flank_turn
 from .sphere import FLIP, contact_roll, generated_points, sphere_envelope_piece, to_sphere
 
 #: exact samples per surviving run of the boundary, and roll positions per pitch of gear 1
@@ -96,8 +97,8 @@ def tooth(geo, which: str, tolerance: float = CHECK_TOLERANCE) -> Tooth:
     zs = geo.cone_distance * abs(math.cos(c.pitch_angle))     # an internal member's own (turned) frame
     prof = section(geo, which, zs, tolerance)
     wheel = ExactWheel(prof)
-    m, a = geo.module, geo.pressure_angle
-    turn = c.shift_coeff * m * math.tan(a) / geo.cone_distance
+    a = geo.pressure_angle
+    turn = flank_turn(geo, c)
     els = crown_elements(geo.form, geo.crown_teeth, a, c.dedendum_angle, -crown_depth(geo, c), turn)
     flank_el = els[len(els) // 2 + 2]                  # the mirrored flank: the upper side
     probe = sphere_envelope_piece(flank_el, c.pitch_angle, zs)

@@ -20,7 +20,7 @@ from __future__ import annotations
 import math
 
 from .crown import crown_elements
-from .geometry import PairGeometry
+from .geometry import PairGeometry, flank_turn
 from .sphere import sphere_envelope
 
 
@@ -36,7 +36,7 @@ def section(geo: PairGeometry, which: str, zs: float, tolerance: float):
     from ..model import build_profile
     cone = member(geo, which)
     m, a = geo.module, geo.pressure_angle
-    turn = cone.shift_coeff * m * math.tan(a) / geo.cone_distance
+    turn = flank_turn(geo, cone)
     els = crown_elements(geo.form, geo.crown_teeth, a, cone.dedendum_angle, -crown_depth(geo, cone), turn)
     pieces = sphere_envelope(els, cone.pitch_angle, zs)
     d = cone.pitch_angle

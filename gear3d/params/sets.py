@@ -75,6 +75,9 @@ BEVEL_PARAMS: tuple = (
        help="tooth form: spherical involute or octoid (plane-flank crown gear)"),
     _p("shift_coeff", float, "x m", -2, 2, default=0.0, help="profile shift x of the gear (the mate gets -x)",
        limits="|x| at most 0.95 (the addendum 1 less 0.05)"),
+    _p("thickness_coeff", float, "x_s m", -0.25, 0.25, default=0.0,
+       help="tooth thickness modification x_s of the gear: its heel pitch arc thickness + x_s m, the mate's "
+            "- x_s m (ISO 23509's thickness factor)"),
     _p("spiral_angle_deg", float, "deg", 0, 60, hi_open=True,
        help="spiral angle at mid-face: a spiral bevel (0 with a cutter radius: Zerol)"),
     _p("cutter_radius", float, "mm", 0, None, lo_open=True,

@@ -78,6 +78,9 @@ class MemberReport:
     #: mm along the axis from the apex to the back mounting face (the flat face closing the
     #: back cone below the root; with a hub, the hub's end)
     mounting_distance: float | None = None
+    #: tooth thickness modification coefficient x_s of this member (its heel pitch arc
+    #: thickness is that of x_s = 0 plus x_s m; the mate's is minus the gear's)
+    thickness_coeff: float = 0.0
 
 
 @dataclass(frozen=True)
