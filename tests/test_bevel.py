@@ -502,7 +502,7 @@ def test_keywords_grouped_and_unknown_refused():
     assert (cones.shaft_angle_deg, spiral.hand, mounts.mounting_distance) == (80.0, "left", 30.0)
     with pytest.raises(dataclasses.FrozenInstanceError):
         cones.form = "octoid"
-    assert len(OPTIONS) == 12 and "mate_mounting_distance" in OPTIONS
+    assert len(OPTIONS) == 13 and "mate_mounting_distance" in OPTIONS and "thickness_coeff" in OPTIONS
     with pytest.raises(TypeError, match="colour"):
         gear3d.bevel(teeth=12, mate_teeth=18, module=1.0, colour=3)
     with pytest.raises(GearError, match="shaft_angle_deg"):
