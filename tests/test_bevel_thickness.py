@@ -46,12 +46,13 @@ def test_heel_thickness_changes_by_xs_m(kw):
     assert r1.to_dict()["members"][0]["thickness_coeff"] == xs
 
 
-@pytest.mark.parametrize("form", ["spherical-involute", "octoid"])
-def test_balanced_pair_meshes_without_backlash(form):
+@pytest.mark.parametrize("form,z2,sig", [("spherical-involute", 30, 90), ("octoid", 30, 90),
+                                         ("spherical-involute", 40, 150)])
+def test_balanced_pair_meshes_without_backlash(form, z2, sig):
     """+x_s on the gear, -x_s on the mate: still conjugate, no interference, backlash 0
-    (the check's tolerance, 2e-5 mm) at every roll position."""
+    (the check's tolerance, 2e-5 mm) at every roll position; an internal mate (Σ = 150°) too."""
     from gear3d.bevel.rolling import check_pair
-    g = pair_geometry(20, 30, M, form=form, depth=ToothDepth(thickness_coeff=0.15))
+    g = pair_geometry(20, z2, M, shaft_angle_deg=sig, form=form, depth=ToothDepth(thickness_coeff=0.15))
     assert (g.gear.thickness_coeff, g.mate.thickness_coeff) == (0.15, -0.15)
     r = check_pair(g, grid=24)
     assert not r["interference"] and r["max_penetration"] == 0.0
