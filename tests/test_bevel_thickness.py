@@ -55,7 +55,7 @@ def test_balanced_pair_meshes_without_backlash(form, z2, sig):
     g = pair_geometry(20, z2, M, shaft_angle_deg=sig, form=form, depth=ToothDepth(thickness_coeff=0.15))
     assert (g.gear.thickness_coeff, g.mate.thickness_coeff) == (0.15, -0.15)
     r = check_pair(g, grid=24)
-    assert not r["interference"] and r["max_penetration"] == 0.0
+    assert not r["interference"] and r["max_penetration"] < 2e-5
     assert -2e-5 < r["backlash_min"] <= r["backlash_max"] < 2e-5
 
 
