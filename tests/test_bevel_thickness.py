@@ -100,3 +100,23 @@ def test_cli_flag_and_refusal(tmp_path, capsys):
     err = capsys.readouterr().err
     assert rc == 2 and err.count("\n") == 1 and "thickness_coeff" in err and "0.25" in err
     assert not bad.exists()
+
+
+def test_template_part_writes_the_cli_bytes(tmp_path):
+    """A ``kind = "bevel"`` template part with ``thickness_coeff`` writes the bytes of
+    ``gear3d bevel --thickness-coeff`` with the same keywords."""
+    from gear3d.cli import main
+    from gear3d.jobs.scene import build_scene
+    from gear3d.jobs.template import load_scene
+    src = tmp_path / "s.toml"
+    src.write_text('[scene]\nname = "t"\n\n[[part]]\nname = "thick"\nkind = "bevel"\nteeth = 10\nmate_teeth = 15\n'
+                   'module = 2\nface_width = 5\nthickness_coeff = -0.12\noutputs = ["stl"]\n')
+    build_scene(load_scene(str(src)), tmp_path / "out")
+    cli = tmp_path / "cli.stl"
+    assert main(["bevel", "--teeth", "10", "--mate-teeth", "15", "--module", "2", "--face-width", "5",
+                 "--thickness-coeff", "-0.12", "-o", str(cli)]) == 0
+    assert (tmp_path / "out" / "thick.stl").read_bytes() == cli.read_bytes()
+    plain = tmp_path / "plain.stl"
+    assert main(["bevel", "--teeth", "10", "--mate-teeth", "15", "--module", "2", "--face-width", "5",
+                 "-o", str(plain)]) == 0
+    assert plain.read_bytes() != cli.read_bytes()
