@@ -25,6 +25,8 @@ Flank forms (the crown tooth's right flank of the tooth centred at λ = -p/2):
 Profile shift x turns each flank about the crown axis by x·m·tan α / R_e (the crown's
 space widens, the gear's tooth thickens) while the crown's tip and root latitudes are the
 gear's dedendum and addendum angles, which carry the shift.
+Tooth thickness modification x_s adds x_s·m / (2 R_e) to that turn (the gear's heel pitch
+arc thickness grows by x_s·m, the depths stay): :func:`gear3d.bevel.geometry.flank_turn`.
 
 Example::
 

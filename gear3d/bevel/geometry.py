@@ -11,6 +11,8 @@ at the interface; lengths are mm.
   ``h_f = (h_f* - x) m`` for the gear, ``x -> -x`` for its mate (the pitch cones stay);
   the depth tapers to the apex (standard, tapered clearance): ``θ_a = atan(h_a / R_e)``,
   ``θ_f = atan(h_f / R_e)``;
+* tooth thickness modification x_s (:class:`ToothDepth`): the heel pitch arc thickness
+  π m/2 + 2 x m tan α + x_s m, the mate's with -x and -x_s;
 * the generating crown gear (pitch cone angle 90°) has ``z_c = z1 / sin δ1`` teeth
   (not an integer in general) and is the same plane for both gears.
 
