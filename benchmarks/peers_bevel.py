@@ -21,8 +21,19 @@ through the bands' phases (the turn is smooth across the face), three times, eac
 the previous turn taken out of the samples, so the spiral figure is each sphere's profile
 error (plus the turn between the layers), whatever the tooth line.
 
-Run:  python benchmarks/peers_bevel.py [--runs 3]   (or python benchmarks/peers.py --bevel)
+cq_gears (CadQuery) builds the straight member too: ``BevelGear(module=2, teeth_number=20,
+cone_angle=atan(20/30), face_width=10, pressure_angle=20)`` (its addendum 1 m and dedendum
+1.25 m, clearance 0), moved so that its pitch cone apex is at the origin and exported as STL
+by ``cq.exporters.export`` at its default deflection (0.1 mm, 0.1 rad) and at a fine one
+(0.002 mm, 0.05 rad). Its flanks are spherical involutes of the base cone too (its
+surfaces are B-splines fitted through 20-point spherical involutes, ``spline_approx_tol``
+0.01 mm), so the same measurement applies. It runs in its own venv, as in
+``peers_brep.py`` (``CQ_PYTHON``, ``CQ_GEARS_SRC``); where either is missing its rows are
+skipped with a note.
+
+Run:  python benchmarks/peers_bevel.py [--runs 3] [--publish]
 Needs ``openscad`` (apt-get install -y openscad) and ../shared/peers/BOSL2.
+(``--publish``: the table into BENCHMARKS.md between the ``peers-bevel`` markers.)
 """
 from __future__ import annotations
 
@@ -38,7 +49,8 @@ from pathlib import Path
 
 import numpy as np
 
-from peers import PEERS, compile_gear3d, cpu_run, gear3d_script, openscad_path
+from peers import PEERS, ROOT, compile_gear3d, cpu_run, gear3d_script, openscad_path
+from peers_brep import CQ_GEARS_SRC, CQ_PYTHON, cq_available
 
 Z, Z2, M, ALPHA, FACE = 20, 30, 2.0, 20.0, 10.0
 SPIRAL, CUTTER = 35.0, 30.0
@@ -49,6 +61,16 @@ SLICES = {"straight": [1], "spiral": [12, 24]}
 BANDS = 20
 #: samples along each side of a triangle (a barycentric grid: corners, edge points, inside)
 GRID = 6
+#: cq_gears' STL export deflections (linear mm, angular rad): its default, and a fine one
+CQ_DEFLECTIONS = [(0.1, 0.1), (0.002, 0.05)]
+CQ_SCRIPT = f"""import math, sys
+import cadquery as cq
+from cq_gears import BevelGear
+g = BevelGear(module={M:g}, teeth_number={Z}, cone_angle=math.degrees(math.atan2({Z}, {Z2})), face_width={FACE:g},
+              pressure_angle={ALPHA:g})
+body = cq.Workplane("XY").add(g.build()).translate((0, 0, -g.cone_h))   # the pitch cone apex at the origin
+cq.exporters.export(body, sys.argv[1], tolerance=float(sys.argv[2]), angularTolerance=float(sys.argv[3]))
+"""
 
 
 def scad(kind: str, slices: int) -> str:
@@ -148,6 +170,8 @@ def jobs(work: Path, openscad: str, gear3d: str) -> dict:
             stl = work / f"bosl2_{kind}_{s}.stl"
             out[f"BOSL2 {kind} slices={s}"] = ([openscad, "-o", str(stl), str(f)], None, env, stl, kind,
                                                f"slices={s}")
+        if kind == "straight":
+            out.update(cq_jobs(work))
         for t in TOLS[kind]:
             stl = work / f"gear3d_{kind}_{t}.stl"
             extra = (["--spiral-angle-deg", f"{SPIRAL:g}", "--cutter-radius", f"{CUTTER:g}"] if kind == "spiral" else [])
@@ -157,9 +181,55 @@ def jobs(work: Path, openscad: str, gear3d: str) -> dict:
     return out
 
 
+def cq_jobs(work: Path) -> dict:
+    """cq_gears' straight BevelGear rows (none where its venv or source is missing)."""
+    if cq_available() is not None:
+        return {}
+    (work / "cqg.py").write_text(CQ_SCRIPT)
+    env = dict(os.environ, PYTHONPATH=CQ_GEARS_SRC)
+    out = {}
+    for lin, ang in CQ_DEFLECTIONS:
+        stl = work / f"cq_straight_{lin}.stl"
+        out[f"cq_gears straight {lin:g} mm"] = ([CQ_PYTHON, str(work / "cqg.py"), str(stl), f"{lin:g}", f"{ang:g}"],
+                                                None, env, stl, "straight", f"STL {lin:g} mm, {ang:g} rad")
+    return out
+
+
+def table(todo: dict, times: dict) -> tuple:
+    """(table lines, verdict lines) from the runs' CPU times; every STL measured."""
+    lines = ["| tool | setting | CPU s (median) | CPU ratio to BOSL2 | triangles | flank error µm (max / p99) |",
+             "|---|---|---|---|---|---|"]
+    floor = statistics.median(times["python -c 'import numpy, manifold3d'"])
+    verdicts = []
+    for kind in ("straight", "spiral"):
+        ref = statistics.median(times[f"BOSL2 {kind} slices={SLICES[kind][0]}"])
+        rows = {k: (statistics.median(times[k]), flank_error(str(v[3]), kind)) for k, v in todo.items() if v[4] == kind}
+        lines.append(f"| python -c 'import numpy, manifold3d' | (floor) | {floor:.3f} | {floor / ref:.2f} | | |")
+        for k, (cpu, r) in rows.items():
+            lines.append(f"| {k} | {todo[k][5]} | {cpu:.3f} | {cpu / ref:.2f} | {r['triangles']:,} | "
+                         f"{r['flank_error'] * 1e3:.2f} / {r['flank_p99'] * 1e3:.2f} |")
+        peers = [f"BOSL2 {kind} slices={SLICES[kind][0]}"] + [k for k in rows if k.startswith("cq_gears")][:1]
+        for pk in peers:
+            verdicts += _verdict(kind, pk, rows, todo)
+    return lines, verdicts
+
+
+def _verdict(kind: str, pk: str, rows: dict, todo: dict) -> list:
+    """gear3d's cheapest row at equal or better flank error than the peer row ``pk``."""
+    pcpu, pr = rows[pk]
+    ok = [k for k, (_, r) in rows.items() if k.startswith("gear3d") and r["flank_error"] <= pr["flank_error"]]
+    if not ok:
+        return [f"- {kind}: no gear3d row reaches {pk}'s flank error ({pr['flank_error'] * 1e3:.2f} µm)."]
+    k = min(ok, key=lambda k: rows[k][0])
+    return [f"- {kind}: at equal or better flank error ({rows[k][1]['flank_error'] * 1e3:.2f} µm against "
+            f"{pr['flank_error'] * 1e3:.2f} µm) gear3d ({todo[k][5]}, {rows[k][0]:.3f} s) takes "
+            f"{rows[k][0] / pcpu:.2f}x {pk}'s CPU time ({pcpu:.3f} s)."]
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--runs", type=int, default=3)
+    ap.add_argument("--publish", action="store_true")
     args = ap.parse_args(argv)
     openscad = openscad_path()
     if openscad is None:
@@ -173,31 +243,34 @@ def main(argv=None) -> int:
         for k, (cmd, cwd, env, _stl, _kind, _s) in todo.items():
             times[k].append(cpu_run(cmd, cwd=cwd, env=env))
         print(f"run {i + 1}/{args.runs} done", file=sys.stderr)
-    lines = ["| tool | setting | CPU s (median) | CPU ratio to BOSL2 | triangles | flank error µm (max / p99) |",
-             "|---|---|---|---|---|---|"]
-    floor = statistics.median(times["python -c 'import numpy, manifold3d'"])
-    verdicts = []
-    for kind in ("straight", "spiral"):
-        ref_key = f"BOSL2 {kind} slices={SLICES[kind][0]}"
-        ref = statistics.median(times[ref_key])
-        rows = {k: (statistics.median(times[k]), flank_error(str(v[3]), kind)) for k, v in todo.items() if v[4] == kind}
-        lines.append(f"| python -c 'import numpy, manifold3d' | (floor) | {floor:.3f} | {floor / ref:.2f} | | |")
-        for k, (cpu, r) in rows.items():
-            lines.append(f"| {k} | {todo[k][5]} | {cpu:.3f} | {cpu / ref:.2f} | {r['triangles']:,} | "
-                         f"{r['flank_error'] * 1e3:.2f} / {r['flank_p99'] * 1e3:.2f} |")
-        ok = [k for k, (_, r) in rows.items() if k.startswith("gear3d") and r["flank_error"] <= rows[ref_key][1]["flank_error"]]
-        if ok:
-            k = min(ok, key=lambda k: rows[k][0])
-            verdicts.append(f"{kind}: at equal or better flank error ({rows[k][1]['flank_error'] * 1e3:.2f} µm against "
-                            f"{rows[ref_key][1]['flank_error'] * 1e3:.2f} µm) gear3d ({todo[k][5]}) takes "
-                            f"{rows[k][0] / ref:.2f}x BOSL2's CPU time.")
+    lines, verdicts = table(todo, times)
     load = os.getloadavg()
     head = (f"Machine: {platform.machine()}, {os.cpu_count()} cores, Python {platform.python_version()}, "
             f"load average {load[0]:.2f} / {load[1]:.2f} / {load[2]:.2f}; {args.runs} interleaved runs each; "
             f"ratios against BOSL2 slices={SLICES['straight'][0]} (straight) / {SLICES['spiral'][0]} (spiral).")
-    print("\n".join([head, "", *lines, "", *verdicts]))
+    why = cq_available()
+    notes = [f"cq_gears skipped: {why}."] if why else []
+    out = "\n".join([head, "", *lines, "", *verdicts, *([""] + notes if notes else [])])
+    print(out)
+    if args.publish:
+        _publish(out)
     shutil.rmtree(work, ignore_errors=True)
     return 0
+
+
+def _publish(text: str) -> None:
+    """The run's output into BENCHMARKS.md between the peers-bevel markers (a section at the
+    end the first time)."""
+    md = ROOT / "BENCHMARKS.md"
+    doc = md.read_text()
+    start, end = "<!-- peers-bevel:begin -->", "<!-- peers-bevel:end -->"
+    block = f"{start}\n{text}\n{end}"
+    if start in doc:
+        doc = doc[:doc.index(start)] + block + doc[doc.index(end) + len(end):]
+    else:
+        doc = (doc.rstrip() + "\n\n## Bevel gears against BOSL2 and cq_gears (benchmarks/peers_bevel.py)\n\n"
+               + block + "\n")
+    md.write_text(doc)
 
 
 if __name__ == "__main__":
