@@ -22,7 +22,6 @@ Run:  python benchmarks/bench_dxf.py [--loops 30] [--runs 5] [--publish]
 from __future__ import annotations
 
 import argparse
-import math
 import os
 import platform
 import resource
@@ -35,6 +34,9 @@ import time
 from pathlib import Path
 
 import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from peers import publish_section  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 TMP = "/dev/shm" if os.path.isdir("/dev/shm") else tempfile.gettempdir()
@@ -175,18 +177,6 @@ def report(loops: int, runs: int) -> str:
     return "\n".join(lines) + "\n"
 
 
-def _publish(text: str) -> None:
-    md = ROOT / "BENCHMARKS.md"
-    src = md.read_text()
-    start, end = "<!-- dxf:begin -->", "<!-- dxf:end -->"
-    block = f"{start}\n{text}{end}"
-    if start in src:
-        src = src[:src.index(start)] + block + src[src.index(end) + len(end):]
-    else:
-        src = src.rstrip() + "\n\n## DXF and SVG outline: certified arcs (benchmarks/bench_dxf.py)\n\n" + block + "\n"
-    md.write_text(src)
-
-
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--loops", type=int, default=30)
@@ -196,7 +186,7 @@ def main(argv=None) -> int:
     text = report(args.loops, args.runs)
     print(text)
     if args.publish:
-        _publish(text)
+        publish_section("dxf", text, "## DXF and SVG outline: certified arcs (benchmarks/bench_dxf.py)")
     else:
         os.makedirs("out/bench", exist_ok=True)
         Path("out/bench/dxf.md").write_text("# DXF and SVG outline\n\n" + text)

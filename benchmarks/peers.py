@@ -80,6 +80,23 @@ def compile_gear3d() -> None:
     subprocess.run([sys.executable, "-m", "compileall", "-q", str(ROOT / "gear3d")], check=True)
 
 
+def publish_section(marker: str, text: str, heading: str, before: str | None = None) -> None:
+    """Put ``text`` into BENCHMARKS.md between ``<!-- marker:begin -->`` and
+    ``<!-- marker:end -->``; the first time, just above the line ``before`` when it is there,
+    else at the end under ``heading`` (a ``## ...`` line)."""
+    md = ROOT / "BENCHMARKS.md"
+    doc = md.read_text()
+    start, end = f"<!-- {marker}:begin -->", f"<!-- {marker}:end -->"
+    block = f"{start}\n{text.rstrip(chr(10))}\n{end}"
+    if start in doc:
+        doc = doc[:doc.index(start)] + block + doc[doc.index(end) + len(end):]
+    elif before is not None and before in doc:
+        doc = doc.replace(before, block + "\n" + before, 1)
+    else:
+        doc = doc.rstrip() + f"\n\n{heading}\n\n" + block + "\n"
+    md.write_text(doc)
+
+
 def inv(a):
     return np.tan(a) - a
 

@@ -49,7 +49,7 @@ from pathlib import Path
 
 import numpy as np
 
-from peers import PEERS, ROOT, compile_gear3d, cpu_run, gear3d_script, openscad_path
+from peers import PEERS, compile_gear3d, cpu_run, gear3d_script, openscad_path, publish_section
 from peers_brep import CQ_GEARS_SRC, CQ_PYTHON, cq_available
 
 Z, Z2, M, ALPHA, FACE = 20, 30, 2.0, 20.0, 10.0
@@ -253,24 +253,9 @@ def main(argv=None) -> int:
     out = "\n".join([head, "", *lines, "", *verdicts, *([""] + notes if notes else [])])
     print(out)
     if args.publish:
-        _publish(out)
+        publish_section("peers-bevel", out, "## Bevel gears against BOSL2 and cq_gears (benchmarks/peers_bevel.py)")
     shutil.rmtree(work, ignore_errors=True)
     return 0
-
-
-def _publish(text: str) -> None:
-    """The run's output into BENCHMARKS.md between the peers-bevel markers (a section at the
-    end the first time)."""
-    md = ROOT / "BENCHMARKS.md"
-    doc = md.read_text()
-    start, end = "<!-- peers-bevel:begin -->", "<!-- peers-bevel:end -->"
-    block = f"{start}\n{text}\n{end}"
-    if start in doc:
-        doc = doc[:doc.index(start)] + block + doc[doc.index(end) + len(end):]
-    else:
-        doc = (doc.rstrip() + "\n\n## Bevel gears against BOSL2 and cq_gears (benchmarks/peers_bevel.py)\n\n"
-               + block + "\n")
-    md.write_text(doc)
 
 
 if __name__ == "__main__":

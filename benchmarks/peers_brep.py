@@ -49,7 +49,7 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from peers import ROOT, cpu_run, compile_gear3d, gear3d_script, points_flank_error  # noqa: E402
+from peers import cpu_run, compile_gear3d, gear3d_script, points_flank_error, publish_section  # noqa: E402
 
 CQ_PYTHON = os.environ.get("CQ_PYTHON", "/work/notes/cqvenv/bin/python")
 CQ_GEARS_SRC = os.environ.get("CQ_GEARS_SRC", "/work/notes/cq_gears_src")
@@ -202,25 +202,9 @@ def main(argv=None) -> int:
     table = "\n".join(lines)
     print(table)
     if args.publish:
-        _publish(table)
+        publish_section("peers-brep", table, "## B-rep STEP against cq_gears", before="<!-- brep:end -->")
     shutil.rmtree(work, ignore_errors=True)
     return 0
-
-
-def _publish(table: str) -> None:
-    """The table into BENCHMARKS.md between the peers-brep markers (added at the end of the
-    B-rep section the first time)."""
-    md = ROOT / "BENCHMARKS.md"
-    text = md.read_text()
-    start, end = "<!-- peers-brep:begin -->", "<!-- peers-brep:end -->"
-    block = f"{start}\n{table}\n{end}"
-    if start in text:
-        text = text[:text.index(start)] + block + text[text.index(end) + len(end):]
-    elif "<!-- brep:end -->" in text:
-        text = text.replace("<!-- brep:end -->", block + "\n<!-- brep:end -->", 1)
-    else:
-        text = text.rstrip() + "\n\n" + block + "\n"
-    md.write_text(text)
 
 
 if __name__ == "__main__":

@@ -36,7 +36,8 @@ from pathlib import Path
 
 import numpy as np
 
-from peers import PEERS, ROOT, compile_gear3d, cpu_run, gear3d_script, inv, openscad_path  # noqa: E402
+from peers import (PEERS, compile_gear3d, cpu_run, gear3d_script, inv, openscad_path,  # noqa: E402
+                   publish_section)
 Z, M, ALPHA = 20, 1.0, 20.0
 RP = Z * M / 2
 RB = RP * math.cos(math.radians(ALPHA))
@@ -188,21 +189,9 @@ def main(argv=None) -> int:
     table = "\n".join([head, "", *lines, "", verdict])
     print(table)
     if args.publish:
-        _publish(table)
+        publish_section("peers-dxf", table, "## gear3d's DXF against BOSL2 (benchmarks/peers_dxf.py)")
     shutil.rmtree(work, ignore_errors=True)
     return 0
-
-
-def _publish(table: str) -> None:
-    md = ROOT / "BENCHMARKS.md"
-    text = md.read_text()
-    start, end = "<!-- peers-dxf:begin -->", "<!-- peers-dxf:end -->"
-    block = f"{start}\n{table}\n{end}"
-    if start in text:
-        text = text[:text.index(start)] + block + text[text.index(end) + len(end):]
-    else:
-        text = text.rstrip() + "\n\n## gear3d's DXF against BOSL2 (benchmarks/peers_dxf.py)\n\n" + block + "\n"
-    md.write_text(text)
 
 
 if __name__ == "__main__":
