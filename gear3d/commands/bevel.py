@@ -26,15 +26,10 @@ REQUIRED = ("teeth", "mate_teeth", "module")
 
 
 def add_parser(sub):
-    from .profile import arg_type
+    from .profile import add_table_flag
     p = sub.add_parser("bevel", help="bevel gears: straight, spiral, Zerol (spherical-involute or octoid) -> .stl .3mf .step + .json")
     for prm in BEVEL_PARAMS:          # the set's table (gear3d.params): flags, ranges, defaults, help
-        if prm.choices:
-            p.add_argument(prm.flag, default=prm.default, choices=list(prm.choices), help=prm.help_text())
-        else:
-            need = prm.name in REQUIRED
-            p.add_argument(prm.flag, type=arg_type(prm), default=None if need else prm.default, required=need,
-                           help=prm.help_text(default_text="" if need else None))
+        add_table_flag(p, prm, prm.name in REQUIRED)
         if prm.name == "form":
             p.add_argument("--mate-form", default=None, choices=list(BEVEL_FORMS),
                            help="the mate's tooth form (default --form; an octoid is not conjugate to a "

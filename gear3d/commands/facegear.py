@@ -28,16 +28,11 @@ REQUIRED = ("teeth", "module")
 
 
 def add_parser(sub):
-    from .profile import arg_type
+    from .profile import add_table_flag
     p = sub.add_parser("face-gear", help="face (crown) gears cut by an involute spur shaper, 90° shafts "
                                          "-> .stl .3mf + .json (radius limits: undercut, pointing)")
     for prm in FACE_GEAR_PARAMS:      # the set's table (gear3d.params): flags, ranges, defaults, help
-        if prm.choices:
-            p.add_argument(prm.flag, default=prm.default, choices=list(prm.choices), help=prm.help_text())
-        else:
-            need = prm.name in REQUIRED
-            p.add_argument(prm.flag, type=arg_type(prm), default=None if need else prm.default, required=need,
-                           help=prm.help_text(default_text="" if need else None))
+        add_table_flag(p, prm, prm.name in REQUIRED)
     p.add_argument("--check", action="store_true",
                    help="--part pair: roll the pair (interference, backlash, contact ratio of conjugate action, "
                         "transmission error): one summary line, the numbers under 'check' in --json; exit 1 on "

@@ -65,6 +65,16 @@ def arg_type(p):
     return str
 
 
+def add_table_flag(parser, prm, required: bool = False) -> None:
+    """One flag of a set's keyword table (``gear3d.params``: flag, range, default, help): a
+    choice, or a number checked against the table's range (``required``: no default)."""
+    if prm.choices:
+        parser.add_argument(prm.flag, default=prm.default, choices=list(prm.choices), help=prm.help_text())
+    else:
+        parser.add_argument(prm.flag, type=arg_type(prm), default=None if required else prm.default,
+                            required=required, help=prm.help_text(default_text="" if required else None))
+
+
 class DeprecatedFlag(argparse.Action):
     """An older spelling of a flag: stores like the flag and records a one-line note
     (printed on stderr by :func:`print_notes` when the command succeeds)."""
