@@ -147,3 +147,29 @@ def test_the_set_tables_name_every_keyword_of_their_builders():
         return {n for f in fns for n, p in inspect.signature(f).parameters.items() if p.kind is not p.VAR_KEYWORD}
     assert {p.name for p in WORM_PARAMS} == names(design, validate) - {"check"}
     assert {p.name for p in BEVEL_PARAMS} == names(build) - {"check", "mate_form"}
+
+
+@pytest.mark.parametrize("family,kw", [("bevel", {"teeth": 12, "mate_teeth": 18, "module": 2.0, "tolerance": 0.05}),
+                                       ("worm", {"module": 2.0, "starts": 1, "wheel_teeth": 30,
+                                                 "diameter_quotient": 10.0, "tolerance": 0.05})])
+def test_a_set_s_step_download_is_planned_with_its_flavour(monkeypatch, tmp_path, family, kw):
+    """A B-rep STEP download of a worm or bevel set is planned as the command plans
+    ``--step brep`` (the flavour reaches the set's plan), before any build."""
+    from gear3d import plan_sets
+    from gear3d.web import builds
+    seen = []
+
+    class Planned(Exception):
+        pass
+
+    def record(kw_, output=None, step=None, *a, **k):
+        seen.append((output, step))
+        raise Planned
+    monkeypatch.setattr(plan_sets, f"plan_{family}", record)
+    for opts, want in (({"step": "brep"}, "brep"), ({}, None)):
+        with pytest.raises(Planned):
+            builds.set_download(family, dict(kw), opts, "step", str(tmp_path))
+        assert seen[-1] == (str(tmp_path / "download.step"), want)
+    with pytest.raises(Planned):
+        builds.set_download(family, dict(kw), {}, "stl", str(tmp_path))
+    assert seen[-1] == (str(tmp_path / "download.stl"), None) and len(seen) == 3

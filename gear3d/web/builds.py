@@ -198,13 +198,13 @@ def set_preview(family: str, kw: dict) -> Reply:
 
 def _set_bodies(family: str, kw: dict, output=None, step=None) -> tuple:
     """(bodies placed, report dict) of ``gear3d.worm(**kw)`` / ``gear3d.bevel(**kw)`` /
-    ``gear3d.face_gear(**kw)`` (``step``: the face gear's STEP flavour), the
-    whole build (and its export to ``output``) planned first (:mod:`gear3d.plan_sets`)."""
+    ``gear3d.face_gear(**kw)`` (``step``: the export's STEP flavour), the whole build (and its
+    export to ``output``) planned first (:mod:`gear3d.plan_sets`), as the commands plan it."""
     if family == FACE:
         from .faceset import face_bodies
         return face_bodies(kw, output, step)
     from ..plan_sets import plan_bevel, plan_worm
-    (plan_worm if family == "worm" else plan_bevel)(kw, output)
+    (plan_worm if family == "worm" else plan_bevel)(kw, output, step)
     if family == "worm":
         from ..wormgear import worm
         s = worm(**kw)
@@ -241,7 +241,7 @@ def set_download(family: str, kw: dict, opts: dict, fmt: str, folder: str) -> Re
         face_download(kw, opts, fmt, path)
         part = kw.get("part")
     else:
-        bodies, _ = _set_bodies(family, kw, path)
+        bodies, _ = _set_bodies(family, kw, path, opts.get("step") if fmt == "step" else None)
         write(bodies, path, **opts)
         part = kw.get("part")
     teeth = kw.get("wheel_teeth", 30) if family == "worm" else kw.get("teeth")
