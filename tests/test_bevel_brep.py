@@ -22,28 +22,11 @@ import pytest
 
 import gear3d
 from occread import read_step
+from oracles import spherical_involute_distance
 from test_bevel_spiral import tooth_line
 from test_brep_bevel_worm import bspline_points, check_solid
 
 pytest.importorskip("OCP")
-
-
-def internal_flank_distance(P, z, dp, alpha):
-    """Distance (mm) from points P (N, 3, own frame) to the flanks of an unshifted internal
-    spherical-involute bevel of z teeth whose pitch cone is dp (own frame) (rad)."""
-    sdb = math.sin(dp) * math.cos(alpha)
-    cdb = math.sqrt(1 - sdb * sdb)
-
-    def inv_s(beta):        # azimuth of the involute from its base point at polar angle β
-        psi = np.arccos(np.clip(np.cos(beta) / cdb, -1, 1))
-        return psi / sdb - np.arctan(np.tan(psi) / sdb)
-    rho = np.linalg.norm(P, axis=1)
-    beta = np.arccos(P[:, 2] / rho)
-    ang = 2 * math.pi / z
-    phi = np.arctan2(P[:, 1], P[:, 0])
-    phi = np.abs(phi - np.round(phi / ang) * ang)
-    flank = math.pi / (2 * z) - inv_s(dp) + inv_s(beta)
-    return rho * sdb * np.abs(phi - flank), beta
 
 
 @pytest.mark.slow
@@ -79,7 +62,8 @@ def test_brep_uniform_clearance_hub_and_internal(tmp_path):
     th = lam / math.sin(c.pitch_angle)          # the mate's turn -λ/sin δ2, reversed in its own (turned) frame
     cth, sth = np.cos(-th), np.sin(-th)
     P = np.column_stack([cth * P[:, 0] - sth * P[:, 1], sth * P[:, 0] + cth * P[:, 1], P[:, 2]])
-    d, beta = internal_flank_distance(P, 30, dp, math.radians(20))
+    d = spherical_involute_distance(P, 30, dp, math.radians(20), internal=True)
+    beta = np.arccos(P[:, 2] / np.linalg.norm(P, axis=1))
     band = (rho * np.cos(beta - dp) > g.inner_cone_distance + 1e-3) & (rho * np.cos(beta - dp) < g.cone_distance - 1e-3)
     inv = band & (np.abs(beta - dp) < 0.8 * c.addendum_angle)
     assert inv.sum() > 200

@@ -25,7 +25,7 @@ import pytest
 
 import gear3d
 from occread import is_valid, read_step, sub_shapes
-from oracles import involute_distance  # noqa: E402
+from oracles import involute_distance, spherical_involute_distance  # noqa: E402
 
 pytest.importorskip("OCP")
 
@@ -62,25 +62,6 @@ def bspline_points(shape, n=15):
         P = [s.Value(float(u), float(v)) for u in np.linspace(u0, u1, n) for v in np.linspace(v0, v1, n)]
         out.append(np.array([[p.X(), p.Y(), p.Z()] for p in P]))
     return out
-
-
-def spherical_involute_distance(P, z, delta, alpha):
-    """Distance (mm) from points P (N, 3), gear frame (apex at the origin, axis z, tooth 0 on
-    +x), to the flank cones of an unshifted spherical-involute bevel of z teeth, pitch cone
-    δ and pressure angle α (rad): |P| sin δb |φ - φ_flank(β)|, folded onto tooth 0."""
-    sdb = math.sin(delta) * math.cos(alpha)
-    cdb = math.sqrt(1 - sdb * sdb)
-
-    def inv_s(beta):        # azimuth of the involute from its base point at polar angle β
-        psi = np.arccos(np.clip(np.cos(beta) / cdb, -1, 1))
-        return psi / sdb - np.arctan(np.tan(psi) / sdb)
-    rho = np.linalg.norm(P, axis=1)
-    beta = np.arccos(P[:, 2] / rho)
-    ang = 2 * math.pi / z
-    phi = np.arctan2(P[:, 1], P[:, 0])
-    phi = np.abs(phi - np.round(phi / ang) * ang)
-    flank = math.pi / (2 * z) + inv_s(delta) - inv_s(beta)
-    return rho * sdb * np.abs(phi - flank)
 
 
 def in_band(P, r_in, r_out, delta):
