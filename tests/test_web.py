@@ -432,29 +432,16 @@ def _check_worm_and_bevel(page, tmp_path, capsys):
     page.select_option("#in-profile-part", "wheel")
     page.wait_for_selector("#preview svg.gear3d-preview[data-teeth='24']")
     page.wait_for_selector("#view3d[data-family='worm'][data-triangles]")
-    with page.expect_download(timeout=TIMEOUT_MS) as dl:
-        page.click("#download-stl")
-    web = tmp_path / "worm-web.stl"
-    dl.value.save_as(web)
-    assert dl.value.suggested_filename == "worm-z24-wheel.stl"
-    cli = tmp_path / "worm-cli.stl"
-    assert main(["worm", "--module", "2", "--starts", "1", "--wheel-teeth", "24", "--part", "wheel", "-o", str(cli)]) == 0
-    capsys.readouterr()
-    assert web.read_bytes() == cli.read_bytes()
+    _stl_download_is_the_cli_s(page, tmp_path, capsys, main, "worm-z24-wheel.stl",
+                               ["worm", "--module", "2", "--starts", "1", "--wheel-teeth", "24", "--part", "wheel"])
     OUT.mkdir(parents=True, exist_ok=True)
     page.screenshot(path=str(OUT / "worm.png"), full_page=True)
     page.select_option("#family", "bevel")
     page.wait_for_selector("body[data-family='bevel'] #preview svg.gear3d-preview[data-teeth='20']")
     assert abs(float(page.get_attribute("#preview svg .full circle.pitch-circle", "r")) - 2.0 * 20 / 2) < 1e-6
     assert page.is_visible("#download-step") and page.is_hidden("#download-dxf")
-    with page.expect_download(timeout=TIMEOUT_MS) as dl:
-        page.click("#download-stl")
-    web = tmp_path / "bevel-web.stl"
-    dl.value.save_as(web)
-    cli = tmp_path / "bevel-cli.stl"
-    assert main(["bevel", "--teeth", "20", "--mate-teeth", "40", "--module", "2", "-o", str(cli)]) == 0
-    capsys.readouterr()
-    assert web.read_bytes() == cli.read_bytes() and dl.value.suggested_filename == "bevel-z20-gear.stl"
+    _stl_download_is_the_cli_s(page, tmp_path, capsys, main, "bevel-z20-gear.stl",
+                               ["bevel", "--teeth", "20", "--mate-teeth", "40", "--module", "2"])
     _check_face_gear(page, tmp_path, capsys, main)
     page.select_option("#family", "involute")
     page.wait_for_selector("body[data-family='involute'] #preview svg.gear3d-preview")
@@ -467,14 +454,22 @@ def _check_face_gear(page, tmp_path, capsys, main):
     page.select_option("#family", "face-gear")
     page.wait_for_selector("body[data-family='face-gear'] #preview svg.gear3d-preview[data-teeth='40']")
     assert page.is_visible("#download-json") and page.is_hidden("#download-dxf")
+    _stl_download_is_the_cli_s(page, tmp_path, capsys, main, "face-gear-z40-gear.stl",
+                               ["face-gear", "--teeth", "40", "--shaper-teeth", "20", "--module", "1"])
+
+
+def _stl_download_is_the_cli_s(page, tmp_path, capsys, main, name, argv):
+    """The page's STL download is named ``name`` and holds the bytes ``gear3d ARGV -o x.stl``
+    writes."""
     with page.expect_download(timeout=TIMEOUT_MS) as dl:
         page.click("#download-stl")
-    web = tmp_path / "face-web.stl"
+    web = tmp_path / ("web-" + name)
     dl.value.save_as(web)
-    cli = tmp_path / "face-cli.stl"
-    assert main(["face-gear", "--teeth", "40", "--shaper-teeth", "20", "--module", "1", "-o", str(cli)]) == 0
+    assert dl.value.suggested_filename == name
+    cli = tmp_path / ("cli-" + name)
+    assert main([*argv, "-o", str(cli)]) == 0
     capsys.readouterr()
-    assert web.read_bytes() == cli.read_bytes() and dl.value.suggested_filename == "face-gear-z40-gear.stl"
+    assert web.read_bytes() == cli.read_bytes()
 
 
 def _check_one_log_line_a_request(server):
