@@ -117,3 +117,28 @@ def verdict(r: Result) -> str:
     if r.rss > MAX_RSS:
         bad.append(f"peak RSS {r.rss / 2 ** 20:.0f} MiB > 2 GiB")
     return "; ".join(bad)
+
+
+def status(r: Result, problem: str) -> str:
+    """How a run ended, for the fuzz log: ``failed`` (it broke the promise), ``refused`` (the
+    budget's one line), ``rejected`` (a range or other input error, exit 2), ``accepted``."""
+    if problem:
+        return "failed"
+    if r.rc == 2:
+        return "refused" if budget_refusal(r.err) else "rejected"
+    return "accepted"
+
+
+def record(command: str, r: Result, problem: str) -> None:
+    """Append one line about ``r`` to the file ``GEAR3D_FUZZ_LOG`` names (nothing when unset):
+    command, status, exit code, CPU s, estimate s, CPU / estimate, peak RSS MiB, estimated
+    MiB, the problem and the command line, tab-separated (summed by ``tests/fuzz/fuzzlog.py``)."""
+    path = os.environ.get("GEAR3D_FUZZ_LOG")
+    if not path:
+        return
+    ratio = r.cpu / r.estimate if r.estimate else 0.0
+    words = " ".join(str(a) for a in r.argv)
+    last = r.err.strip().splitlines()[-1][:200] if r.err.strip() else ""
+    with open(path, "a", encoding="utf-8") as fh:
+        fh.write(f"{command}\t{status(r, problem)}\t{r.rc}\t{r.cpu:.3f}\t{r.estimate:.4g}\t{ratio:.3f}\t"
+                 f"{r.rss / 2 ** 20:.0f}\t{r.estimate_bytes / 2 ** 20:.0f}\t{problem or '-'}\t{words}\t{last}\n")
