@@ -40,8 +40,9 @@ from __future__ import annotations
 import contextlib
 import os
 import threading
-from dataclasses import dataclass, field
+from dataclasses import field
 
+from .records import dataclass
 from .errors import GearError, check_number
 
 #: default budget: triangles (a profile vertex counts as :data:`PROFILE_VERTEX_COST`)

@@ -9,10 +9,11 @@ error (:func:`measured_error`) and make the exact boundary the measurements use
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import field
 
 import numpy as np
 
+from .records import dataclass
 from . import budget as _budget
 from .corners import chords_near, corner_angle, exact_crossing, new_vertices, refine
 from .envelope import PRUNE_SHARE, RIM_SHARE, circle_loop, pattern, signed_area, trim

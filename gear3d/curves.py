@@ -30,10 +30,10 @@ Example
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 
+from .records import dataclass
 from .geometry import rotate
 
 #: relative step of the central differences (of the parameter span); the truncation error is

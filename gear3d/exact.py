@@ -25,10 +25,10 @@ certified by the profile builder (Newton on the crossing of the two exact curves
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 
+from .records import dataclass
 from .geometry import check_points, rotate, segment_foot
 
 #: Newton iterations on the foot-point parameter (quadratic convergence from a chord start)

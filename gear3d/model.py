@@ -9,10 +9,11 @@ from __future__ import annotations
 
 import functools
 import math
-from dataclasses import dataclass, field
+from dataclasses import field
 
 import numpy as np
 
+from .records import dataclass
 from .buildsteps import SURVIVED, cusps, exact_boundary, exact_extreme, generate, measured_error, \
     sector_distance, tooth_loop
 from .envelope import RIM_SHARE, signed_area

@@ -25,8 +25,8 @@ from __future__ import annotations
 
 import math
 import sys
-from dataclasses import dataclass
 
+from .records import dataclass
 from . import budget
 from .budget import Estimate, estimate
 from .export.registry import FORMATS

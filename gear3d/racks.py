@@ -13,11 +13,12 @@ trochoid (root fillet, undercut) come out of the same envelope formula.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import field
 from typing import Callable
 
 import numpy as np
 
+from .records import dataclass
 from .errors import GearError
 
 

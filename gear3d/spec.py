@@ -9,8 +9,8 @@ finer build) asks the spec, so nothing below the registry calls back up into it.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
 
+from .records import dataclass
 from .errors import GearError
 from .params import DEFAULT_TOLERANCE
 from . import profiles

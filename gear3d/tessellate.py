@@ -8,10 +8,10 @@ is that measurement, not an estimate.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
 
 import numpy as np
 
+from .records import dataclass
 from .errors import ToleranceError
 from .geometry import point_segment_distance, unique_sorted
 from .params import MIN_TOLERANCE

@@ -8,8 +8,8 @@ importing the exporters.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
 
+from ..records import dataclass
 from ..errors import GearError
 from ..params.exporters import DXF_PARAMS, STEP_PARAMS, SVG_PARAMS, THREEMF_PARAMS
 

@@ -11,8 +11,9 @@ Examples
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import replace
 
+from ..records import dataclass
 from ..errors import GearError, allowed_range, check_bool, check_choice, check_number
 
 

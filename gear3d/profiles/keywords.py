@@ -31,10 +31,11 @@ from __future__ import annotations
 
 import inspect
 import math
-from dataclasses import dataclass, fields
+from dataclasses import fields
 
 import numpy as np
 
+from ..records import dataclass
 from ..envelope import circle_loop
 from ..errors import GearError, check_bool, check_number
 from . import reject_unknown, table

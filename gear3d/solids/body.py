@@ -33,10 +33,10 @@ from __future__ import annotations
 
 import inspect
 import math
-from dataclasses import dataclass
 
 import numpy as np
 
+from ..records import dataclass
 from ..envelope import circle_loop
 from ..errors import GearError, ToleranceError, check_number
 from .features import (apply_features, chamfer_vectors, offset_loops,

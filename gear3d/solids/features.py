@@ -14,10 +14,11 @@ Walls: a bore, keyway or web keeps at least ``module/2`` of material under the r
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import field
 
 import numpy as np
 
+from ..records import dataclass
 from ..envelope import circle_loop
 from ..errors import GearError, check_number
 

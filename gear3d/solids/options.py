@@ -5,8 +5,8 @@ Sizes in mm, angles in degrees."""
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
+from ..records import dataclass
 from ..errors import GearError, check_choice, check_number
 from ..params import BODY, BODY_PARAMS, MAX_TOLERANCE_TEXT, MIN_TOLERANCE, max_tolerance
 from .twist import KINDS, TwistLaw, default_arch_radius, twist_law

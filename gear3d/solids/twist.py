@@ -21,7 +21,9 @@ Laws (β = helix angle at the pitch circle, t = tan β, v = z - W/2):
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import replace
+
+from ..records import dataclass
 from typing import ClassVar
 
 import numpy as np
