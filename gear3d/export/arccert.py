@@ -43,6 +43,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..geometry import unique_sorted
+
 #: samples per arc of the certificate (uniform in the run's parameter), plus both ends
 SAMPLES = 16
 #: samples per span that locate the biarc's joint on the curve
@@ -91,7 +93,7 @@ class Runs:
         t = np.asarray(t, float)
         out = np.empty((len(t), 2))
         pc = self.piece[r]
-        for i in np.unique(pc):
+        for i in unique_sorted(np.sort(pc)):          # np.unique would import numpy.ma
             sel = pc == i
             with np.errstate(invalid="ignore", over="ignore"):
                 out[sel] = self.pieces[i](t[sel])
