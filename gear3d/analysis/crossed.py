@@ -41,27 +41,30 @@ from ..spec import GearSpec
 
 
 def _member(z, beta, mn, an, ha, x):
-    """One gear's radii and angles (mm, rad)."""
+    """One gear's radii and angles (mm, rad); ``x`` its normal shift coefficient."""
     r = z * mn / (2 * math.cos(beta))
     at = math.atan(math.tan(an) / math.cos(beta))
     rb = r * math.cos(at)
     bb = math.asin(math.sin(abs(beta)) * math.cos(an))
     ra = r + (ha + x) * mn
     ga = math.sqrt(ra * ra - rb * rb) - r * math.sin(at)
+    half = (math.pi / 2 + 2 * x * math.tan(an)) / z           # transverse half-thickness angle at r
+    tip_half = half + _inv(at) - _inv(math.acos(rb / ra))
     return {"teeth": z, "helix_angle_deg": math.degrees(beta), "hand": "right" if beta > 0 else "left",
             "pitch_radius": r, "transverse_module": mn / math.cos(beta),
             "transverse_pressure_angle_deg": math.degrees(at), "base_radius": rb,
             "base_helix_angle_deg": math.degrees(bb), "tip_radius": ra, "addendum_path": ga,
-            "path_on_normal": ga / math.cos(bb), "shift_coeff": x}
+            "path_on_normal": ga / math.cos(bb), "shift_coeff": x,
+            "normal_thickness": mn * (math.pi / 2 + 2 * x * math.tan(an)),
+            "tip_thickness_transverse": 2 * ra * tip_half}
 
 
-def crossed_pair(teeth, mate_teeth, normal_module, helix_angle_deg, shaft_angle_deg=90.0,
-                 normal_pressure_angle_deg=20.0, addendum_coeff=1.0, speed_rpm=None) -> dict:
-    """The report of a crossed helical pair (mm, degrees, m/s; see the module doc).
-    ``helix_angle_deg``: β1 of wheel 1, signed (right hand > 0); wheel 2 gets
-    β2 = Σ - β1 (same hand when positive). ``speed_rpm``: wheel 1's speed for the sliding
-    velocity in m/s (None: the sliding velocity per unit pitch-line speed of wheel 1).
-    Raises :class:`GearError` naming a bad parameter."""
+def _inv(a: float) -> float:
+    return math.tan(a) - a
+
+
+def _check_inputs(teeth, mate_teeth, normal_module, helix_angle_deg, shaft_angle_deg, normal_pressure_angle_deg,
+                  addendum_coeff, shift_coeff, mate_shift_coeff):
     z1 = int(check_number("teeth", teeth, 5, 10000, integer=True))
     z2 = int(check_number("mate_teeth", mate_teeth, 5, 10000, integer=True))
     mn = check_number("normal_module", normal_module, 0, 1000, lo_open=True, unit="mm")
@@ -70,38 +73,177 @@ def crossed_pair(teeth, mate_teeth, normal_module, helix_angle_deg, shaft_angle_
     b1 = math.radians(check_number("helix_angle_deg", helix_angle_deg, -80, 80, unit="deg"))
     an = math.radians(check_number("normal_pressure_angle_deg", normal_pressure_angle_deg, 10, 35, unit="deg"))
     ha = check_number("addendum_coeff", addendum_coeff, 0.3, 2.0)
+    x1 = check_number("shift_coeff", shift_coeff, -1.0, 1.5)
+    x2 = check_number("mate_shift_coeff", mate_shift_coeff, -1.0, 1.5)
     b2 = sig - b1
     if abs(b2) > math.radians(80) or b1 == 0 or abs(b2) < 1e-12:
         raise GearError("helix_angle_deg", round(math.degrees(b1), 9),
                         f"a value that leaves wheel 2 a helix angle in (0, 80] deg (beta2 = shaft angle - beta1 "
                         f"= {math.degrees(b2):.6g} deg)")
-    g1, g2 = _member(z1, b1, mn, an, ha, 0.0), _member(z2, b2, mn, an, ha, 0.0)
-    a = g1["pitch_radius"] + g2["pitch_radius"]
-    pbn = math.pi * mn * math.cos(an)
-    length = g1["path_on_normal"] + g2["path_on_normal"]
+    return z1, z2, mn, sig, b1, b2, an, ha, x1, x2
+
+
+def crossed_pair(teeth, mate_teeth, normal_module, helix_angle_deg, shaft_angle_deg=90.0,
+                 normal_pressure_angle_deg=20.0, addendum_coeff=1.0, speed_rpm=None, *,
+                 shift_coeff=0.0, mate_shift_coeff=0.0, center_distance=None) -> dict:
+    """The report of a crossed helical pair (mm, degrees, m/s; see the module doc).
+    ``helix_angle_deg``: β1 of wheel 1, signed (right hand > 0); wheel 2 gets
+    β2 = Σ - β1 (same hand when positive). ``speed_rpm``: wheel 1's speed for the sliding
+    velocity in m/s (None: the sliding velocity per unit pitch-line speed of wheel 1).
+    ``shift_coeff``/``mate_shift_coeff``: normal profile shifts x1, x2 (in [-1, 1.5]);
+    the pair runs at the zero-backlash centre distance a = r1 + r2 + (x1 + x2) m_n, or at
+    ``center_distance`` (mm) when given: the report then gives its normal backlash
+    2 (a - a_0) sin α_n (< 0: the teeth overlap). Raises :class:`GearError` naming a bad
+    parameter (a tooth pointed by its shift names the shift).
+
+    >>> c = crossed_pair(12, 14, 1.0, 45.0, shift_coeff=0.5, mate_shift_coeff=0.3)
+    >>> round(c["center_distance"] - c["standard_center_distance"], 12), round(c["normal_backlash"], 12)
+    (0.8, 0.0)
+    """
+    z1, z2, mn, sig, b1, b2, an, ha, x1, x2 = _check_inputs(
+        teeth, mate_teeth, normal_module, helix_angle_deg, shaft_angle_deg, normal_pressure_angle_deg,
+        addendum_coeff, shift_coeff, mate_shift_coeff)
+    g1, g2 = _member(z1, b1, mn, an, ha, x1), _member(z2, b2, mn, an, ha, x2)
+    for g, name, x in ((g1, "shift_coeff", x1), (g2, "mate_shift_coeff", x2)):
+        if g["tip_thickness_transverse"] <= 0:
+            raise GearError(name, x, "a shift that leaves the tooth a tip (its involutes meet below the tip "
+                            "cylinder)", f"wheel {1 if g is g1 else 2}, {g['teeth']} teeth")
+    a0 = g1["pitch_radius"] + g2["pitch_radius"]
+    a_zb = a0 + (x1 + x2) * mn
+    lo = max(g1["tip_radius"] + g2["base_radius"], g2["tip_radius"] + g1["base_radius"], a0 - 2 * mn)
+    a = a_zb if center_distance is None else check_number(
+        "center_distance", center_distance, lo, a_zb + 2 * mn, lo_open=True, unit="mm")
+    rep = {"kind": "crossed-helical", "shaft_angle_deg": math.degrees(sig), "normal_module": mn,
+           "normal_pressure_angle_deg": math.degrees(an), "center_distance": a,
+           "standard_center_distance": a0, "zero_backlash_center_distance": a_zb,
+           "normal_backlash": 2 * (a - a_zb) * math.sin(an), "ratio": z2 / z1,
+           "same_hand": (b1 > 0) == (b2 > 0), "gear": g1, "mate": g2,
+           "normal_base_pitch": math.pi * mn * math.cos(an)}
+    rep["working_normal_pressure_angle_deg"] = math.degrees(an)
+    rep.update(_working_pitch(rep))
+    path = contact_path(rep)
     rel_slide = math.sin(sig) / math.cos(b2)
     v1 = None if speed_rpm is None else check_number("speed_rpm", speed_rpm, 0, 1e6, lo_open=True) \
         * 2 * math.pi / 60 * g1["pitch_radius"] / 1000
-    return {"kind": "crossed-helical", "shaft_angle_deg": math.degrees(sig), "normal_module": mn,
-            "normal_pressure_angle_deg": math.degrees(an), "center_distance": a, "ratio": z2 / z1,
-            "same_hand": (b1 > 0) == (b2 > 0), "gear": g1, "mate": g2,
-            "normal_base_pitch": pbn, "path_of_contact": {
-                "direction": "the common normal at the pitch point (alpha_n to the tangent plane, "
-                             "perpendicular to the tooth direction)",
-                "approach": g2["path_on_normal"], "recess": g1["path_on_normal"], "length": length},
-            "contact_ratio": length / pbn, "contact": "point",
-            "sliding_per_pitch_speed": rel_slide,
-            "pitch_speed_mps": v1, "sliding_speed_mps": None if v1 is None else v1 * rel_slide,
-            "mate_pitch_speed_per_pitch_speed": math.cos(b1) / math.cos(b2)}
+    rep.update({"path_of_contact": path, "contact_ratio": path["length"] / rep["normal_base_pitch"],
+                "contact": "point", "sliding_per_pitch_speed": rel_slide,
+                "pitch_speed_mps": v1, "sliding_speed_mps": None if v1 is None else v1 * rel_slide,
+                "mate_pitch_speed_per_pitch_speed": math.cos(b1) / math.cos(b2)})
+    return rep
+
+
+def _working_pitch(rep: dict) -> dict:
+    """The working pitch cylinders: radii r_w1 + r_w2 = a on the common perpendicular where
+    the two helices of the flanks' leads (tan β_w = r_w tan β / r) touch with a common
+    tangent, β_w1 + β_w2 = Σ (bisection on r_w1; r_wi = r_i at the standard distance)."""
+    g1, g2, a = rep["gear"], rep["mate"], rep["center_distance"]
+    sig = math.radians(rep["shaft_angle_deg"])
+    t1 = math.tan(math.radians(g1["helix_angle_deg"])) / g1["pitch_radius"]
+    t2 = math.tan(math.radians(g2["helix_angle_deg"])) / g2["pitch_radius"]
+
+    def f(rw1):
+        return math.atan(rw1 * t1) + math.atan((a - rw1) * t2) - sig
+    lo, hi = 0.0, a
+    flo = f(lo)
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        if (f(mid) > 0) == (flo > 0):
+            lo, flo = mid, f(mid)
+        else:
+            hi = mid
+        if hi - lo <= 1e-15 * a:
+            break
+    rw1 = 0.5 * (lo + hi)
+    return {"working_pitch_radius": [rw1, a - rw1],
+            "working_helix_angle_deg": [math.degrees(math.atan(rw1 * t1)), math.degrees(math.atan((a - rw1) * t2))]}
+
+
+def contact_lines(rep: dict) -> dict:
+    """The two lines of action of the pair at its centre distance (world frame of
+    :func:`pair_bodies`), one per flank pair: {"upper": (Q, u), "lower": (Q, u)} with Q a
+    point (mm) and u the unit outward normal of wheel 1's flank there (towards wheel 2).
+    "upper" is wheel 1's counter-clockwise flank (about +z), which drives wheel 2's
+    counter-clockwise flank (about wheel 2's own axis). u is the same at every centre
+    distance and shift: u ⊥ the tooth line t at P0, at α_n to the plane x = const. The line
+    keeps its moments about both axes (it stays tangent to both base cylinders), so moving
+    wheel 2 by Δ along x moves it by d ⊥ u with d·(u × k1) = 0, (d - Δ e_x)·(u × k2) = 0."""
+    import numpy as np
+    g1 = rep["gear"]
+    b1, an = math.radians(g1["helix_angle_deg"]), math.radians(rep["normal_pressure_angle_deg"])
+    sig = math.radians(rep["shaft_angle_deg"])
+    P0 = np.array([g1["pitch_radius"], 0.0, 0.0])
+    tperp = np.array([0.0, -math.cos(b1), math.sin(b1)])
+    ex, k1, k2 = np.array([1.0, 0, 0]), np.array([0, 0, 1.0]), np.array([0.0, math.sin(sig), math.cos(sig)])
+    delta = rep["center_distance"] - rep["standard_center_distance"]
+    out = {}
+    for side, s in (("upper", 1.0), ("lower", -1.0)):
+        u = -s * math.cos(an) * tperp + math.sin(an) * ex
+        c1 = np.cross(u, k1)
+        e1 = c1 / np.linalg.norm(c1)
+        e2 = np.cross(u, e1)
+        c2 = np.cross(u, k2)
+        d = e2 * (delta * (ex @ c2) / (e2 @ c2))
+        out[side] = (P0 + d, u)
+    return out
+
+
+def _foot(Q, u, O, k) -> float:
+    """Parameter s of the point of the line Q + s u nearest the axis O + t k."""
+    import numpy as np
+    w = np.asarray(Q) - np.asarray(O)
+    uk = float(u @ k)
+    return float(((w @ k) * uk - w @ u) / (1 - uk * uk))
+
+
+def contact_path(rep: dict, side: str = "upper") -> dict:
+    """The path of point contact on the line of action of ``side`` (:func:`contact_lines`):
+    along it the distance to axis i is ρ_i(s)² = r_bi² + cos²β_bi (s - s_Ti)² (T_i: the
+    line's tangency point on base cylinder i), so wheel i's flank meets it from T_i (towards
+    the other tangency point) up to its tip cylinder at |s - s_Ti| = √(r_ai² - r_bi²) / cos β_bi.
+    The path is where both flanks are (mm along the line); ``interference`` names a wheel
+    whose tip would run past the other's base cylinder (the path ends at a tangency point)."""
+    import numpy as np
+    g1, g2 = rep["gear"], rep["mate"]
+    Q, u = contact_lines(rep)[side]
+    sig = math.radians(rep["shaft_angle_deg"])
+    O2, k2 = np.array([rep["center_distance"], 0.0, 0.0]), np.array([0.0, math.sin(sig), math.cos(sig)])
+    sT1, sT2 = _foot(Q, u, np.zeros(3), np.array([0.0, 0, 1.0])), _foot(Q, u, O2, k2)
+    sgn = 1.0 if sT2 >= sT1 else -1.0
+    reach = [math.sqrt(g["tip_radius"] ** 2 - g["base_radius"] ** 2) / math.cos(math.radians(g["base_helix_angle_deg"]))
+             for g in (g1, g2)]
+    lo1, hi1 = sorted((sT1, sT1 + sgn * reach[0]))
+    lo2, hi2 = sorted((sT2, sT2 - sgn * reach[1]))
+    lo, hi = max(lo1, lo2), min(hi1, hi2)
+    inter = []
+    if (sgn > 0 and sT2 - sgn * reach[1] < sT1) or (sgn < 0 and sT2 - sgn * reach[1] > sT1):
+        inter.append("mate tip past the gear's base cylinder")
+    if (sgn > 0 and sT1 + sgn * reach[0] > sT2) or (sgn < 0 and sT1 + sgn * reach[0] < sT2):
+        inter.append("gear tip past the mate's base cylinder")
+    start, end = (lo, hi) if sgn > 0 else (hi, lo)
+    mid = _foot(Q, u, np.zeros(3), np.array([1.0, 0, 0]))     # nearest the common perpendicular
+    return {"direction": "a line tangent to both base cylinders, along the flanks' common normal u (at alpha_n "
+                         "to the plane normal to the common perpendicular)",
+            "point": [float(v) for v in Q], "normal": [float(v) for v in u],
+            "start": [float(v) for v in Q + start * u], "end": [float(v) for v in Q + end * u],
+            "approach": float(min(max(sgn * (mid - start), 0.0), hi - lo)),
+            "recess": float(min(max(sgn * (end - mid), 0.0), hi - lo)),
+            "length": float(max(hi - lo, 0.0)), "tangency": [sT1, sT2],
+            "interference": inter}
 
 
 def summary(rep: dict) -> str:
     """One line: centre distance, helix angles, contact ratio and sliding."""
     g1, g2 = rep["gear"], rep["mate"]
+    shifts = ""
+    if g1.get("shift_coeff") or g2.get("shift_coeff"):
+        shifts = f", shifts {g1['shift_coeff']:g}/{g2['shift_coeff']:g}"
+    lash = ""
+    if abs(rep.get("normal_backlash", 0.0)) > 1e-12:
+        lash = f" (normal backlash {rep['normal_backlash'] * 1000:.3f} um)"
     s = (f"crossed helical {g1['teeth']}/{g2['teeth']}, shaft angle {rep['shaft_angle_deg']:g} deg: "
          f"beta {g1['helix_angle_deg']:.4g}/{g2['helix_angle_deg']:.4g} deg ({'same' if rep['same_hand'] else 'opposite'} "
-         f"hands), a = {rep['center_distance']:.4f} mm, contact ratio {rep['contact_ratio']:.4f} (point contact), "
-         f"sliding {rep['sliding_per_pitch_speed']:.4f} x the pitch speed")
+         f"hands){shifts}, a = {rep['center_distance']:.4f} mm{lash}, contact ratio {rep['contact_ratio']:.4f} "
+         f"(point contact), sliding {rep['sliding_per_pitch_speed']:.4f} x the pitch speed")
     if rep["sliding_speed_mps"] is not None:
         s += f" = {rep['sliding_speed_mps']:.4g} m/s"
     return s
@@ -133,7 +275,7 @@ def member_spec(rep: dict, key: str, width: float, tolerance: float) -> tuple:
     """(involute family keywords, body keywords) of member ``key`` ("gear" or "mate") of a
     crossed pair ``rep``: the transverse module m_n / cos β and pressure angle
     atan(tan α_n / cos β), addendum h_a m_n and dedendum 1.25 m_n (in transverse modules:
-    times cos β); a helical body ``width`` mm wide at ``tolerance`` mm, its hand from β."""
+    times cos β), the shift x_n m_n (x_t = x_n cos β); a helical body ``width`` mm wide at ``tolerance`` mm, its hand from β."""
     g = rep[key]
     mn, an = rep["normal_module"], math.radians(rep["normal_pressure_angle_deg"])
     cb = math.cos(math.radians(g["helix_angle_deg"]))
@@ -143,9 +285,12 @@ def member_spec(rep: dict, key: str, width: float, tolerance: float) -> tuple:
                         f"a value that keeps |beta| <= {lim:.4g} deg on both wheels for their bodies (the transverse "
                         f"pressure angle atan(tan a_n / cos beta) within {MAX_TRANSVERSE_DEG:g} deg)",
                         f"wheel {1 if key == 'gear' else 2} has beta = {g['helix_angle_deg']:.6g} deg")
-    ha = (g["tip_radius"] - g["pitch_radius"]) / mn
+    x = g.get("shift_coeff", 0.0)
+    ha = (g["tip_radius"] - g["pitch_radius"]) / mn - x
     params = {"teeth": g["teeth"], "module": mn / cb, "pressure_angle_deg": math.degrees(math.atan(math.tan(an) / cb)),
               "addendum_coeff": ha * cb, "dedendum_coeff": 1.25 * cb}
+    if x:
+        params["shift_coeff"] = x * cb              # x_n m_n = x_t m_t
     return params, {"tolerance": tolerance, "kind": "helical", "helix_angle_deg": abs(g["helix_angle_deg"]),
                     "width": width, "hand": g["hand"]}
 
