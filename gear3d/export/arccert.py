@@ -39,10 +39,10 @@ True
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 
+from ..records import dataclass
 from ..geometry import unique_sorted
 
 #: samples per arc of the certificate (uniform in the run's parameter), plus both ends

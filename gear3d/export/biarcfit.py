@@ -28,10 +28,10 @@ Example
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 
+from ..records import dataclass
 from ..geometry import unique_sorted
 from .arccert import (ESTIMATE_SAMPLES, EVALS_PER_SPAN, STEP, Runs, Spans, certify, estimate, point_tangents,
                       transform, unit, untransform)

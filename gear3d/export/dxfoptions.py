@@ -3,10 +3,11 @@
 keywords or as ``options=DxfOptions(...)``."""
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass
+from dataclasses import asdict
 
 import numpy as np
 
+from ..records import dataclass
 from ..errors import GearError
 from ..params.exporters import DXF
 

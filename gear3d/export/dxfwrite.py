@@ -26,10 +26,11 @@ from __future__ import annotations
 
 import functools
 import math
-from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
+
+from ..records import dataclass
 
 #: versions written from a template (the others go through ezdxf)
 FAST_VERSIONS = ("R2000", "R12")

@@ -28,10 +28,10 @@ Units: mm, radians inside.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 
+from ..records import dataclass
 from ..geometry import rotate, signed_area
 from .arccert import Runs
 
