@@ -16,7 +16,8 @@ estimated from counts known before any work:
 * **bevel**: each member's section sampled on one tooth period (``budget.probing``: the
   builder stopped at its first sample, milliseconds), its cap segments, and the cone
   intersection's cost per (section vertex x cap segment) (COSTS["bevel.body"]); the
-  rolling check (COSTS["bevel.rolling"]); the export;
+  rolling check (COSTS["bevel.rolling"], and COSTS["bevel.rolling.sphere"] a sphere beyond
+  the first with other teeth: uniform clearance); the export;
 * **face gear**: the sections and vertices a section the loft needs at the tolerance (a
   power law in tolerance / module fitted to the builder's plans, :func:`face_counts`), the
   plan's cost per (section x vertex) (COSTS["facegear.plan"]) and the body's per triangle
@@ -250,7 +251,11 @@ def plan_bevel(kw: dict, output=None, step=None, png=None, json=None, preview=No
         parts.append(nv)
     est = Estimate(est.seconds, est.bytes, tri, est.what)          # a pair's file holds both members
     if kw.get("check"):
+        from .bevel.faces import distinct_rolls
         est = est.then(estimate("bevel.rolling", max(kw["teeth"], kw["mate_teeth"]), 0.0, "the rolling check"))
+        more = distinct_rolls(geo) - 1              # uniform clearance: the spheres across the face
+        if more:
+            est = est.then(estimate("bevel.rolling.sphere", more, 0.0, f"the rolling check's {more} more spheres"))
     ext = _ext(output)
     if step == "brep" and ext in (".step", ".stp"):      # cones over the certified sections, sewn tooth by tooth
         z = {"gear": kw["teeth"], "mate": kw["mate_teeth"], "pair": kw["teeth"] + kw["mate_teeth"]}[part]

@@ -47,7 +47,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ..errors import check_choice, check_number
+from ..errors import GearError, check_choice, check_number
 from .crown import crown_elements, element_xt
 from .geometry import flank_turn
 from .sphere import FLIP, contact_roll, generated_points, sphere_envelope_piece, to_sphere
@@ -82,7 +82,7 @@ class Tooth:
     a: float
     b: float
     loop: np.ndarray
-    copies: np.ndarray | None = None
+    copies: dict | None = None
 
     def side(self, th):
         """u(ϑ) (rad): the upper side's azimuth at polar angles ``th`` within [root, tip]."""
@@ -255,15 +255,19 @@ def _tip_crossings(X, theta_tip):
 
 def _teeth_near(tooth_a: Tooth, phi, reach: float, half=None):
     """Copies of A's tooth boundary (own frame, (K, N, 3); ``half``: "upper" or "lower" side
-    only) whose centres turned by ``phi`` lie within ``reach`` pitches of azimuth 0."""
+    only) whose centres turned by ``phi`` lie within ``reach`` pitches of azimuth 0 (each
+    copy made once, when first asked for)."""
     p = 2 * math.pi / tooth_a.teeth
     if tooth_a.copies is None:
-        tooth_a.copies = np.stack([tooth_a.loop @ _rot_z(k * p).T for k in range(tooth_a.teeth)])
+        tooth_a.copies = {}
     n = len(tooth_a.loop) // 2
     ks = np.arange(tooth_a.teeth)
     ks = ks[np.abs((ks * p + phi + math.pi) % (2 * math.pi) - math.pi) <= reach * p]
+    for k in ks:
+        if k not in tooth_a.copies:
+            tooth_a.copies[k] = tooth_a.loop @ _rot_z(k * p).T
     part = {None: slice(None), "lower": slice(0, n), "upper": slice(n, None)}[half]
-    return tooth_a.copies[ks][:, part]
+    return np.stack([tooth_a.copies[k][part] for k in ks])
 
 
 def _mate_points(t1: Tooth, t2: Tooth, place: Placement, phi, take_up, half=None, reach=3.0):
@@ -395,50 +399,62 @@ def closing_turns(t1: Tooth, t2: Tooth, place: Placement, phis, half: str):
     return (minus if sgn > 0 else plus) - back
 
 
-def check_pair(geo, tolerance: float = CHECK_TOLERANCE, mate_form: str | None = None, grid: int = GRID) -> dict:
+def check_pair(geo, tolerance: float = CHECK_TOLERANCE, mate_form: str | None = None, grid: int = GRID,
+               spheres=None, share: bool = True) -> dict:
     """Roll the pair of ``geo`` (gear in ``geo.form``, mate in ``mate_form``, default the
-    same) over one pitch of gear 1 at the nominal placement (zero backlash by design).
+    same) over one pitch of gear 1 at the nominal placement (zero backlash by design), on
+    several spheres across the face (:mod:`gear3d.bevel.faces`: ``spheres`` their cone
+    distances, mm, default :func:`gear3d.bevel.faces.cone_distances`; ``share``: spheres with
+    the same teeth share one roll).
 
-    Returns a :class:`gear3d.reports.BevelCheckReport` (a frozen mapping; mm on the heel
-    sphere / heel pitch circles):
-    ``interference`` and ``max_penetration``; ``backlash_min``/``backlash_max`` (the
-    circumferential play on the mate's heel pitch circle, < 0: the teeth overlap);
+    Returns a :class:`gear3d.reports.BevelCheckReport` (a frozen mapping; mm):
+    ``interference`` and ``max_penetration`` (the largest over the spheres, on its sphere);
+    ``backlash_min``/``backlash_max`` (the rigid mate's circumferential play on its heel
+    pitch circle, the smallest free turn over the face each way; < 0: the teeth overlap);
     ``transmission_error_drive``/``_coast`` (peak to peak on that circle, the mate loaded on
-    gear 1's upper/lower flank) and in arc seconds of the mate; ``contact_ratio`` (conjugate
-    action, see :func:`conjugate_action`), ``path_distance``, ``conjugate``; the Tredgold
-    (back-cone) virtual spur pair's contact ratio for comparison."""
+    gear 1's upper/lower flank) and in arc seconds of the mate; ``profile_contact_ratio``
+    (conjugate action, see :func:`conjugate_action`, on the mid-face sphere) with its
+    ``_min``/``_max`` over the face, ``contact_ratio`` (it plus the face contact ratio),
+    ``path_distance`` (the largest over the spheres), ``conjugate`` (on every sphere);
+    ``spheres`` (a :class:`gear3d.reports.BevelSphereReport` each, toe to heel); the
+    Tredgold (back-cone) virtual spur pair's contact ratio for comparison."""
+    from .faces import cone_distances, face_check, tip_polar
     from .geometry import FORMS
     tol = min(check_number("tolerance", tolerance, 1e-6, 1.0, unit="mm"), CHECK_TOLERANCE)
     mate_form = geo.form if mate_form is None else check_choice("mate_form", mate_form, FORMS)
     check_number("grid", grid, 8, 100000, integer=True)
+    radii = cone_distances(geo) if spheres is None else _spheres(geo, spheres)
     t1 = tooth(geo, "gear", tol)
     t2 = tooth(replace(geo, form=mate_form), "mate", tol)
-    place = Placement(geo)
-    R = geo.cone_distance
-    r2 = geo.module * geo.mate.teeth / 2
+    tips = [(tip_polar(geo, "gear", r), tip_polar(geo, "mate", r)) for r in radii]
     phis = np.linspace(0.0, 2 * math.pi / geo.gear.teeth, int(grid), endpoint=False)
-    _, _, depth = gaps(t1, t2, place, phis)
-    up = closing_turns(t1, t2, place, phis, "upper")
-    lo = closing_turns(t1, t2, place, phis, "lower")
-    lash = (up + lo) * r2
-    pen = float(depth.max() * R)
-    ca = conjugate_action(t1, t2, place, R)
+    rows, fw = face_check(geo, t1, t2, radii, tips, phis, tol, share)
+    r2 = geo.module * geo.mate.teeth / 2
     face = face_contact_ratio(geo)
-    eps = float(ca["contact_ratio"]) + face
+    eps = fw["profile_contact_ratio"] + face
     arcsec = 180 * 3600 / math.pi
     from ..reports import BevelCheckReport
     return BevelCheckReport(
-        form=geo.form, mate_form=mate_form, conjugate=ca["conjugate"],
-        interference=bool(pen > tol), max_penetration=pen,
-        backlash_min=float(lash.min()), backlash_max=float(lash.max()),
-        transmission_error_drive=float(np.ptp(up) * r2), transmission_error_coast=float(np.ptp(lo) * r2),
-        transmission_error_drive_arcsec=float(np.ptp(up) * arcsec),
-        transmission_error_coast_arcsec=float(np.ptp(lo) * arcsec),
-        contact_ratio=eps, profile_contact_ratio=float(ca["contact_ratio"]), face_contact_ratio=face,
-        path_distance=ca["path_distance"],
+        form=geo.form, mate_form=mate_form, conjugate=fw["conjugate"],
+        interference=fw["interference"], max_penetration=fw["max_penetration"],
+        backlash_min=fw["backlash_min"], backlash_max=fw["backlash_max"],
+        transmission_error_drive=fw["te_drive"] * r2, transmission_error_coast=fw["te_coast"] * r2,
+        transmission_error_drive_arcsec=fw["te_drive"] * arcsec, transmission_error_coast_arcsec=fw["te_coast"] * arcsec,
+        contact_ratio=eps, profile_contact_ratio=fw["profile_contact_ratio"], face_contact_ratio=face,
+        path_distance=fw["path_distance"],
         virtual_contact_ratio=virtual_contact_ratio(geo), continuous=bool(eps >= 1),
         positions=int(grid), tolerance=tol, band=BAND,
-        pairing=pairing(geo.form, mate_form))
+        pairing=pairing(geo.form, mate_form), profile_contact_ratio_min=fw["profile_contact_ratio_min"],
+        profile_contact_ratio_max=fw["profile_contact_ratio_max"], spheres=rows, rolls=fw["rolls"])
+
+
+def _spheres(geo, spheres) -> np.ndarray:
+    """Explicit cone distances (mm), each within the face (toe .. heel)."""
+    lo, hi = geo.inner_cone_distance, geo.cone_distance
+    out = np.array([check_number("spheres", r, lo - 1e-9, hi + 1e-9, unit="mm") for r in spheres], float)
+    if not len(out):
+        raise GearError("spheres", "[]", "at least one cone distance", "no sphere to roll")
+    return np.clip(np.sort(out), lo, hi)
 
 
 def face_contact_ratio(geo, samples: int = 257) -> float:
@@ -457,40 +473,46 @@ def contact_lines(geo, lines: int = 11, spheres: int = 41, mate_form: str | None
     """The contact pattern on gear 1's upper flank over the face (mm): for ``lines`` gear
     angles spread over the whole contact of tooth 0, the line of contact as (cone distance ρ,
     height above the pitch cone on that sphere, ρ (ϑ - δ1)) rows; also the active zone's
-    edges (its highest and lowest points on each sphere) and the contact ratios."""
+    edges (its highest and lowest points on each sphere) and the contact ratios. The zone on
+    each sphere is its own conjugate action's (:func:`gear3d.bevel.faces.sphere_contacts`:
+    uniform clearance shortens it towards the toe), linear in ρ between the rolled spheres;
+    ``profile_contact_ratio`` is the mid-face sphere's, as :func:`check_pair`'s."""
+    from .faces import sphere_contacts
     from .spiral import law
     mate_form = geo.form if mate_form is None else mate_form
     t1 = tooth(geo, "gear")
     t2 = tooth(replace(geo, form=mate_form), "mate")
-    place = Placement(geo)
-    ca = conjugate_action(t1, t2, place, geo.cone_distance)
+    radii, cas = sphere_contacts(geo, t1, t2)
     G, T = flank_points(t1, 4001)
     phi_w = willis(G, T, np.array([math.sin(t1.delta), 0.0, math.cos(t1.delta)]))
     o = np.argsort(phi_w)
     phi_w, height = phi_w[o], (np.arccos(np.clip(G[o, 2], -1, 1)) - t1.delta)
+    ends = np.array([ca["overlap"] if ca["overlap"] else (phi_w[0], phi_w[0]) for ca in cas])
     rho = np.linspace(geo.inner_cone_distance, geo.cone_distance, spheres)
     theta = np.zeros_like(rho) if geo.line is None else law(geo, "gear")(rho)
-    lo, hi = ca["overlap"] if ca["overlap"] else (phi_w[0], phi_w[0])
+    lo, hi = (np.interp(rho, radii, ends[:, k]) for k in (0, 1))
     out = []
-    for phi in np.linspace(lo - theta.max(), hi - theta.min(), lines):
+    for phi in np.linspace((lo - theta).min(), (hi - theta).max(), lines):
         w = phi + theta                                 # the straight flank's angle on each sphere
         on = (w >= lo) & (w <= hi)
         out.append(np.column_stack([rho[on], rho[on] * np.interp(w[on], phi_w, height)]))
-    edges = [np.column_stack([rho, rho * np.interp(np.full_like(rho, a), phi_w, height)]) for a in (lo, hi)]
-    return {"lines": out, "edges": edges, "profile_contact_ratio": float(ca["contact_ratio"]),
-            "face_contact_ratio": face_contact_ratio(geo), "conjugate": ca["conjugate"]}
+    edges = [np.column_stack([rho, rho * np.interp(a, phi_w, height)]) for a in (lo, hi)]
+    mid = int(np.argmin(np.abs(radii - (geo.cone_distance - 0.5 * geo.face_width))))
+    return {"lines": out, "edges": edges, "profile_contact_ratio": float(cas[mid]["contact_ratio"]),
+            "face_contact_ratio": face_contact_ratio(geo), "conjugate": all(ca["conjugate"] for ca in cas)}
 
 
-def virtual_contact_ratio(geo) -> float:
+def virtual_contact_ratio(geo, addenda=None) -> float:
     """The contact ratio of Tredgold's virtual spur pair (back cones developed: pitch radii
-    R_e tan δ, the heel addenda, the pressure angle), for comparison. An internal member
-    (δ > 90°: R_e tan δ < 0) is the virtual internal gear of radius R_e |tan δ|, tip radius
-    R_e |tan δ| - h_a: its term is -√(r_a² - r_b²) + r sin α."""
+    R_e tan δ, the heel addenda or ``addenda`` (gear, mate; mm), the pressure angle), for
+    comparison. An internal member (δ > 90°: R_e tan δ < 0) is the virtual internal gear of
+    radius R_e |tan δ|, tip radius R_e |tan δ| - h_a: its term is -√(r_a² - r_b²) + r sin α."""
     a, m = geo.pressure_angle, geo.module
+    adds = (geo.gear.addendum, geo.mate.addendum) if addenda is None else addenda
     total = 0.0
-    for c in (geo.gear, geo.mate):
+    for c, h in zip((geo.gear, geo.mate), adds):
         rv = geo.cone_distance * math.tan(c.pitch_angle)
-        total += math.copysign(math.sqrt((rv + c.addendum) ** 2 - (rv * math.cos(a)) ** 2), rv) - rv * math.sin(a)
+        total += math.copysign(math.sqrt((rv + h) ** 2 - (rv * math.cos(a)) ** 2), rv) - rv * math.sin(a)
     return total / (math.pi * m * math.cos(a))
 
 
@@ -511,6 +533,9 @@ def summary(rep: dict) -> str:
     lash = f"backlash {rep['backlash_min'] * um:.2f} .. {rep['backlash_max'] * um:.2f} um"
     te = f"transmission error {max(rep['transmission_error_drive'], rep['transmission_error_coast']) * um:.2f} um"
     eps = f"contact ratio {rep['contact_ratio']:.3f} (Tredgold {rep['virtual_contact_ratio']:.3f})"
+    if rep["profile_contact_ratio_max"] - rep["profile_contact_ratio_min"] > 5e-4:
+        eps += (f" (profile {rep['profile_contact_ratio']:.3f} mid-face, {rep['profile_contact_ratio_min']:.3f} .. "
+                f"{rep['profile_contact_ratio_max']:.3f} over the face)")
     if rep["contact_ratio"] < 1:
         eps += " < 1: the teeth lose contact" if rep["conjugate"] else " < 1: not conjugate"
     return (f"{'INTERFERENCE' if rep['interference'] else 'no interference'}: {pen}; {lash}; {eps}; {te}; "

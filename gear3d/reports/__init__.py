@@ -27,6 +27,7 @@ _LAZY = {
     "BevelCheckReport": "gear3d.reports.bevel",
     "MemberReport": "gear3d.reports.bevel",
     "BevelReport": "gear3d.reports.bevel",
+    "BevelSphereReport": "gear3d.reports.bevel",
     "WormReport": "gear3d.reports.worm",
     "FaceGearReport": "gear3d.reports.facegear",
     "RackReport": "gear3d.reports.racks",

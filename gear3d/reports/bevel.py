@@ -11,8 +11,12 @@ from .base import Report
 
 @dataclass(frozen=True, eq=False, repr=False)
 class BevelCheckReport(Report):
-    """The rolling check of a bevel pair (:func:`gear3d.bevel.rolling.check_pair`): mm on the
-    heel sphere and the mate's heel pitch circle, arc seconds of the mate where a key says so.
+    """The rolling check of a bevel pair (:func:`gear3d.bevel.rolling.check_pair`), rolled on
+    several spheres across the face (:mod:`gear3d.bevel.faces`): the face-wide results (mm
+    on the mate's heel pitch circle for backlash and transmission error, on its own sphere
+    for a penetration; arc seconds of the mate where a key says so), the profile contact
+    ratio at mid-face with its least and largest over the face, and ``spheres``: one
+    :class:`BevelSphereReport` a sphere, toe to heel.
 
     >>> from gear3d.bevel.geometry import pair_geometry
     >>> from gear3d.bevel.rolling import check_pair
@@ -43,6 +47,38 @@ class BevelCheckReport(Report):
     tolerance: float
     band: float
     pairing: str
+    #: the profile contact ratio's least and largest over the spheres (uniform clearance:
+    #: the toe's and the heel's; standard depth: both the mid-face one)
+    profile_contact_ratio_min: float = 0.0
+    profile_contact_ratio_max: float = 0.0
+    #: the spheres rolled, toe to heel (:class:`BevelSphereReport`)
+    spheres: list = field(default_factory=list)
+    #: distinct rolls made (spheres with the same teeth on the unit sphere share one)
+    rolls: int = 0
+    extra: dict = field(default_factory=dict)
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class BevelSphereReport(Report):
+    """One sphere of the rolling check (mm on that sphere: its radius ``cone_distance``, the
+    mate's pitch circle there for backlash and transmission error); the tips are each
+    member's polar angle on it (its unturned frame: beyond 90° for an internal member).
+
+    >>> BevelSphereReport(30.0, 27.0, 66.0, 1.7, True, 0.0, False, 0.0, 0.0, 0.0, 0.0, 0.0)["cone_distance"]
+    30.0
+    """
+    cone_distance: float
+    gear_tip_angle_deg: float
+    mate_tip_angle_deg: float
+    profile_contact_ratio: float
+    conjugate: bool
+    path_distance: float | None
+    interference: bool
+    max_penetration: float
+    backlash_min: float
+    backlash_max: float
+    transmission_error_drive: float
+    transmission_error_coast: float
     extra: dict = field(default_factory=dict)
 
 
