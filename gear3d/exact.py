@@ -221,7 +221,7 @@ class ExactBoundary:
                     inside |= known & (t_i >= pc.lo[c]) & (t_i <= pc.hi[c])
                 sus = np.nonzero(~inside)[0]
                 if len(sus) and self.polygon is not None:
-                    on = self._poly_dist(foot[sus]) <= self._slack
+                    on = self._on_polygon(foot[sus])
                     bad = sus[~on]
                     if len(bad):
                         ends = pc.alive[c[bad]] | pc.alive[c[bad] + 1]
@@ -252,7 +252,7 @@ class ExactBoundary:
         rows = np.arange(len(q))
         for _ in range(4):
             x = lo[:, None] + (hi - lo)[:, None] * frac[None, :]
-            on = (self._poly_dist(pc.f(x.ravel())) <= self._slack).reshape(x.shape)
+            on = self._on_polygon(pc.f(x.ravel())).reshape(x.shape)
             # the last grid point still on the polygon, counting from lo (all on: the last)
             k = np.where(on.all(axis=1), len(frac), np.argmin(on, axis=1)) - 1
             new_lo = np.where(k >= 0, x[rows, np.maximum(k, 0)], lo)
@@ -260,6 +260,30 @@ class ExactBoundary:
             lo = new_lo
         d = np.hypot(*(pc.f(lo) - q).T)
         return np.where(np.isfinite(d), d, np.inf)
+
+    def _on_polygon(self, pts: np.ndarray) -> np.ndarray:
+        """Whether each point (N, 2) lies within :attr:`_slack` of the trimmed polygon:
+        ``_poly_dist(pts) <= _slack``, with the edges whose bounding box lies more than twice
+        the slack away from the points' box left out (every point is farther than the slack
+        from them, so the answer is the same; the measure's suspicious feet cluster at a
+        corner, and a tooth's polygon has about 150 edges)."""
+        a, b = self.polygon
+        slack = self._slack
+        fin = np.isfinite(pts).all(axis=1)
+        if not fin.any():                       # NaN / inf points are never on the polygon
+            return np.zeros(len(pts), bool)
+        m = 2 * slack + 1e-9
+        lo, hi = pts[fin].min(axis=0) - m, pts[fin].max(axis=0) + m
+        near = ((np.maximum(a, b) >= lo) & (np.minimum(a, b) <= hi)).all(axis=1)
+        if not near.any():
+            return np.zeros(len(pts), bool)
+        a, b = a[near], b[near]
+        out = np.empty(len(pts), bool)
+        step = max(1, 200_000 // len(a))
+        for s0 in range(0, len(pts), step):
+            d, _ = segment_foot(pts[s0:s0 + step, None, :], a[None], b[None])
+            out[s0:s0 + step] = d.min(axis=1) <= slack
+        return out
 
     def _poly_dist(self, pts: np.ndarray) -> np.ndarray:
         a, b = self.polygon
