@@ -218,7 +218,7 @@ def against(X, tooth_b: Tooth, depth: bool = True):
     depth = 0.0
     if inside.any():
         Y = _unit(th[inside], np.abs(w[inside]))
-        depth = float(_polyline_distance(Y, _unit(tooth_b.theta, tooth_b.az)).max())
+        depth = _max_distance(Y, _unit(tooth_b.theta, tooth_b.az))
     return plus, minus, depth
 
 
@@ -226,6 +226,21 @@ def _unit(th, az):
     """Unit vectors (N, 3) at polar angles ``th`` and azimuths ``az`` (rad)."""
     st = np.sin(th)
     return np.stack([st * np.cos(az), st * np.sin(az), np.cos(th)], axis=1)
+
+
+def _max_distance(Y, S, near: int = 8) -> float:
+    """The largest over the unit vectors Y (N, 3) of their distance to the polyline S (M, 3)
+    (chordal, as :func:`_polyline_distance`): each point against the segments at its
+    ``near`` nearest vertices (a k-d tree; the polyline's vertices are close and its
+    segments short, so the nearest segment ends at one of them)."""
+    if len(Y) * len(S) <= 200_000:
+        return float(_polyline_distance(Y, S).max())
+    from scipy.spatial import cKDTree
+    _, nk = cKDTree(S).query(Y, k=min(near, len(S)))
+    i = np.clip(np.concatenate([nk - 1, nk], axis=1), 0, len(S) - 2)        # segments i .. i+1
+    A, AB = S[i], S[i + 1] - S[i]
+    t = np.clip(((Y[:, None, :] - A) * AB).sum(-1) / np.maximum((AB * AB).sum(-1), 1e-300), 0.0, 1.0)
+    return float(np.linalg.norm(A + t[..., None] * AB - Y[:, None, :], axis=-1).min(axis=1).max())
 
 
 def _polyline_distance(Y, S, chunk: int = 64):
