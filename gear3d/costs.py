@@ -63,6 +63,12 @@ COSTS = {
                       "0.56 s, +41 MB"),
     "write.svg": Cost(1.2e-5, 900.0, 0.05, 30e6, "measured 2026-11-26, the same 13 parts: 3.6-9.8 us a vertex; "
                       "triangular z=20,000: 0.76 s; z=100,000 (500,000 vertices): 4.9 s, 533 MB peak in all"),
+    # a rack's DXF/SVG on top of write.dxf / write.svg: its whole outline is one chain (no tooth period to
+    # repeat), walked and checked whole, per outline vertex
+    "write.rack": Cost(3.5e-5, 2000.0, 0.0, 0.0, "measured 2026-11-26 (CPU, write_rack alone, after the "
+                       "outline's start search was vectorised and segments_distance windowed): involute z=2000 / "
+                       "10,000 43 / 38 us, sine z=3000 27 us, cycloidal z=2000 35 us, triangular z=10,000 37 us a "
+                       "vertex, less the 12 us of write.dxf; 233 MB peak at 80,000 vertices"),
     # the sampled fallback (a reference 20x finer, shapely, up to 3 budgets): per profile vertex
     "write.dxf.sampled": Cost(1.5e-3, 4000.0, 0.1, 250e6, "measured 2026-11-26, forced: involute z=20 / 200 0.37 / "
                               "0.32 ms, triangular z=4000 0.11 ms, sine z=300 0.32 ms, cycloidal z=1000 rc 100 "
@@ -166,6 +172,10 @@ COSTS = {
     "bevel.rolling.sphere": Cost(0.25, 1e6, 0.0, 0.0, "measured 2026-11-26 (CPU): each further sphere of a "
                                  "uniform-clearance pair's check (96 positions) 0.14 s (20/40 m 2: 5 spheres 0.88 s "
                                  "against 0.33 s standard) to 0.19 s (300/300 m 1: 7 spheres 1.70 s against 0.57 s)"),
+    "crossed.check": Cost(7e-8, 250.0, 0.8, 60e6, "measured 2026-11-26 in process (CPU, ru_maxrss): crossed "
+                          "helical checks 12/14 m 1 (faces 6 / 30 mm), 40/60 m 2 (20), 20/30 at 30 deg (10), 100/100 "
+                          "m 0.5 (40): 0.68-6.4 s for 3.5 M-141 M flank points (46-110 ns a point beyond 0.5 s); "
+                          "177-306 MB for 1.1-2.0 M points held at once (analysis.crossed_roll.work_count)"),
     "facegear.plan": Cost(2.5e-4, 0.0, 0.4, 40e6, "measured 2026-11-26 (CPU): z2 = 60, z0 = 20 at 0.1 um: 177 "
                           "sections x 93 vertices, about 4 s beyond the body (2.4e-4 s an item); the limits' scan "
                           "0.3 s"),

@@ -368,10 +368,27 @@ def _pinion_plan(g, kw: dict, tol: float) -> Estimate:
 
 # ------------------------------------------------------------------ crossed helical pairs
 
-def plan_crossed(rep: dict, width: float, tolerance: float, output=None) -> Estimate:
-    """``gear3d check pair involute --crossed ... -o pair.3mf --width W``: both helical
-    bodies (:func:`gear3d.plan.plan_body` each: profile, layers) and the file of both;
-    refused before any work."""
+def crossed_check_estimate(rep: dict, width: float) -> Estimate:
+    """The rolling check of a crossed pair (:func:`gear3d.analysis.crossed_roll.check_crossed`):
+    its flank points evaluated x COSTS["crossed.check"], the most held at once for the bytes
+    (:func:`gear3d.analysis.crossed_roll.work_count`, counted without any work)."""
+    from .analysis.crossed_roll import work_count
+    evals, held = work_count(rep, check_number("width", width, 0, 10_000, lo_open=True, unit="mm"))
+    e = estimate("crossed.check", evals, 0.0, f"the rolling check ({evals:,.0f} flank points)")
+    c = budget.COSTS["crossed.check"]
+    return Estimate(e.seconds, c.fixed_bytes + c.bytes * held, 0.0, e.what)
+
+
+def plan_crossed_check(rep: dict, width: float) -> Estimate:
+    """``gear3d check pair involute --crossed ... --check --width W``: the rolling check,
+    refused before any work (naming ``width``, which sets the points across the face)."""
+    return _decide(crossed_check_estimate(rep, width), "width", width)
+
+
+def plan_crossed(rep: dict, width: float, tolerance: float, output=None, check: bool = False) -> Estimate:
+    """``gear3d check pair involute --crossed ... -o pair.3mf --width W [--check]``: both
+    helical bodies (:func:`gear3d.plan.plan_body` each: profile, layers), the file of both
+    and (``check``) the rolling check; refused before any work."""
     from .analysis.crossed import member_spec
     from .plan import plan_body
     tol = check_number("tolerance", tolerance, 1e-6, 1.0, unit="mm")
@@ -386,6 +403,8 @@ def plan_crossed(rep: dict, width: float, tolerance: float, output=None) -> Esti
     ext = _ext(output)
     if ext:
         est = est.then(mesh_write(ext, tri))
+    if check:
+        est = est.then(crossed_check_estimate(rep, width))
     z = max(rep["gear"]["teeth"], rep["mate"]["teeth"])
     return _decide(est, "tolerance", tol) if z <= 1000 else _decide(est, "teeth", z)
 

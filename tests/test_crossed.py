@@ -106,7 +106,8 @@ def test_cli_crossed_json_and_refusals(tmp_path, capsys):
     assert rep["sliding_speed_mps"] == pytest.approx(v1 * math.sqrt(2), rel=1e-12)
     assert "contact ratio" in capsys.readouterr().out
     for argv, name in ((["--helix-angle-deg", "5", "--shaft-angle-deg", "90"], "helix_angle_deg"),
-                       (["--helix-angle-deg", "45", "--shift-coeff", "0.2"], "shift_coeff")):
+                       (["--helix-angle-deg", "45", "--shift-coeff", "auto"], "shift_coeff"),
+                       (["--helix-angle-deg", "45", "--mate-shift-coeff", "2"], "mate_shift_coeff")):
         out = tmp_path / "x.json"
         assert main(["pair", "involute", "--crossed", "--teeth", "20", "--mate-teeth", "30", *argv,
                      "--json", str(out)]) == 2

@@ -55,8 +55,8 @@ from ..errors import check_number
 GRID = 24
 CONTACT_GRID = 96
 #: flank samples across the depth, and the step across the face (in normal modules)
-RHO_SAMPLES = 41
-Z_STEP = 0.05
+RHO_SAMPLES = 25
+Z_STEP = 0.1
 #: mm along the normal: a gap within this closes (conjugate contact)
 BAND = 1e-6
 #: the interference threshold's default (mm)
@@ -65,6 +65,9 @@ CHECK_TOLERANCE = 1e-4
 TOOL_TIP = 0.25
 #: bisection rounds of a contact end
 END_ROUNDS = 48
+#: samples (angle, radius, height) of wheel 1's annulus for the contact window
+WINDOW_SAMPLES = (2881, 9, 41)
+WINDOW_POINTS = WINDOW_SAMPLES[0] * WINDOW_SAMPLES[1] * WINDOW_SAMPLES[2]
 
 
 def _inv(a):
@@ -171,13 +174,38 @@ def _grid(g: Member, mn: float):
     return rho, np.linspace(-g.width / 2, g.width / 2, nz)
 
 
+def _span(pair: Pair) -> float:
+    """A bound (rad) on the angle about wheel 1's axis, from the common perpendicular, of its
+    tooth centre lines that can reach the mate's tip cylinder."""
+    g1, g2 = pair.g1, pair.g2
+    near = pair.a - g2.r_tip
+    reach = math.acos(max(-1.0, min(1.0, near / g1.r_tip))) if near < g1.r_tip else 0.0
+    return abs(g1.twist) * g1.width / 2 + reach + 2 * g1.pitch + abs(math.atan2(g2.width / 2, max(near, 1e-9)))
+
+
+def work_count(rep: dict, width: float, mate_width=None, grid: int = GRID) -> tuple:
+    """(flank points evaluated, the most held at once) by :func:`check_crossed`, counted
+    before any work (for the plan, :func:`gear3d.plan_sets.plan_crossed_check`)."""
+    pair = Pair(rep, width, width if mate_width is None else mate_width)
+    rho, zs = _grid(pair.g1, pair.mn)
+    cell = len(rho) * len(zs)
+    k = len(_teeth_near(pair, 0.0)) + 2
+    scan = min(2 * _span(pair), 2 * math.pi) / pair.g1.pitch * CONTACT_GRID + 1
+    win = WINDOW_POINTS
+    evals = grid * 2 * k * cell + (scan + 4 * END_ROUNDS + 2) * cell + win
+    return float(evals), float(max(2 * k * cell, _chunk(cell) * cell, win))
+
+
+def _chunk(cell: int) -> int:
+    """Roll positions a batch of the contact scan (about 4e5 flank points at once)."""
+    return max(1, min(32, int(4e5 // max(cell, 1))))
+
+
 def _teeth_near(pair: Pair, phi1) -> np.ndarray:
     """Teeth k of wheel 1 that can reach the mate's tip cylinder at ``phi1``: their centre
     line over the face within the angle of wheel 1 the mate's tip cylinder covers."""
-    g1, g2 = pair.g1, pair.g2
-    reach = math.acos(max(-1.0, min(1.0, (pair.a - g2.r_tip) / g1.r_tip))) if pair.a - g2.r_tip < g1.r_tip \
-        else 0.0
-    span = abs(g1.twist) * g1.width / 2 + reach + 2 * g1.pitch + abs(math.atan2(g2.width / 2, pair.a - g2.r_tip))
+    g1 = pair.g1
+    span = _span(pair)
     k = np.arange(g1.teeth)
     c = (phi1 + k * g1.pitch + math.pi) % (2 * math.pi) - math.pi
     return k[np.abs(c) <= span]
@@ -192,6 +220,11 @@ def _newton(pair: Pair, phi1, k, side, which, rho, z, rounds: int = 6):
 
     def f(r, zz):
         return pair.gaps(pair.flank(phi1, k, side, r, zz), phi1)[which]
+    with np.errstate(invalid="ignore"):
+        return _newton_rounds(f, rho, z, ok, h, 2 * pair.mn, rounds)
+
+
+def _newton_rounds(f, rho, z, ok, h, lim, rounds):
     for _ in range(rounds):
         f0 = f(rho, z)
         fr1, fr0, fz1, fz0 = f(rho + h, z), f(rho - h, z), f(rho, z + h), f(rho, z - h)
@@ -206,7 +239,6 @@ def _newton(pair: Pair, phi1, k, side, which, rho, z, rounds: int = 6):
         det = np.where(good, det, 1.0)
         dr = np.where(good, -(hzz * gr - hrz * gz) / det, 0.0)
         dz = np.where(good, -(hrr * gz - hrz * gr) / det, 0.0)
-        lim = 2 * pair.mn
         rho, z = rho + np.clip(dr, -lim, lim), z + np.clip(dz, -lim, lim)
     return rho, z, f(rho, z), ok
 
@@ -233,14 +265,16 @@ def free_turns(pair: Pair, phis):
         X = pair.flank(phi, ks[None, :, None, None], S, R[None, None], Z[None, None])
         ccw, cw, m = pair.gaps(X, phi)
         for which, v in enumerate((ccw, cw)):
-            v = np.where(m, v, np.inf)
-            j = np.unravel_index(int(np.argmin(v)), v.shape)
-            best = float(v[j])
-            side, k = float(S[j[0], 0, 0, 0]), int(ks[j[1]])
-            r1, z1, val, ok = _newton(pair, phi, k, side, which, np.array([R[j[2], j[3]]]), np.array([Z[j[2], j[3]]]))
-            if ok[0] and val[0] <= best and _on_both(pair, phi, k, side, r1, z1)[0]:
-                best = float(val[0])
-            out[which, i], sides[which, i] = best, side
+            v = np.where(m, v, np.inf).reshape(2, len(ks), -1)
+            j = np.argmin(v, axis=2)                    # each tooth side's least grid point
+            grid_v = np.take_along_axis(v, j[..., None], axis=2)[..., 0]
+            side = np.broadcast_to(np.array([1.0, -1.0])[:, None], j.shape)
+            k = np.broadcast_to(ks[None, :], j.shape)
+            r1, z1, val, ok = _newton(pair, phi, k, side, which, R.ravel()[j], Z.ravel()[j])
+            ok &= _on_both(pair, phi, k, side, r1, z1) & (val <= grid_v)
+            best = np.where(ok, val, grid_v)
+            t = np.unravel_index(int(np.argmin(best)), best.shape)
+            out[which, i], sides[which, i] = float(best[t]), float(side[t])
     return out[0], out[1], sides
 
 
@@ -250,9 +284,9 @@ def window(pair: Pair):
     face, the tooth centre-line angles θ - z tan β1 / r1 of the points inside, widened by the
     tooth's half width and two grid steps."""
     g1 = pair.g1
-    th = np.linspace(-math.pi, math.pi, 2881)
-    rho = np.linspace(g1.r_form, g1.r_tip, 9)
-    z = np.linspace(-g1.width / 2, g1.width / 2, 41)
+    th = np.linspace(-math.pi, math.pi, WINDOW_SAMPLES[0])
+    rho = np.linspace(g1.r_form, g1.r_tip, WINDOW_SAMPLES[1])
+    z = np.linspace(-g1.width / 2, g1.width / 2, WINDOW_SAMPLES[2])
     T, Rr, Z = np.meshgrid(th, rho, z, indexing="ij")
     X = np.stack([Rr * np.cos(T), Rr * np.sin(T), Z], axis=-1)
     _, _, inside = pair.gaps(X, 0.0)
@@ -264,7 +298,7 @@ def window(pair: Pair):
     return float(c.min()) - pad, float(c.max()) + pad
 
 
-def _contact_state(pair: Pair, phis, side: float, which: int, closing: float, band: float, chunk: int = 32):
+def _contact_state(pair: Pair, phis, side: float, which: int, closing: float, band: float):
     """Per wheel-1 angle: whether tooth 0's flank ``side`` touches the mate by conjugate
     action (the gap's stationary point on both active flanks, the gap within ``band`` mm of
     the taken-up ``closing`` turn), and that point (world, NaN where none)."""
@@ -274,6 +308,7 @@ def _contact_state(pair: Pair, phis, side: float, which: int, closing: float, ba
     lever = pair.g2.rb * math.cos(pair.g2.bb)
     on = np.zeros(len(phis), bool)
     pts = np.full((len(phis), 3), np.nan)
+    chunk = _chunk(R.size)
     for s in range(0, len(phis), chunk):
         ph = phis[s:s + chunk]
         P = ph[:, None, None]

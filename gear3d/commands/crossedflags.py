@@ -2,9 +2,13 @@
 crossed helical pair (:mod:`gear3d.analysis.crossed`).
 
 ``gear3d check pair involute --crossed --teeth N --mate-teeth M --normal-module MN
---helix-angle-deg B1 [--shaft-angle-deg S] [--speed-rpm N] [--json FILE]``: the centre
-distance, helix angles and hands, the path of point contact, the contact ratio and the
-sliding velocity. ``check pair`` prints one summary line (and writes the JSON report only
+--helix-angle-deg B1 [--shaft-angle-deg S] [--shift-coeff X1 --mate-shift-coeff X2]
+[--center-distance A] [--speed-rpm N] [--json FILE]``: the centre distance (the
+zero-backlash one of the normal shifts, r1 + r2 + (x1 + x2) m_n, unless ``--center-distance``),
+helix angles and hands, the path of point contact, the contact ratio and the sliding
+velocity. ``--check --width W`` also rolls the pair on its exact flanks
+(:mod:`gear3d.analysis.crossed_roll`) and prints a second summary line (the JSON report gets
+its ``check``); exit 1 on interference too. ``check pair`` prints one summary line (and writes the JSON report only
 with ``--json`` / ``-o FILE.json``); the alias prints the JSON on stdout when no file is
 asked for, as it always did. Exit 1 when the contact ratio is below 1.
 
@@ -31,7 +35,7 @@ from ..filesafe import atomic_path, check_path
 #: the 3D outputs of a crossed pair (-o, with --width): both helical bodies placed in mesh
 MESH_EXTS = exts("mesh")
 #: the flags that only --crossed takes (``dest`` names)
-CROSSED_ONLY = ("shaft_angle_deg", "speed_rpm")
+CROSSED_ONLY = ("shaft_angle_deg", "speed_rpm", "crossed_check")
 
 
 def add_crossed_flags(c, *, helix: bool = True) -> None:
@@ -47,24 +51,29 @@ def add_crossed_flags(c, *, helix: bool = True) -> None:
                        help="--crossed: helix angle beta1 of wheel 1 (deg, right hand > 0); wheel 2 gets S - beta1")
     c.add_argument("--speed-rpm", type=number("float", 0, 1e6, lo_open=True), default=None,
                    help="--crossed: speed of wheel 1 (rpm), for the sliding velocity in m/s")
+    c.add_argument("--check", dest="crossed_check", action="store_true", default=None,
+                   help="--crossed: roll the pair (faces --width W mm) on its exact flanks: interference, "
+                        "backlash, transmission error, contact ratio of conjugate action")
 
 
 def refuse_crossed_flags(args, names=CROSSED_ONLY) -> None:
     """One line for a --crossed flag given without --crossed."""
     for n in names:
         if getattr(args, n, None) is not None:
-            raise GearError(n, getattr(args, n), "only with --crossed")
+            raise GearError("check" if n == "crossed_check" else n, getattr(args, n), "only with --crossed")
 
 
 def run_crossed(args, alias: bool = False) -> int:
     """The crossed helical report (see the module doc); exit 1 when the contact ratio is < 1."""
     if args.family != "involute":
         raise GearError("family", args.family, "involute with --crossed")
-    for n in ("shift_coeff", "mate_shift_coeff", "center_distance", "png", "internal", "rack", "largest_addendum",
-              "max_safe_addendum", "tip_correction"):
+    for n in ("png", "internal", "rack", "largest_addendum", "max_safe_addendum", "tip_correction"):
         v = getattr(args, n, None)
         if v not in (None, False, 0, 0.0):
-            raise GearError(n, v, "not given with --crossed (unshifted gears at the centre distance r1 + r2)")
+            raise GearError(n, v, "not given with --crossed")
+    for n in ("shift_coeff", "mate_shift_coeff", "center_distance"):
+        if getattr(args, n, None) == "auto":
+            raise GearError(n, "auto", "a number with --crossed")
     if args.helix_angle_deg is None:
         raise GearError("helix_angle_deg", None, "a number in [-80, 80] deg with --crossed")
     out = args.output
@@ -74,33 +83,51 @@ def run_crossed(args, alias: bool = False) -> int:
         check_path(js, "json" if args.json is not None else "output", (".json",))
     if mesh:
         check_output(out, kinds="body")
-        if args.width is None:
-            raise GearError("width", None, "a number > 0 mm (--width) for a 3D output of the crossed pair")
-    elif args.width is not None:
-        raise GearError("width", args.width, "only with a 3D output (-o " + " ".join(MESH_EXTS) + ")")
+    if (mesh or args.crossed_check) and args.width is None:
+        raise GearError("width", None, "a number > 0 mm (--width) for a 3D output or --check of the crossed pair")
+    if not (mesh or args.crossed_check) and args.width is not None:
+        raise GearError("width", args.width, "only with --check or a 3D output (-o " + " ".join(MESH_EXTS) + ")")
+    rep = crossed_pair(*_pair_args(args), shift_coeff=args.shift_coeff or 0.0,
+                       mate_shift_coeff=args.mate_shift_coeff or 0.0, center_distance=args.center_distance)
+    tol = 0.01 if args.tolerance is None else args.tolerance
+    if mesh or args.crossed_check:
+        from ..plan_sets import plan_crossed, plan_crossed_check
+        if mesh:                            # the whole command planned first: refused before any work
+            plan_crossed(rep, args.width, tol, out, check=bool(args.crossed_check))
+        else:
+            plan_crossed_check(rep, args.width)
+    chk = None
+    if args.crossed_check:
+        from ..analysis.crossed_roll import check_crossed
+        chk = check_crossed(rep, args.width)
+    if mesh:
+        _write_bodies(args, rep, out, tol)
+    if js is not None:
+        with atomic_path(js, "json") as tmp, open(tmp, "w", encoding="utf-8") as f:
+            f.write(_dumps(rep if chk is None else {**rep, "check": chk}) + "\n")
+    sys.stdout.write((_dumps(rep) if alias and js is None else summary(rep)) + "\n")
+    if chk is not None:
+        from ..analysis.crossed_roll import finding_code, summary as check_summary
+        sys.stdout.write(check_summary(chk) + "\n")
+        return max(finding_code(chk), 0 if rep["contact_ratio"] >= 1 else 1)
+    return 0 if rep["contact_ratio"] >= 1 else 1
+
+
+def _pair_args(args) -> tuple:
+    """The positional arguments of :func:`gear3d.analysis.crossed.crossed_pair` from the flags."""
     mn = next((v for v in (getattr(args, "normal_module", None), getattr(args, "module", None)) if v is not None), 1.0)
     an = next((v for v in (getattr(args, "normal_pressure_angle_deg", None), getattr(args, "pressure_angle_deg", None))
                if v is not None), 20.0)
     ha = getattr(args, "addendum_coeff", None)
-    rep = crossed_pair(args.teeth if args.teeth is not None else 20, args.mate_teeth, mn, args.helix_angle_deg,
-                       90.0 if args.shaft_angle_deg is None else args.shaft_angle_deg, an,
-                       1.0 if ha is None else ha, args.speed_rpm)
-    if mesh:
-        _write_bodies(args, rep, out)
-    if js is not None:
-        with atomic_path(js, "json") as tmp, open(tmp, "w", encoding="utf-8") as f:
-            f.write(_dumps(rep) + "\n")
-    sys.stdout.write((_dumps(rep) if alias and js is None else summary(rep)) + "\n")
-    return 0 if rep["contact_ratio"] >= 1 else 1
+    return (args.teeth if args.teeth is not None else 20, args.mate_teeth, mn, args.helix_angle_deg,
+            90.0 if args.shaft_angle_deg is None else args.shaft_angle_deg, an, 1.0 if ha is None else ha,
+            args.speed_rpm)
 
 
-def _write_bodies(args, rep: dict, out: str) -> None:
+def _write_bodies(args, rep: dict, out: str, tol: float) -> None:
     """Both helical bodies (:func:`gear3d.analysis.crossed.pair_bodies`) placed in mesh, in
-    ``out`` (3MF: two named objects; STL: one mesh), planned first (refused before any work)."""
+    ``out`` (3MF: two named objects; STL: one mesh), at the tolerance ``tol`` (mm)."""
     from ..analysis.crossed import pair_bodies
-    from ..plan_sets import plan_crossed
-    tol = 0.01 if args.tolerance is None else args.tolerance
-    plan_crossed(rep, args.width, tol, out)
     bodies = pair_bodies(rep, args.width, tol)
     info = write(bodies, out)
     sys.stdout.write(f"wrote {out}: crossed helical bodies 'gear' and 'mate', width {args.width:g} mm, "
