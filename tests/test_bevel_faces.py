@@ -211,7 +211,7 @@ def test_cli_check_reports_the_spheres(tmp_path, capsys):
                  "--clearance", "uniform", "--part", "pair", "--check", "--tolerance", "0.05", "-o", str(out),
                  "--json", str(js)]) == 0
     line = capsys.readouterr().out.strip().splitlines()[-1]
-    assert line.startswith("no interference") and "1.825 mid-face, 1.679 .. 1.924 over the face" in line
+    assert line.startswith("no interference") and "1.825 at mid-face, 1.679 .. 1.924 over the face" in line
     c = json.loads(js.read_text(), parse_constant=lambda x: pytest.fail(f"non-strict JSON {x}"))["check"]
     rows = c["spheres"]
     assert len(rows) >= 5 and rows[0]["cone_distance"] < rows[-1]["cone_distance"]

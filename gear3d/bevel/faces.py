@@ -2,7 +2,7 @@
 
 :mod:`gear3d.bevel.rolling` rolls the pair on one sphere. On the sphere of radius ρ (a cone
 distance between the toe R_e - b and the heel R_e) each member's tooth is its unit-sphere
-tooth (:func:`gear3d.bevel.rolling.tooth`: the generated section, the same on every sphere)
+tooth (:func:`gear3d.bevel.sphereroll.tooth`: the generated section, the same on every sphere)
 cut at the polar angle where the body's face cone meets that sphere (:func:`tip_polar`).
 
 * **Standard depth** (the face cone through the apex): the cut is the generated tip on every
@@ -18,7 +18,7 @@ cut at the polar angle where the body's face cone meets that sphere (:func:`tip_
 **Which spheres** (:func:`cone_distances`): evenly spaced from toe to heel with the mid-face
 among them (an even number n of intervals, 2 <= n <= :data:`MAX_INTERVALS`): the fewest for
 which the contact ratio of Tredgold's virtual pair, with each member's addendum on that sphere
-(:func:`gear3d.bevel.rolling.virtual_contact_ratio`), changes by at most
+(:func:`virtual_contact_ratio`), changes by at most
 :data:`CONTACT_STEP` between neighbours. Standard depth: n = 2 (toe, mid-face, heel).
 Between two spheres nothing is missed: the teeth of a sphere nearer the heel contain those
 of one nearer the toe (each tip polar angle grows with ρ, the flanks are the same), so every
@@ -47,9 +47,8 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from .rolling import (Placement, Tooth, _polar_of, _unit, closing_turns, conjugate_action, gaps,
-                      virtual_contact_ratio)
 from .section import member
+from .sphereroll import Placement, Tooth, closing_turns, conjugate_action, gaps, polar_of, unit
 
 #: the largest change of the virtual (Tredgold) contact ratio between neighbouring spheres
 CONTACT_STEP = 0.05
@@ -78,6 +77,20 @@ def tip_polar(geo, which: str, rho: float) -> float:
     s = -he + math.sqrt(max(he * he - float(H @ H) + rho * rho, 0.0))
     X = H + s * e
     return min(math.atan2(X[0], X[1]), top)
+
+
+def virtual_contact_ratio(geo, addenda=None) -> float:
+    """The contact ratio of Tredgold's virtual spur pair (back cones developed: pitch radii
+    R_e tan δ, the heel addenda or ``addenda`` (gear, mate; mm), the pressure angle), for
+    comparison. An internal member (δ > 90°: R_e tan δ < 0) is the virtual internal gear of
+    radius R_e |tan δ|, tip radius R_e |tan δ| - h_a: its term is -√(r_a² - r_b²) + r sin α."""
+    a, m = geo.pressure_angle, geo.module
+    adds = (geo.gear.addendum, geo.mate.addendum) if addenda is None else addenda
+    total = 0.0
+    for c, h in zip((geo.gear, geo.mate), adds):
+        rv = geo.cone_distance * math.tan(c.pitch_angle)
+        total += math.copysign(math.sqrt((rv + h) ** 2 - (rv * math.cos(a)) ** 2), rv) - rv * math.sin(a)
+    return total / (math.pi * m * math.cos(a))
 
 
 def _virtual_at(geo, rho: float) -> float:
@@ -120,15 +133,15 @@ def cut(t: Tooth, tip: float) -> Tooth:
     kth = np.concatenate([t.knots_theta[sel], [tip]])
     kaz = np.concatenate([t.knots_az[sel], [u_tip]])
     lo, hi = t.a, t.b
-    if _polar_of(t.flank, t.delta, lo)[0] > tip:
+    if polar_of(t.flank, t.delta, lo)[0] > tip:
         for _ in range(60):                               # the polar angle falls from a to b
             mid = 0.5 * (lo + hi)
-            if _polar_of(t.flank, t.delta, mid)[0] > tip:
+            if polar_of(t.flank, t.delta, mid)[0] > tip:
                 lo = mid
             else:
                 hi = mid
         lo = 0.5 * (lo + hi)
-    U = _unit(th, az)
+    U = unit(th, az)
     loop = np.concatenate([U * [1.0, -1.0, 1.0], U[::-1]])
     return replace(t, theta=th, az=az, theta_tip=tip, knots_theta=kth, knots_az=kaz, a=float(lo), loop=loop,
                    copies=None)
@@ -138,7 +151,7 @@ def cut(t: Tooth, tip: float) -> Tooth:
 class Roll:
     """One sphere's roll (angles in rad, per gear-1 angle of the grid): the penetration
     ``depth``, the closing turns ``up``/``lo`` of gear 1's upper/lower side, and the
-    conjugate action ``ca`` (:func:`gear3d.bevel.rolling.conjugate_action` at ρ)."""
+    conjugate action ``ca`` (:func:`gear3d.bevel.sphereroll.conjugate_action` at ρ)."""
     depth: np.ndarray
     up: np.ndarray
     lo: np.ndarray
@@ -215,7 +228,7 @@ def _rigid(geo, radii, turns, phis) -> np.ndarray:
 
 
 def sphere_contacts(geo, t1: Tooth, t2: Tooth, radii=None):
-    """The conjugate action (:func:`gear3d.bevel.rolling.conjugate_action`) on each sphere of
+    """The conjugate action (:func:`gear3d.bevel.sphereroll.conjugate_action`) on each sphere of
     ``radii`` (default :func:`cone_distances`), the teeth cut at the body's tips: (radii,
     list of dicts), one computation per distinct pair of tips."""
     radii = cone_distances(geo) if radii is None else np.asarray(radii, float)
