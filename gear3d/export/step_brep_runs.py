@@ -305,8 +305,7 @@ def _corner_edge(S, L, cands, i, a, b, ang):
     best = None
     m, other, sgn = (a, b, 1) if cands[a] else (b, a, -1)
     if not cands[m]:
-        raise GearError("step", "brep", "'faceted' for this profile",
-                        f"loop edge {i} joins two trimmed corners; no exact piece found")
+        return _chord_edge(S, L, i, a, b, ang)
     dbest = math.inf
     for (j, n, k) in cands[m]:
         for dn in (-1, 1):
@@ -323,6 +322,34 @@ def _corner_edge(S, L, cands, i, a, b, ang):
         raise GearError("step", "brep", "'faceted' for this profile",
                         f"loop vertex near ({L[other][0]:.4g}, {L[other][1]:.4g}) lies on no "
                         f"chord of the exact pieces ({dbest:.2g} mm off)")
+    return best
+
+
+def _chord_edge(S, L, i, a, b, ang):
+    """Label of loop edge ``i`` (vertices ``a`` -> ``b``) that joins two trimmed corners: a
+    run shorter than one chord of its piece (a worm wheel's narrow tip land under one chord
+    of the turned tip circle). The chord of any piece, in the copies about the edge, that
+    holds both ends within 1e-6 mm (mm), directed as the loop runs."""
+    z = max(int(round(2 * math.pi / ang)), 1)
+    mid = 0.5 * (L[a] + L[b])
+    k0 = int(np.rint(math.atan2(mid[1], mid[0]) / ang))
+    best, dbest = None, math.inf
+    for k in (k0 - 1, k0, k0 + 1) if z > 1 else (0,):
+        P = rot2(np.vstack([L[a], L[b]]), -k * ang)          # both ends in copy 0's frame
+        for j, s in enumerate(S):
+            if len(s) < 2:
+                continue
+            p, d = s[:-1], np.diff(s, axis=0)
+            L2 = np.maximum(np.einsum("ij,ij->i", d, d), 1e-300)
+            w = np.clip(np.einsum("kij,ij->ki", P[:, None, :] - p[None], d) / L2, 0, 1)   # (2, n)
+            dist = np.hypot(*(p[None] + w[..., None] * d[None] - P[:, None]).transpose(2, 0, 1)).max(axis=0)
+            n = int(np.argmin(dist))
+            if dist[n] < dbest:
+                dbest = float(dist[n])
+                best = (j, k % z, n, n + 1) if w[0, n] <= w[1, n] else (j, k % z, n + 1, n)
+    if best is None or dbest > 1e-6 + 1e-9 * float(np.abs(L).max()):
+        raise GearError("step", "brep", "'faceted' for this profile",
+                        f"loop edge {i} joins two trimmed corners; no exact piece found")
     return best
 
 

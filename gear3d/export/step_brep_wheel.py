@@ -43,7 +43,7 @@ import numpy as np
 from ..errors import GearError, ToleranceError
 from .step_brep_occ import (bspline_curve, bspline_surface, plane_face, sew_solid, validate_solid,
                             wire_of_curves)
-from .step_brep_runs import exact_set, loop_runs, nearest_on_piece, rot2
+from .step_brep_runs import ExactSet, exact_set, loop_runs, nearest_on_piece, rot2
 
 #: share of the tolerance given to the sections' polygons (used only to map the runs)
 SECTION_SHARE = 0.25
@@ -57,6 +57,9 @@ START_COLUMNS = 6
 U_SHARE = 0.5
 #: a grown fit aims at this share of its allowance (cubic convergence is a model, not a bound)
 TARGET = 0.6
+#: the narrowest tip land (mm, along the tip circle) a wheel's B-rep keeps: 1000 x the
+#: sewing tolerance (a land of a few sewing tolerances would sew its two corners into one)
+LAND_MIN = 1e-3
 #: relative precision of the volume check (1e-5 of a volume: far below the bound checked)
 VOLUME_EPS = 1e-5
 
@@ -74,10 +77,8 @@ def section_runs(d, h: float, tol_s: float):
     rt = float(d.blank_tip_radius(h))
     for k in (1.0, 0.25, 1 / 16, 1 / 64, 1 / 256):      # finer polygons where the runs cannot be mapped
         p = section(d, float(h), k * tol_s)
-        ex = exact_set(types.SimpleNamespace(pieces=p.pieces, piece_params=p.piece_params, teeth=p.teeth,
-                                             params={"tip_radius": rt}, loops=p.loops, tolerance=p.tolerance))
         try:
-            runs = loop_runs(ex, p.tooth_loop)
+            ex, runs = _mapped(p, rt)
             break
         except GearError as e:
             if k == 1 / 256:
@@ -92,45 +93,99 @@ def section_runs(d, h: float, tol_s: float):
     return ex, runs[start:] + runs[:start]
 
 
-def _is_pointed(d, h: float, tol_s: float) -> bool:
-    """True where the section at height ``h`` (mm) comes to a point below the blank's tip
-    circle (no vertex of its loop on that circle: the tip arc run vanishes)."""
-    from ..wormgear.wheel import section
-    L = np.asarray(section(d, float(h), tol_s).tooth_loop)
+def _mapped(p, rt: float):
+    """(exact set, runs) of section ``p`` (tip circle ``rt``, mm): the tip circle sampled at
+    the loop's vertices on it (:func:`gear3d.export.step_brep_runs.exact_set`), else at the
+    turned tip's own samples (``p.tip_arc``): a land narrower than one chord of the tip's
+    polygon lies under that chord with no vertex on the circle (m 2, q 10, z2 = 20 and 24
+    near the throat's kink: a land 0.05 to 0.2 mm wide under a chord that sags 0.2 to 1 um),
+    and its edge joins the two trimmed corners on that chord."""
+    ex = exact_set(types.SimpleNamespace(pieces=p.pieces, piece_params=p.piece_params, teeth=p.teeth,
+                                         params={"tip_radius": rt}, loops=p.loops, tolerance=p.tolerance))
+    try:
+        return ex, loop_runs(ex, p.tooth_loop)
+    except GearError:
+        if p.tip_arc is None:
+            raise
+    ex = ExactSet(list(p.pieces) + [p.tip_arc[0]], [np.asarray(t, float) for t in p.piece_params]
+                  + [np.asarray(p.tip_arc[1], float)], p.teeth, float(p.tolerance))
+    return ex, loop_runs(ex, p.tooth_loop)
+
+
+def _tip_corner(G, rt: float, rising: bool, n: int = 257):
+    """Parameter t of the exact piece ``G`` where it crosses the circle ``rt`` (mm) nearest
+    the tooth's tip (the last crossing upward of a ``rising`` flank, the first downward of
+    the other), or None where it does not reach the circle: the sign change on ``n``
+    samples, bracketed twice more on ``n`` samples, then linear (t within 1e-7 of the piece)."""
+    lo, hi = 0.0, 1.0
+    for _ in range(3):
+        t = np.linspace(lo, hi, n)
+        f = np.hypot(*G(t).T) - rt
+        i = np.nonzero((f[:-1] < 0) & (f[1:] >= 0) if rising else (f[:-1] >= 0) & (f[1:] < 0))[0]
+        if not len(i):
+            return None
+        j = int(i[-1] if rising else i[0])
+        lo, hi, fa, fb = t[j], t[j + 1], f[j], f[j + 1]
+    return float(lo + (hi - lo) * fa / (fa - fb))
+
+
+def tip_land(d, h: float) -> float:
+    """Width (mm, along the tip circle) of the tip land of the wheel's exact section at
+    height ``h`` (mm): between the two flank envelopes' crossings with the blank's tip
+    circle ``blank_tip_radius(h)``, on the exact pieces (no polygon: about 0.5 ms); negative
+    where the flanks cross below that circle (the tooth comes to a point), -inf where a
+    flank does not reach it.
+
+    >>> from gear3d.wormgear.design import design
+    >>> round(tip_land(design(module=2, starts=1, wheel_teeth=20, diameter_quotient=10), 0.0), 3)
+    1.383
+    """
+    from ..envelope import rack_envelope
+    from ..wormgear.thread import section_rack
+    pieces = rack_envelope(section_rack(d, float(h)), d.r2, d.shift_coeff * d.module, False)
+    flanks = [G for G, name in pieces if name == "rack-flank"]
     rt = float(d.blank_tip_radius(h))
-    return not bool(np.any(np.abs(np.hypot(L[:, 0], L[:, 1]) - rt) <= 1e-9 * rt))
+    ta, tb = _tip_corner(flanks[0], rt, True), _tip_corner(flanks[-1], rt, False)
+    if ta is None or tb is None:
+        return -math.inf
+    (xa, ya), (xb, yb) = flanks[0](np.array([ta]))[0], flanks[-1](np.array([tb]))[0]
+    return rt * (math.atan2(yb, xb) - math.atan2(ya, xa))
 
 
-def pointed_band(d, tol_s: float, steps: int = 48, h_tol: float = 1e-4):
+def pointed_band(d, steps: int = 64, h_tol: float = 1e-4):
     """(h_ok, h0, h1) (mm, 0 <= h_ok <= h0 <= h1 <= B/2): the heights |h| between which
-    the wheel's sections come to a point below the blank's tip, found on ``steps`` heights
-    and the throat's kink, the first one bisected to ``h_tol`` mm (``h_ok``: the last height
-    before it that is not pointed, or h0 at h = 0); None when none is pointed. A throated
-    wheel of few teeth points near the kink, where the blank's tip is highest over its
-    narrowest teeth."""
+    the wheel's exact sections keep no tip land of :data:`LAND_MIN` (their flanks meet at
+    or below the blank's tip: :func:`tip_land`), found on ``steps`` heights and the
+    throat's kink (where a throated wheel's land is narrowest), the first one bisected to
+    ``h_tol`` mm (``h_ok``: the last height before it that keeps a land, or h0 at h = 0);
+    None when every one keeps a land. A throated 12-tooth ZA wheel (m 2, q 10) points
+    from |h| = 4.26 mm on."""
     half = d.face_width / 2
     hs = set(np.linspace(0.0, half, steps + 1).tolist())
     kink = d.throat_break()
     if kink is not None and kink < half:
         hs |= {kink, max(kink - 1e-3, 0.0), min(kink + 1e-3, half)}
     hs = sorted(hs)
-    bad = [h for h in hs if _is_pointed(d, h, tol_s)]
+
+    def pointed(h):
+        return tip_land(d, h) < LAND_MIN
+    bad = [h for h in hs if pointed(h)]
     if not bad:
         return None
     hi = bad[0]
     lo = max([h for h in hs if h < hi], default=hi)
     while hi - lo > h_tol and lo < hi:
         mid = 0.5 * (lo + hi)
-        lo, hi = (lo, mid) if _is_pointed(d, mid, tol_s) else (mid, hi)
+        lo, hi = (lo, mid) if pointed(mid) else (mid, hi)
     return lo, hi, bad[-1]
 
 
-def refuse_pointed(d, tol_s: float, steps: int = 48, h_tol: float = 1e-4) -> None:
+def refuse_pointed(d, steps: int = 64, h_tol: float = 1e-4) -> None:
     """One GearError line, before any surface is fitted, for a wheel whose teeth come to a
     point below the blank's tip somewhere across the face width (the tip's surface would
     shrink to an edge there): it names the heights and what to change. ``steps``, ``h_tol``:
     :func:`pointed_band`'s scan."""
-    band = pointed_band(d, tol_s, steps, h_tol)
+    band = pointed_band(d, steps, h_tol)
     if band is None:
         return
     ok, h0, h1 = band
@@ -316,14 +371,14 @@ def wheel_features(shape, d, feats: dict, tol: float):
 def precheck(d) -> None:
     """Refuse a worm set's wheel B-rep before any body is built (the CLI, before the mesh
     and OCC's import): :func:`refuse_pointed` of design ``d``
-    (:class:`gear3d.wormgear.design.WormDesign`) at the wheel's section tolerance on a
-    coarser scan (16 heights, the kink's three, the first pointed one bisected to 1e-3 mm;
-    about 0.4 s). A band the coarse scan misses is still refused by :func:`wheel_solid`.
+    (:class:`gear3d.wormgear.design.WormDesign`) on the exact pieces (64 heights and the
+    kink's three, the first pointed one bisected to 1e-4 mm; about 0.05 s), the same scan
+    :func:`wheel_solid` makes.
 
     >>> from gear3d.wormgear.design import design
     >>> precheck(design(module=2, starts=1, wheel_teeth=30, diameter_quotient=10, worm_type="ZA"))
     """
-    refuse_pointed(d, SECTION_SHARE * float(d.tolerance), steps=16, h_tol=1e-3)
+    refuse_pointed(d)
 
 
 def wheel_solid(w, design=None):
@@ -342,7 +397,7 @@ def wheel_solid(w, design=None):
     t0 = time.perf_counter()
     tol = float(w.report["tolerance"])
     ctx = {"d": d, "tol_s": SECTION_SHARE * tol, "sections": {}}
-    refuse_pointed(d, ctx["tol_s"])
+    refuse_pointed(d)
     _ex, runs0 = section_runs(d, 0.0, ctx["tol_s"])
     ctx["signature"] = _signature(runs0, d.wheel_teeth)
     bands, err = _fit_bands(ctx, tol)
