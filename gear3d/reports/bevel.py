@@ -35,8 +35,10 @@ class BevelCheckReport(Report):
     transmission_error_coast: float
     transmission_error_drive_arcsec: float
     transmission_error_coast_arcsec: float
-    #: profile (conjugate action on each sphere) + face (spiral and Zerol) contact ratio
+    #: profile (conjugate action on the mid-face sphere) + face (spiral and Zerol) contact ratio
     contact_ratio: float
+    #: conjugate action on the mid-face sphere (the heel's before the check rolled several
+    #: spheres: the same for standard depth, whose teeth scale with the cone distance)
     profile_contact_ratio: float
     face_contact_ratio: float
     path_distance: float | None
