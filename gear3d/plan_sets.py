@@ -393,6 +393,9 @@ def plan_crossed(rep: dict, width: float, tolerance: float, output=None, check: 
     from .plan import plan_body
     tol = check_number("tolerance", tolerance, 1e-6, 1.0, unit="mm")
     _crossed_helix_range(rep)
+    if check:                       # the check alone over: refused naming the width (its points)
+        chk = crossed_check_estimate(rep, width)
+        budget.check(chk, "width", width)
     est, tri = Estimate(), 0.0
     for key in ("gear", "mate"):
         params, body_kw = member_spec(rep, key, width, tol)
@@ -404,7 +407,7 @@ def plan_crossed(rep: dict, width: float, tolerance: float, output=None, check: 
     if ext:
         est = est.then(mesh_write(ext, tri))
     if check:
-        est = est.then(crossed_check_estimate(rep, width))
+        est = est.then(chk)
     z = max(rep["gear"]["teeth"], rep["mate"]["teeth"])
     return _decide(est, "tolerance", tol) if z <= 1000 else _decide(est, "teeth", z)
 
