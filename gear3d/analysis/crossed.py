@@ -25,6 +25,61 @@ perpendicular of the axes).
 * **Contact ratio** (in the normal section): the path length over the normal base pitch
   p_bn = π m_n cos α_n (the same for both gears).
 
+**Profile shift: the exact zero-backlash centre distance.** With normal shifts x1, x2 (each
+gear cut by a rack of the normal module shifted by x_i m_n; transverse tooth thickness
+s_t = m_t (π/2 + 2 x tan α_n)) the pair runs at
+
+    a = r1 + r2 + (x1 + x2) m_n                                                   (exact)
+
+with the common normal's direction, and so the working normal pressure angle (its angle to
+the plane normal to the common perpendicular), still α_n. Derivation:
+
+1. *Normal lines.* At a point of an involute helicoid the normal lies in the plane tangent
+   to the base cylinder, perpendicular to the generator (at β_b to the axis). So the normal
+   lines of one flank family (the same-side flanks of all teeth, at every rotation) are the
+   lines tangent to the base cylinder at β_b to the transverse plane, and each is normal to
+   every flank of the family it crosses. A transverse section shows why: the section of the
+   line touches the base circle at angle ψ, the flank's section starting on the base circle
+   at θ0(z) = θ0 + z tan β_b / r_b crosses it at transverse string length r_b (ψ - θ0(z)), so
+   along the line (parameter s, height z_T + s sin β_b) the crossing is at
+   s = cos β_b (r_b (ψ - θ0) - z_T tan β_b): linear in the rotation. Turning the gear by dφ
+   moves the crossing by r_b cos β_b dφ, and consecutive teeth cross p_bn apart
+   (2π r_b cos β_b / z = π m_n cos α_n). The flanks of a family are offset surfaces of each
+   other, and h_i(p) = r_b cos β_b × (the transverse angle from the flank to p at p's own
+   height) is the exact signed distance to the flank (|∇h| = 1).
+2. *Lines of action.* A common normal line must be a normal line of both gears: its
+   direction u has u·k_i = ±sin β_bi (two conditions on a unit vector: u is fixed by the
+   base helix angles and Σ, whatever the distance and shifts), and its moments about both
+   axes are ±r_bi cos β_bi (two conditions linear in the line's point in the plane ⊥ u: a
+   unique line for each flank side). Along it both gears' flanks move uniformly with the
+   ratio z2/z1, so the gap along it is constant: the pair is conjugate at any centre
+   distance, with point contact on this line (:func:`contact_lines`, :func:`contact_path`).
+3. *The gap.* The gap of one flank side is G = h1 + h2 at its stationary point (the common
+   normal). Moving wheel 2 by Δ along the common perpendicular e_x: dG/dΔ = ∇h1 · e_x =
+   u · e_x = sin α_n (envelope theorem; u is the same for every Δ, so G is exactly linear in
+   Δ). A shift x_i turns wheel i's flanks by x_i m_n tan α_ti / r_i, which moves them along
+   their normals by r_bi cos β_bi × that = x_i m_n sin α_ti cos β_bi = x_i m_n sin α_n
+   (sin α_n = sin α_t cos β_b): each side's gap is G = (a - a0 - (x1 + x2) m_n) sin α_n at
+   the half-turn-symmetric placement (a tooth of wheel 1 and a space of wheel 2 centred on
+   the common perpendicular, which swaps the sides). Both gaps vanish together at the
+   distance above; the normal backlash at another a is 2 (a - a_zb) sin α_n.
+
+Unlike parallel axes, no working pressure angle enters: each flank side's contact line
+is fixed in direction, and the transverse sections of the two gears are not coplanar, so
+the handbook's inv α_wn = 2 tan α_n (x1 + x2)/(z_v1 + z_v2) + inv α_n with virtual teeth
+z_v = z/cos³β (exact for parallel axes, where the transverse sections are coplanar) is only
+an approximation here: for 12/14 teeth at 45°/45° and x = 0.5/0.3 it puts the gears 89 µm
+too close. The bodies confirm the exact distance (tests/test_crossed_shift.py: bisection on
+the intersection volume of the meshes, within their measured error).
+
+The clearance stays h_f - h_a = 0.25 m_n (each gear meshes with the same rack). The contact
+line of each side moves with Δ by d ⊥ u with d·(u × k1) = 0: along the axes, so with large
+shifts the contact may leave a narrow face (the rolling check of
+:mod:`gear3d.analysis.crossed_roll` counts the faces; this report does not). The working
+pitch cylinders (:func:`_working_pitch`) are where helices of the flanks' leads
+(tan β_w = r_w tan β / r) touch with a common tangent on the common perpendicular:
+r_w1 + r_w2 = a, β_w1 + β_w2 = Σ; they equal the pitch cylinders only at a0.
+
 Example::
 
     >>> c = crossed_pair(20, 30, 2.0, helix_angle_deg=45.0, shaft_angle_deg=90.0)
