@@ -39,10 +39,13 @@ from __future__ import annotations
 
 import dataclasses
 import reprlib
+import sys
 
 __all__ = ["dataclass"]
 
 _make = dataclasses.dataclass
+#: dataclasses' marker for a field with a default factory (shown as <factory> in signatures)
+_FACTORY = getattr(dataclasses, "_HAS_DEFAULT_FACTORY", None)
 
 
 def dataclass(cls=None, /, **options):
@@ -53,8 +56,23 @@ def dataclass(cls=None, /, **options):
         return _make(cls, **options)
     want_repr = options.pop("repr", True)
     want_eq = options.pop("eq", True)
+    frozen = bool(options.get("frozen", False))
     own = dict(cls.__dict__)
-    cls = _make(cls, repr=False, eq=False, **options)
+    if _simple(cls, options):
+        no_doc = not getattr(cls, "__doc__")
+        cls = _make(cls, **{**options, "init": False, "frozen": False}, repr=False, eq=False)
+        _write_init(cls, frozen)
+        if frozen:
+            _freeze(cls)
+        if no_doc:                                   # as dataclasses writes it
+            import inspect
+            try:
+                text_sig = str(inspect.signature(cls)).replace(" -> None", "")
+            except (TypeError, ValueError):
+                text_sig = ""
+            cls.__doc__ = cls.__name__ + text_sig
+    else:
+        cls = _make(cls, repr=False, eq=False, **options)
     flds = dataclasses.fields(cls)
     if want_repr and "__repr__" not in own:
         _attach(cls, "__repr__", _repr_fn(tuple(f.name for f in flds if f.repr)))
@@ -64,14 +82,100 @@ def dataclass(cls=None, /, **options):
         class_hash = own.get("__hash__", dataclasses.MISSING)
         explicit = not (class_hash is dataclasses.MISSING or (class_hash is None and "__eq__" in own))
         if not explicit:
-            if options.get("frozen"):
+            if frozen:
                 names = tuple(f.name for f in flds if (f.compare if f.hash is None else f.hash))
                 _attach(cls, "__hash__", _hash_fn(names))
             else:
                 cls.__hash__ = None
     params = cls.__dataclass_params__
-    params.repr, params.eq = bool(want_repr), bool(want_eq)
+    params.init, params.repr, params.eq, params.frozen = (bool(options.get("init", True)), bool(want_repr),
+                                                          bool(want_eq), frozen)
     return cls
+
+
+def _simple(cls, options) -> bool:
+    """Whether this module writes the class's ``__init__`` (and a frozen class's
+    ``__setattr__``/``__delattr__``) itself: the class wants an ``__init__`` and defines
+    none, inherits no dataclass, and has no keyword-only, ``InitVar`` or ``ClassVar``
+    fields (those go to :mod:`dataclasses` whole)."""
+    if not options.get("init", True) or options.get("kw_only") or _FACTORY is None:
+        return False
+    if any(k in cls.__dict__ for k in ("__init__", "__setattr__", "__delattr__")):
+        return False
+    if any(hasattr(b, "__dataclass_fields__") for b in cls.__mro__[1:]):
+        return False
+    for name, ann in cls.__dict__.get("__annotations__", {}).items():
+        text = ann if isinstance(ann, str) else repr(ann)
+        if "ClassVar" in text or "InitVar" in text or "KW_ONLY" in text:
+            return False
+        value = cls.__dict__.get(name)
+        if isinstance(value, dataclasses.Field) and value.kw_only is True:
+            return False
+    return True
+
+
+def _write_init(cls, frozen: bool) -> None:
+    """The ``__init__`` :mod:`dataclasses` writes (the same source, one compilation)."""
+    flds = dataclasses.fields(cls)
+    missing = dataclasses.MISSING
+    seen_default = False
+    for f in flds:
+        if f.init:
+            if not (f.default is missing and f.default_factory is missing):
+                seen_default = True
+            elif seen_default:
+                raise TypeError(f"non-default argument {f.name!r} follows default argument")
+    loc = {f"_type_{f.name}": f.type for f in flds}
+    loc.update({"MISSING": missing, "_HAS_DEFAULT_FACTORY": _FACTORY, "__dataclass_builtins_object__": object})
+    body, args = [], ["self"]
+    for f in flds:
+        if f.default_factory is not missing:
+            loc[f"_dflt_{f.name}"] = f.default_factory
+            value = (f"_dflt_{f.name}() if {f.name} is _HAS_DEFAULT_FACTORY else {f.name}" if f.init
+                     else f"_dflt_{f.name}()")
+        elif f.init:
+            if f.default is not missing:
+                loc[f"_dflt_{f.name}"] = f.default
+            value = f.name
+        else:
+            continue
+        body.append(f"__dataclass_builtins_object__.__setattr__(self,{f.name!r},{value})" if frozen
+                    else f"self.{f.name}={value}")
+    if hasattr(cls, "__post_init__"):
+        body.append("self.__post_init__()")
+    for f in flds:
+        if f.init:
+            default = ("" if f.default is missing and f.default_factory is missing
+                       else f"=_dflt_{f.name}" if f.default is not missing else "=_HAS_DEFAULT_FACTORY")
+            args.append(f"{f.name}:_type_{f.name}{default}")
+    loc["_return_type"] = None
+    text = "\n".join(f"  {b}" for b in body or ["pass"])
+    text = (f"def __create_fn__({', '.join(loc)}):\n def __init__({','.join(args)})->_return_type:\n"
+            f"{text}\n return __init__")
+    mod = sys.modules.get(cls.__module__)
+    ns = {}
+    # compiled without this module's ``from __future__ import annotations`` (as dataclasses does)
+    exec(compile(text, "<string>", "exec", dont_inherit=True), mod.__dict__ if mod is not None else {}, ns)
+    _attach(cls, "__init__", ns["__create_fn__"](**loc))
+
+
+def _freeze(cls) -> None:
+    """A frozen dataclass's ``__setattr__`` and ``__delattr__`` (the same tests and
+    messages as :mod:`dataclasses`' generated ones)."""
+    names = frozenset(f.name for f in dataclasses.fields(cls))
+    error = dataclasses.FrozenInstanceError
+
+    def __setattr__(self, name, value):
+        if type(self) is cls or name in names:
+            raise error(f"cannot assign to field {name!r}")
+        super(cls, self).__setattr__(name, value)
+
+    def __delattr__(self, name):
+        if type(self) is cls or name in names:
+            raise error(f"cannot delete field {name!r}")
+        super(cls, self).__delattr__(name)
+    _attach(cls, "__setattr__", __setattr__)
+    _attach(cls, "__delattr__", __delattr__)
 
 
 def _attach(cls, name: str, fn) -> None:

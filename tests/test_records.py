@@ -4,6 +4,7 @@ fields/replace/asdict, inheritance and a class's own methods kept."""
 from __future__ import annotations
 
 import dataclasses
+import inspect
 import pickle
 import re
 from dataclasses import field
@@ -68,13 +69,27 @@ def _shapes(deco):
     class FrozenNoEq:
         v: float
 
+    @deco(frozen=True)
+    class PostInit:
+        """Has a docstring."""
+        a: float
+        late: list = field(init=False, default_factory=list, compare=False)
+        fixed: int = field(init=False, default=3)
+
+        def __post_init__(self):
+            object.__setattr__(self, "seen", self.a * 2)
+
+    @deco
+    class Doc:
+        a: int = 1
+
     return dict(Frozen=Frozen, Plain=Plain, Base=Base, Child=Child, OwnRepr=OwnRepr, OwnEq=OwnEq,
-                OwnHash=OwnHash, Bare=Bare, FrozenNoEq=FrozenNoEq)
+                OwnHash=OwnHash, Bare=Bare, FrozenNoEq=FrozenNoEq, PostInit=PostInit, Doc=Doc)
 
 
 ARGS = {"Frozen": [(1.5,), (1.5, (3,), [9], "b")], "Plain": [(1,), (1, [2])], "Base": [(1.0, 2.0)],
         "Child": [(1.0, 2.0, "x")], "OwnRepr": [(3.0,)], "OwnEq": [(3.0,)], "OwnHash": [(3.0,)],
-        "Bare": [(3.0,)], "FrozenNoEq": [(3.0,)]}
+        "Bare": [(3.0,)], "FrozenNoEq": [(3.0,)], "PostInit": [(2.0,)], "Doc": [(), (5,)]}
 
 
 def _behaviour(cls, args):
@@ -85,7 +100,17 @@ def _behaviour(cls, args):
            "asdict": repr(dataclasses.asdict(a)), "is_dc": dataclasses.is_dataclass(a),
            "params": {k: getattr(cls.__dataclass_params__, k) for k in ("init", "repr", "eq", "frozen")},
            "doc": cls.__doc__ if cls.__doc__ and "(" in cls.__doc__ else None,
-           "match_args": cls.__match_args__}
+           "match_args": cls.__match_args__, "signature": str(inspect.signature(cls)),
+           "init": (cls.__init__.__qualname__, cls.__init__.__module__, repr(cls.__init__.__annotations__),
+                    repr(cls.__init__.__defaults__)),
+           "state": re.sub(r" at 0x[0-9a-f]+", "", repr(vars(a)))}
+    for name in ("unknown", dataclasses.fields(cls)[0].name):
+        for op in (lambda: setattr(a, name, 1), lambda: delattr(a, name)):
+            try:
+                op()
+                out[f"op {name}"] = "ok"
+            except (dataclasses.FrozenInstanceError, AttributeError) as e:
+                out[f"op {name}"] = f"{type(e).__name__}: {e}"
     if out["hashable"]:
         out["hash_equal"] = hash(a) == hash(b)
         if cls.__name__ != "OwnHash" and cls.__hash__ is not object.__hash__:
@@ -127,3 +152,15 @@ def test_pickles_and_frozen_delete():
     assert pickle.loads(pickle.dumps(a)) == a
     with pytest.raises(dataclasses.FrozenInstanceError):
         del a.x
+
+
+def test_default_order_error_is_the_same():
+    msgs = []
+    for deco in (STD, fast):
+        with pytest.raises(TypeError) as e:
+            @deco(frozen=True)
+            class Bad:
+                a: int = 1
+                b: int
+        msgs.append(str(e.value))
+    assert msgs[0] == msgs[1]
