@@ -192,6 +192,8 @@ def main(argv=None) -> int:
             "python -c 'import numpy, manifold3d'": ([sys.executable, "-c", "import numpy, manifold3d"],
                                                       None, None, "(floor)"),
             "python -c 'import numpy'": ([sys.executable, "-c", "import numpy"], None, None, "(floor)"),
+            "python -c 'pass'": ([sys.executable, "-c", "pass"], None, None,
+                                 "(the interpreter alone: site and its .pth files)"),
             "python -c 'import numpy', one BLAS thread": (["env", "OPENBLAS_NUM_THREADS=1", "OMP_NUM_THREADS=1",
                                                          sys.executable, "-c", "import numpy"], None, None,
                                                         "(floor as gear3d imports it)")}
@@ -308,6 +310,56 @@ def import_costs(cmd, runs: int) -> list:
     return [(k, statistics.median(v) * 1000) for k, v in per.items()]
 
 
+def _importtime(code_args, runs: int, env) -> dict:
+    """Median ``-X importtime`` self time (ms) of every module ``python -X importtime
+    *code_args`` imports (``runs`` fresh processes)."""
+    per, cum = {}, {}
+    for _ in range(runs):
+        err = subprocess.run([sys.executable, "-X", "importtime", *code_args], capture_output=True, text=True,
+                             env=env, check=True).stderr
+        for ln in err.splitlines():
+            parts = ln.split("|")
+            if ln.startswith("import time:") and len(parts) == 3 and parts[0].split(":")[1].strip().isdigit():
+                per.setdefault(parts[2].strip(), []).append(int(parts[0].split(":")[1]) / 1000)
+                cum.setdefault(parts[2].strip(), []).append(int(parts[1]) / 1000)
+    _importtime.cumulative = {k: statistics.median(v) for k, v in cum.items()}
+    return {k: statistics.median(v + [0.0] * (runs - len(v))) for k, v in per.items()}
+
+
+def import_table(cmd, runs: int) -> str:
+    """Markdown: what the STL command ``cmd`` (gear3d's arguments) imports, by ``-X
+    importtime`` self time (ms, median of ``runs``; a module's own execution, dataclass
+    creation included, without its imports): the interpreter's site (its .pth files), numpy
+    (what ``import numpy`` imports), manifold3d, the standard-library modules gear3d adds,
+    and gear3d's own modules (the costliest named)."""
+    env = dict(os.environ, OPENBLAS_NUM_THREADS="1", GEAR3D_NO_SUPERVISOR="1")
+    site = _importtime(["-c", "pass"], runs, env)
+    pth = {m: t for m, t in _importtime.cumulative.items() if m in ("certifi", "_sandboxing_egress_ca")
+           or m.startswith("__editable__")}
+    numpy = _importtime(["-c", "import numpy"], runs, env)
+    cmd_t = _importtime(["-c", "import sys\nfrom gear3d.cli import main\nsys.exit(main())", *cmd], runs, env)
+    groups = {"site": {}, "numpy": {}, "manifold3d": {}, "stdlib": {}, "gear3d": {}}
+    for m, t in cmd_t.items():
+        g = ("site" if m in site else "numpy" if m in numpy else "manifold3d" if m.startswith("manifold3d")
+             else "gear3d" if m.split(".")[0] == "gear3d" else "stdlib")
+        groups[g][m] = t
+
+    def top(d, n):
+        return ", ".join(f"`{m}` {t:.1f}" for m, t in sorted(d.items(), key=lambda x: -x[1])[:n])
+    rows = ["| imported by | modules | self ms | the costliest (ms) |", "|---|---:|---:|---|",
+            f"| Python's site (this machine's .pth files, cumulative: {top(pth, 3) or 'none'}) | {len(groups['site'])} | "
+            f"{sum(groups['site'].values()):.1f} | {top(groups['site'], 4)} |",
+            f"| numpy (as `import numpy`) | {len(groups['numpy'])} | {sum(groups['numpy'].values()):.1f} | "
+            f"{top(groups['numpy'], 3)} |",
+            f"| manifold3d (the profile's trim: Clipper2) | {len(groups['manifold3d'])} | "
+            f"{sum(groups['manifold3d'].values()):.1f} | {top(groups['manifold3d'], 2)} |",
+            f"| the standard library, for gear3d | {len(groups['stdlib'])} | {sum(groups['stdlib'].values()):.1f} | "
+            f"{top(groups['stdlib'], 6)} |",
+            f"| gear3d's own modules | {len(groups['gear3d'])} | {sum(groups['gear3d'].values()):.1f} | "
+            f"{top(groups['gear3d'], 8)} |"]
+    return "\n".join(rows)
+
+
 def in_process_aims() -> dict:
     """Issue 28's in-process aims, CPU ms in a fresh process: the first call and the median
     of 30 of a 20-tooth profile at 0.001 mm, and of a helical body + STL at 0.01 mm
@@ -328,6 +380,9 @@ def where_it_goes(stl_cmd, runs: int) -> str:
             "the plain body is built and written without manifold3d, which the profile's trim (Clipper2) "
             "still imports):", "", "| start-up / import | CPU ms |", "|---|---:|"]
     rows += [f"| {k} | {v:.1f} |" for k, v in imp]
+    rows += ["", f"Which imports remain (`-X importtime` self times, median of {n} fresh processes of the "
+             "same command; the sum is below the CPU rows above, which include loading the files):", "",
+             import_table(stl_cmd[1:], n)]
     rows += ["", "In process (CPU ms; first call in a fresh process / median of 30):", "",
              "| aim (issue 28) | first call | median | aim |", "|---|---:|---:|---:|",
              f"| profile, 20 teeth, 0.001 mm | {a['profile_first']:.1f} | {a['profile']:.1f} | 5 |",
