@@ -49,7 +49,7 @@ from .step_brep_occ import (SEW_TOL, bspline_curve, bspline_surface, circle_wire
                             cylinder_face, features, plane_face, sew_solid, static_method,
                             transformed, volume, wire_of_curves, write_shape)
 from .step_brep_face import face_solid, is_face
-from .step_brep_wheel import is_wheel, wheel_solid
+from .step_brep_wheel import wheel_design, is_wheel, precheck, wheel_solid
 from .step_brep_runs import ExactSet, Run, exact_set, loop_runs, nearest_on_piece, rot2
 
 __all__ = ["bevel_solid", "wheel_solid", "solid_of", "FIT_SHARE", "SEW_TOL", "SMOOTH_JOINT", "ExactSet", "FaceRec", "Flank", "Group", "Run",
@@ -283,8 +283,11 @@ def write(obj, path, geometry=None, **opts):
     a bevel pair's :class:`~gear3d.bevel.geometry.PairGeometry` (``gear3d.bevel(...).geometry``),
     needed for spiral and Zerol bevel members, or a worm set's design
     (``gear3d.worm(...).design``), needed for the worm wheel."""
-    require_occ()
     bodies = as_bodies(obj, **opts)
+    for b in bodies:                    # a pointed worm wheel refused before any solid (and OCC)
+        if is_wheel(b):
+            precheck(wheel_design(b, geometry))
+    require_occ()
     shapes, infos = [], []
     for b in bodies:
         s, info = solid_of(b, geometry)

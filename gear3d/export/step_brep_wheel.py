@@ -381,6 +381,16 @@ def precheck(d) -> None:
     refuse_pointed(d)
 
 
+def wheel_design(w, design=None):
+    """The worm set's design of wheel body ``w``: ``design`` or the body's own; GearError
+    when neither is known."""
+    d = design if design is not None else getattr(w, "design", None)
+    if d is None:
+        raise GearError("step", "brep", "'faceted' for a worm wheel on its own",
+                        "pass the worm set's design (gear3d.worm(...).design) as geometry=")
+    return d
+
+
 def wheel_solid(w, design=None):
     """The exact B-rep solid (OCC shape, placed by ``w.transform``) of worm wheel ``w``
     (:func:`gear3d.wormgear.wheel_body.wheel_body`) of worm set ``design``
@@ -390,10 +400,7 @@ def wheel_solid(w, design=None):
     (:func:`wheel_features`). Raises GearError for a wheel whose sections change shape, ToleranceError when the measured error
     exceeds the tolerance."""
     from .step_brep_occ import transformed
-    d = design if design is not None else getattr(w, "design", None)
-    if d is None:
-        raise GearError("step", "brep", "'faceted' for a worm wheel on its own",
-                        "pass the worm set's design (gear3d.worm(...).design) as geometry=")
+    d = wheel_design(w, design)
     t0 = time.perf_counter()
     tol = float(w.report["tolerance"])
     ctx = {"d": d, "tol_s": SECTION_SHARE * tol, "sections": {}}
