@@ -178,7 +178,8 @@ def test_spiral_uniform_spheres_and_contact_pattern():
     straight pair's closed form on it, the total is mid-face's plus the face contact ratio of
     the tooth line (solved here), zero backlash over the face (the rigid mate at every
     sphere's phase); the contact pattern's zone ends at gear 1's tip on the toe's and the
-    heel's spheres, ρ (ϑ_tip(ρ) - δ1) above the pitch cone."""
+    heel's spheres, ρ (ϑ_tip(ρ) - δ1) above the pitch cone, and the pattern's span is the
+    check's total (standard depth: the closed form plus the face contact ratio, 1e-9)."""
     from gear3d.bevel.rolling import check_pair, contact_lines
     from gear3d.bevel.spiral import with_tooth_line
     from test_bevel_spiral import tooth_line
@@ -196,6 +197,9 @@ def test_spiral_uniform_spheres_and_contact_pattern():
     assert r["transmission_error_drive"] < 2e-5
     data = contact_lines(g)
     assert data["profile_contact_ratio"] == pytest.approx(r["profile_contact_ratio"], abs=1e-12)
+    assert data["total_contact_ratio"] == pytest.approx(r["contact_ratio"], abs=0.02)     # 3.2224 against 3.2343
+    std = contact_lines(with_tooth_line(pair_geometry(20, 30, M), 35.0, None, "right"))
+    assert std["total_contact_ratio"] == pytest.approx(oracle(20, 30, 90.0, re, False)[0] + face, abs=1e-9)
     for k, rho in ((0, re * 2 / 3), (-1, re)):
         top = max(e[k, 1] for e in data["edges"])
         assert data["edges"][0][k, 0] == pytest.approx(rho, abs=1e-9)

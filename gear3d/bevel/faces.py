@@ -1,6 +1,7 @@
 """The bevel pair's rolling check over the whole face: several spheres about the apex.
 
-:mod:`gear3d.bevel.rolling` rolls the pair on one sphere. On the sphere of radius ρ (a cone
+:mod:`gear3d.bevel.sphereroll` rolls the pair on one sphere; :func:`gear3d.bevel.rolling.check_pair`
+rolls several through :func:`face_check`. On the sphere of radius ρ (a cone
 distance between the toe R_e - b and the heel R_e) each member's tooth is its unit-sphere
 tooth (:func:`gear3d.bevel.sphereroll.tooth`: the generated section, the same on every sphere)
 cut at the polar angle where the body's face cone meets that sphere (:func:`tip_polar`).
@@ -18,8 +19,8 @@ cut at the polar angle where the body's face cone meets that sphere (:func:`tip_
 **Which spheres** (:func:`cone_distances`): evenly spaced from toe to heel with the mid-face
 among them (an even number n of intervals, 2 <= n <= :data:`MAX_INTERVALS`): the fewest for
 which the contact ratio of Tredgold's virtual pair, with each member's addendum on that sphere
-(:func:`virtual_contact_ratio`), changes by at most
-:data:`CONTACT_STEP` between neighbours. Standard depth: n = 2 (toe, mid-face, heel).
+(:func:`virtual_contact_ratio`), changes by at most :data:`CONTACT_STEP` between
+neighbours (n capped at :data:`MAX_INTERVALS`). Standard depth: n = 2 (toe, mid-face, heel).
 Between two spheres nothing is missed: the teeth of a sphere nearer the heel contain those
 of one nearer the toe (each tip polar angle grows with ρ, the flanks are the same), so every
 per-sphere quantity is monotone in ρ (penetration and contact ratio grow, free turns shrink)

@@ -103,7 +103,10 @@ def contact_lines(geo, lines: int = 11, spheres: int = 41, mate_form: str | None
     edges (its highest and lowest points on each sphere) and the contact ratios. The zone on
     each sphere is its own conjugate action's (:func:`gear3d.bevel.faces.sphere_contacts`:
     uniform clearance shortens it towards the toe), linear in ρ between the rolled spheres;
-    ``profile_contact_ratio`` is the mid-face sphere's, as :func:`check_pair`'s."""
+    ``profile_contact_ratio`` is the mid-face sphere's, as :func:`check_pair`'s, and
+    ``total_contact_ratio`` the gear angles over which tooth 0 touches somewhere on the face,
+    over the pitch (standard depth: profile + face exactly; uniform clearance: the sphere's
+    own zones, a little off the mid-face sum)."""
     from .spiral import law
     mate_form = geo.form if mate_form is None else mate_form
     t1 = tooth(geo, "gear")
@@ -124,8 +127,10 @@ def contact_lines(geo, lines: int = 11, spheres: int = 41, mate_form: str | None
         out.append(np.column_stack([rho[on], rho[on] * np.interp(w[on], phi_w, height)]))
     edges = [np.column_stack([rho, rho * np.interp(a, phi_w, height)]) for a in (lo, hi)]
     mid = int(np.argmin(np.abs(radii - (geo.cone_distance - 0.5 * geo.face_width))))
+    span = float(((hi - theta).max() - (lo - theta).min()) * geo.gear.teeth / (2 * math.pi))
     return {"lines": out, "edges": edges, "profile_contact_ratio": float(cas[mid]["contact_ratio"]),
-            "face_contact_ratio": face_contact_ratio(geo), "conjugate": all(ca["conjugate"] for ca in cas)}
+            "face_contact_ratio": face_contact_ratio(geo), "conjugate": all(ca["conjugate"] for ca in cas),
+            "total_contact_ratio": span}
 
 
 def pairing(form1: str, form2: str) -> str:
