@@ -98,6 +98,11 @@ COSTS = {
     "contact": Cost(3e-3, 2000.0, 0.3, 20e6, "measured 2026-11-26 (CPU): involute 20/20..2000/2000 and sine "
                     "at 1e-4..0.05 mm, 234-3,301 angles: 0.3-3.3 ms an angle; bands over 0.4 pitch up to 15 ms "
                     "(involute 100/100 and 150/150 at 0.05 mm: 10.8 s for 741 and 901 angles: CONTACT_WIDE_BAND)"),
+    # pinion on rack (analysis.rack_mesh): per roll state, and per (pinion vertex x rack chord) pair of a state
+    "pair.rack": Cost(2e-3, 0.0, 0.0, 60e6, "measured 2026-11-26 (CPU): involute 20 / 100 teeth, cycloidal 30, "
+                      "sine 200 at 0.1-1 um: 0.2-1.1 ms a state beside its pairs"),
+    "pair.rack.pairs": Cost(3.5e-8, 0.0, 0.0, 100e6, "measured 2026-11-26 (CPU): sine z=45 m=50 at 1 / 0.3 um: "
+                            "370 M / 1.48 G pairs, 9.2 / 28.2 s (19-25 ns a pair); 1 M pairs a chunk"),
     # rolling check: per (position x vertex of both polygons), shapely
     "pair": Cost(1.2e-5, 300.0, 0.3, 30e6, "check_pair, 78 positions: involute 20/21 to 1000/1000 at "
                  "1-10 um 4.6-11 us, sine 200/210 internal 10 us a (position x vertex)"),
@@ -169,9 +174,10 @@ COSTS = {
                           "at 10 um 0.27 s, 300/300 m 1 at 50 um 0.87 s and +64 MB; per tooth of the larger member "
                           "(the first sphere's roll included; 300/300 0.57 s since the copies of teeth are made near "
                           "the mesh only)"),
-    "bevel.rolling.sphere": Cost(0.25, 1e6, 0.0, 0.0, "measured 2026-11-26 (CPU): each further sphere of a "
+    "bevel.rolling.sphere": Cost(0.3, 1e6, 0.0, 0.0, "measured 2026-11-26 (CPU): each further sphere of a "
                                  "uniform-clearance pair's check (96 positions) 0.14 s (20/40 m 2: 5 spheres 0.88 s "
-                                 "against 0.33 s standard) to 0.19 s (300/300 m 1: 7 spheres 1.70 s against 0.57 s)"),
+                                 "against 0.33 s standard) to 0.19 s (300/300 m 1: 7 spheres 1.70 s against 0.57 s); "
+                                 "an internal 20/30 pair at 170 deg (9 spheres) 0.33 s a sphere at load 6"),
     "crossed.check": Cost(7e-8, 250.0, 0.8, 60e6, "measured 2026-11-26 in process (CPU, ru_maxrss): crossed "
                           "helical checks 12/14 m 1 (faces 6 / 30 mm), 40/60 m 2 (20), 20/30 at 30 deg (10), 100/100 "
                           "m 0.5 (40): 0.68-6.4 s for 3.5 M-141 M flank points (46-110 ns a point beyond 0.5 s); "
