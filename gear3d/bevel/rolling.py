@@ -144,7 +144,8 @@ def pairing(form1: str, form2: str) -> str:
 
 
 def summary(rep: dict) -> str:
-    """One line for the CLI (µm on the heel sphere and the mate's heel pitch circle)."""
+    """One line for the CLI (µm: the largest penetration on its sphere, backlash and transmission
+    error on the mate's heel pitch circle)."""
     um = 1000.0
     pen = f"max penetration {rep['max_penetration'] * um:.2f} um"
     lash = f"backlash {rep['backlash_min'] * um:.2f} .. {rep['backlash_max'] * um:.2f} um"

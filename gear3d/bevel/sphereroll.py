@@ -60,7 +60,7 @@ GRID = 96
 #: exact points, but the sections' trimming (an undercut shallower than the chords is not
 #: cut) depends on it
 CHECK_TOLERANCE = 1e-4
-#: mm on the heel sphere: two paths of contact closer than this are one (conjugate action)
+#: mm on the sphere rolled: two paths of contact closer than this are one (conjugate action)
 BAND = 1e-6
 
 
@@ -377,7 +377,7 @@ def _rots(phi):
 def conjugate_action(t1: Tooth, t2: Tooth, place: Placement, scale: float, band: float = BAND, n: int = 4001):
     """Contact by conjugate action of gear 1's upper flank with the mate: the gear-1 angles
     where both paths of contact exist and meet within ``band`` (mm, distances times
-    ``scale``, the heel cone distance). Returns the contact ratio (the measure over 2π/z1),
+    ``scale``, the radius of the sphere rolled). Returns the contact ratio (the measure over 2π/z1),
     the overlap of the two angle ranges (rad), the paths' largest distance over it (mm) and
     whether they meet everywhere (conjugate)."""
     best = None
