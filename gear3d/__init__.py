@@ -28,6 +28,7 @@ _LAZY = {
     "worm": "gear3d.plan_sets",           # the builders, each planned against the budget first
     "bevel": "gear3d.bevel",              # a callable package: its __call__ plans first
     "face_gear": "gear3d.plan_sets",
+    "crossed": "gear3d.analysis.crossed_api",    # planned first (plan_sets.plan_crossed)
 }
 
 __all__ = ["GearError", "ToleranceError", "GearSpec", "profile", "families", *_LAZY]

@@ -33,7 +33,7 @@ import pytest
 from scipy.optimize import brentq, fsolve
 
 from gear3d import GearError
-from gear3d.analysis.crossed import crossed_pair, pair_bodies
+from gear3d.analysis.crossed import at_center_distance, crossed_pair, pair_bodies
 from gear3d.analysis.crossed_roll import check_crossed
 from gear3d.cli import main
 
@@ -134,8 +134,7 @@ def test_rolling_check_at_the_distance_and_moved_by_delta():
     assert chk["transmission_error_drive"] < 1e-9
     b2 = math.radians(sig - b1)
     for delta in (-0.01, 0.01):
-        moved = crossed_pair(z1, z2, mn, b1, sig, shift_coeff=x1, mate_shift_coeff=x2,
-                             center_distance=rep["center_distance"] + delta)
+        moved = at_center_distance(rep, rep["center_distance"] + delta)
         c = check_crossed(moved, width=8.0, grid=6)
         jn, jt = 2 * delta * math.sin(AN), 2 * delta * math.tan(AN) / math.cos(b2)
         assert c["backlash_normal_min"] == pytest.approx(jn, abs=1e-9)

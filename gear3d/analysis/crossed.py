@@ -140,16 +140,15 @@ def _check_inputs(teeth, mate_teeth, normal_module, helix_angle_deg, shaft_angle
 
 def crossed_pair(teeth, mate_teeth, normal_module, helix_angle_deg, shaft_angle_deg=90.0,
                  normal_pressure_angle_deg=20.0, addendum_coeff=1.0, speed_rpm=None, *,
-                 shift_coeff=0.0, mate_shift_coeff=0.0, center_distance=None) -> dict:
+                 shift_coeff=0.0, mate_shift_coeff=0.0) -> dict:
     """The report of a crossed helical pair (mm, degrees, m/s; see the module doc).
     ``helix_angle_deg``: β1 of wheel 1, signed (right hand > 0); wheel 2 gets
     β2 = Σ - β1 (same hand when positive). ``speed_rpm``: wheel 1's speed for the sliding
     velocity in m/s (None: the sliding velocity per unit pitch-line speed of wheel 1).
     ``shift_coeff``/``mate_shift_coeff``: normal profile shifts x1, x2 (in [-1, 1.5]);
-    the pair runs at the zero-backlash centre distance a = r1 + r2 + (x1 + x2) m_n, or at
-    ``center_distance`` (mm) when given: the report then gives its normal backlash
-    2 (a - a_0) sin α_n (< 0: the teeth overlap). Raises :class:`GearError` naming a bad
-    parameter (a tooth pointed by its shift names the shift).
+    the pair runs at the zero-backlash centre distance a = r1 + r2 + (x1 + x2) m_n (another
+    one: :func:`at_center_distance`). Raises :class:`GearError` naming a bad parameter (a
+    tooth pointed by its shift names the shift).
 
     >>> c = crossed_pair(12, 14, 1.0, 45.0, shift_coeff=0.5, mate_shift_coeff=0.3)
     >>> round(c["center_distance"] - c["standard_center_distance"], 12), round(c["normal_backlash"], 12)
@@ -164,27 +163,43 @@ def crossed_pair(teeth, mate_teeth, normal_module, helix_angle_deg, shaft_angle_
             raise GearError(name, x, "a shift that leaves the tooth a tip (its involutes meet below the tip "
                             "cylinder)", f"wheel {1 if g is g1 else 2}, {g['teeth']} teeth")
     a0 = g1["pitch_radius"] + g2["pitch_radius"]
-    a_zb = a0 + (x1 + x2) * mn
-    lo = max(g1["tip_radius"] + g2["base_radius"], g2["tip_radius"] + g1["base_radius"], a0 - 2 * mn)
-    a = a_zb if center_distance is None else check_number(
-        "center_distance", center_distance, lo, a_zb + 2 * mn, lo_open=True, unit="mm")
-    rep = {"kind": "crossed-helical", "shaft_angle_deg": math.degrees(sig), "normal_module": mn,
-           "normal_pressure_angle_deg": math.degrees(an), "center_distance": a,
-           "standard_center_distance": a0, "zero_backlash_center_distance": a_zb,
-           "normal_backlash": 2 * (a - a_zb) * math.sin(an), "ratio": z2 / z1,
-           "same_hand": (b1 > 0) == (b2 > 0), "gear": g1, "mate": g2,
-           "normal_base_pitch": math.pi * mn * math.cos(an)}
-    rep["working_normal_pressure_angle_deg"] = math.degrees(an)
-    rep.update(_working_pitch(rep))
-    path = contact_path(rep)
     rel_slide = math.sin(sig) / math.cos(b2)
     v1 = None if speed_rpm is None else check_number("speed_rpm", speed_rpm, 0, 1e6, lo_open=True) \
         * 2 * math.pi / 60 * g1["pitch_radius"] / 1000
-    rep.update({"path_of_contact": path, "contact_ratio": path["length"] / rep["normal_base_pitch"],
-                "contact": "point", "sliding_per_pitch_speed": rel_slide,
-                "pitch_speed_mps": v1, "sliding_speed_mps": None if v1 is None else v1 * rel_slide,
-                "mate_pitch_speed_per_pitch_speed": math.cos(b1) / math.cos(b2)})
-    return rep
+    rep = {"kind": "crossed-helical", "shaft_angle_deg": math.degrees(sig), "normal_module": mn,
+           "normal_pressure_angle_deg": math.degrees(an), "standard_center_distance": a0,
+           "zero_backlash_center_distance": a0 + (x1 + x2) * mn, "ratio": z2 / z1,
+           "same_hand": (b1 > 0) == (b2 > 0), "gear": g1, "mate": g2,
+           "normal_base_pitch": math.pi * mn * math.cos(an), "contact": "point",
+           "sliding_per_pitch_speed": rel_slide, "pitch_speed_mps": v1,
+           "sliding_speed_mps": None if v1 is None else v1 * rel_slide,
+           "mate_pitch_speed_per_pitch_speed": math.cos(b1) / math.cos(b2),
+           "working_normal_pressure_angle_deg": math.degrees(an)}
+    return at_center_distance(rep, None)
+
+
+def at_center_distance(rep: dict, center_distance=None) -> dict:
+    """The report ``rep`` (:func:`crossed_pair`) with the pair at ``center_distance`` (mm;
+    None: the zero-backlash one): a new dict with ``center_distance``, its
+    ``normal_backlash`` 2 (a - a_zb) sin α_n (< 0: the teeth overlap), the working pitch
+    cylinders, the path of contact and the contact ratio there. Refuses (naming
+    ``center_distance``) a distance where a tip would reach the other's root cylinder (the
+    clearance 0.25 m_n used up), or more than 2 m_n beyond the zero-backlash one.
+
+    >>> r = at_center_distance(crossed_pair(12, 14, 1.0, 45.0), 18.4)
+    >>> round(r["normal_backlash"] * 1000, 3)            # 2 x 15.2 um x sin 20 deg, in um
+    10.414
+    """
+    mn, a_zb = rep["normal_module"], rep["zero_backlash_center_distance"]
+    a = a_zb if center_distance is None else check_number(
+        "center_distance", center_distance, a_zb - 0.25 * mn, a_zb + 2 * mn, lo_open=True, unit="mm")
+    out = {k: v for k, v in rep.items() if k != "check"}
+    out.update({"center_distance": a,
+                "normal_backlash": 2 * (a - a_zb) * math.sin(math.radians(rep["normal_pressure_angle_deg"]))})
+    out.update(_working_pitch(out))
+    path = contact_path(out)
+    out.update({"path_of_contact": path, "contact_ratio": path["length"] / out["normal_base_pitch"]})
+    return out
 
 
 def _working_pitch(rep: dict) -> dict:

@@ -26,7 +26,7 @@ from __future__ import annotations
 
 import sys
 
-from ..analysis.crossed import crossed_pair, summary
+from ..analysis.crossed import at_center_distance, crossed_pair, summary
 from ..cliargs import number
 from ..errors import GearError
 from ..export import check_output, exts, write
@@ -88,7 +88,9 @@ def run_crossed(args, alias: bool = False) -> int:
     if not (mesh or args.crossed_check) and args.width is not None:
         raise GearError("width", args.width, "only with --check or a 3D output (-o " + " ".join(MESH_EXTS) + ")")
     rep = crossed_pair(*_pair_args(args), shift_coeff=args.shift_coeff or 0.0,
-                       mate_shift_coeff=args.mate_shift_coeff or 0.0, center_distance=args.center_distance)
+                       mate_shift_coeff=args.mate_shift_coeff or 0.0)
+    if args.center_distance is not None:
+        rep = at_center_distance(rep, args.center_distance)
     tol = 0.01 if args.tolerance is None else args.tolerance
     if mesh or args.crossed_check:
         from ..plan_sets import plan_crossed, plan_crossed_check
