@@ -15,7 +15,8 @@ returns a :class:`Bevel`: the bodies and a typed, frozen :class:`BevelReport` wh
 * :mod:`.spiral`: spiral and Zerol bevels (the crown's circular tooth line; the sections
   turned by the cone distance);
 * :mod:`.rolling`: the pair's rolling check (interference, backlash, contact ratio,
-  transmission error).
+  transmission error) on spheres across the face (:mod:`.faces`: which spheres, each
+  member's tips on them, the face-wide results), each rolled by :mod:`.sphereroll`.
 
 Internal bevels (a pitch cone beyond 90°) are built in their own frame turned by π about x
 (straight, spiral and Zerol; uniform clearance; rolling check and figures). Not built
