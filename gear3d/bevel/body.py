@@ -4,22 +4,32 @@ front cones, and the pair placed in mesh.
 Body of one member (its own frame: axis z, apex at the origin, heel the far end):
 
 * **teeth**: the cone over the section polygon in the plane z = zs (the central projection
-  of the spherical profile, :mod:`gear3d.bevel.section`), from z_lo to zs: manifold3d's
-  extrusion with ``scale_top`` is exactly that cone (each side face is a planar quad
-  through the apex);
-* **caps**: a solid of revolution (manifold3d ``revolve``) bounded by the back cone (through
-  the heel pitch circle, normal to the pitch element at R_e) and the front cone (at the toe,
-  R_e - b), each carried a little below the root cone and closed there by a flat face
-  normal to the axis (the mounting faces); the body is teeth ∩ caps.
+  of the spherical profile, :mod:`gear3d.bevel.section`): each side face is a planar quad
+  through the apex;
+* **caps**: a solid of revolution bounded by the back cone (through the heel pitch circle,
+  normal to the pitch element at R_e) and the front cone (at the toe, R_e - b), each carried
+  a little below the root cone and closed there by a flat face normal to the axis (the
+  mounting faces); the body is teeth ∩ caps.
+
+Two constructions of that body:
+
+* **mesh** (:func:`direct_body`, an external member with standard clearance and a
+  star-shaped section): one closed mesh made directly (:mod:`gear3d.bevel.conemesh`): the
+  side quads between the rays of the section's vertices, cut at the end surfaces, and the
+  end faces triangulated between the section's end points and the circle where cone and
+  mounting plane meet. Every vertex lies on its exact surface; the end faces' sag e_c is
+  computed for every triangle (sin δ r_max (1 - cos(Δφ/2))).
+* **boolean** (:func:`boolean_body`, any other: internal members, uniform clearance, an
+  undercut section): manifold3d's extrusion with ``scale_top`` (exactly the teeth cone)
+  intersected with the revolved caps (``revolve``, N segments), whose facets sag by at most
+  e_c = r_max (1 - cos(π/N)) (r_max the largest radius reached), plus Clipper's rounding.
 
 Error (mm, every point of the written mesh): the teeth's faces lie within e_s z/zs <= e_s
 of the exact tooth surfaces (e_s the section's measured error, z <= zs everywhere); the
-revolved caps' facets sag by at most e_c = r_max (1 - cos(π/N)) (N segments, r_max the
-largest radius reached). Where a tooth face meets a cap at the dihedral angle γ the edge
-moves by at most (e_s + e_c)/sin γ, and γ >= 90° - max(θ_a, θ_f) there (the back and front
-cones are normal to the pitch element, the tooth faces contain the rays within θ_a, θ_f of
-it). ``max_error`` is that bound plus Clipper's rounding; the tolerance is split so that it
-fits.
+end faces within e_c of theirs. Where a tooth face meets a cap at the dihedral angle γ the
+edge moves by at most (e_s + e_c)/sin γ, and γ >= 90° - max(θ_a, θ_f) there (the back and
+front cones are normal to the pitch element, the tooth faces contain the rays within θ_a,
+θ_f of it). ``max_error`` is that bound; the tolerance is split so that it fits.
 
 Example::
 
@@ -147,8 +157,8 @@ class BevelBody(Solid):
     frame), ``name``, ``report`` (dict, mm), ``transform`` (4x4, its place in a pair), the
     pair's ``geometry`` and the base's cached ``arrays()`` / ``mesh``."""
 
-    def __init__(self, manifold, name: str, report: dict, transform=None, profile=None):
-        super().__init__(name, report, transform, manifold=manifold)
+    def __init__(self, manifold, name: str, report: dict, transform=None, profile=None, arrays=None):
+        super().__init__(name, report, transform, manifold=manifold, arrays=arrays)
         self.profile = profile
         #: the pair's :class:`~gear3d.bevel.geometry.PairGeometry` (set by :func:`gear3d.bevel.build`)
         self.geometry = None
@@ -182,8 +192,9 @@ def _split_bands(outline: np.ndarray, parts: int) -> np.ndarray:
 def member_body(geo: PairGeometry, which: str, tolerance: float, name: str | None = None) -> BevelBody:
     """The straight body of member ``which`` ("gear" or "mate") in its own frame, within
     ``tolerance`` (mm, measured as the module doc says); a spiral or Zerol bevel's is
-    :func:`gear3d.bevel.spiral.spiral_body`."""
-    from manifold3d import CrossSection, FillRule, Manifold
+    :func:`gear3d.bevel.spiral.spiral_body`. An external member with standard clearance and
+    a star-shaped section is meshed directly (:func:`direct_body`), any other with
+    manifold3d's boolean (:func:`boolean_body`)."""
     from .. import budget
     from ..progress import stage
     c = member(geo, which)
@@ -197,6 +208,49 @@ def member_body(geo: PairGeometry, which: str, tolerance: float, name: str | Non
     layers = LAYERS if nv * n_seg > SPLIT_WORK else 0
     budget.check_body(_estimate_triangles(nv, n_seg, layers), "tolerance", tolerance)
     stage("body")
+    if not c.internal and c.uniform_face_angle is None and len(sec.loops) == 1:
+        got = direct_body(geo, which, cp, sec, tolerance, worst, name)
+        if got is not None:
+            return got
+    return boolean_body(geo, which, cp, sec, tolerance, worst, n_seg, layers, name)
+
+
+def direct_body(geo: PairGeometry, which: str, cp: Caps, sec, tolerance: float, worst: float,
+                name: str | None = None) -> BevelBody | None:
+    """The body as one closed mesh (:func:`gear3d.bevel.conemesh.cone_mesh`, no boolean):
+    ``max_error`` = (section error + the end faces' measured sag) / ``worst`` (the edge
+    sine); None when the section is not star-shaped (its end strips are not a checked case)."""
+    from ..solids.layers import mesh_properties
+    from .conemesh import cone_mesh
+    c = member(geo, which)
+    zs = cp.z_hi
+    o = cp.outline
+    beta_j = math.atan2(o[-2, 0], o[-2, 1])                 # where the back cone meets the back plane
+    got = cone_mesh(np.asarray(sec.loops[0], float), zs, c.pitch_angle, geo.cone_distance,
+                    geo.inner_cone_distance, float(o[0, 1]), float(o[-1, 1]), beta_j, CAP_SHARE * tolerance * worst)
+    if got is None:
+        return None
+    V, F, e_c, m = got
+    e_s = sec.report["max_error"]
+    max_err = (e_s + e_c) / worst
+    if max_err > tolerance:
+        return None
+    props = mesh_properties(V, F)
+    rep = {"name": name or which, "section_error": float(e_s), "cap_error": float(e_c),
+           "max_error": float(max_err), "tolerance": float(tolerance), "volume": props["volume"],
+           "triangles": int(len(F)), "genus": props["genus"], "cap_segments": int(m),
+           "section_z": zs, "section_vertices": int(len(sec.loops[0])), "construction": "mesh",
+           "z_range": [float(V[:, 2].min()), float(V[:, 2].max())]}
+    return BevelBody(None, name or which, rep, profile=sec, arrays=(V, F))
+
+
+def boolean_body(geo: PairGeometry, which: str, cp: Caps, sec, tolerance: float, worst: float, n_seg: int,
+                 layers: int, name: str | None = None) -> BevelBody:
+    """The body as manifold3d's intersection of the teeth cone (the section extruded to the
+    apex with ``scale_top``) with the revolved end faces of ``n_seg`` segments (module doc)."""
+    from manifold3d import CrossSection, FillRule, Manifold
+    zs = cp.z_hi
+    nv = sum(len(l) for l in sec.loops)
     k = cp.z_lo / zs
     cs = CrossSection([np.asarray(l, float) * k for l in sec.loops], FillRule.Positive)
     teeth = Manifold.extrude(cs, zs - cp.z_lo, layers, 0.0, (1 / k, 1 / k)).translate((0.0, 0.0, cp.z_lo))
@@ -210,7 +264,8 @@ def member_body(geo: PairGeometry, which: str, tolerance: float, name: str | Non
     rep = {"name": name or which, "section_error": float(e_s), "cap_error": float(e_c),
            "max_error": float(max_err), "tolerance": float(tolerance), "volume": float(man.volume()),
            "triangles": int(F), "genus": int(man.genus()), "cap_segments": n_seg, "section_z": zs,
-           "section_vertices": int(nv), "z_range": [float(V[:, 2].min()), float(V[:, 2].max())]}
+           "section_vertices": int(nv), "construction": "boolean",
+           "z_range": [float(V[:, 2].min()), float(V[:, 2].max())]}
     return BevelBody(man, name or which, rep, profile=sec)
 
 
