@@ -38,6 +38,7 @@ Example::
 from __future__ import annotations
 
 import dataclasses
+import operator
 import reprlib
 import sys
 
@@ -60,6 +61,8 @@ def dataclass(cls=None, /, **options):
     own = dict(cls.__dict__)
     if _simple(cls, options):
         no_doc = not getattr(cls, "__doc__")
+        if no_doc:                # written below, from the __init__ (dataclasses would read object's)
+            cls.__doc__ = "-"
         cls = _make(cls, **{**options, "init": False, "frozen": False}, repr=False, eq=False)
         _write_init(cls, frozen)
         if frozen:
@@ -191,15 +194,27 @@ def _repr_fn(names):
     return __repr__
 
 
+def _values(names):
+    """A function: an object's tuple of the attributes ``names`` (in C: operator.attrgetter)."""
+    if not names:
+        return lambda obj: ()
+    get = operator.attrgetter(*names)
+    return get if len(names) > 1 else (lambda obj: (get(obj),))
+
+
 def _eq_fn(names):
+    values = _values(names)
+
     def __eq__(self, other):
         if other.__class__ is self.__class__:
-            return tuple(getattr(self, n) for n in names) == tuple(getattr(other, n) for n in names)
+            return values(self) == values(other)
         return NotImplemented
     return __eq__
 
 
 def _hash_fn(names):
+    values = _values(names)
+
     def __hash__(self):
-        return hash(tuple(getattr(self, n) for n in names))
+        return hash(values(self))
     return __hash__

@@ -83,11 +83,15 @@ def _shapes(deco):
     class Doc:
         a: int = 1
 
-    return dict(Frozen=Frozen, Plain=Plain, Base=Base, Child=Child, OwnRepr=OwnRepr, OwnEq=OwnEq,
+    @deco(frozen=True)
+    class Empty:
+        """No fields."""
+
+    return dict(Empty=Empty, Frozen=Frozen, Plain=Plain, Base=Base, Child=Child, OwnRepr=OwnRepr, OwnEq=OwnEq,
                 OwnHash=OwnHash, Bare=Bare, FrozenNoEq=FrozenNoEq, PostInit=PostInit, Doc=Doc)
 
 
-ARGS = {"Frozen": [(1.5,), (1.5, (3,), [9], "b")], "Plain": [(1,), (1, [2])], "Base": [(1.0, 2.0)],
+ARGS = {"Empty": [()], "Frozen": [(1.5,), (1.5, (3,), [9], "b")], "Plain": [(1,), (1, [2])], "Base": [(1.0, 2.0)],
         "Child": [(1.0, 2.0, "x")], "OwnRepr": [(3.0,)], "OwnEq": [(3.0,)], "OwnHash": [(3.0,)],
         "Bare": [(3.0,)], "FrozenNoEq": [(3.0,)], "PostInit": [(2.0,)], "Doc": [(), (5,)]}
 
@@ -104,7 +108,8 @@ def _behaviour(cls, args):
            "init": (cls.__init__.__qualname__, cls.__init__.__module__, repr(cls.__init__.__annotations__),
                     repr(cls.__init__.__defaults__)),
            "state": re.sub(r" at 0x[0-9a-f]+", "", repr(vars(a)))}
-    for name in ("unknown", dataclasses.fields(cls)[0].name):
+    first = dataclasses.fields(cls)[0].name if dataclasses.fields(cls) else "x"
+    for name in ("unknown", first):
         for op in (lambda: setattr(a, name, 1), lambda: delattr(a, name)):
             try:
                 op()
@@ -117,11 +122,11 @@ def _behaviour(cls, args):
             names = [f.name for f in dataclasses.fields(cls) if (f.compare if f.hash is None else f.hash)]
             out["hash_value"] = hash(a) == hash(tuple(getattr(a, n) for n in names))
     try:
-        setattr(a, dataclasses.fields(cls)[0].name, 99)
+        setattr(a, first, 99)
         out["set"] = "ok"
     except dataclasses.FrozenInstanceError as e:
         out["set"] = f"frozen: {e}"
-    if dataclasses.fields(cls)[0].name != "x" or out["set"] == "ok":
+    if first != "x" or out["set"] == "ok":
         out["replace"] = repr(dataclasses.replace(b)) if out["set"] != "ok" else None
     return out
 
