@@ -476,10 +476,16 @@ def _face_builder():
     return _planned(importlib.import_module("gear3d.facegear").build, plan_face_gear)
 
 
-#: ``gear3d.worm``: :func:`gear3d.wormgear.worm`, planned first (:func:`plan_worm`)
-worm = _worm_builder()
-#: ``gear3d.face_gear``: :func:`gear3d.facegear.build`, planned first (:func:`plan_face_gear`)
-face_gear = _face_builder()
+def __getattr__(name):
+    """``worm`` (``gear3d.worm``: :func:`gear3d.wormgear.worm`, planned first by
+    :func:`plan_worm`) and ``face_gear`` (``gear3d.face_gear``: :func:`gear3d.facegear.build`,
+    planned first by :func:`plan_face_gear`), made on first use: their packages load then,
+    not with every plan (a bevel's paid ~10 ms for them)."""
+    makers = {"worm": _worm_builder, "face_gear": _face_builder}
+    if name not in makers:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    globals()[name] = made = makers[name]()
+    return made
 
 
 def bevel(build, *args, **kw):
