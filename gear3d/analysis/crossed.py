@@ -95,6 +95,11 @@ from ..params import MESH_TOLERANCE
 from ..spec import GearSpec
 
 
+#: the rack tool's tip radius (transverse modules): the involute family's default, which the
+#: bodies are cut with (:func:`member_spec` leaves it)
+TOOL_TIP = 0.25
+
+
 def _member(z, beta, mn, an, ha, x):
     """One gear's radii and angles (mm, rad); ``x`` its normal shift coefficient."""
     r = z * mn / (2 * math.cos(beta))
@@ -105,13 +110,18 @@ def _member(z, beta, mn, an, ha, x):
     ga = math.sqrt(ra * ra - rb * rb) - r * math.sin(at)
     half = (math.pi / 2 + 2 * x * math.tan(an)) / z           # transverse half-thickness angle at r
     tip_half = half + _inv(at) - _inv(math.acos(rb / ra))
+    # the form cylinder: where the rack tool's straight flank (the family's transverse rack:
+    # dedendum 1.25 m_n, tip radius TOOL_TIP m_t) stops generating the involute
+    depth = 1.25 * mn - TOOL_TIP * mn / math.cos(beta) * (1 - math.sin(at)) - x * mn
+    e = r * math.sin(at) - depth / math.sin(at)
     return {"teeth": z, "helix_angle_deg": math.degrees(beta), "hand": "right" if beta > 0 else "left",
             "pitch_radius": r, "transverse_module": mn / math.cos(beta),
             "transverse_pressure_angle_deg": math.degrees(at), "base_radius": rb,
             "base_helix_angle_deg": math.degrees(bb), "tip_radius": ra, "addendum_path": ga,
             "path_on_normal": ga / math.cos(bb), "shift_coeff": x,
             "normal_thickness": mn * (math.pi / 2 + 2 * x * math.tan(an)),
-            "tip_thickness_transverse": 2 * ra * tip_half}
+            "tip_thickness_transverse": 2 * ra * tip_half,
+            "form_radius": math.hypot(rb, e) if e > 0 else rb, "undercut": e <= 0}
 
 
 def _inv(a: float) -> float:
@@ -268,10 +278,12 @@ def _foot(Q, u, O, k) -> float:
 def contact_path(rep: dict, side: str = "upper") -> dict:
     """The path of point contact on the line of action of ``side`` (:func:`contact_lines`):
     along it the distance to axis i is ρ_i(s)² = r_bi² + cos²β_bi (s - s_Ti)² (T_i: the
-    line's tangency point on base cylinder i), so wheel i's flank meets it from T_i (towards
-    the other tangency point) up to its tip cylinder at |s - s_Ti| = √(r_ai² - r_bi²) / cos β_bi.
-    The path is where both flanks are (mm along the line); ``interference`` names a wheel
-    whose tip would run past the other's base cylinder (the path ends at a tangency point)."""
+    line's tangency point on base cylinder i), so wheel i's flank meets it on the side of T_i
+    towards the other tangency point, from its form cylinder (``form_radius``: where the
+    tool's straight flank stops generating) up to its tip cylinder, at
+    |s - s_Ti| = √(ρ² - r_bi²) / cos β_bi. The path is where both flanks are (mm along the
+    line); ``interference`` names a wheel whose tip would run past the other's form cylinder
+    (into its fillet)."""
     import numpy as np
     g1, g2 = rep["gear"], rep["mate"]
     Q, u = contact_lines(rep)[side]
@@ -279,16 +291,16 @@ def contact_path(rep: dict, side: str = "upper") -> dict:
     O2, k2 = np.array([rep["center_distance"], 0.0, 0.0]), np.array([0.0, math.sin(sig), math.cos(sig)])
     sT1, sT2 = _foot(Q, u, np.zeros(3), np.array([0.0, 0, 1.0])), _foot(Q, u, O2, k2)
     sgn = 1.0 if sT2 >= sT1 else -1.0
-    reach = [math.sqrt(g["tip_radius"] ** 2 - g["base_radius"] ** 2) / math.cos(math.radians(g["base_helix_angle_deg"]))
-             for g in (g1, g2)]
-    lo1, hi1 = sorted((sT1, sT1 + sgn * reach[0]))
-    lo2, hi2 = sorted((sT2, sT2 - sgn * reach[1]))
-    lo, hi = max(lo1, lo2), min(hi1, hi2)
+    def along(g, rho):              # |s - s_T| where the line is at radius rho from the axis
+        return math.sqrt(max(rho ** 2 - g["base_radius"] ** 2, 0.0)) / math.cos(math.radians(g["base_helix_angle_deg"]))
+    tip1, form1 = sT1 + sgn * along(g1, g1["tip_radius"]), sT1 + sgn * along(g1, g1["form_radius"])
+    tip2, form2 = sT2 - sgn * along(g2, g2["tip_radius"]), sT2 - sgn * along(g2, g2["form_radius"])
+    lo, hi = max(min(form1, tip1), min(form2, tip2)), min(max(form1, tip1), max(form2, tip2))
     inter = []
-    if (sgn > 0 and sT2 - sgn * reach[1] < sT1) or (sgn < 0 and sT2 - sgn * reach[1] > sT1):
-        inter.append("mate tip past the gear's base cylinder")
-    if (sgn > 0 and sT1 + sgn * reach[0] > sT2) or (sgn < 0 and sT1 + sgn * reach[0] < sT2):
-        inter.append("gear tip past the mate's base cylinder")
+    if sgn * (tip2 - form1) < 0:
+        inter.append("mate tip past the gear's form cylinder")
+    if sgn * (form2 - tip1) < 0:
+        inter.append("gear tip past the mate's form cylinder")
     start, end = (lo, hi) if sgn > 0 else (hi, lo)
     mid = _foot(Q, u, np.zeros(3), np.array([1.0, 0, 0]))     # nearest the common perpendicular
     return {"direction": "a line tangent to both base cylinders, along the flanks' common normal u (at alpha_n "

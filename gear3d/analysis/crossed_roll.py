@@ -12,8 +12,8 @@ are sampled and compared.
   its flanks lie at θ_k ± w_i(ρ), w(ρ) = s_t/(2r) + inv α_t - inv arccos(r_b/ρ) with
   s_t/(2r) = (π/2 + 2 x_n tan α_n)/z: the exact involute helicoid of the shifted tooth. Its
   active part runs from the form cylinder (where the rack tool's straight flank stops
-  generating: ρ_F² = r_b² + (r sin α_t - (h_f m_n - ρ_a0 m_t (1 - sin α_t) - x_n m_n)/sin α_t)²)
-  to the tip cylinder, across the face. Below ρ_F the tooth is taken at its width there (the
+  generating: ρ_F² = r_b² + (r sin α_t - (h_f m_n - ρ_a0 m_t (1 - sin α_t) - x_n m_n)/sin α_t)²,
+  the report's ``form_radius``; r_b for an undercut gear) to the tip cylinder, across the face. Below ρ_F the tooth is taken at its width there (the
   fillet is not modelled: a point of the other wheel there counts against that width).
 * **Gaps.** Turning the mate about its axis keeps a point's radius and height in its frame,
   so the turn that brings a mate flank onto a point is a difference of polar angles, exact:
@@ -61,8 +61,6 @@ Z_STEP = 0.1
 BAND = 1e-6
 #: the interference threshold's default (mm)
 CHECK_TOLERANCE = 1e-4
-#: the rack tool's tip radius (transverse modules), the involute family's default
-TOOL_TIP = 0.25
 #: bisection rounds of a contact end
 END_ROUNDS = 48
 #: samples (angle, radius, height) of wheel 1's annulus for the contact window
@@ -110,9 +108,7 @@ def member(rep: dict, key: str, width: float) -> Member:
     r, rb = g["pitch_radius"], g["base_radius"]
     at = math.radians(g["transverse_pressure_angle_deg"])
     x = g.get("shift_coeff", 0.0)
-    depth = 1.25 * mn - TOOL_TIP * mn / math.cos(b) * (1 - math.sin(at)) - x * mn
-    e = r * math.sin(at) - depth / math.sin(at)
-    r_form = math.hypot(rb, e) if e > 0 else rb
+    r_form = g["form_radius"]
     return Member(g["teeth"], r, rb, at, math.radians(g["base_helix_angle_deg"]), math.tan(b) / r,
                   (math.pi / 2 + 2 * x * math.tan(an)) / g["teeth"], g["tip_radius"], r - (1.25 - x) * mn,
                   r_form, width, 0.0 if key == "gear" else math.pi / g["teeth"])
@@ -298,15 +294,15 @@ def window(pair: Pair):
     return float(c.min()) - pad, float(c.max()) + pad
 
 
-def _contact_state(pair: Pair, phis, side: float, which: int, closing: float, band: float):
-    """Per wheel-1 angle: whether tooth 0's flank ``side`` touches the mate by conjugate
-    action (the gap's stationary point on both active flanks, the gap within ``band`` mm of
-    the taken-up ``closing`` turn), and that point (world, NaN where none)."""
+def _contact_state(pair: Pair, phis, side: float, which: int):
+    """Per wheel-1 angle: the stationary point of the gap between tooth 0's flank ``side``
+    and the mate (the closing turn ``which`` way, Newton from the least grid point): whether
+    it lies on both active flanks, the turn there (rad) and the point (world)."""
     phis = np.atleast_1d(np.asarray(phis, float))
     rho, zs = _grid(pair.g1, pair.mn)
     R, Z = np.meshgrid(rho, zs, indexing="ij")
-    lever = pair.g2.rb * math.cos(pair.g2.bb)
     on = np.zeros(len(phis), bool)
+    turn = np.full(len(phis), np.inf)
     pts = np.full((len(phis), 3), np.nan)
     chunk = _chunk(R.size)
     for s in range(0, len(phis), chunk):
@@ -317,31 +313,42 @@ def _contact_state(pair: Pair, phis, side: float, which: int, closing: float, ba
         j = np.argmin(v, axis=1)
         has = np.isfinite(v[np.arange(len(ph)), j])
         r1, z1, val, ok = _newton(pair, ph, 0, side, which, R.ravel()[j], Z.ravel()[j])
-        good = has & ok & _on_both(pair, ph, 0, side, r1, z1) & ((val - closing) * lever <= band)
-        on[s:s + chunk] = good
-        X = pair.flank(ph, 0, side, r1, z1)
-        pts[s:s + chunk] = np.where(good[:, None], X, np.nan)
-    return on, pts
+        on[s:s + chunk] = has & ok & _on_both(pair, ph, 0, side, r1, z1)
+        turn[s:s + chunk] = val
+        pts[s:s + chunk] = pair.flank(ph, 0, side, r1, z1)
+    return on, turn, pts
 
 
-def contact(pair: Pair, side: float, which: int, closing: float, band: float = BAND):
-    """Conjugate contact of tooth 0's driving flank over its :func:`window`: (contact ratio,
-    [(φ from, φ to)] rad, [(start, end) world points])."""
+def contact(pair: Pair, band: float = BAND):
+    """Conjugate contact of tooth 0's driving flank (wheel 1's upper flank against the mate's
+    upper flanks, closed by the mate's counter-clockwise turn) over its :func:`window`: the
+    play taken up (the least closing turn at its common-normal points over the scan), the
+    contact is where the common-normal point lies on both flanks with the gap within
+    ``band`` mm. Returns (contact ratio, [(φ from, φ to)] rad, [(start, end) world points],
+    the closing turn taken up (rad))."""
     win = window(pair)
     if win is None:
-        return 0.0, [], []
+        return 0.0, [], [], None
     p1 = pair.g1.pitch
     n = int(math.ceil((win[1] - win[0]) / p1 * CONTACT_GRID)) + 1
     phis = np.linspace(win[0], win[1], n)
-    on, _ = _contact_state(pair, phis, side, which, closing, band)
+    conj, turn, _ = _contact_state(pair, phis, 1.0, 0)
+    if not conj.any():
+        return 0.0, [], [], None
+    closing = float(turn[conj].min())
+    lever = pair.g2.rb * math.cos(pair.g2.bb)
+
+    def state(x):
+        c, t, pts = _contact_state(pair, x, 1.0, 0)
+        return c & ((t - closing) * lever <= band), pts
+    on = conj & ((turn - closing) * lever <= band)
     idx = np.nonzero(on[1:] != on[:-1])[0]
     a, b, a_on = phis[idx].copy(), phis[idx + 1].copy(), on[idx].copy()
     for _ in range(END_ROUNDS):
         if not len(a):
             break
         mid = 0.5 * (a + b)
-        st, _ = _contact_state(pair, mid, side, which, closing, band)
-        same = st == a_on
+        same = state(mid)[0] == a_on
         a, b = np.where(same, mid, a), np.where(same, b, mid)
     ends = 0.5 * (a + b)
     iv, start = [], (phis[0] if on[0] else None)
@@ -356,9 +363,9 @@ def contact(pair: Pair, side: float, which: int, closing: float, band: float = B
     path = []
     for lo, hi in iv:
         hair = min(1e-9, 0.25 * (hi - lo))
-        _, P = _contact_state(pair, np.array([lo + hair, hi - hair]), side, which, closing, band)
+        P = state(np.array([lo + hair, hi - hair]))[1]
         path.append((P[0].tolist(), P[1].tolist()))
-    return sum(hi - lo for lo, hi in iv) / p1, iv, path
+    return sum(hi - lo for lo, hi in iv) / p1, iv, path, closing
 
 
 def check_crossed(rep: dict, width: float, mate_width=None, tolerance: float = CHECK_TOLERANCE,
@@ -386,11 +393,7 @@ def check_crossed(rep: dict, width: float, mate_width=None, tolerance: float = C
     lever = pair.g2.rb * math.cos(pair.g2.bb)
     r2 = pair.g2.r
     arcsec = 180 * 3600 / math.pi
-    # the driving flanks: wheel 1's upper flank against the mate's counter-clockwise closing turn
-    drive = ccw if np.mean(sides[0] > 0) >= 0.5 else cw
-    which = 0 if drive is ccw else 1
-    closing = float(np.min(drive))
-    eps, iv, path = contact(pair, 1.0, which, closing, band)
+    eps, iv, path, closing = contact(pair, band)
     jn = play * lever
     return {"interference": bool(jn.min() < -2 * tol), "max_penetration": float(max(0.0, -jn.min() / 2)),
             "backlash_normal_min": float(jn.min()), "backlash_normal_max": float(jn.max()),
