@@ -41,12 +41,15 @@ import dataclasses
 import operator
 import reprlib
 import sys
+import weakref
 
 __all__ = ["dataclass"]
 
 _make = dataclasses.dataclass
 #: dataclasses' marker for a field with a default factory (shown as <factory> in signatures)
 _FACTORY = getattr(dataclasses, "_HAS_DEFAULT_FACTORY", None)
+#: the classes whose methods this module wrote (their subclasses may be written here too)
+_MADE = weakref.WeakSet()
 
 
 def dataclass(cls=None, /, **options):
@@ -59,11 +62,12 @@ def dataclass(cls=None, /, **options):
     want_eq = options.pop("eq", True)
     frozen = bool(options.get("frozen", False))
     own = dict(cls.__dict__)
-    if _simple(cls, options):
+    simple = _simple(cls, options)
+    if simple:
         no_doc = not getattr(cls, "__doc__")
         if no_doc:                # written below, from the __init__ (dataclasses would read object's)
             cls.__doc__ = "-"
-        cls = _make(cls, **{**options, "init": False, "frozen": False}, repr=False, eq=False)
+        cls = _unfrozen_make(cls, options)
         _write_init(cls, frozen)
         if frozen:
             _freeze(cls)
@@ -90,26 +94,45 @@ def dataclass(cls=None, /, **options):
                 _attach(cls, "__hash__", _hash_fn(names))
             else:
                 cls.__hash__ = None
+    if simple:
+        _MADE.add(cls)
     params = cls.__dataclass_params__
     params.init, params.repr, params.eq, params.frozen = (bool(options.get("init", True)), bool(want_repr),
                                                           bool(want_eq), frozen)
     return cls
 
 
+def _unfrozen_make(cls, options):
+    """:func:`dataclasses.dataclass` with ``init``, ``repr``, ``eq`` and ``frozen`` off (no
+    generated method). Dataclass bases (all made here, and frozen as ``cls`` is: see
+    :func:`_simple`) show ``frozen=False`` meanwhile, which dataclasses checks."""
+    bases = [b.__dict__["__dataclass_params__"] for b in cls.__mro__[1:] if "__dataclass_params__" in b.__dict__]
+    kept = [p.frozen for p in bases]
+    try:
+        for p in bases:
+            p.frozen = False
+        return _make(cls, **{**options, "init": False, "frozen": False}, repr=False, eq=False)
+    finally:
+        for p, f in zip(bases, kept):
+            p.frozen = f
+
+
 def _simple(cls, options) -> bool:
     """Whether this module writes the class's ``__init__`` (and a frozen class's
     ``__setattr__``/``__delattr__``) itself: the class wants an ``__init__`` and defines
-    none, inherits no dataclass, and has no keyword-only, ``InitVar`` or ``ClassVar``
-    fields (those go to :mod:`dataclasses` whole)."""
+    none, its dataclass bases were all made here and are frozen as it is, and it has no
+    keyword-only or ``InitVar`` fields (such classes go to :mod:`dataclasses` whole)."""
     if not options.get("init", True) or options.get("kw_only") or _FACTORY is None:
         return False
     if any(k in cls.__dict__ for k in ("__init__", "__setattr__", "__delattr__")):
         return False
-    if any(hasattr(b, "__dataclass_fields__") for b in cls.__mro__[1:]):
-        return False
+    for b in cls.__mro__[1:]:
+        if "__dataclass_fields__" in b.__dict__ and (
+                b not in _MADE or b.__dataclass_params__.frozen != bool(options.get("frozen", False))):
+            return False
     for name, ann in cls.__dict__.get("__annotations__", {}).items():
         text = ann if isinstance(ann, str) else repr(ann)
-        if "ClassVar" in text or "InitVar" in text or "KW_ONLY" in text:
+        if "InitVar" in text or "KW_ONLY" in text:
             return False
         value = cls.__dict__.get(name)
         if isinstance(value, dataclasses.Field) and value.kw_only is True:

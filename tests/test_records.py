@@ -8,6 +8,7 @@ import inspect
 import pickle
 import re
 from dataclasses import field
+from typing import ClassVar
 
 import pytest
 
@@ -84,14 +85,30 @@ def _shapes(deco):
         a: int = 1
 
     @deco(frozen=True)
+    class Law:
+        w: float
+        s: float = 1.0
+        kind: ClassVar[str] = ""
+
+    @deco(frozen=True)
+    class Law2(Law):
+        """A subclass with a ClassVar of its own."""
+        g: float = 0.0
+        kind: ClassVar[str] = "two"
+
+    @deco(frozen=True)
+    class Law3(Law2):
+        h: tuple = ()
+
+    @deco(frozen=True)
     class Empty:
         """No fields."""
 
-    return dict(Empty=Empty, Frozen=Frozen, Plain=Plain, Base=Base, Child=Child, OwnRepr=OwnRepr, OwnEq=OwnEq,
+    return dict(Law=Law, Law2=Law2, Law3=Law3, Empty=Empty, Frozen=Frozen, Plain=Plain, Base=Base, Child=Child, OwnRepr=OwnRepr, OwnEq=OwnEq,
                 OwnHash=OwnHash, Bare=Bare, FrozenNoEq=FrozenNoEq, PostInit=PostInit, Doc=Doc)
 
 
-ARGS = {"Empty": [()], "Frozen": [(1.5,), (1.5, (3,), [9], "b")], "Plain": [(1,), (1, [2])], "Base": [(1.0, 2.0)],
+ARGS = {"Law": [(2.0,)], "Law2": [(2.0, 3.0, 4.0)], "Law3": [(1.0,), (1.0, 2.0, 3.0, (4,))], "Empty": [()], "Frozen": [(1.5,), (1.5, (3,), [9], "b")], "Plain": [(1,), (1, [2])], "Base": [(1.0, 2.0)],
         "Child": [(1.0, 2.0, "x")], "OwnRepr": [(3.0,)], "OwnEq": [(3.0,)], "OwnHash": [(3.0,)],
         "Bare": [(3.0,)], "FrozenNoEq": [(3.0,)], "PostInit": [(2.0,)], "Doc": [(), (5,)]}
 
@@ -169,3 +186,25 @@ def test_default_order_error_is_the_same():
                 b: int
         msgs.append(str(e.value))
     assert msgs[0] == msgs[1]
+
+
+def test_inheriting_across_frozenness_is_refused_the_same():
+    msgs = []
+    for deco in (STD, fast):
+        s = _shapes(deco)
+        got = []
+        for base, frozen in ((s["Law"], False), (s["Plain"], True)):
+            with pytest.raises(TypeError) as e:
+                deco(frozen=frozen)(type("Sub", (base,), {"__annotations__": {"z": "int"}, "z": 0}))
+            got.append(str(e.value))
+        msgs.append(got)
+        assert s["Law"].__dataclass_params__.frozen is True      # a refused subclass changes no base
+    assert msgs[0] == msgs[1]
+
+
+def test_subclass_of_a_stdlib_dataclass():
+    Base = STD(frozen=True)(type("Base", (), {"__annotations__": {"a": "int"}, "__module__": __name__}))
+    for deco in (STD, fast):
+        Sub = deco(frozen=True)(type("Sub", (Base,), {"__annotations__": {"b": "int"}, "b": 2,
+                                                      "__module__": __name__}))
+        assert repr(Sub(1)) == "Sub(a=1, b=2)" and Sub(1) == Sub(1, 2) and hash(Sub(1)) == hash((1, 2))
