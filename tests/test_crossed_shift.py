@@ -218,3 +218,46 @@ def test_cli_shifted_check_json_exit_codes_and_refusals(tmp_path, capsys):
     assert sorted(p.name for p in tmp_path.iterdir()) == ["c.json"]
     with pytest.raises(GearError, match="shift_coeff"):         # pointed: the involutes meet below the tip
         crossed_pair(8, 30, 1.0, 20.0, 45.0, shift_coeff=1.5)
+
+
+def test_narrow_faces_clip_the_path_of_contact():
+    """Faces 3 mm wide: the contact point runs off the faces. The oracle: the line of action
+    found here, clipped by the tip cylinders and by both faces (|z| <= w/2 in each wheel's
+    frame: linear along the line)."""
+    rep = crossed_pair(12, 14, 1.0, 45.0, shift_coeff=0.5, mate_shift_coeff=0.3)
+    Q, u, k2, O2 = _line_of_action(rep)
+    w = 3.0
+    ra1, ra2 = rep["gear"]["tip_radius"], rep["mate"]["tip_radius"]
+    d1 = lambda s: _axis_distance(Q + s * u, np.zeros(3), np.array([0, 0, 1.0]))     # noqa: E731
+    d2 = lambda s: _axis_distance(Q + s * u, O2, k2)                                   # noqa: E731
+    from scipy.optimize import minimize_scalar
+    s1 = minimize_scalar(d1, bracket=(-30, 0, 30), tol=1e-12).x
+    s2 = minimize_scalar(d2, bracket=(-30, 0, 30), tol=1e-12).x
+    sg = 1.0 if s2 > s1 else -1.0
+    tip1 = brentq(lambda s: d1(s) - ra1, s1, s1 + sg * 40)
+    tip2 = brentq(lambda s: d2(s) - ra2, s2, s2 - sg * 40)
+    lo, hi = max(min(s1, tip1), min(s2, tip2)), min(max(s1, tip1), max(s2, tip2))
+    for zc, dz in ((Q[2], u[2]), ((Q - O2) @ k2, u @ k2)):         # the height along the line in each wheel
+        a, b = sorted(((-w / 2 - zc) / dz, (w / 2 - zc) / dz))
+        lo, hi = max(lo, a), min(hi, b)
+    eps = max(hi - lo, 0.0) / (math.pi * math.cos(AN))
+    assert 0.5 < eps < 1.0                                         # the faces cut it below one
+    chk = check_crossed(rep, width=w, grid=6)
+    assert chk["contact_ratio"] == pytest.approx(eps, abs=1e-6)
+    assert not chk["continuous"]
+
+
+def test_python_api_report_check_and_bodies():
+    import gear3d
+    c = gear3d.crossed(12, 14, 1.0, 45.0, width=6.0, bodies=True, check=True, tolerance=0.01,
+                       shift_coeff=0.5, mate_shift_coeff=0.3, center_distance=19.2)
+    a = (12 + 14) / (2 * math.cos(math.radians(45))) + 0.8
+    assert c.report["zero_backlash_center_distance"] == pytest.approx(a, abs=1e-12)
+    jn = 2 * (19.2 - a) * math.sin(AN)
+    assert c.report["normal_backlash"] == pytest.approx(jn, abs=1e-12)
+    assert c.report["check"]["backlash_normal_min"] == pytest.approx(jn, abs=1e-9)
+    g, m = c.bodies
+    assert (g.name, m.name) == ("gear", "mate") and m.transform[0, 3] == pytest.approx(19.2, abs=1e-12)
+    for kw, name in (({"check": True}, "width"), ({"speed": 3}, "speed"), ({"shift_coeff": 2.0}, "shift_coeff")):
+        with pytest.raises(GearError, match=name):
+            gear3d.crossed(12, 14, 1.0, 45.0, **kw)
