@@ -16,11 +16,10 @@ FACET = np.dtype([("normal", "<f4", (3,)), ("vertices", "<f4", (3, 3)), ("attr",
 HEADER = b"gear3d binary STL (mm)".ljust(80, b" ")
 
 
-def stl_bytes(vertices: np.ndarray, faces: np.ndarray) -> bytes:
-    """Binary STL of a triangle mesh: ``vertices`` (n, 3) mm, ``faces`` (m, 3) indices.
-
-    Facet normals are the unit normals of the float64 triangles (zero for degenerate
-    ones), computed before rounding to float32."""
+def stl_records(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
+    """The facet records (:data:`FACET`, one a triangle) of a triangle mesh: ``vertices``
+    (n, 3) mm, ``faces`` (m, 3) indices. Facet normals are the unit normals of the float64
+    triangles (zero for degenerate ones), computed before rounding to float32."""
     tri = np.asarray(vertices, float)[np.asarray(faces, np.int64)]
     n = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
     ln = np.sqrt(np.einsum("ij,ij->i", n, n))
@@ -28,7 +27,13 @@ def stl_bytes(vertices: np.ndarray, faces: np.ndarray) -> bytes:
     rec = np.zeros(len(tri), FACET)
     rec["normal"] = n
     rec["vertices"] = tri
-    return HEADER + np.uint32(len(tri)).tobytes() + rec.tobytes()
+    return rec
+
+
+def stl_bytes(vertices: np.ndarray, faces: np.ndarray) -> bytes:
+    """Binary STL of a triangle mesh (see :func:`stl_records`): header, count, records."""
+    rec = stl_records(vertices, faces)
+    return HEADER + np.uint32(len(rec)).tobytes() + rec.tobytes()
 
 
 def write(obj, path, **opts):
@@ -40,6 +45,8 @@ def write(obj, path, **opts):
         fs.append(f + off)
         off += len(v)
     faces = np.concatenate(fs)
-    with open(path, "wb") as fh:
-        fh.write(stl_bytes(np.concatenate(vs), faces))
+    rec = stl_records(np.concatenate(vs), faces)
+    with open(path, "wb") as fh:              # the records straight from the array (no copies)
+        fh.write(HEADER + np.uint32(len(rec)).tobytes())
+        fh.write(rec.view(np.uint8))
     return f"stl: {len(faces)} triangles, {len(bodies)} part(s)"
