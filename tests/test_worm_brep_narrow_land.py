@@ -51,13 +51,13 @@ def tip_radius(z2, h):
     return min(a - math.sqrt(Rt * Rt - h * h), re) if abs(h) < Rt else re
 
 
-def envelope(z2, h, sign, rho):
+def envelope(z2, h, sign, rho, alpha=ALPHA):
     """The wheel's flank (N, 2) (mm, the oracle's frame: the wheel's tooth in the worm's
     groove about +y) generated in the plane z = h by the ZA flank ``sign`` (+1 / -1) at worm
     radii ``rho``: the rack point, its normal through the pitch point (0, r2) fixes the
     rack's move u, and the wheel, turned by u / r2, carries the point back."""
     a, r1, r2, px, p, _, _ = _frame(z2)
-    tan_a = math.tan(math.radians(ALPHA))
+    tan_a = math.tan(math.radians(alpha))
     root = np.sqrt(rho ** 2 - h ** 2)
     x = sign * (px / 4 + (rho - r1) * tan_a) - p * np.arcsin(h / rho)
     y = a - root
@@ -139,3 +139,126 @@ def test_truly_pointed_wheels_point_where_the_oracle_does(z2):
         lo, hi = (mid, hi) if land(z2, mid) > 1e-3 else (lo, mid)
     band = pointed_band(d)
     assert band is not None and band[1] == pytest.approx(hi, abs=2e-4) and band[2] > k
+
+
+# ------------------------------------------------------------------ the B-rep, read back (slow)
+
+def _section_points(shape, h, n=40, window=None):
+    """(N, 2) points of the solid's section by the plane z = h (OCC's own intersection,
+    every section edge sampled at n parameters); ``window`` (x0, x1, y0): only the faces
+    whose bounding box meets x0 <= x <= x1, y >= y0 (a few teeth about +y: a section of all
+    the faces takes 3 s)."""
+    from OCP.BRep import BRep_Builder
+    from OCP.BRepAdaptor import BRepAdaptor_Curve
+    from OCP.BRepAlgoAPI import BRepAlgoAPI_Section
+    from OCP.BRepBndLib import BRepBndLib
+    from OCP.Bnd import Bnd_Box
+    from OCP.TopoDS import TopoDS, TopoDS_Compound
+    from OCP.gp import gp_Dir, gp_Pln, gp_Pnt
+    from occread import sub_shapes
+    as_edge = getattr(TopoDS, "Edge_s", None) or TopoDS.Edge
+    if window is not None:
+        part, bb = TopoDS_Compound(), BRep_Builder()
+        bb.MakeCompound(part)
+        add = getattr(BRepBndLib, "Add_s", None) or BRepBndLib.Add
+        for f in sub_shapes(shape, "face"):
+            box = Bnd_Box()
+            add(f, box, True)
+            lo, hi = box.CornerMin(), box.CornerMax()
+            if hi.X() >= window[0] and lo.X() <= window[1] and hi.Y() >= window[2]:
+                bb.Add(part, f)
+        shape = part
+    sec = BRepAlgoAPI_Section(shape, gp_Pln(gp_Pnt(0, 0, float(h)), gp_Dir(0, 0, 1)))
+    out = []
+    for e in sub_shapes(sec.Shape(), "edge"):
+        c = BRepAdaptor_Curve(as_edge(e))
+        for u in np.linspace(c.FirstParameter(), c.LastParameter(), n):
+            p = c.Value(float(u))
+            out.append((p.X(), p.Y(), p.Z()))
+    P = np.array(out)
+    assert np.abs(P[:, 2] - h).max() < 1e-6
+    return P[:, :2]
+
+
+def _outline(z2, h, alpha=ALPHA, n=4000):
+    """The oracle's tooth top at h (oracle frame, tooth about +y): both flanks below the tip
+    circle and the land between their crossings, as dense points (mm)."""
+    rt = tip_radius(z2, h)
+    lo, hi = max(abs(h) + 1e-6, Q * M / 2 - 1.2 * M), Q * M / 2 + 1.2 * M
+    rho = np.linspace(lo, hi, n)
+    parts, corners = [], []
+    for sign in (1.0, -1.0):
+        W = envelope(z2, h, sign, rho, alpha)
+        below = np.hypot(W[:, 0], W[:, 1]) <= rt
+        parts.append(W[below])
+        corners.append(math.atan2(*W[below][0][::-1]))
+    a = np.linspace(corners[0], corners[1], 200)
+    parts.append(rt * np.stack([np.cos(a), np.sin(a)], axis=1))
+    return parts
+
+
+def _distance(P, parts):
+    """Distance (mm) from points P (N, 2) to the polylines ``parts``."""
+    best = np.full(len(P), np.inf)
+    for C in parts:
+        a, d = C[:-1], np.diff(C, axis=0)
+        for i in range(0, len(P), 256):
+            q = P[i:i + 256, None, :]
+            w = np.clip(((q - a) * d).sum(-1) / np.maximum((d * d).sum(-1), 1e-300), 0, 1)
+            best[i:i + 256] = np.minimum(best[i:i + 256],
+                                         np.hypot(*(a + w[..., None] * d - q).transpose(2, 0, 1)).min(axis=1))
+    return best
+
+
+def _folded(P, z2):
+    """Points turned by whole pitches next to +y (the oracle's tooth)."""
+    pitch = 2 * math.pi / z2
+    phi = np.arctan2(P[:, 1], P[:, 0])
+    k = np.round((phi - math.pi / 2) / pitch)
+    c, s = np.cos(-k * pitch), np.sin(-k * pitch)
+    return np.stack([c * P[:, 0] - s * P[:, 1], s * P[:, 0] + c * P[:, 1]], axis=1)
+
+
+@pytest.mark.slow
+def test_narrow_land_wheel_brep_on_the_envelope(tmp_path):
+    """z2 = 20 at 0.01 mm through the Python API: one valid solid with a closed shell, its
+    volume the certified STL's (trimesh) within (mesh error + tolerance) x area, and its
+    sections by OCC at h = 0, at the kink (the 0.048 mm land) and either side of it: every
+    point of the tooth's top (above the pitch circle) within the tolerance of the oracle's
+    outline (both flank envelopes and the land between them), and a land on every tooth."""
+    import trimesh
+    from OCP.BRep import BRep_Tool
+    from occread import is_valid, read_step, sub_shapes
+    tol, z2 = 0.01, 20
+    s = gear3d.worm(part="wheel", module=M, starts=Z1, wheel_teeth=z2, diameter_quotient=Q,
+                    axial_pressure_angle_deg=ALPHA, worm_type="ZA", tolerance=tol)
+    w = s.parts()[0]
+    info = gear3d.write(s.parts(), tmp_path / "w.step", step="brep")
+    gear3d.write(s.parts(), tmp_path / "w.stl")
+    assert "B-rep measured max_error=" in info and 0 < w.report["brep"]["max_error"] <= tol
+    shape = read_step(tmp_path / "w.step")
+    (solid,) = sub_shapes(shape, "solid")
+    shells = sub_shapes(solid, "shell")
+    is_closed = getattr(BRep_Tool, "IsClosed_s", None) or BRep_Tool.IsClosed
+    assert is_valid(shape) and len(shells) == 1 and is_closed(shells[0])
+    from OCP.BRepGProp import BRepGProp
+    from OCP.GProp import GProp_GProps
+    props = GProp_GProps()
+    (getattr(BRepGProp, "VolumeProperties_s", None) or BRepGProp.VolumeProperties)(shape, props, 1e-5, True)
+    mesh = trimesh.load(tmp_path / "w.stl")
+    assert mesh.is_watertight
+    assert abs(props.Mass() - mesh.volume) <= (w.report["max_error"] + tol) * mesh.area
+    k = _kink(z2)
+    for h in (0.0, k - 0.25, k + 0.25):                   # the teeth about +y
+        P = _folded(_section_points(shape, h, window=(-6.0, 6.0, 15.0)), z2)
+        top = np.hypot(P[:, 0], P[:, 1]) > z2 * M / 2
+        assert top.sum() > 150 and _distance(P[top], _outline(z2, h)).max() <= tol, h
+    S = _section_points(shape, k)                          # the kink: every tooth
+    P = _folded(S, z2)
+    top = np.hypot(P[:, 0], P[:, 1]) > z2 * M / 2
+    assert top.sum() > 1500 and _distance(P[top], _outline(z2, k)).max() <= tol
+    # the 0.048 mm land: points on the tip circle (within the tolerance) on every tooth
+    phi = np.arctan2(*S[np.abs(np.hypot(*S.T) - tip_radius(z2, k)) <= tol][:, ::-1].T)
+    assert len(np.unique(np.round(phi / (2 * math.pi / z2)) % z2)) == z2
+    # sharp: 1.5 deg off in the pressure angle, the oracle misses the kink's section
+    assert _distance(P[top], _outline(z2, k, ALPHA + 1.5)).max() > 2 * tol

@@ -43,7 +43,7 @@ import numpy as np
 from ..errors import GearError, ToleranceError
 from .step_brep_occ import (bspline_curve, bspline_surface, plane_face, sew_solid, validate_solid,
                             wire_of_curves)
-from .step_brep_runs import ExactSet, exact_set, loop_runs, nearest_on_piece, rot2
+from .step_brep_runs import ExactSet, Run, exact_set, loop_runs, nearest_on_piece, rot2
 
 #: share of the tolerance given to the sections' polygons (used only to map the runs)
 SECTION_SHARE = 0.25
@@ -87,10 +87,48 @@ def section_runs(d, h: float, tol_s: float):
                                 "a wheel whose teeth point or lose their tip land across the face width "
                                 "stays faceted") from None
     tip = len(p.pieces)
+    if not any(r.piece == tip for r in runs):
+        ex, runs = _with_land(d, h, p, ex, runs)
     start = next((i for i, r in enumerate(runs) if r.piece == tip and r.k == 0), None)
     if start is None:
         raise GearError("step", "brep", "'faceted' for this wheel", f"the section at h = {h:.4g} mm has no tip")
     return ex, runs[start:] + runs[:start]
+
+
+def _with_land(d, h: float, p, ex, runs):
+    """(exact set, runs) of section ``p`` at height ``h`` (mm) whose polygon lost a tip land
+    narrower than its corners' error (the flank chords cross below the tip's chord): where
+    the exact flanks still cross the tip circle apart (:func:`tip_land` >= :data:`LAND_MIN`),
+    every tooth's flank-to-flank junction becomes flank, tip arc, flank at the exact
+    corners. Otherwise the runs unchanged (refused by the caller)."""
+    from ..envelope import rack_envelope
+    from ..wormgear.thread import section_rack
+    if p.tip_arc is None or tip_land(d, h) < LAND_MIN:
+        return ex, runs
+    rt, z = float(d.blank_tip_radius(h)), p.teeth
+    ang = 2 * math.pi / z
+    names = [n for _, n in rack_envelope(section_rack(d, float(h)), d.r2, d.shift_coeff * d.module, False)]
+    flanks = [i for i, n in enumerate(names) if n == "rack-flank"]
+    fa, fb = flanks[0], flanks[-1]
+    ta, tb = _tip_corner(p.pieces[fa], rt, True), _tip_corner(p.pieces[fb], rt, False)
+    Pa, Pb = p.pieces[fa](np.array([ta]))[0], p.pieces[fb](np.array([tb]))[0]
+    ua, ub = (math.atan2(P[1], P[0]) / ang + 0.5 for P in (Pa, Pb))
+    tip = len(p.pieces)
+    out = []
+    for i, r in enumerate(runs):
+        nxt = runs[(i + 1) % len(runs)]
+        if r.piece == fb and out and out[-1].piece == tip and out[-1].k == r.k:
+            out.append(Run(fb, r.k, tb, r.t1, rot2(Pb, r.k * ang), r.p1))
+        elif r.piece == fa and nxt.piece == fb and nxt.k == r.k:
+            out += [Run(fa, r.k, r.t0, ta, r.p0, rot2(Pa, r.k * ang)),
+                    Run(tip, r.k, ua, ub, rot2(Pa, r.k * ang), rot2(Pb, r.k * ang))]
+        else:
+            out.append(r)
+    if runs and runs[0].piece == fb and out[-1].piece == tip and out[-1].k == runs[0].k:
+        out[0] = Run(fb, runs[0].k, tb, runs[0].t1, rot2(Pb, runs[0].k * ang), runs[0].p1)
+    ex = ExactSet(list(p.pieces) + [p.tip_arc[0]], [np.asarray(t, float) for t in p.piece_params]
+                  + [np.asarray(p.tip_arc[1], float)], z, float(p.tolerance))
+    return ex, out
 
 
 def _mapped(p, rt: float):
