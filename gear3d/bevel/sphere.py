@@ -108,15 +108,41 @@ def sphere_envelope_piece(el, delta: float, zs: float) -> EnvelopePiece:
     def evaluate(t, tangent=True):
         t = np.atleast_1d(np.asarray(t, float))
         X, T = element_xt(el, t)
-        lam_p = contact_roll(X, T)
-        G, Tg = generated_points(X, T, lam_p, delta)
-        if delta > math.pi / 2:                  # internal: its own frame, turned by π about x
-            G, Tg = G * FLIP, Tg * FLIP
-        g = gnomonic(G, zs)
+        return projected_envelope(X, T, delta, zs, tangent)
+    return EnvelopePiece(evaluate, not isinstance(el, Fan))
+
+
+def projected_envelope(X, T, delta: float, zs: float, tangent: bool = True):
+    """(points (N, 2), their tangents (N, 2) or None) in the plane z = ``zs`` of the points
+    the crown points X with tangents T (N, 3, crown frame) generate on the gear of pitch
+    angle ``delta``: :func:`contact_roll`, :func:`generated_points` (an internal member in
+    its own frame, :data:`FLIP`), :func:`gnomonic` and :func:`gnomonic_tangent` in one pass
+    over the coordinates (the builder calls this for every sample batch)."""
+    lam_p = contact_roll(X, T)
+    psi = -lam_p
+    c1, s1 = np.cos(psi), np.sin(psi)
+    phi = psi / math.sin(delta)
+    c2, s2 = np.cos(-phi), np.sin(-phi)
+    Ct = crown_frame(delta).T
+    f = -1.0 if delta > math.pi / 2 else 1.0                 # internal: y and z turned over
+
+    def roll(V):                 # the same operations as generated_points (the same bits)
+        R = np.empty_like(V)
+        R[:, 0], R[:, 1], R[:, 2] = c1 * V[:, 0] - s1 * V[:, 1], s1 * V[:, 0] + c1 * V[:, 1], V[:, 2]
+        R = R @ Ct
+        return c2 * R[:, 0] - s2 * R[:, 1], f * (s2 * R[:, 0] + c2 * R[:, 1]), f * R[:, 2]
+    gx, gy, gz = roll(X)
+    g = np.empty((len(gx), 2))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        z = np.where(gz > 0, gz, np.nan)
+        g[:, 0], g[:, 1] = zs * gx / z, zs * gy / z
         if not tangent:
             return g, None
-        return g, gnomonic_tangent(G, Tg, zs)
-    return EnvelopePiece(evaluate, not isinstance(el, Fan))
+        tx, ty, tz = roll(T)
+        zz = gz * gz
+        d = np.empty_like(g)
+        d[:, 0], d[:, 1] = zs * (tx * gz - gx * tz) / zz, zs * (ty * gz - gy * tz) / zz
+    return g, d
 
 
 def sphere_envelope(elements, delta: float, zs: float):
