@@ -262,3 +262,30 @@ def test_narrow_land_wheel_brep_on_the_envelope(tmp_path):
     assert len(np.unique(np.round(phi / (2 * math.pi / z2)) % z2)) == z2
     # sharp: 1.5 deg off in the pressure angle, the oracle misses the kink's section
     assert _distance(P[top], _outline(z2, k, ALPHA + 1.5)).max() > 2 * tol
+
+
+@pytest.mark.slow
+def test_narrow_land_pair_and_scene_write_their_brep(tmp_path, capsys):
+    """``gear3d worm --part pair --step brep`` (24 teeth) and a scene's worm part (20 teeth,
+    ``[part.options.step] kind = "brep"``), once refused as pointed: each member one valid
+    solid read back, the pair's wheel's tip on the oracle's tip circle at the kink (every
+    B-spline face point there is inside it, and some lie on it)."""
+    from gear3d.cli import main
+    from occread import is_valid, read_step, sub_shapes
+    out = tmp_path / "p.step"
+    rc = main(["worm", "--module", "2", "--starts", "1", "--wheel-teeth", "24", "--diameter-quotient", "10",
+               "--tolerance", "0.1", "--part", "pair", "-o", str(out), "--step", "brep"])
+    assert rc == 0, capsys.readouterr().err
+    solids = sub_shapes(read_step(out), "solid")
+    assert len(solids) == 2 and all(is_valid(s) for s in solids)
+    S = _section_points(solids[0], _kink(24), window=(-8.0, 8.0, 20.0))
+    r = np.hypot(S[:, 0], S[:, 1])
+    assert r.max() <= tip_radius(24, _kink(24)) + 0.1 and (r >= tip_radius(24, _kink(24)) - 0.1).sum() > 10
+    toml = tmp_path / "s.toml"
+    toml.write_text('[scene]\nname = "w"\ntolerance = 0.1\n[[part]]\nname = "wheel"\nkind = "worm"\npart = "wheel"\n'
+                    'module = 2\nstarts = 1\nwheel_teeth = 20\ndiameter_quotient = 10\nworm_type = "ZA"\n'
+                    'outputs = ["step"]\n[part.options.step]\nkind = "brep"\n')
+    assert main(["build", str(toml), "--out", str(tmp_path / "out")]) == 0, capsys.readouterr().err
+    (step,) = [p for p in (tmp_path / "out").rglob("*.step")]
+    (w,) = sub_shapes(read_step(step), "solid")
+    assert is_valid(w)
