@@ -13,14 +13,14 @@ def as_bodies(obj, width=None, **body_opts) -> list:
     """The bodies to write: a body, a list of bodies, or a profile or rack part extruded
     (spur, ``width`` mm; a 2D outline that is not a gear profile, a rack part, extrudes
     itself)."""
-    from ..model import Profile          # the builders load only when a profile is extruded
-    from .body import body
+    from ..model import Profile
     outline = not isinstance(obj, Profile) and callable(getattr(obj, "extrude", None)) and hasattr(obj, "loops")
     if isinstance(obj, Profile) or outline:
         if width is None:
             raise GearError("width", None, "a number > 0 mm to extrude a profile into a body")
         if outline:
             return [obj.extrude(width, **body_opts)]
+        from .body import body           # the builder loads only when a profile is extruded
         return [body(obj, kind="spur", width=width, **body_opts)]
     if isinstance(obj, (list, tuple)):
         return list(obj)
