@@ -13,7 +13,13 @@ are sampled and compared.
   s_t/(2r) = (π/2 + 2 x_n tan α_n)/z: the exact involute helicoid of the shifted tooth. Its
   active part runs from the form cylinder (where the rack tool's straight flank stops
   generating: ρ_F² = r_b² + (r sin α_t - (h_f m_n - ρ_a0 m_t (1 - sin α_t) - x_n m_n)/sin α_t)²,
-  the report's ``form_radius``; r_b for an undercut gear) to the tip cylinder, across the face. Below ρ_F the tooth is taken at its width there (the
+  the report's ``form_radius``; r_b for an undercut gear) to the tip cylinder, across the face.
+  A tip that runs past the other's form cylinder (the report's path, :func:`gear3d.analysis.
+  crossed.contact_path`) goes into its fillet (``fillet_interference``, interference) or,
+  on an undercut gear, into its undercut (``tip_in_undercut``: there the involute ends above
+  the base cylinder, so the contact ends sooner than this check, which takes the form radius
+  as the base radius and resolves contact within about 1e-4 m_n of a base cylinder only
+  roughly, reports). Below ρ_F the tooth is taken at its width there (the
   fillet is not modelled: a point of the other wheel there counts against that width).
 * **Gaps.** Turning the mate about its axis keeps a point's radius and height in its frame,
   so the turn that brings a mate flank onto a point is a difference of polar angles, exact:
@@ -395,7 +401,13 @@ def check_crossed(rep: dict, width: float, mate_width=None, tolerance: float = C
     arcsec = 180 * 3600 / math.pi
     eps, iv, path, closing = contact(pair, band)
     jn = play * lever
-    return {"interference": bool(jn.min() < -2 * tol), "max_penetration": float(max(0.0, -jn.min() / 2)),
+    # a tip past the other's form cylinder (the line of action's ends, analysis.crossed.contact_path):
+    # into its fillet (interference; the fillet is not sampled here), or into its undercut
+    fillet, undercut = [], []
+    for msg in rep["path_of_contact"]["interference"]:
+        (undercut if rep["mate" if "mate's" in msg else "gear"]["undercut"] else fillet).append(msg)
+    return {"interference": bool(jn.min() < -2 * tol or fillet), "fillet_interference": fillet,
+            "tip_in_undercut": undercut, "max_penetration": float(max(0.0, -jn.min() / 2)),
             "backlash_normal_min": float(jn.min()), "backlash_normal_max": float(jn.max()),
             "backlash_min": float(play.min() * r2), "backlash_max": float(play.max() * r2),
             "transmission_error_drive": float(np.ptp(ccw) * r2), "transmission_error_coast": float(np.ptp(cw) * r2),
@@ -412,8 +424,9 @@ def summary(chk: dict) -> str:
     eps = f"contact ratio {chk['contact_ratio']:.4f}"
     if chk["contact_ratio"] < 1:
         eps += " < 1: the teeth lose contact"
+    extra = "".join(f"; {m}" for m in chk.get("fillet_interference", []) + chk.get("tip_in_undercut", []))
     return (f"rolling check: {'INTERFERENCE' if chk['interference'] else 'no interference'} "
-            f"(max penetration {chk['max_penetration'] * um:.3f} um); normal backlash "
+            f"(max penetration {chk['max_penetration'] * um:.3f} um{extra}); normal backlash "
             f"{chk['backlash_normal_min'] * um:.3f} .. {chk['backlash_normal_max'] * um:.3f} um "
             f"(circumferential {chk['backlash_min'] * um:.3f} .. {chk['backlash_max'] * um:.3f} um on the mate's "
             f"pitch circle); {eps} (conjugate action); transmission error "
