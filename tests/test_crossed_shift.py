@@ -162,7 +162,7 @@ def _line_of_action(rep, side=1):
         q = P + v[0] * e1 + v[1] * e2
         return [_axis_distance_line(q, u, np.zeros(3), np.array([0, 0, 1.0])) - r1b,
                 _axis_distance_line(q, u, O2, k2) - r2b]
-    v = fsolve(f, [0.0, 0.0], xtol=1e-14)
+    v = fsolve(f, [0.0, 0.0], xtol=1e-14, full_output=True)[0]      # checked below, not by its flag
     assert max(abs(x) for x in f(v)) < 1e-10
     return P + v[0] * e1 + v[1] * e2, u, k2, O2
 
@@ -261,3 +261,31 @@ def test_python_api_report_check_and_bodies():
     for kw, name in (({"check": True}, "width"), ({"speed": 3}, "speed"), ({"shift_coeff": 2.0}, "shift_coeff")):
         with pytest.raises(GearError, match=name):
             gear3d.crossed(12, 14, 1.0, 45.0, **kw)
+
+
+@pytest.mark.parametrize("ha", [1.0, 1.15])
+def test_a_tip_past_the_form_cylinder_is_fillet_interference(ha):
+    """The form cylinder written here: the bodies' tool (the involute family's transverse rack:
+    dedendum 1.25 m_n, tip radius 0.25 m_t) generates the involute down to where its straight
+    flank ends, d = 1.25 m_n - 0.25 m_t (1 - sin α_t) below the datum, i.e. on the line of
+    action at (d - x m_n)/sin α_t from the pitch point: ρ_F² = r_b² + (r sin α_t - d/sin α_t)².
+    A mate of addendum h_a m_n > d meets the line of action (found here) inside it."""
+    z1, z2, b1, sig = 20, 40, 30.0, 90.0
+    rep = crossed_pair(z1, z2, 1.0, b1, sig, 20.0, ha)
+    r1, at1, rb1, bb1, _ = _radii(z1, 1.0, math.radians(b1))
+    d = 1.25 - 0.25 / math.cos(math.radians(b1)) * (1 - math.sin(at1))
+    rho_f = math.hypot(rb1, r1 * math.sin(at1) - d / math.sin(at1))
+    Q, u, k2, O2 = _line_of_action(rep)
+    r2 = z2 / (2 * math.cos(math.radians(sig - b1)))
+    d2 = lambda s: _axis_distance(Q + s * u, O2, k2) - (r2 + ha)                     # noqa: E731
+    from scipy.optimize import minimize_scalar
+    sT2 = minimize_scalar(lambda s: _axis_distance(Q + s * u, O2, k2), bounds=(-100, 100), method="bounded",
+                          options={"xatol": 1e-10}).x
+    sT1 = minimize_scalar(lambda s: _axis_distance(Q + s * u, np.zeros(3), np.array([0, 0, 1.0])),
+                          bounds=(-100, 100), method="bounded", options={"xatol": 1e-10}).x
+    tip2 = brentq(d2, sT2, sT2 + (sT1 - sT2) * 2)                 # the mate's tip, towards wheel 1
+    past = _axis_distance(Q + tip2 * u, np.zeros(3), np.array([0, 0, 1.0])) < rho_f
+    assert past == (ha > d)
+    chk = check_crossed(rep, width=12.0, grid=6)
+    assert chk["interference"] == past
+    assert bool(chk["fillet_interference"]) == past and not chk["tip_in_undercut"]
