@@ -82,10 +82,11 @@ from __future__ import annotations
 import math
 import sys
 import types
-from dataclasses import asdict, dataclass, fields
+from dataclasses import asdict, fields
 
 import numpy as np
 
+from ..records import dataclass
 from ..errors import GearError, check_choice, check_number
 from ..params import MESH_TOLERANCE
 from ..reports import BevelReport, MemberReport

@@ -42,10 +42,10 @@ Example::
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 
+from ..records import dataclass
 from ..solids.solid import Solid
 from .geometry import PairGeometry
 from .section import member, section
@@ -220,8 +220,7 @@ def direct_body(geo: PairGeometry, which: str, cp: Caps, sec, tolerance: float, 
     """The body as one closed mesh (:func:`gear3d.bevel.conemesh.cone_mesh`, no boolean):
     ``max_error`` = (section error + the end faces' measured sag) / ``worst`` (the edge
     sine); None when the section is not star-shaped (its end strips are not a checked case)."""
-    from ..solids.layers import mesh_properties
-    from .conemesh import cone_mesh
+    from .conemesh import cone_mesh, volume_genus
     c = member(geo, which)
     zs = cp.z_hi
     o = cp.outline
@@ -235,10 +234,10 @@ def direct_body(geo: PairGeometry, which: str, cp: Caps, sec, tolerance: float, 
     max_err = (e_s + e_c) / worst
     if max_err > tolerance:
         return None
-    props = mesh_properties(V, F)
+    vol, genus = volume_genus(V, F)
     rep = {"name": name or which, "section_error": float(e_s), "cap_error": float(e_c),
-           "max_error": float(max_err), "tolerance": float(tolerance), "volume": props["volume"],
-           "triangles": int(len(F)), "genus": props["genus"], "cap_segments": int(m),
+           "max_error": float(max_err), "tolerance": float(tolerance), "volume": vol,
+           "triangles": int(len(F)), "genus": genus, "cap_segments": int(m),
            "section_z": zs, "section_vertices": int(len(sec.loops[0])), "construction": "mesh",
            "z_range": [float(V[:, 2].min()), float(V[:, 2].max())]}
     return BevelBody(None, name or which, rep, profile=sec, arrays=(V, F))

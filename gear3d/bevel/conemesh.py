@@ -190,3 +190,13 @@ def _on_cone(xy: np.ndarray, delta: float, cone_d: float) -> np.ndarray:
         return np.zeros((0, 3))
     r = np.hypot(xy[:, 0], xy[:, 1])
     return np.column_stack([xy, (cone_d - r * math.sin(delta)) / math.cos(delta)])
+
+
+def volume_genus(V: np.ndarray, F: np.ndarray) -> tuple:
+    """(volume mm^3, genus) of a closed, consistently wound mesh whose vertices are all
+    used: the divergence theorem over the triangles, and Euler's V - E + F = 2 - 2g."""
+    a, b, c = V[F[:, 0]], V[F[:, 1]], V[F[:, 2]]
+    cross = np.cross(b - a, c - a)
+    vol = float(np.einsum("ij,ij->i", a, cross).sum() / 6)
+    chi = len(V) - 3 * len(F) // 2 + len(F)
+    return vol, int((2 - chi) // 2)

@@ -37,11 +37,11 @@ Example::
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 from typing import Callable
 
 import numpy as np
 
+from ..records import dataclass
 from ..errors import GearError
 
 

@@ -25,8 +25,8 @@ Example::
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
+from ..records import dataclass
 from ..errors import GearError, check_choice, check_number
 from ..params import BEVEL_FORMS
 

@@ -4,8 +4,9 @@
 """
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, field
 
+from ..records import dataclass
 from .base import Report
 
 
