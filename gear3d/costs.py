@@ -103,6 +103,9 @@ COSTS = {
                       "sine 200 at 0.1-1 um: 0.2-1.1 ms a state beside its pairs"),
     "pair.rack.pairs": Cost(3.5e-8, 0.0, 0.0, 100e6, "measured 2026-11-26 (CPU): sine z=45 m=50 at 1 / 0.3 um: "
                             "370 M / 1.48 G pairs, 9.2 / 28.2 s (19-25 ns a pair); 1 M pairs a chunk"),
+    # gear3d.rack's measured error: per (chord point x chord) pair of one period (rack_part._chord_error)
+    "rack.chords": Cost(2e-8, 0.0, 0.0, 100e6, "measured 2026-11-26 (CPU): sine z=45 m=50 at 10 nm 195 M pairs "
+                        "3.3 s, cycloidal z=30 m=50 at 1 nm 1.16 G pairs 15.8 s (14-17 ns a pair)"),
     # rolling check: per (position x vertex of both polygons), shapely
     "pair": Cost(1.2e-5, 300.0, 0.3, 30e6, "check_pair, 78 positions: involute 20/21 to 1000/1000 at "
                  "1-10 um 4.6-11 us, sine 200/210 internal 10 us a (position x vertex)"),

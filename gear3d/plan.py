@@ -30,6 +30,7 @@ from .records import dataclass
 from . import budget
 from .budget import Estimate, estimate
 from .export.registry import FORMATS
+from .solids.kinds import is_rack
 from .plan_writes import (DXF_ARC_DEFAULT, WORM_BREP_BYTES, WORM_BREP_SAMPLES, all_direct,
                           direct_brep_estimate, direct_planned, direct_section_estimate, dxf_arcs, sketch_star)
 
@@ -154,6 +155,8 @@ def charge_write(obj, kind: str, ext: str, opts: dict) -> Estimate:
         per = float(r.get("vertices_per_tooth") or 0.0)
         tri = 4.0 * v if FORMATS[ext].role == "mesh" else 0.0
         est = write_estimate(ext, vertices=v, per_tooth=per, triangles=tri, kerf=kerf_of(opts))
+        if ext in (".dxf", ".svg") and is_rack(obj):       # one chain, walked whole (the fuzz survey, 2026-11-26)
+            est = est.then(estimate("write.rack", v, 0.0, f"a rack outline of {v:,.0f} vertices"))
         arc = opts.get("max_arc_deg")
         if ext == ".dxf" and isinstance(arc, (int, float)) and 0 < arc < DXF_ARC_DEFAULT:
             n = dxf_arcs(obj, float(arc))       # refused naming the parameter the user can change

@@ -354,6 +354,10 @@ def _chord_error(part, chain) -> float:
     the exact pieces (Newton)."""
     fr = np.linspace(0.0, 1.0, 11)[1:-1]
     a, bb = chain[:-1], chain[1:]
+    n = float(len(a))                 # 9 n points x n chords, charged first (the fuzz survey, 2026-11-26)
+    _budget.charge(_budget.estimate("rack.chords", 9.0 * n * n, 0.0,
+                                    f"the rack's chord check of {9 * n:,.0f} points x {n:,.0f} chords"),
+                   "tolerance", part.tolerance, key="rack.chords")
     probe = (a[:, None, :] + fr[None, :, None] * (bb - a)[:, None, :]).reshape(-1, 2)
     return float(part._period_distance(probe).max(initial=0.0))
 

@@ -139,7 +139,7 @@ def run(args) -> int:
         _arrange_opts(args)                   # refused before any work
         out = args.output
         parts = build_parts(design, tooth=args.tooth, tolerance=args.tolerance,
-                            bearing_thickness=args.bearing_thickness)
+                            bearing_thickness=args.bearing_thickness, plan_3mf=args.threemf)
         made = make_out_dir(out, "output")
         try:
             _write_parts(args, design, parts, out, write, assembly)

@@ -179,7 +179,7 @@ def segments_distance(Q, A, B, b) -> np.ndarray:
     short = short[np.argsort(mx[short], kind="stable")]
     xs, hs = mx[short], float(half[short].max(initial=0.0))
     qo = np.argsort(Q[:, 0], kind="stable")
-    step = max(1, BLOCK_PAIRS // 256)
+    step = 256                            # points a window: narrow windows, few pairs each
     for i in range(0, len(qo), step):
         idx = qo[i:i + step]
         out[idx] = np.minimum(out[idx], _window_distance(Q[idx], A, B, b, short, xs, hs))

@@ -78,20 +78,18 @@ def _rotate_start(runs: Runs, loop, start_angle):
     """The closed chain re-started where the ray at ``start_angle`` meets ``loop``."""
     _i, P, _ins = start_point(np.asarray(loop, float), start_angle)
     d = np.array([math.cos(start_angle), math.sin(start_angle)])
-    # the run whose chord span holds the polygon point: nearest break chord
-    best = None
-    for r in range(len(runs.ta)):
-        b = runs.breaks[r]
-        q = runs.eval(np.full(len(b), r), b)
-        a, e = q[:-1], q[1:]
-        de = e - a
-        L2 = np.maximum(np.einsum("ij,ij->i", de, de), 1e-300)
-        f = np.clip(np.einsum("ij,ij->i", P - a, de) / L2, 0, 1)
-        dist = np.hypot(*(a + f[:, None] * de - P).T)
-        j = int(np.argmin(dist))
-        if best is None or dist[j] < best[0]:
-            best = (dist[j], r, j)
-    _, r, j = best
+    # the run whose chord span holds the polygon point: nearest break chord (all runs'
+    # chords at once: a loop over 10,000 teeth' runs took 4 s; the first nearest wins)
+    lens = np.array([len(b) for b in runs.breaks])
+    idx = np.repeat(np.arange(len(lens)), lens)
+    q = runs.eval(idx, np.concatenate(runs.breaks))
+    g = np.flatnonzero(idx[1:] == idx[:-1])                  # chords inside one run
+    a, de = q[g], q[g + 1] - q[g]
+    L2 = np.maximum(np.einsum("ij,ij->i", de, de), 1e-300)
+    f = np.clip(np.einsum("ij,ij->i", P - a, de) / L2, 0, 1)
+    k = int(g[int(np.argmin(np.hypot(*(a + f[:, None] * de - P).T)))])
+    r = int(idx[k])
+    j = k - int(np.concatenate([[0], np.cumsum(lens)])[r])
     b = runs.breaks[r]
     span = (runs.piece[r], 0, b[j], b[j + 1])
     pieces = [lambda t, r=r: runs.eval(np.full(len(np.atleast_1d(t)), r), np.atleast_1d(t))]

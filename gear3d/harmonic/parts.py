@@ -335,11 +335,13 @@ def wave_generator(design: HarmonicDesign, *, tolerance=DEFAULT_TOLERANCE, w0=No
 
 
 def build_parts(design: HarmonicDesign, *, tooth="triangular", tolerance=DEFAULT_TOLERANCE, bearing_thickness=0.0,
-                **tooth_params) -> list:
+                plan_3mf=False, **tooth_params) -> list:
     """Every part of the drive, undeformed, in local frames (planned whole first:
-    :func:`gear3d.plan_jobs.plan_harmonic`, refused before any part)."""
+    :func:`gear3d.plan_jobs.plan_harmonic`, with the assembly's 3MF when ``plan_3mf``;
+    refused before any part)."""
     from ..plan_jobs import plan_harmonic
-    plan_harmonic(design, lambda role: tooth_profile(design, role, tooth, tolerance, **tooth_params), tolerance)
+    plan_harmonic(design, lambda role: tooth_profile(design, role, tooth, tolerance, **tooth_params), tolerance,
+                  threemf=plan_3mf, bearing=bool(bearing_thickness))
     if design.kind == "double":
         parts = [flexspline_tube(design, tooth=tooth, tolerance=tolerance, **tooth_params),
                  circular_spline(design, "fixed", tooth=tooth, tolerance=tolerance, **tooth_params),

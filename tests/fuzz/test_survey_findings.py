@@ -1,0 +1,98 @@
+"""What the budget survey over every command found (issue #27, ``test_fuzz_commands.py``,
+2026-11-26), kept as regression cases.
+
+* a harmonic drive's plan missed its parts' circles (a triangular flexspline at 1 um:
+  174,716 triangles planned as 18,180) and the ``--3mf`` assembly (4.1 s): stopped by the
+  watchdog after the plan let it start;
+* a rack's DXF/SVG measured every check point against every arc of the whole outline (a
+  1,000-tooth involute rack: 2.5 GB; 10,000 teeth: a 71.5 GiB allocation) and searched its
+  start run by run (4 s at 10,000 teeth), charged as a gear's 12 us a vertex;
+* a pinion-on-rack check (``check pair --rack``) was not charged at all: its rolling states
+  and the rack's own chord check ran 100 s under a 0.6 s estimate.
+
+Oracles: the kernel's accounting of each process (:func:`budgetrun.verdict`: refused in one
+line within 1 s of CPU, or within twice its estimate and under 2 GiB), the dense all-pairs
+distance written here, and the old start search's bytes (the same DXF).
+"""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from .budgetrun import REFUSE_CPU, budget_refusal, run, verdict
+
+#: refused at once now (each ran past its plan before)
+REFUSED = [
+    "--max-seconds 2 --max-memory 300MiB harmonic build --module 0.05 --z-flex 505 --z-circular 507 "
+    "--tooth triangular --tolerance 1e-06 -o hb --3mf --arrange",
+    "--max-seconds 4 check pair sine --teeth 45 --rack --rack-teeth 29 --width 1 -o r.3mf --module 50 "
+    "--tolerance 1e-07",
+    "--max-seconds 4 profile involute --teeth 10000 --module 1 --pressure-angle-deg 22.8721 --rack -o g.dxf "
+    "--dxf-version R12",
+]
+#: run now, within twice their estimate and under 2 GiB (0.8-2.5 s of CPU each)
+WITHIN = [
+    "profile involute --teeth 2000 --rack -o g.dxf",
+    "check pair sine --teeth 45 --rack --module 50 --tolerance 0.01",
+    pytest.param("harmonic build --module 0.05 --z-flex 505 --z-circular 507 --tooth triangular --tolerance 1e-5 "
+                 "-o hb --3mf", marks=pytest.mark.slow),
+]
+
+
+@pytest.mark.parametrize("line", REFUSED)
+def test_found_runaways_are_refused_at_once(line, tmp_path):
+    r = run(line.split(), tmp_path)
+    assert r.rc == 2 and budget_refusal(r.err) and r.cpu <= REFUSE_CPU, (r.cpu, r.err)
+    assert not verdict(r) and not r.new_files and not (tmp_path / "hb").exists()
+
+
+@pytest.mark.parametrize("line", WITHIN)
+def test_found_cases_run_within_their_estimate(line, tmp_path):
+    r = run(line.split(), tmp_path)
+    assert r.rc == 0 and not verdict(r), (verdict(r), r.err[-300:])
+
+
+def _dense(Q, A, B, b):
+    """Distance from each point to the nearest arc A -> B of bulge b, by brute force: a line
+    by its foot, an arc sampled at 2001 points (the circle through A and B with included
+    angle 4 atan b, counter-clockwise for b > 0)."""
+    t = np.linspace(0.0, 1.0, 2001)
+    out = np.full(len(Q), np.inf)
+    for a, e, k in zip(A, B, b):
+        if k == 0:                                               # a line: the foot, exactly
+            s = np.clip((Q - a) @ (e - a) / ((e - a) @ (e - a)), 0.0, 1.0)
+            out = np.minimum(out, np.hypot(*(Q - a - s[:, None] * (e - a)).T))
+            continue
+        else:
+            c = np.hypot(*(e - a))
+            theta = 4 * np.arctan(k)                              # included angle, signed
+            R = c / (2 * np.sin(theta / 2))
+            mid = (a + e) / 2
+            n = np.array([-(e - a)[1], (e - a)[0]]) / c           # left normal
+            C = mid + n * R * np.cos(theta / 2)
+            a0 = np.arctan2(*(a - C)[::-1])
+            P = C + abs(R) * np.stack([np.cos(a0 + theta * t), np.sin(a0 + theta * t)], axis=1)
+        d = np.hypot(Q[:, None, 0] - P[None, :, 0], Q[:, None, 1] - P[None, :, 1]).min(axis=1)
+        out = np.minimum(out, d)
+    return out
+
+
+def test_windowed_distance_is_the_dense_one(monkeypatch):
+    """gear3d.export.arcfit.segments_distance in windows (many pairs: a rack) equals the
+    brute-force distance to densely sampled arcs (within the sampling's sag) on a wavy
+    outline 100 mm long with a long back line, points all around it (blocks of 4,096 pairs,
+    so that these few take the windowed route)."""
+    from gear3d.export import arcfit
+    monkeypatch.setattr(arcfit, "BLOCK_PAIRS", 4096)
+    rng = np.random.default_rng(7)
+    x = np.sort(rng.uniform(0, 100, 200))
+    y = rng.uniform(-1, 1, 200)
+    A = np.r_[np.c_[x[:-1], y[:-1]], [[100.0, -6.0]]]
+    B = np.r_[np.c_[x[1:], y[1:]], [[0.0, -6.0]]]
+    b = np.where(rng.uniform(size=len(A)) < 0.6, rng.uniform(-1, 1, len(A)), 0.0)
+    b[-1] = 0.0
+    Q = np.c_[rng.uniform(-20, 120, 300), rng.uniform(-9, 4, 300)]
+    assert len(Q) * len(A) > arcfit.BLOCK_PAIRS             # the windowed route
+    got = arcfit.segments_distance(Q, A, B, b)
+    step = np.pi / 2 * np.hypot(*(B - A)[b != 0].T).max() / 2000     # the arcs' sample spacing (<= a half turn)
+    assert np.allclose(got, _dense(Q, A, B, b), rtol=0, atol=step / 2 + 1e-12)
