@@ -30,11 +30,29 @@ def _pair_params():
     return {"mate_teeth": Param("mate_teeth", int, "", 1, 100_000, help="EC, Moineau and pairs: teeth of the mating wheel")}
 
 
+#: :func:`_flag_params` and :func:`flag_table` already made in this process, by
+#: :func:`_tables_key` (a command reads them two or three times: parser and parameters)
+_MADE: dict = {}
+
+
+def _tables_key(what: str, helix: bool) -> tuple:
+    """What the flag tables are made of: the family tables themselves (a table replaced
+    makes them anew)."""
+    return (what, bool(helix), tuple((f, id(t)) for f, t in FAMILY_PARAMS.items()))
+
+
 def _flag_params(helix: bool = False) -> list:
     """[(dest, Param)] of the family flags: one per parameter name over all family tables
     (gear3d.params), its range the union of the families' (each family's own range is
     checked after parsing, :func:`family_params`). ``internal`` and ``tolerance`` are added
     by :func:`add_profile_flags` itself."""
+    key = _tables_key("params", helix)
+    if key not in _MADE:
+        _MADE[key] = tuple(_make_flag_params(helix))
+    return list(_MADE[key])
+
+
+def _make_flag_params(helix: bool) -> list:
     extra = _pair_params()
     out = []
     for name, ps in all_params().items():
@@ -50,10 +68,10 @@ def flag_table(helix: bool = False) -> list:
     """``[(flag, argparse type, help, dest, Param)]`` of the family flags, from the one table
     (gear3d.params). Only the flags a user gives are passed on, and a family refuses the
     ones it does not take (GearError naming the flag's parameter)."""
-    out = []
-    for dest, p in _flag_params(helix):
-        out.append((p.flag, arg_type(p), p.help_text(), dest, p))
-    return out
+    key = _tables_key("flags", helix)
+    if key not in _MADE:
+        _MADE[key] = tuple((p.flag, arg_type(p), p.help_text(), dest, p) for dest, p in _flag_params(helix))
+    return list(_MADE[key])
 
 
 def arg_type(p):
