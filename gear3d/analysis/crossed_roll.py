@@ -55,7 +55,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import check_number
+from ..errors import GearError, check_number
 
 #: roll positions per pitch of wheel 1 for the gaps, and for the contact scan
 GRID = 24
@@ -394,7 +394,12 @@ def check_crossed(rep: dict, width: float, mate_width=None, tolerance: float = C
     n = int(check_number("grid", grid, 4, 10_000, integer=True))
     pair = Pair(rep, w1, w2)
     phis = np.linspace(0.0, pair.g1.pitch, n, endpoint=False)
-    ccw, cw, sides = free_turns(pair, phis)
+    ccw, cw, _ = free_turns(pair, phis)
+    meshed = np.isfinite(ccw) & np.isfinite(cw)
+    if not meshed.all():            # no flank of wheel 1 inside the mate's teeth at some positions
+        raise GearError("center_distance", round(pair.a, 9), "a distance at which the teeth stay in mesh "
+                        "over the roll (the check found no flank inside the mate's tip cylinder at "
+                        f"{int((~meshed).sum())} of {n} positions)")
     play = ccw + cw
     lever = pair.g2.rb * math.cos(pair.g2.bb)
     r2 = pair.g2.r
