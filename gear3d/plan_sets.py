@@ -164,8 +164,15 @@ def plan_worm(kw: dict, output=None, step=None, png=None, json=None, bodies: boo
 def _probe_section(geo, which: str, zs: float, tol: float) -> tuple:
     """(vertices, outline length in mm) of member ``which``'s section at the tolerance ``tol``
     (mm), from one tooth period sampled by the builder (stopped at its first sample:
-    ``budget.probing``)."""
-    from .bevel.section import member, section
+    ``budget.probing``). A small straight member's section is built whole instead
+    (:func:`gear3d.bevel.section.small`; kept by :func:`~gear3d.bevel.section.prepare` for the
+    build, which would otherwise sample it again): its own counts."""
+    from .bevel.section import member, prepare, section, small
+    if geo.line is None and small(geo, which, tol):
+        import numpy as np
+        loops = [np.asarray(q, float) for q in prepare(geo, which, zs, tol).loops]
+        return (float(sum(len(q) for q in loops)),
+                float(sum(np.hypot(*(np.roll(q, -1, axis=0) - q).T).sum() for q in loops)))
     with budget.probing():
         try:
             section(geo, which, zs, tol)
@@ -196,7 +203,8 @@ def bevel_member_counts(geo, which: str, tol: float) -> tuple:
     else:
         worst = math.cos(tilt)
     n_seg = B.cap_segments(cp.r_max, B.CAP_SHARE * tol * worst)
-    nv, length = _probe_section(geo, which, cp.z_hi, B.SECTION_SHARE * tol * worst)
+    sec_tol = B.SECTION_SHARE * tol * worst if geo.line is not None else B.section_tolerance(geo, which, tol)
+    nv, length = _probe_section(geo, which, cp.z_hi, sec_tol)
     if geo.line is not None:              # spiral / Zerol: the warped layers (spiral.spiral_body's plan)
         from .bevel import spiral as S
         e_w = S.WARP_SHARE * tol * worst

@@ -203,7 +203,7 @@ def member_body(geo: PairGeometry, which: str, tolerance: float, name: str | Non
     n_seg = cap_segments(cp.r_max, CAP_SHARE * tolerance * worst)
     budget.check_body(24 * n_seg, "tolerance", tolerance)
     zs = cp.z_hi
-    sec = section(geo, which, zs, SECTION_SHARE * tolerance * worst - 2 * CLIPPER_ROUNDING)
+    sec = section(geo, which, zs, section_tolerance(geo, which, tolerance))
     nv = sum(len(l) for l in sec.loops)
     layers = LAYERS if nv * n_seg > SPLIT_WORK else 0
     budget.check_body(_estimate_triangles(nv, n_seg, layers), "tolerance", tolerance)
@@ -213,6 +213,12 @@ def member_body(geo: PairGeometry, which: str, tolerance: float, name: str | Non
         if got is not None:
             return got
     return boolean_body(geo, which, cp, sec, tolerance, worst, n_seg, layers, name)
+
+
+def section_tolerance(geo: PairGeometry, which: str, tolerance: float) -> float:
+    """The section's share (mm) of a straight body's ``tolerance`` (module doc; the
+    boolean's rescaled copy is rounded by Clipper twice)."""
+    return SECTION_SHARE * tolerance * edge_sine(geo, which) - 2 * CLIPPER_ROUNDING
 
 
 def direct_body(geo: PairGeometry, which: str, cp: Caps, sec, tolerance: float, worst: float,
