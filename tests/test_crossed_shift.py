@@ -289,3 +289,19 @@ def test_a_tip_past_the_form_cylinder_is_fillet_interference(ha):
     chk = check_crossed(rep, width=12.0, grid=6)
     assert chk["interference"] == past
     assert bool(chk["fillet_interference"]) == past and not chk["tip_in_undercut"]
+
+
+def test_working_pitch_cylinders():
+    """Helices of the flanks' leads (tan β_w / r_w = tan β / r) touching with a common tangent
+    on the common perpendicular: r_w1 + r_w2 = a and β_w1 + β_w2 = Σ; at x1 + x2 = 0 the
+    pitch cylinders themselves."""
+    for x1, x2 in ((0.5, 0.3), (0.4, -0.4)):
+        rep = crossed_pair(15, 25, 2.0, 60.0, 30.0, shift_coeff=x1, mate_shift_coeff=x2)
+        (rw1, rw2), (bw1, bw2) = rep["working_pitch_radius"], rep["working_helix_angle_deg"]
+        assert rw1 + rw2 == pytest.approx(rep["center_distance"], abs=1e-12)
+        assert bw1 + bw2 == pytest.approx(30.0, abs=1e-9)
+        for rw, bw, g in ((rw1, bw1, rep["gear"]), (rw2, bw2, rep["mate"])):
+            b, r = math.radians(g["helix_angle_deg"]), g["pitch_radius"]
+            assert math.tan(math.radians(bw)) / rw == pytest.approx(math.tan(b) / r, rel=1e-12)
+            if x1 + x2 == 0:
+                assert rw == pytest.approx(r, abs=1e-9)
