@@ -125,20 +125,27 @@ def test_tip_land_is_the_envelope_s(z2):
     assert pointed_band(d) is None
 
 
+def _closing(z2, lo, hi):
+    """The height (mm) between ``lo`` and ``hi`` where the oracle's land changes sign."""
+    s_lo = land(z2, lo) < 0
+    for _ in range(45):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if (land(z2, mid) < 0) == s_lo else (lo, mid)
+    return 0.5 * (lo + hi)
+
+
 @pytest.mark.parametrize("z2", [12, 16])
 def test_truly_pointed_wheels_point_where_the_oracle_does(z2):
-    """12 and 16 teeth: the oracle's flanks cross below the tip circle near the kink;
-    gear3d's band of pointed heights starts where the oracle's land closes (bisected here)."""
-    from gear3d.export.step_brep_wheel import pointed_band, tip_land
+    """12 and 16 teeth: the oracle's flanks cross below the tip circle near the kink; the
+    heights where gear3d's B-rep ends its tip face (the exact land's zeros) are the oracle's."""
+    from gear3d.export.step_brep_wheel_tip import pointed_interval, tip_land
     d = _design(z2)
     k = _kink(z2)
     assert land(z2, k) < 0 and tip_land(d, k) == pytest.approx(land(z2, k), abs=1e-6)
-    lo, hi = 0.0, k
-    for _ in range(40):                                    # where the oracle's land closes to 1 um
-        mid = 0.5 * (lo + hi)
-        lo, hi = (mid, hi) if land(z2, mid) > 1e-3 else (lo, mid)
-    band = pointed_band(d)
-    assert band is not None and band[1] == pytest.approx(hi, abs=2e-4) and band[2] > k
+    h0, h1 = pointed_interval(d)
+    assert h0 == pytest.approx(_closing(z2, 0.0, k), abs=1e-5)
+    assert h1 == pytest.approx(_closing(z2, k, d.face_width / 2), abs=1e-5)
+    assert h0 < k < h1 < d.face_width / 2
 
 
 # ------------------------------------------------------------------ the B-rep, read back (slow)
@@ -289,3 +296,63 @@ def test_narrow_land_pair_and_scene_write_their_brep(tmp_path, capsys):
     (step,) = [p for p in (tmp_path / "out").rglob("*.step")]
     (w,) = sub_shapes(read_step(step), "solid")
     assert is_valid(w)
+
+
+def _pointed_outline(z2, h, n=4000):
+    """(flanks up to their crossing, the crossing's radius r_X) of the oracle's pointed
+    tooth at h: each flank's polar angle as a function of radius, their difference's zero."""
+    lo, hi = max(abs(h) + 1e-6, Q * M / 2 - 1.2 * M), Q * M / 2 + 1.2 * M
+    rho = np.linspace(lo, hi, n)
+    W = [envelope(z2, h, sign, rho) for sign in (1.0, -1.0)]
+    r = np.linspace(z2 * M / 2, tip_radius(z2, h), 20001)
+    phi = []
+    for P in W:
+        rr = np.hypot(P[:, 0], P[:, 1])
+        o = np.argsort(rr)
+        phi.append(np.interp(r, rr[o], np.arctan2(P[o, 1], P[o, 0])))
+    gap = phi[1] - phi[0]
+    i = int(np.nonzero((gap[:-1] > 0) & (gap[1:] <= 0))[0][0])
+    rx = r[i] + (r[i + 1] - r[i]) * gap[i] / (gap[i] - gap[i + 1])
+    return [P[np.hypot(P[:, 0], P[:, 1]) <= rx] for P in W], rx
+
+
+@pytest.mark.slow
+def test_pointed_wheel_brep_on_the_envelope(tmp_path):
+    """z2 = 16 at 0.05 mm (teeth pointed between |h| = 5.006 and 5.774 mm): one valid solid
+    with a closed shell, its volume the certified STL's (trimesh) within (mesh error +
+    tolerance) x area; sections by OCC where the tooth points (the flanks meet: every top
+    point within the tolerance of the oracle's two flanks, and the tooth's tip at the
+    oracle's crossing radius) and either side of the pointed heights (the land)."""
+    import trimesh
+    from OCP.BRep import BRep_Tool
+    from occread import is_valid, read_step, sub_shapes
+    tol, z2 = 0.05, 16
+    s = gear3d.worm(part="wheel", module=M, starts=Z1, wheel_teeth=z2, diameter_quotient=Q,
+                    axial_pressure_angle_deg=ALPHA, worm_type="ZA", tolerance=tol)
+    w = s.parts()[0]
+    gear3d.write(s.parts(), tmp_path / "w.step", step="brep")
+    gear3d.write(s.parts(), tmp_path / "w.stl")
+    assert 0 < w.report["brep"]["max_error"] <= tol
+    shape = read_step(tmp_path / "w.step")
+    (solid,) = sub_shapes(shape, "solid")
+    (shell,) = sub_shapes(solid, "shell")
+    assert is_valid(shape) and (getattr(BRep_Tool, "IsClosed_s", None) or BRep_Tool.IsClosed)(shell)
+    from OCP.BRepGProp import BRepGProp
+    from OCP.GProp import GProp_GProps
+    props = GProp_GProps()
+    (getattr(BRepGProp, "VolumeProperties_s", None) or BRepGProp.VolumeProperties)(shape, props, 1e-5, True)
+    mesh = trimesh.load(tmp_path / "w.stl")
+    assert abs(props.Mass() - mesh.volume) <= (w.report["max_error"] + tol) * mesh.area
+    h0, h1 = _closing(z2, 0.0, _kink(z2)), _closing(z2, _kink(z2), 9.0)
+    window = (-6.0, 6.0, 12.0)
+    for h in (0.5 * (h0 + _kink(z2)), _kink(z2), -0.5 * (_kink(z2) + h1)):     # pointed
+        P = _folded(_section_points(shape, h, window=window), z2)
+        r = np.hypot(P[:, 0], P[:, 1])
+        flanks, rx = _pointed_outline(z2, h)
+        top = r > z2 * M / 2
+        assert top.sum() > 100 and _distance(P[top], flanks).max() <= tol, h
+        assert rx < tip_radius(z2, h) and abs(r.max() - rx) <= tol, h
+    for h in (h0 - 0.3, -(h1 + 0.3)):                                             # a land
+        P = _folded(_section_points(shape, h, window=window), z2)
+        top = np.hypot(P[:, 0], P[:, 1]) > z2 * M / 2
+        assert land(z2, h) > 0 and _distance(P[top], _outline(z2, h)).max() <= tol, h

@@ -12,6 +12,12 @@ through the stack of certified sections.
   in z through the rows' control points (z(u, v) = v exactly). The other teeth are its
   control nets turned by 2πk/z. Bands end at the face and at the throat's kinks (where
   the throat arc meets the outside cylinder), so no surface spans a kink.
+* **The tip** (:mod:`gear3d.export.step_brep_wheel_tip`). A narrow land is kept at the
+  flanks' exact corners on the tip circle. Where the teeth point (12 to 18 teeth at m 2,
+  q 10, near the kink) bands also end where the exact land closes (h0, h1): between them
+  the two flank surfaces meet along their exact crossing (no tip face), and at h0 and h1
+  the tip face ends in a degenerate edge (its row shrinks to the point where the flanks
+  cross on the tip circle).
 * **Measured.** Every surface of tooth 0 is evaluated through OpenCascade at its u knots
   and their quarter points, on every row and at the middle of every pair of rows; each
   height's points are turned back by -section_turn(h) and measured against the exact
@@ -43,7 +49,8 @@ import numpy as np
 from ..errors import GearError, ToleranceError
 from .step_brep_occ import (bspline_curve, bspline_surface, plane_face, sew_solid, validate_solid,
                             wire_of_curves)
-from .step_brep_runs import ExactSet, Run, exact_set, loop_runs, nearest_on_piece, rot2
+from .step_brep_runs import ExactSet, exact_set, loop_runs, nearest_on_piece, rot2
+from .step_brep_wheel_tip import canonical_runs, pointed_band, pointed_interval, refuse_pointed, tip_land  # noqa: F401
 
 #: share of the tolerance given to the sections' polygons (used only to map the runs)
 SECTION_SHARE = 0.25
@@ -57,9 +64,6 @@ START_COLUMNS = 6
 U_SHARE = 0.5
 #: a grown fit aims at this share of its allowance (cubic convergence is a model, not a bound)
 TARGET = 0.6
-#: the narrowest tip land (mm, along the tip circle) a wheel's B-rep keeps: 1000 x the
-#: sewing tolerance (a land of a few sewing tolerances would sew its two corners into one)
-LAND_MIN = 1e-3
 #: relative precision of the volume check (1e-5 of a volume: far below the bound checked)
 VOLUME_EPS = 1e-5
 
@@ -70,9 +74,11 @@ def is_wheel(b) -> bool:
     return getattr(b, "profile", None) is None and (getattr(b, "report", None) or {}).get("part") == "wheel"
 
 
-def section_runs(d, h: float, tol_s: float):
+def section_runs(d, h: float, tol_s: float, kind: str = "land"):
     """(exact set, runs) of the wheel's centred section at height ``h`` (mm): its pieces
-    plus the blank's tip arc, the runs rotated to start at tooth 0's tip."""
+    plus the blank's tip arc, the runs rotated to start at tooth 0's tip (of zero length
+    where the tooth points: ``kind``, see
+    :func:`gear3d.export.step_brep_wheel_tip.canonical_runs`)."""
     from ..wormgear.wheel import section
     rt = float(d.blank_tip_radius(h))
     for k in (1.0, 0.25, 1 / 16, 1 / 64, 1 / 256):      # finer polygons where the runs cannot be mapped
@@ -87,48 +93,11 @@ def section_runs(d, h: float, tol_s: float):
                                 "a wheel whose teeth point or lose their tip land across the face width "
                                 "stays faceted") from None
     tip = len(p.pieces)
-    if not any(r.piece == tip for r in runs):
-        ex, runs = _with_land(d, h, p, ex, runs)
+    ex, runs = canonical_runs(d, h, p, ex, runs, kind)
     start = next((i for i, r in enumerate(runs) if r.piece == tip and r.k == 0), None)
     if start is None:
         raise GearError("step", "brep", "'faceted' for this wheel", f"the section at h = {h:.4g} mm has no tip")
     return ex, runs[start:] + runs[:start]
-
-
-def _with_land(d, h: float, p, ex, runs):
-    """(exact set, runs) of section ``p`` at height ``h`` (mm) whose polygon lost a tip land
-    narrower than its corners' error (the flank chords cross below the tip's chord): where
-    the exact flanks still cross the tip circle apart (:func:`tip_land` >= :data:`LAND_MIN`),
-    every tooth's flank-to-flank junction becomes flank, tip arc, flank at the exact
-    corners. Otherwise the runs unchanged (refused by the caller)."""
-    from ..envelope import rack_envelope
-    from ..wormgear.thread import section_rack
-    if p.tip_arc is None or tip_land(d, h) < LAND_MIN:
-        return ex, runs
-    rt, z = float(d.blank_tip_radius(h)), p.teeth
-    ang = 2 * math.pi / z
-    names = [n for _, n in rack_envelope(section_rack(d, float(h)), d.r2, d.shift_coeff * d.module, False)]
-    flanks = [i for i, n in enumerate(names) if n == "rack-flank"]
-    fa, fb = flanks[0], flanks[-1]
-    ta, tb = _tip_corner(p.pieces[fa], rt, True), _tip_corner(p.pieces[fb], rt, False)
-    Pa, Pb = p.pieces[fa](np.array([ta]))[0], p.pieces[fb](np.array([tb]))[0]
-    ua, ub = (math.atan2(P[1], P[0]) / ang + 0.5 for P in (Pa, Pb))
-    tip = len(p.pieces)
-    out = []
-    for i, r in enumerate(runs):
-        nxt = runs[(i + 1) % len(runs)]
-        if r.piece == fb and out and out[-1].piece == tip and out[-1].k == r.k:
-            out.append(Run(fb, r.k, tb, r.t1, rot2(Pb, r.k * ang), r.p1))
-        elif r.piece == fa and nxt.piece == fb and nxt.k == r.k:
-            out += [Run(fa, r.k, r.t0, ta, r.p0, rot2(Pa, r.k * ang)),
-                    Run(tip, r.k, ua, ub, rot2(Pa, r.k * ang), rot2(Pb, r.k * ang))]
-        else:
-            out.append(r)
-    if runs and runs[0].piece == fb and out[-1].piece == tip and out[-1].k == runs[0].k:
-        out[0] = Run(fb, runs[0].k, tb, runs[0].t1, rot2(Pb, runs[0].k * ang), runs[0].p1)
-    ex = ExactSet(list(p.pieces) + [p.tip_arc[0]], [np.asarray(t, float) for t in p.piece_params]
-                  + [np.asarray(p.tip_arc[1], float)], z, float(p.tolerance))
-    return ex, out
 
 
 def _mapped(p, rt: float):
@@ -150,109 +119,46 @@ def _mapped(p, rt: float):
     return ex, loop_runs(ex, p.tooth_loop)
 
 
-def _tip_corner(G, rt: float, rising: bool, n: int = 257):
-    """Parameter t of the exact piece ``G`` where it crosses the circle ``rt`` (mm) nearest
-    the tooth's tip (the last crossing upward of a ``rising`` flank, the first downward of
-    the other), or None where it does not reach the circle: the sign change on ``n``
-    samples, bracketed twice more on ``n`` samples, then linear (t within 1e-7 of the piece)."""
-    lo, hi = 0.0, 1.0
-    for _ in range(3):
-        t = np.linspace(lo, hi, n)
-        f = np.hypot(*G(t).T) - rt
-        i = np.nonzero((f[:-1] < 0) & (f[1:] >= 0) if rising else (f[:-1] >= 0) & (f[1:] < 0))[0]
-        if not len(i):
-            return None
-        j = int(i[-1] if rising else i[0])
-        lo, hi, fa, fb = t[j], t[j + 1], f[j], f[j + 1]
-    return float(lo + (hi - lo) * fa / (fa - fb))
-
-
-def tip_land(d, h: float) -> float:
-    """Width (mm, along the tip circle) of the tip land of the wheel's exact section at
-    height ``h`` (mm): between the two flank envelopes' crossings with the blank's tip
-    circle ``blank_tip_radius(h)``, on the exact pieces (no polygon: about 0.5 ms); negative
-    where the flanks cross below that circle (the tooth comes to a point), -inf where a
-    flank does not reach it.
-
-    >>> from gear3d.wormgear.design import design
-    >>> round(tip_land(design(module=2, starts=1, wheel_teeth=20, diameter_quotient=10), 0.0), 3)
-    1.383
-    """
-    from ..envelope import rack_envelope
-    from ..wormgear.thread import section_rack
-    pieces = rack_envelope(section_rack(d, float(h)), d.r2, d.shift_coeff * d.module, False)
-    flanks = [G for G, name in pieces if name == "rack-flank"]
-    rt = float(d.blank_tip_radius(h))
-    ta, tb = _tip_corner(flanks[0], rt, True), _tip_corner(flanks[-1], rt, False)
-    if ta is None or tb is None:
-        return -math.inf
-    (xa, ya), (xb, yb) = flanks[0](np.array([ta]))[0], flanks[-1](np.array([tb]))[0]
-    return rt * (math.atan2(yb, xb) - math.atan2(ya, xa))
-
-
-def pointed_band(d, steps: int = 64, h_tol: float = 1e-4):
-    """(h_ok, h0, h1) (mm, 0 <= h_ok <= h0 <= h1 <= B/2): the heights |h| between which
-    the wheel's exact sections keep no tip land of :data:`LAND_MIN` (their flanks meet at
-    or below the blank's tip: :func:`tip_land`), found on ``steps`` heights and the
-    throat's kink (where a throated wheel's land is narrowest), the first one bisected to
-    ``h_tol`` mm (``h_ok``: the last height before it that keeps a land, or h0 at h = 0);
-    None when every one keeps a land. A throated 12-tooth ZA wheel (m 2, q 10) points
-    from |h| = 4.26 mm on."""
-    half = d.face_width / 2
-    hs = set(np.linspace(0.0, half, steps + 1).tolist())
-    kink = d.throat_break()
-    if kink is not None and kink < half:
-        hs |= {kink, max(kink - 1e-3, 0.0), min(kink + 1e-3, half)}
-    hs = sorted(hs)
-
-    def pointed(h):
-        return tip_land(d, h) < LAND_MIN
-    bad = [h for h in hs if pointed(h)]
-    if not bad:
-        return None
-    hi = bad[0]
-    lo = max([h for h in hs if h < hi], default=hi)
-    while hi - lo > h_tol and lo < hi:
-        mid = 0.5 * (lo + hi)
-        lo, hi = (lo, mid) if pointed(mid) else (mid, hi)
-    return lo, hi, bad[-1]
-
-
-def refuse_pointed(d, steps: int = 64, h_tol: float = 1e-4) -> None:
-    """One GearError line, before any surface is fitted, for a wheel whose teeth come to a
-    point below the blank's tip somewhere across the face width (the tip's surface would
-    shrink to an edge there): it names the heights and what to change. ``steps``, ``h_tol``:
-    :func:`pointed_band`'s scan."""
-    band = pointed_band(d, steps, h_tol)
-    if band is None:
-        return
-    ok, h0, h1 = band
-    fix = f"--face-width {math.floor(2 * ok * 100) / 100:g} mm or less, " if ok > 0.25 * d.module else ""
-    raise GearError("step", "brep", "'faceted' for this wheel",
-                    f"its teeth come to a point below the blank's tip at |h| = {h0:.3g} to {h1:.3g} mm "
-                    f"(the throat's kink is at {d.throat_break() or 0:.3g} mm); for a B-rep give {fix}"
-                    "--no-throat or more teeth")
-
-
 def _signature(runs, z):
     return [(r.piece, r.k) for r in runs[:len(runs) // z]]
 
 
-def _bands(d):
-    """Band limits (mm): the faces and the throat's kinks between them."""
+def _bands(d, pointed=None):
+    """Band limits (mm): the faces, the throat's kinks and the ends (h0, h1) of the
+    ``pointed`` heights between them (limits within 1e-6 mm of one before are dropped)."""
     B = d.face_width
     br = [-B / 2, B / 2]
     kink = d.throat_break()
     if kink is not None and kink < B / 2 - 1e-9:
         br += [-kink, kink]
-    return sorted(br)
+    for h in pointed or ():
+        if h < B / 2:
+            br += [-h, h]
+    out = []
+    for h in sorted(br):
+        if not out or h - out[-1] > 1e-6:
+            out.append(h)
+        elif h in [x * s for x in (pointed or ()) for s in (-1, 1)]:
+            out[-1] = h                     # the pointed heights' ends win over a kink 1 um off
+    return out
+
+
+def _kind(ctx, h: float) -> str:
+    """"land", "point" or "edge" (an end of the pointed heights) for height ``h`` (mm)."""
+    pt = ctx.get("pointed")
+    if pt is None:
+        return "land"
+    a, h0, h1 = abs(h), pt[0], pt[1]
+    if a == h0 or (a == h1 and h1 < ctx["d"].face_width / 2):
+        return "edge"
+    return "point" if h0 < a <= h1 else "land"
 
 
 def _rows(ctx, heights):
     """{h: (exact set, runs)} for every height (built once, shared)."""
     for h in heights:
         if h not in ctx["sections"]:
-            ex, runs = section_runs(ctx["d"], h, ctx["tol_s"])
+            ex, runs = section_runs(ctx["d"], h, ctx["tol_s"], _kind(ctx, h))
             if _signature(runs, ex.teeth) != ctx["signature"]:
                 raise GearError("step", "brep", "'faceted' for this wheel",
                                 f"the section at h = {h:.4g} mm has other pieces than the mid-plane's")
@@ -262,7 +168,10 @@ def _rows(ctx, heights):
 
 def _run_points(ex, run, n_u, turn):
     """(n_u, 2) points of one run of tooth 0 (mm), in place at its height: the exact piece
-    at equally spaced parameters, its exact end points at the ends."""
+    at equally spaced parameters, its exact end points at the ends (all its end point for a
+    run of zero length: a pointed tooth's tip)."""
+    if run.t0 == run.t1 and np.array_equal(run.p0, run.p1):
+        return rot2(np.repeat(np.asarray(run.p0, float)[None], n_u, axis=0), turn)
     t = run.t0 + (run.t1 - run.t0) * np.linspace(0.0, 1.0, n_u)
     P = rot2(ex.pieces[run.piece](t), run.k * 2 * math.pi / ex.teeth)
     P[0], P[-1] = run.p0, run.p1
@@ -271,12 +180,17 @@ def _run_points(ex, run, n_u, turn):
 
 def _band_nets(ctx, heights, n_u):
     """For every run j of tooth 0: (control net (n_u[j], m, 3), u knots, v knots) of the
-    bicubic surface through the band's rows ``heights``."""
+    bicubic surface through the band's rows ``heights``; None for the tip (j = 0) in a band
+    where the tooth points (its flanks meet there)."""
     from scipy.interpolate import make_interp_spline
     from ..wormgear.wheel import section_turn
     rows = _rows(ctx, heights)
     out = []
+    point = _kind(ctx, 0.5 * (heights[0] + heights[-1])) == "point"
     for j in range(len(ctx["signature"])):
+        if j == 0 and point:
+            out.append(None)
+            continue
         s = np.linspace(0.0, 1.0, n_u[j])
         C = []
         for h, (ex, runs) in zip(heights, rows):
@@ -299,7 +213,10 @@ def _measure_band(ctx, nets, heights):
     hs = list(heights) + mids
     rows = dict(zip(hs, _rows(ctx, hs)))
     on, between = np.zeros(len(nets)), np.zeros(len(nets))
-    for j, (net, uk, vk) in enumerate(nets):
+    for j, nv in enumerate(nets):
+        if nv is None:
+            continue
+        net, uk, vk = nv
         surf = bspline_surface(net, uk, vk, 3, 3)
         ku = np.unique(uk)
         us = np.unique(np.concatenate([ku, (ku[:-1, None] + np.diff(ku)[:, None] * [0.25, 0.5, 0.75]).ravel()]))
@@ -334,7 +251,7 @@ def _fit_bands(ctx, tol):
     ``TARGET`` x that share, and a band whose error between the rows exceeds tol the rows
     (between - on the rows, against the rest of the tolerance). Fewer poles than doubling
     everything: the STEP file is smaller at the same measured bound."""
-    br = _bands(ctx["d"])
+    br = _bands(ctx["d"], ctx.get("pointed"))
     n_v = [START_ROWS] * (len(br) - 1)
     n_u = [START_COLUMNS] * len(ctx["signature"])
     for _round in range(MAX_ROUNDS + 1):
@@ -368,6 +285,7 @@ def _faces(bands, z):
     axis = gp_Ax1(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1))
     faces, bottom, top = [], [], []
     for bi, (_heights, nets) in enumerate(bands):
+        nets = [n for n in nets if n is not None]
         surfs = [bspline_surface(net, uk, vk, 3, 3) for net, uk, vk in nets]
         ends = {0: [bspline_curve(net[:, 0], uk, 3) for net, uk, _ in nets],
                 -1: [bspline_curve(net[:, -1], uk, 3) for net, uk, _ in nets]}
@@ -409,14 +327,15 @@ def wheel_features(shape, d, feats: dict, tol: float):
 def precheck(d) -> None:
     """Refuse a worm set's wheel B-rep before any body is built (the CLI, before the mesh
     and OCC's import): :func:`refuse_pointed` of design ``d``
-    (:class:`gear3d.wormgear.design.WormDesign`) on the exact pieces (64 heights and the
-    kink's three, the first pointed one bisected to 1e-4 mm; about 0.05 s), the same scan
-    :func:`wheel_solid` makes.
+    (:class:`gear3d.wormgear.design.WormDesign`) where its teeth point in the mid-plane or
+    in separate bands (the exact pieces at 64 heights and the kink's three, about 0.05 s;
+    the scan :func:`wheel_solid` makes). Teeth that point in one band of heights each side
+    are made (:mod:`gear3d.export.step_brep_wheel_tip`).
 
     >>> from gear3d.wormgear.design import design
     >>> precheck(design(module=2, starts=1, wheel_teeth=30, diameter_quotient=10, worm_type="ZA"))
     """
-    refuse_pointed(d)
+    pointed_interval(d)
 
 
 def wheel_design(w, design=None):
@@ -442,7 +361,7 @@ def wheel_solid(w, design=None):
     t0 = time.perf_counter()
     tol = float(w.report["tolerance"])
     ctx = {"d": d, "tol_s": SECTION_SHARE * tol, "sections": {}}
-    refuse_pointed(d)
+    ctx["pointed"] = pointed_interval(d)
     _ex, runs0 = section_runs(d, 0.0, ctx["tol_s"])
     ctx["signature"] = _signature(runs0, d.wheel_teeth)
     bands, err = _fit_bands(ctx, tol)
@@ -454,6 +373,6 @@ def wheel_solid(w, design=None):
         shape = transformed(shape, T)
     t2 = time.perf_counter()
     info.update({"max_error": err, "tolerance": tol, "sections": len(ctx["sections"]),
-                 "flank_faces_per_tooth": sum(len(n) for _, n in bands),
+                 "flank_faces_per_tooth": sum(n is not None for _, nets in bands for n in nets),
                  "seconds": {"fit": t1 - t0, "build": t2 - t1, "total": t2 - t0}})
     return shape, info
