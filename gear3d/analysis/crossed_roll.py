@@ -266,10 +266,12 @@ def free_turns(pair: Pair, phis):
         S = np.array([1.0, -1.0])[:, None, None, None]
         X = pair.flank(phi, ks[None, :, None, None], S, R[None, None], Z[None, None])
         ccw, cw, m = pair.gaps(X, phi)
+        flank = (pair.in_mate(X, phi)[0] >= pair.g2.r_form).reshape(2, len(ks), -1)
         for which, v in enumerate((ccw, cw)):
             v = np.where(m, v, np.inf).reshape(2, len(ks), -1)
-            j = np.argmin(v, axis=2)                    # each tooth side's least grid point
-            grid_v = np.take_along_axis(v, j[..., None], axis=2)[..., 0]
+            grid_v = v.min(axis=2)                      # each tooth side's least grid point
+            # Newton from the least point facing the mate's flank (not its form-cylinder extension)
+            j = np.argmin(np.where(flank, v, np.inf), axis=2)
             side = np.broadcast_to(np.array([1.0, -1.0])[:, None], j.shape)
             k = np.broadcast_to(ks[None, :], j.shape)
             r1, z1, val, ok = _newton(pair, phi, k, side, which, R.ravel()[j], Z.ravel()[j])
@@ -314,8 +316,10 @@ def _contact_state(pair: Pair, phis, side: float, which: int):
     for s in range(0, len(phis), chunk):
         ph = phis[s:s + chunk]
         P = ph[:, None, None]
-        v = pair.gaps(pair.flank(P, 0, side, R[None], Z[None]), P)
-        v = np.where(v[2], v[which], np.inf).reshape(len(ph), -1)
+        X = pair.flank(P, 0, side, R[None], Z[None])
+        v = pair.gaps(X, P)
+        facing = v[2] & (pair.in_mate(X, P)[0] >= pair.g2.r_form)     # the mate's flank, not its extension
+        v = np.where(facing, v[which], np.inf).reshape(len(ph), -1)
         j = np.argmin(v, axis=1)
         has = np.isfinite(v[np.arange(len(ph)), j])
         r1, z1, val, ok = _newton(pair, ph, 0, side, which, R.ravel()[j], Z.ravel()[j])
