@@ -311,8 +311,9 @@ def import_costs(cmd, runs: int) -> list:
 
 
 def _importtime(code_args, runs: int, env) -> dict:
-    """Median ``-X importtime`` self time (ms) of every module ``python -X importtime
-    *code_args`` imports (``runs`` fresh processes)."""
+    """``-X importtime`` self time (ms) of every module ``python -X importtime *code_args``
+    imports: the least of ``runs`` fresh processes (another process on the machine only
+    ever adds to a time; a median still carried single 5-8 ms spikes at load 5)."""
     per, cum = {}, {}
     for _ in range(runs):
         err = subprocess.run([sys.executable, "-X", "importtime", *code_args], capture_output=True, text=True,
@@ -322,8 +323,8 @@ def _importtime(code_args, runs: int, env) -> dict:
             if ln.startswith("import time:") and len(parts) == 3 and parts[0].split(":")[1].strip().isdigit():
                 per.setdefault(parts[2].strip(), []).append(int(parts[0].split(":")[1]) / 1000)
                 cum.setdefault(parts[2].strip(), []).append(int(parts[1]) / 1000)
-    _importtime.cumulative = {k: statistics.median(v) for k, v in cum.items()}
-    return {k: statistics.median(v + [0.0] * (runs - len(v))) for k, v in per.items()}
+    _importtime.cumulative = {k: min(v) for k, v in cum.items()}
+    return {k: min(v + [0.0] * (runs - len(v))) for k, v in per.items()}
 
 
 def import_table(cmd, runs: int) -> str:
@@ -380,7 +381,7 @@ def where_it_goes(stl_cmd, runs: int) -> str:
             "the plain body is built and written without manifold3d, which the profile's trim (Clipper2) "
             "still imports):", "", "| start-up / import | CPU ms |", "|---|---:|"]
     rows += [f"| {k} | {v:.1f} |" for k, v in imp]
-    rows += ["", f"Which imports remain (`-X importtime` self times, median of {n} fresh processes of the "
+    rows += ["", f"Which imports remain (`-X importtime` self times, the least of {n} fresh processes of the "
              "same command; the sum is below the CPU rows above, which include loading the files):", "",
              import_table(stl_cmd[1:], n)]
     rows += ["", "In process (CPU ms; first call in a fresh process / median of 30):", "",
