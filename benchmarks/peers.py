@@ -329,7 +329,7 @@ def _importtime(code_args, runs: int, env) -> dict:
 
 def import_table(cmd, runs: int) -> str:
     """Markdown: what the STL command ``cmd`` (gear3d's arguments) imports, by ``-X
-    importtime`` self time (ms, median of ``runs``; a module's own execution, dataclass
+    importtime`` self time (ms, the least of ``runs``; a module's own execution, dataclass
     creation included, without its imports): the interpreter's site (its .pth files), numpy
     (what ``import numpy`` imports), manifold3d, the standard-library modules gear3d adds,
     and gear3d's own modules (the costliest named)."""
