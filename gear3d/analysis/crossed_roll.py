@@ -222,11 +222,14 @@ def _newton(pair: Pair, phi1, k, side, which, rho, z, rounds: int = 6):
 
     def f(r, zz):
         return pair.gaps(pair.flank(phi1, k, side, r, zz), phi1)[which]
+
+    def facing(r, zz):              # on the mate's flank, not its form-cylinder extension
+        return pair.in_mate(pair.flank(phi1, k, side, r, zz), phi1)[0] >= pair.g2.r_form
     with np.errstate(invalid="ignore"):
-        return _newton_rounds(f, rho, z, ok, h, 2 * pair.mn, rounds)
+        return _newton_rounds(f, facing, rho, z, ok, h, 2 * pair.mn, rounds)
 
 
-def _newton_rounds(f, rho, z, ok, h, lim, rounds):
+def _newton_rounds(f, facing, rho, z, ok, h, lim, rounds):
     for _ in range(rounds):
         f0 = f(rho, z)
         fr1, fr0, fz1, fz0 = f(rho + h, z), f(rho - h, z), f(rho, z + h), f(rho, z - h)
@@ -239,9 +242,14 @@ def _newton_rounds(f, rho, z, ok, h, lim, rounds):
         good = (det > 0) & (hrr > 0)
         ok &= good
         det = np.where(good, det, 1.0)
-        dr = np.where(good, -(hzz * gr - hrz * gz) / det, 0.0)
-        dz = np.where(good, -(hrr * gz - hrz * gr) / det, 0.0)
-        rho, z = rho + np.clip(dr, -lim, lim), z + np.clip(dz, -lim, lim)
+        dr = np.clip(np.where(good, -(hzz * gr - hrz * gz) / det, 0.0), -lim, lim)
+        dz = np.clip(np.where(good, -(hrr * gz - hrz * gr) / det, 0.0), -lim, lim)
+        for _ in range(12):         # halve a step that would leave the mate's flank
+            out = ~facing(rho + dr, z + dz) & facing(rho, z)
+            if not out.any():
+                break
+            dr, dz = np.where(out, dr / 2, dr), np.where(out, dz / 2, dz)
+        rho, z = rho + dr, z + dz
     return rho, z, f(rho, z), ok
 
 
