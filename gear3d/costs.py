@@ -98,6 +98,10 @@ COSTS = {
     "contact": Cost(3e-3, 2000.0, 0.3, 20e6, "measured 2026-11-26 (CPU): involute 20/20..2000/2000 and sine "
                     "at 1e-4..0.05 mm, 234-3,301 angles: 0.3-3.3 ms an angle; bands over 0.4 pitch up to 15 ms "
                     "(involute 100/100 and 150/150 at 0.05 mm: 10.8 s for 741 and 901 angles: CONTACT_WIDE_BAND)"),
+    # gear3d inspect's measurements (span over jaw directions x flank points, neck): per (vertices a tooth)^2
+    "inspect": Cost(1.5e-7, 24.0, 0.05, 20e6, "measured 2026-11-26 (CPU, analysis.inspection.inspect alone): "
+                    "sine z=7 / 20 at 0.1 um (2,814 / 7,410 a tooth) 1.35 / 5.46 s, involute z=20 at 0.1 um 2.17 s, "
+                    "z=200 at 1 um 0.18 s, cycloidal z=30 at 0.1 um 1.38 s: 29-195 ns a (vertex a tooth)^2"),
     # pinion on rack (analysis.rack_mesh): per roll state, and per (pinion vertex x rack chord) pair of a state
     "pair.rack": Cost(2e-3, 0.0, 0.0, 60e6, "measured 2026-11-26 (CPU): involute 20 / 100 teeth, cycloidal 30, "
                       "sine 200 at 0.1-1 um: 0.2-1.1 ms a state beside its pairs"),
@@ -137,6 +141,9 @@ COSTS = {
                           "vertices a tooth (3.2-4.7e-4 s per section x vertex a tooth)"),
     "worm.rolling": Cost(5e-4, 1e5, 0.4, 60e6, "measured 2026-11-26 (CPU, with and without --check): z2 = 30 "
                          "pair at 10 um 0.21 s, z2 = 300 wheel at 50 um 0.26 s (24 positions x 81 sections)"),
+    "worm.rolling.zk": Cost(1.5e-3, 0.0, 1.2, 0.0, "measured 2026-11-26 (CPU, --check with ZK against ZA): "
+                            "z2 = 8 m 0.05 wheel +1.28 s, z2 = 30 m 2 pair +1.21 s (found by the fuzz survey: "
+                            "3.2 s for 1.3 s planned under load)"),
     "bevel.body": Cost(1.3e-7, 1000.0, 0.4, 60e6, "measured 2026-11-26 (CPU): straight bevels 20/30, 100/100, "
                        "200/200 at 10-0.1 um: per (section vertex x cap segment) 1.25e-7 s split in layers "
                        "(200/200 at 0.1 um: 12,800 x 9,970 in 16 s), 2.2e-7 unsplit (counted twice); "
@@ -181,10 +188,12 @@ COSTS = {
                                  "uniform-clearance pair's check (96 positions) 0.14 s (20/40 m 2: 5 spheres 0.88 s "
                                  "against 0.33 s standard) to 0.19 s (300/300 m 1: 7 spheres 1.70 s against 0.57 s); "
                                  "an internal 20/30 pair at 170 deg (9 spheres) 0.33 s a sphere at load 6"),
-    "crossed.check": Cost(7e-8, 250.0, 0.8, 60e6, "measured 2026-11-26 in process (CPU, ru_maxrss): crossed "
+    "crossed.check": Cost(9e-8, 250.0, 0.9, 60e6, "measured 2026-11-26 in process (CPU, ru_maxrss): crossed "
                           "helical checks 12/14 m 1 (faces 6 / 30 mm), 40/60 m 2 (20), 20/30 at 30 deg (10), 100/100 "
                           "m 0.5 (40): 0.68-6.4 s for 3.5 M-141 M flank points (46-110 ns a point beyond 0.5 s); "
-                          "177-306 MB for 1.1-2.0 M points held at once (analysis.crossed_roll.work_count)"),
+                          "177-306 MB for 1.1-2.0 M points held at once (analysis.crossed_roll.work_count); as "
+                          "processes after the Newton steps' flank guard: 200/300 m 1 (30 mm) 3.16 s for 3.19 s "
+                          "planned at 7e-8, 1000/1000 m 0.5 2.42 for 2.85: 9e-8 and 0.9 s kept for a loaded machine"),
     "facegear.plan": Cost(2.5e-4, 0.0, 0.4, 40e6, "measured 2026-11-26 (CPU): z2 = 60, z0 = 20 at 0.1 um: 177 "
                           "sections x 93 vertices, about 4 s beyond the body (2.4e-4 s an item); the limits' scan "
                           "0.3 s"),
