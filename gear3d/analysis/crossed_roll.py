@@ -4,42 +4,43 @@ The pair stands as :func:`gear3d.analysis.crossed.pair_bodies` places it (wheel 
 mate on the axis through (a, 0, 0) along (0, sin Σ, cos Σ), both faces centred on the
 common perpendicular), at the report's centre distance. Wheel 1 turns by φ1 about +z, the
 mate by φ2 = -φ1 z1/z2 about its own axis (the normal components of the pitch velocities
-agree). Nothing here uses the line of action of :mod:`gear3d.analysis.crossed`: the flanks
-are sampled and compared.
+agree). The gaps and the contact come from sampled flanks, not from the line of action of
+:mod:`gear3d.analysis.crossed`; only the fillet flag below reads the report's path.
 
 * **Flanks.** Tooth k of wheel i, at height z of its own (centred) frame, is centred on the
   polar angle θ_k(z) = φ_i + phase_i + k 2π/z_i + z tan β_i / r_i (the body's twist law), and
   its flanks lie at θ_k ± w_i(ρ), w(ρ) = s_t/(2r) + inv α_t - inv arccos(r_b/ρ) with
   s_t/(2r) = (π/2 + 2 x_n tan α_n)/z: the exact involute helicoid of the shifted tooth. Its
-  active part runs from the form cylinder (where the rack tool's straight flank stops
-  generating: ρ_F² = r_b² + (r sin α_t - (h_f m_n - ρ_a0 m_t (1 - sin α_t) - x_n m_n)/sin α_t)²,
-  the report's ``form_radius``; r_b for an undercut gear) to the tip cylinder, across the face.
-  A tip that runs past the other's form cylinder (the report's path, :func:`gear3d.analysis.
-  crossed.contact_path`) goes into its fillet (``fillet_interference``, interference) or,
-  on an undercut gear, into its undercut (``tip_in_undercut``: there the involute ends above
-  the base cylinder, so the contact ends sooner than this check, which takes the form radius
-  as the base radius and resolves contact within about 1e-4 m_n of a base cylinder only
-  roughly, reports). Below ρ_F the tooth is taken at its width there (the
-  fillet is not modelled: a point of the other wheel there counts against that width).
+  active part runs from the form cylinder (the report's ``form_radius``: where the rack
+  tool's straight flank stops generating; r_b for an undercut gear) to the tip cylinder,
+  across the face. Below it the tooth is taken at its width there: the fillet is not
+  sampled. A tip that runs past the other's form cylinder on the report's path
+  (:func:`gear3d.analysis.crossed.contact_path`) goes into its fillet
+  (``fillet_interference``: interference) or, on an undercut gear, into its undercut
+  (``tip_in_undercut``; there the real involute ends above the base cylinder, so the real
+  contact ends sooner than this check's, which also resolves contact within about
+  1e-4 m_n of a base cylinder only roughly).
 * **Gaps.** Turning the mate about its axis keeps a point's radius and height in its frame,
   so the turn that brings a mate flank onto a point is a difference of polar angles, exact:
   the counter-clockwise turn onto the flank at θ_k + w of the tooth behind the point, the
   clockwise one onto θ_k - w of the tooth ahead (a point inside a tooth: an overlap with its
-  nearer flank, a negative turn). Over wheel 1's flank points (a grid in (ρ, z) on every tooth near the mesh)
-  inside the mate's tip cylinder and face, the smallest of each is the mate's free turn that
-  way; the grid's least point is refined by Newton in (ρ, z) to the stationary point of the
-  gap (there the flanks have a common normal), kept when it lies on both active flanks. Their
-  sum is the play: the normal backlash is the play times r_b2 cos β_b2 (the helicoid moves
-  along its normal by that much a radian), the circumferential one the play times r2.
-  Interference: a play below -2 x ``tolerance`` / (r_b2 cos β_b2). Transmission error: the
-  peak-to-peak of one side's free turn over the roll, times r2.
-* **Contact** (conjugate action, as :mod:`gear3d.analysis.contact` counts it): the play is
-  taken up on the driving pair of flanks (the mate turned by the least closing turn over the
-  roll); tooth 0's driving flank is in contact at φ1 when its gap's stationary point (a common
-  normal) lies on both active flanks (radius between form and tip cylinder, within each face)
-  and the gap there is within ``band`` (mm along the normal). Edge contact (a tip or face edge
-  on a flank) is never counted. The contact ratio is the measure of such φ1 over the pitch
-  2π/z1; its ends are bisected to 1e-12 rad.
+  nearer flank, a negative turn). Over wheel 1's flank points (a grid in (ρ, z) on every
+  tooth near the mesh) inside the mate's tip cylinder and face, the smallest of each is the
+  mate's free turn that way; each tooth side's least grid point facing the mate's flank is
+  refined by Newton in (ρ, z) to the stationary point of the gap (there the flanks have a
+  common normal), kept when it lies on both active flanks. The two free turns add up to the
+  play: the normal backlash is the play times r_b2 cos β_b2 (the helicoid moves along its
+  normal by that much a radian), the circumferential one the play times r2. Interference:
+  a normal play below -2 x ``tolerance``. Transmission error: the peak-to-peak of one
+  side's free turn over the roll, times r2.
+* **Contact** (conjugate action, as :mod:`gear3d.analysis.contact` counts it): wheel 1's
+  upper flanks drive the mate's upper flanks (closed by the mate's counter-clockwise turn).
+  The play is taken up: the least closing turn at tooth 0's common-normal points over the
+  scan. Tooth 0's driving flank is in contact at φ1 when its gap's stationary point lies on
+  both active flanks (radius between form and tip cylinder, within each face) and the gap
+  there is within ``band`` (mm along the normal). Edge contact (a tip or face edge on a
+  flank) is never counted. The contact ratio is the measure of such φ1 over the pitch
+  2π/z1; its ends are bisected to below 1e-12 rad.
 
 Example::
 
