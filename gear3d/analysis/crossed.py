@@ -9,8 +9,10 @@ angle α_n and Σ = β1 + β2. Same hands (β1, β2 > 0) add up to Σ; opposite 
 Geometry of each gear i: transverse module m_n / cos β_i, pitch radius r_i = z_i m_n / (2 cos β_i),
 transverse pressure angle tan α_ti = tan α_n / cos β_i, base radius r_bi = r_i cos α_ti, base
 helix angle sin β_bi = sin β_i cos α_n, tip radius r_ai = r_i + (h_a* + x_i) m_n. Centre
-distance a = r1 + r2 (the pitch cylinders touch at the pitch point P on the common
-perpendicular of the axes).
+distance of unshifted gears a = r1 + r2 (the pitch cylinders touch at the pitch point P on
+the common perpendicular of the axes); shifted ones: see "Profile shift" below. The next
+three items are the unshifted pair's closed forms; :func:`contact_path` computes the path
+for any shift and centre distance on the line of action itself.
 
 * **Kinematics at P.** Both pitch velocities lie in the plane tangent to the pitch cylinders
   at P and make the angle Σ with each other; the tooth direction t makes β_i with axis i.
