@@ -104,13 +104,18 @@ def run_crossed(args, alias: bool = False) -> int:
         chk = check_crossed(rep, args.width)
     if mesh:
         _write_bodies(args, rep, out, tol)
+    full = rep if chk is None else {**rep, "check": chk}
     if js is not None:
         with atomic_path(js, "json") as tmp, open(tmp, "w", encoding="utf-8") as f:
-            f.write(_dumps(rep if chk is None else {**rep, "check": chk}) + "\n")
-    sys.stdout.write((_dumps(rep) if alias and js is None else summary(rep)) + "\n")
+            f.write(_dumps(full) + "\n")
+    if alias and js is None:                # the deprecated alias: its JSON on stdout, as it always did
+        sys.stdout.write(_dumps(full) + "\n")
+    else:
+        sys.stdout.write(summary(rep) + "\n")
     if chk is not None:
         from ..analysis.crossed_roll import finding_code, summary as check_summary
-        sys.stdout.write(check_summary(chk) + "\n")
+        if not (alias and js is None):
+            sys.stdout.write(check_summary(chk) + "\n")
         return max(finding_code(chk), 0 if rep["contact_ratio"] >= 1 else 1)
     return 0 if rep["contact_ratio"] >= 1 else 1
 
