@@ -328,3 +328,18 @@ def test_shifted_centre_distance_at_a_fine_tolerance():
     e = (g.report["max_error"] + m.report["max_error"]) / math.sin(AN)
     assert e < 2e-3
     assert exact - e - 1e-7 <= rep["center_distance"] + hi <= exact + 1e-7
+
+
+def test_sliding_at_the_working_pitch_point():
+    """3D kinematics written here: ω2 from "no relative velocity along the common normal u"
+    at a point of the line of action, then |v1 - v2| at the working pitch point (r_w1, 0, 0)
+    over wheel 1's pitch speed ω1 r1."""
+    rep = crossed_pair(15, 25, 2.0, 60.0, 30.0, shift_coeff=0.5, mate_shift_coeff=0.3)
+    Q, u, k2, O2 = _line_of_action(rep)
+    k1 = np.array([0.0, 0.0, 1.0])
+    w2 = (np.cross(k1, Q) @ u) / (np.cross(k2, Q - O2) @ u)
+    assert w2 == pytest.approx(-15 / 25, rel=1e-9)
+    P = np.array([rep["working_pitch_radius"][0], 0.0, 0.0])
+    vs = np.cross(k1, P) - w2 * np.cross(k2, P - O2)
+    assert rep["working_sliding_per_pitch_speed"] == pytest.approx(
+        np.linalg.norm(vs) / rep["gear"]["pitch_radius"], rel=1e-9)

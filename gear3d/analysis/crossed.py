@@ -209,9 +209,21 @@ def at_center_distance(rep: dict, center_distance=None) -> dict:
     out.update({"center_distance": a,
                 "normal_backlash": 2 * (a - a_zb) * math.sin(math.radians(rep["normal_pressure_angle_deg"]))})
     out.update(_working_pitch(out))
+    out["working_sliding_per_pitch_speed"] = _sliding_at(out, out["working_pitch_radius"][0])
     path = contact_path(out)
     out.update({"path_of_contact": path, "contact_ratio": path["length"] / out["normal_base_pitch"]})
     return out
+
+
+def _sliding_at(rep: dict, x: float) -> float:
+    """|v1 - v2| at the point (x, 0, 0) of the common perpendicular over wheel 1's pitch speed
+    ω1 r1 (ω2 = -ω1 z1/z2 about the mate's axis (0, sin Σ, cos Σ) through (a, 0, 0)); at the
+    standard pitch point it is sin Σ / cos β2."""
+    sig = math.radians(rep["shaft_angle_deg"])
+    w2 = -rep["gear"]["teeth"] / rep["mate"]["teeth"]
+    d = x - rep["center_distance"]                  # the point's x from the mate's axis
+    vy, vz = x - w2 * (-math.cos(sig) * -d), -w2 * (math.sin(sig) * -d)
+    return math.hypot(vy, vz) / rep["gear"]["pitch_radius"]
 
 
 def _working_pitch(rep: dict) -> dict:
