@@ -486,10 +486,10 @@ def _decide(est: Estimate, param: str, value) -> Estimate:
     return budget.check(est, param, value)
 
 
-def plan_profile(family: str, params: dict, output=None, width=None, figure=None, kerf: float = 0.0) -> Estimate | None:
+def plan_profile(family: str, params: dict, output=None, width=None, figure=None, kerf=0.0, measure=False):
     """``gear3d profile FAMILY ... [-o OUT] [--figure F]``: the profile, its export (a DXF or
-    SVG with a ``kerf``: its sampled fallback, :func:`write_estimate`) and its figure,
-    refused before any of them is built (BudgetError)."""
+    SVG with a ``kerf``: its sampled fallback, :func:`write_estimate`), its figure and
+    (``measure``) ``gear3d inspect``'s measurements, refused before any is built (BudgetError)."""
     import os
     sk = probe_profile(family, params)
     if sk is None:
@@ -504,6 +504,8 @@ def plan_profile(family: str, params: dict, output=None, width=None, figure=None
         est = est.then(write_estimate(ext, vertices=sk.vertices, per_tooth=sk.per_tooth, kerf=kerf_of({"kerf": kerf})))
     if figure:
         est = est.then(estimate("figure", sk.vertices, 0.0, f"a figure of {sk.vertices:,.0f} vertices"))
+    if measure:                         # the span's jaw directions x flank points: a tooth's vertices squared
+        est = est.then(estimate("inspect", sk.per_tooth ** 2, 0.0, f"measuring {sk.per_tooth:,.0f} vertices a tooth"))
     return _decide(est, *_param(sk, sk.tolerance))
 
 

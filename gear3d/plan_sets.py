@@ -149,6 +149,8 @@ def plan_worm(kw: dict, output=None, step=None, png=None, json=None, bodies: boo
         est = est.then(budget.body_estimate(cut, True, f"bores and hubs on {cut:,.0f} triangles"))
     if kw.get("check"):
         est = est.then(estimate("worm.rolling", d.wheel_teeth, 0.0, "the rolling check"))
+        if d.worm_type == "ZK":                 # its thread's section solved numerically (the fuzz survey)
+            est = est.then(estimate("worm.rolling.zk", d.wheel_teeth, 0.0, "the ZK thread's rolling check"))
     est = est.then(_worm_export(d, c, _ext(output), step, tri, part))
     if png:
         v = d.wheel_teeth * c["per_tooth"]

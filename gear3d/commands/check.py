@@ -258,8 +258,8 @@ def run(args, alias: bool = False) -> int:
     else:
         kw1, kw2, cd, design = pair_design(args, kw, z2, internal)
         from .profile import FAMILY_FLAGS_PLANNED
-        if args.family in FAMILY_FLAGS_PLANNED and args.mate == "same":    # refused before any build
-            from ..plan import plan_pair
+        if args.family in FAMILY_FLAGS_PLANNED:          # refused before any build; a rolled mate planned
+            from ..plan import plan_pair                  # as the family's own (about as many vertices a tooth)
             plan_pair(args.family, kw1, kw2 if kw2 is not None else
                       dict(kw1, teeth=z2, **({"internal": True} if internal else {})))
         p1, p2 = build_pair(args.family, kw1, z2, internal, args.mate, kw2)

@@ -45,7 +45,7 @@ def run(args) -> int:
     from .profile import FAMILY_FLAGS_PLANNED
     if args.family in FAMILY_FLAGS_PLANNED:       # the profile and its figure, refused before either
         from ..plan import plan_profile
-        plan_profile(args.family, kw, figure=args.png)
+        plan_profile(args.family, kw, figure=args.png, measure=True)
     prof = profile(args.family, **kw)
     ins = inspect(prof, span_teeth=args.span_teeth, pin_diameter=args.pin_diameter,
                   helix_angle_deg=args.helix_angle)

@@ -8,7 +8,10 @@
   1,000-tooth involute rack: 2.5 GB; 10,000 teeth: a 71.5 GiB allocation) and searched its
   start run by run (4 s at 10,000 teeth), charged as a gear's 12 us a vertex;
 * a pinion-on-rack check (``check pair --rack``) was not charged at all: its rolling states
-  and the rack's own chord check ran 100 s under a 0.6 s estimate.
+  and the rack's own chord check ran 100 s under a 0.6 s estimate; its bodies' 3MF was
+  refused after the work;
+* a rolled mate (``--mate rolled``) was not planned; ``inspect``'s measurements (quadratic
+  in a tooth's vertices) and a ZK worm's rolling check were left out of their plans.
 
 Oracles: the kernel's accounting of each process (:func:`budgetrun.verdict`: refused in one
 line within 1 s of CPU, or within twice its estimate and under 2 GiB), the dense all-pairs
@@ -29,11 +32,22 @@ REFUSED = [
     "--tolerance 1e-07",
     "--max-seconds 4 profile involute --teeth 10000 --module 1 --pressure-angle-deg 22.8721 --rack -o g.dxf "
     "--dxf-version R12",
+    # a rolled mate planned as the family's own (was refused after building wheel 1: 1.5 s)
+    "--max-seconds 4 check pair sine --teeth 26 --mate-teeth 100 --mate rolled --json p.json --module 1 "
+    "--tolerance 1e-07",
+    # a rack pair's bodies and 3MF planned before the rolling check (was refused after 2.2 s)
+    "--max-seconds 4 check pair involute --teeth 10000 --rack --rack-teeth 10 --width 0.5 -o r.3mf "
+    "--module 0.410703 --tolerance 0.00205352",
 ]
 #: run now, within twice their estimate and under 2 GiB (0.8-2.5 s of CPU each)
 WITHIN = [
     "profile involute --teeth 2000 --rack -o g.dxf",
     "check pair sine --teeth 45 --rack --module 50 --tolerance 0.01",
+    # inspect's measurements planned (tooth vertices squared): 1.7 s for 0.52 s planned under load
+    "inspect sine --teeth 7 --addendum-coeff 0.05 --tolerance 1e-07",
+    # a ZK worm's rolling check (its thread solved numerically): 3.2 s for 1.3 s planned under load
+    pytest.param("worm --module 0.05 --starts 2 --wheel-teeth 8 --worm-type ZK --part wheel --tolerance 0.005 "
+                 "--check --contact-png c.png", marks=pytest.mark.slow),
     pytest.param("harmonic build --module 0.05 --z-flex 505 --z-circular 507 --tooth triangular --tolerance 1e-5 "
                  "-o hb --3mf", marks=pytest.mark.slow),
 ]
