@@ -198,6 +198,7 @@ def canonical_runs(d, h: float, p, ex, runs, kind: str):
     crossing; a tip run of zero length there) or "edge" (an end of the pointed heights: the
     corners coincide, a zero-length tip at the flanks' crossing)."""
     tip = len(p.pieces)
+    runs = _merged(runs)
     if kind == "land" and any(r.piece == tip for r in runs):
         return ex, runs
     a, b, ta, Pa, tb, Pb = _ends(d, h, p, runs, kind != "land")
@@ -221,6 +222,29 @@ def canonical_runs(d, h: float, p, ex, runs, kind: str):
         ex = ExactSet(list(p.pieces) + [arc], [np.asarray(t, float) for t in p.piece_params] + [np.asarray(ts, float)],
                       z, float(p.tolerance))
     return ex, out
+
+
+def _continues(a, b) -> bool:
+    """Whether run ``b`` continues run ``a`` on the same piece and copy, in the same
+    direction, from its end point (a tip arc the mapper split at one of its samples: the
+    two ends 2e-9 apart in the parameter, one point)."""
+    return (a.piece == b.piece and a.k == b.k and abs(a.t1 - b.t0) <= 1e-6 and (a.t1 - a.t0) * (b.t1 - b.t0) > 0
+            and np.allclose(a.p1, b.p0, rtol=0.0, atol=1e-9))
+
+
+def _merged(runs):
+    """Runs with every run that continues the one before (:func:`_continues`) joined to it
+    (the loop is cyclic)."""
+    out = []
+    for r in runs:
+        if out and _continues(out[-1], r):
+            out[-1] = Run(r.piece, r.k, out[-1].t0, r.t1, out[-1].p0, r.p1)
+        else:
+            out.append(r)
+    if len(out) > 1 and _continues(out[-1], out[0]):
+        a = out.pop()
+        out[0] = Run(a.piece, a.k, a.t0, out[0].t1, a.p0, out[0].p1)
+    return out
 
 
 def _arc(rt: float, z: int):
