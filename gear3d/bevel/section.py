@@ -36,8 +36,10 @@ KEEP = 4
 #: a plan builds a member's section whole (instead of probing its first sample) when
 #: teeth x sqrt(module / tolerance) is at most this: measured 2026-11-26, 12-21 ms a
 #: section from 172 (440 vertices) to 5,000 (5,800 vertices), mostly fixed costs, so a
-#: probe saves little there and the build would sample the section again
-WHOLE_IN_PLAN = 20000.0
+#: probe saves little there and the build would sample the section again (beyond the
+#: measured 5,000 a 6-tooth section at 19,000 vertices took 2-4 s inside the plan: the fuzz
+#: survey of 2026-11-26)
+WHOLE_IN_PLAN = 5000.0
 
 
 def small(geo: PairGeometry, which: str, tolerance: float) -> bool:

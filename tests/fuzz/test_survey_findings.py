@@ -38,6 +38,8 @@ REFUSED = [
     # a rack pair's bodies and 3MF planned before the rolling check (was refused after 2.2 s)
     "--max-seconds 4 check pair involute --teeth 10000 --rack --rack-teeth 10 --width 0.5 -o r.3mf "
     "--module 0.410703 --tolerance 0.00205352",
+    # a small bevel member's section was built whole inside the plan (2-4 s at 19,000 vertices)
+    "--max-seconds 4 bevel --teeth 6 --mate-teeth 6 --module 1 --tolerance 1e-06 --part gear -o b.stl",
 ]
 #: run now, within twice their estimate and under 2 GiB (0.8-2.5 s of CPU each)
 WITHIN = [
