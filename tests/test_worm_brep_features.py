@@ -200,3 +200,17 @@ def test_scene_worm_set_brep_step_is_the_cli_s(tmp_path):
     assert (tmp_path / "out" / "set.step").read_bytes() == cli.read_bytes()
     solids = sub_shapes(read_step(cli), "solid")
     assert len(solids) == 2 and all(is_valid(x) for x in solids)
+
+
+def test_api_refuses_the_wheel_brep_before_any_solid(tmp_path, monkeypatch):
+    """``gear3d.worm(part="pair")`` then ``gear3d.write(..., step="brep")`` of the refused
+    wheel: the one-line GearError comes before any solid is fitted (the worm's either), and
+    no file is written."""
+    import gear3d.export.step_brep as sb
+    fitted = []
+    monkeypatch.setattr(sb, "solid_of", lambda b, g=None: fitted.append(b) or (_ for _ in ()).throw(AssertionError))
+    s = gear3d.worm(**dict(Z2S, part="pair"))
+    with pytest.raises(gear3d.GearError) as e:
+        gear3d.write(s.parts(), tmp_path / "p.step", step="brep", geometry=s.design)
+    assert e.value.param == "step" and "--face-width" in str(e.value)
+    assert fitted == [] and list(tmp_path.iterdir()) == []
