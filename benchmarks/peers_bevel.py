@@ -61,6 +61,9 @@ SLICES = {"straight": [1], "spiral": [12, 24]}
 BANDS = 20
 #: samples along each side of a triangle (a barycentric grid: corners, edge points, inside)
 GRID = 6
+#: the floor row: what the straight path imports before any work (numpy with one BLAS
+#: thread, as gear3d's CLI sets it, and manifold3d, which the section's trim still uses)
+FLOOR = "python -c 'import numpy, manifold3d'"
 #: cq_gears' STL export deflections (linear mm, angular rad): its default, and a fine one
 CQ_DEFLECTIONS = [(0.1, 0.1), (0.002, 0.05)]
 CQ_SCRIPT = f"""import math, sys
@@ -161,8 +164,9 @@ def flank_error(path: str, kind: str) -> dict:
 def jobs(work: Path, openscad: str, gear3d: str) -> dict:
     """name -> (command, cwd, env, STL, kind, setting)."""
     env = dict(os.environ, OPENSCADPATH=str(PEERS))
-    out = {"python -c 'import numpy, manifold3d'": ([sys.executable, "-c", "import numpy, manifold3d"], None, None,
-                                                    None, "floor", "(floor)")}
+    one = dict(os.environ, OPENBLAS_NUM_THREADS="1")         # as gear3d sets it (gear3d/cli.py)
+    out = {FLOOR: ([sys.executable, "-c", "import numpy, manifold3d"], None, one, None, "floor",
+                   "(floor, one BLAS thread)")}
     for kind in ("straight", "spiral"):
         for s in SLICES[kind]:
             f = work / f"bosl2_{kind}_{s}.scad"
@@ -199,12 +203,12 @@ def table(todo: dict, times: dict) -> tuple:
     """(table lines, verdict lines) from the runs' CPU times; every STL measured."""
     lines = ["| tool | setting | CPU s (median) | CPU ratio to BOSL2 | triangles | flank error µm (max / p99) |",
              "|---|---|---|---|---|---|"]
-    floor = statistics.median(times["python -c 'import numpy, manifold3d'"])
+    floor = statistics.median(times[FLOOR])
     verdicts = []
     for kind in ("straight", "spiral"):
         ref = statistics.median(times[f"BOSL2 {kind} slices={SLICES[kind][0]}"])
         rows = {k: (statistics.median(times[k]), flank_error(str(v[3]), kind)) for k, v in todo.items() if v[4] == kind}
-        lines.append(f"| python -c 'import numpy, manifold3d' | (floor) | {floor:.3f} | {floor / ref:.2f} | | |")
+        lines.append(f"| {FLOOR} | (floor, one BLAS thread) | {floor:.3f} | {floor / ref:.2f} | | |")
         for k, (cpu, r) in rows.items():
             lines.append(f"| {k} | {todo[k][5]} | {cpu:.3f} | {cpu / ref:.2f} | {r['triangles']:,} | "
                          f"{r['flank_error'] * 1e3:.2f} / {r['flank_p99'] * 1e3:.2f} |")
