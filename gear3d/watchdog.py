@@ -172,7 +172,13 @@ def supervise(run, max_seconds: float, max_memory: int) -> int:
             code = run()
         except SystemExit as e:
             code = e.code if isinstance(e.code, int) else (0 if e.code is None else 1)
-        except BaseException:                             # pragma: no cover - run() catches its own
+        except BaseException as e:        # a bug (run() catches GearError): one line, not silence (exit 70)
+            with contextlib.suppress(Exception):
+                from .filesafe import remove_live_temps
+                remove_live_temps()
+                first = (str(e).strip().splitlines() or [""])[0][:200]
+                sys.stderr.write(f"gear3d: internal error: {type(e).__name__}: {first} (a bug in gear3d; "
+                                 "please report the command line)\n")
             code = 70
         finally:
             with contextlib.suppress(Exception):

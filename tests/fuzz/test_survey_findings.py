@@ -112,3 +112,17 @@ def test_windowed_distance_is_the_dense_one(monkeypatch):
     got = arcfit.segments_distance(Q, A, B, b)
     step = np.pi / 2 * np.hypot(*(B - A)[b != 0].T).max() / 2000     # the arcs' sample spacing (<= a half turn)
     assert np.allclose(got, _dense(Q, A, B, b), rtol=0, atol=step / 2 + 1e-12)
+
+
+def test_an_internal_error_under_the_supervisor_says_one_line(tmp_path):
+    """A bug in a supervised command (an exception that is not a GearError: the survey met
+    inspect's and face-gear's) ends with exit 70 and one line naming it, not in silence
+    (oracle: the child's stderr and exit code)."""
+    import subprocess
+    import sys
+    code = ("import sys; from gear3d.watchdog import supervise; "
+            "sys.exit(supervise(lambda: [][1], 10.0, 2 * 1024 ** 3))")
+    p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=tmp_path, timeout=60)
+    lines = p.stderr.strip().splitlines()
+    assert p.returncode == 70 and len(lines) == 1, (p.returncode, p.stderr)
+    assert lines[0].startswith("gear3d: internal error: IndexError: list index out of range"), lines
