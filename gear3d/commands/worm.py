@@ -134,7 +134,7 @@ def run(args) -> int:
     plan_worm(dict(kw, part=args.part, check=check), args.output, args.step if _is_step(args) else None,
               args.png, args.json)
     if _brep(args):
-        if args.part != "worm":             # a pointed wheel refused before its mesh and OCC (#27)
+        if args.part != "worm":             # a wheel B-rep not made: refused before its mesh and OCC (#27)
             from ..export.step_brep_wheel import precheck
             precheck(design(**{k: v for k, v in kw.items() if k not in FEATURES}))
         from ..export.step_brep import require_occ

@@ -282,7 +282,7 @@ def _plan_set(job: Job, part: PartSpec, kind, tol, path, prefix, step=None):
     try:
         plan[part.family](dict(part.params, tolerance=tol), **out)
         if part.family == "worm" and step == "brep" and part.params.get("part", "pair") != "worm":
-            from ..export.step_brep_wheel import precheck      # a pointed wheel, before its mesh (#27)
+            from ..export.step_brep_wheel import precheck      # a wheel B-rep not made, before its mesh (#27)
             from ..wormgear import validate
             precheck(validate(**dict(part.params, tolerance=tol)))
     except GearError as e:
