@@ -57,6 +57,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import GearError, check_number
+from ..params import MIN_TOLERANCE
 
 #: roll positions per pitch of wheel 1 for the gaps, and for the contact scan
 GRID = 24
@@ -403,7 +404,7 @@ def check_crossed(rep: dict, width: float, mate_width=None, tolerance: float = C
     Raises :class:`gear3d.GearError` naming a bad argument."""
     w1 = check_number("width", width, 0, 10_000, lo_open=True, unit="mm")
     w2 = w1 if mate_width is None else check_number("mate_width", mate_width, 0, 10_000, lo_open=True, unit="mm")
-    tol = check_number("tolerance", tolerance, 1e-7, 1.0, unit="mm")
+    tol = check_number("tolerance", tolerance, MIN_TOLERANCE, 1.0, unit="mm")
     n = int(check_number("grid", grid, 4, 10_000, integer=True))
     pair = Pair(rep, w1, w2)
     phis = np.linspace(0.0, pair.g1.pitch, n, endpoint=False)

@@ -12,16 +12,13 @@ from ..export import check_output, exts, formats_for, write
 from ..params import (CONV_HELIX, DEFAULT_TOLERANCE, FAMILY_PARAMS, INTERNAL, MESH_TOLERANCE, TOLERANCE, Param,
                       all_params, by_name, check_excludes, union)
 from ..params.exporters import DXF, DXF_PARAMS
+from ..params.families import FAMILY_FLAGS_PLANNED
 
 #: extensions of mesh outputs (they default to :data:`MESH_TOLERANCE`)
 MESH_EXTS = exts("mesh")
 TOLERANCE_HELP = (f"max deviation from the exact curve (mm); default {DEFAULT_TOLERANCE:g} mm, "
                   f"{MESH_TOLERANCE:g} mm for mesh outputs ({' '.join(MESH_EXTS)})")
 
-#: families planned against the resource budget before the build (gear3d.plan): all tabulated ones
-FAMILY_FLAGS_PLANNED = ("involute", "sine", "sine-circular", "cycloidal", "epicycloid", "hypocycloid",
-                        "cycloid-disc", "cycloid-pins", "ec-pinion", "ec-wheel", "gerotor-inner",
-                        "gerotor-outer", "moineau-rotor", "moineau-stator", "triangular")
 
 
 

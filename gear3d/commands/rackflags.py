@@ -12,6 +12,8 @@ from ..errors import GearError
 from ..cliargs import number
 from ..export import check_output, exts, write
 from ..filesafe import atomic_path, check_path
+from ..params.families import FAMILY_FLAGS_PLANNED
+from ..budget import BudgetError
 from ..params import BODY
 
 
@@ -167,9 +169,7 @@ def _plan_pinion_body(family: str, z: int, kw: dict, out: str, width: float) -> 
     2026-11-26: a 10,000-tooth pinion's 3MF was refused after 2 s of work), as the family's
     own gear (the rack-cut pinion has about its vertices); a parameter the probe does not
     take is left to the builder to refuse."""
-    from ..budget import BudgetError
     from ..plan import plan_profile
-    from .profile import FAMILY_FLAGS_PLANNED
     if family not in FAMILY_FLAGS_PLANNED:
         return
     try:

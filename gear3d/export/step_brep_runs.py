@@ -112,7 +112,7 @@ def nearest_on_piece(G, samples_t, pts, lo, hi, iters=8):
     return best, tb
 
 
-def _corner_params(Ga, ka, ta, Gb, kb, tb, q, ang):
+def corner_params(Ga, ka, ta, Gb, kb, tb, q, ang):
     """Exact crossing of piece a (copy ka) near parameter ta and piece b (copy kb) near tb:
     Newton in (s, u). Returns (s, u, point)."""
     s, u = float(ta), float(tb)
@@ -191,7 +191,7 @@ def _crossing_near(Ga, ka, wa, Gb, kb, wb, ang, near, n=257, exclude=None):
     """The exact crossing of piece a (copy ka) on its parameter window ``wa`` (two ends,
     either order) and piece b (copy kb) on ``wb`` nearest to the point ``near`` (mm), or
     None: both windows sampled densely (``n`` points), the polylines' crossings refined by
-    Newton (:func:`_corner_params`), those that stay in their windows kept. Unlike the
+    Newton (:func:`corner_params`), those that stay in their windows kept. Unlike the
     closest approach from two starts, this cannot settle on the pieces' shared end (an
     undercut trochoid and the involute it cuts meet end to end at the period's junction,
     below the crossing the trimmed loop has). ``exclude``: a point (mm) whose crossing does
@@ -209,7 +209,7 @@ def _crossing_near(Ga, ka, wa, Gb, kb, wb, ang, near, n=257, exclude=None):
     for k in cand[np.argsort(np.hypot(*(X[cand] - near).T))[:8]]:
         s0 = ta[i[k]] + wp[k] * (ta[i[k] + 1] - ta[i[k]])
         u0 = tb[j[k]] + wq[k] * (tb[j[k] + 1] - tb[j[k]])
-        s, u, p, gap = _corner_params(Ga, ka, s0, Gb, kb, u0, None, ang)
+        s, u, p, gap = corner_params(Ga, ka, s0, Gb, kb, u0, None, ang)
         if gap > 1e-9 or not (la - sa <= s <= ha + sa and lb - sb <= u <= hb + sb):
             continue
         d = float(np.hypot(*(p - near)))
@@ -451,11 +451,11 @@ class _Ends:
         self.memo = {}
 
     def crossing(self, fn, ja, ka, ta, jb, kb, tb):
-        """``fn`` (:func:`_corner_params` or :func:`_closest_params`) of pieces ja (copy ka)
+        """``fn`` (:func:`corner_params` or :func:`_closest_params`) of pieces ja (copy ka)
         and jb (copy kb) from parameters ta, tb: (s, u, point, gap)."""
         key = (fn.__name__, ja, round(float(ta), 12), jb, round(float(tb), 12), (kb - ka) % self.z)
         if key not in self.memo:
-            if fn is _corner_params:
+            if fn is corner_params:
                 self.memo[key] = fn(self.pieces[ja], 0, ta, self.pieces[jb], kb - ka, tb, None, self.ang)
             else:
                 self.memo[key] = fn(self.pieces[ja], 0, ta, self.pieces[jb], kb - ka, tb, self.ang)
@@ -516,7 +516,7 @@ class _Ends:
         ja, ka, jb, kb, params = A[0], A[1], B[0], B[1], self.params
         ta = 0.5 * (params[ja][A[6]] + params[ja][A[7]])
         tb = 0.5 * (params[jb][B[4]] + params[jb][B[5]])
-        s, u, p, gap = self.crossing(_corner_params, ja, ka, ta, jb, kb, tb)
+        s, u, p, gap = self.crossing(corner_params, ja, ka, ta, jb, kb, tb)
         lo_a, hi_a = sorted((params[ja][A[6]], params[ja][A[7]]))
         lo_b, hi_b = sorted((params[jb][B[4]], params[jb][B[5]]))
         wa, wb = 0.5 * (hi_a - lo_a) + 1e-12, 0.5 * (hi_b - lo_b) + 1e-12

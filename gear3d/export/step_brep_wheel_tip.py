@@ -30,7 +30,7 @@ import math
 import numpy as np
 
 from ..errors import GearError
-from .step_brep_runs import ExactSet, Run, _corner_params, rot2
+from .step_brep_runs import ExactSet, Run, corner_params, rot2
 
 #: |h| (mm) closer than this to a face counts as the face (a pointed band that ends there)
 FACE_SNAP = 1e-6
@@ -184,7 +184,7 @@ def _ends(d, h: float, p, runs, point: bool):
     s0, u0 = near[0] if near else (ta, tb)
     if s0 is None or u0 is None:
         raise GearError("step", "brep", "'faceted' for this wheel", f"the section at h = {h:.4g} mm has no tip")
-    s, u, X, gap = _corner_params(ga, 0, s0, gb, 0, u0, None, 2 * math.pi / p.teeth)
+    s, u, X, gap = corner_params(ga, 0, s0, gb, 0, u0, None, 2 * math.pi / p.teeth)
     if gap > 1e-9:
         raise GearError("step", "brep", "'faceted' for this wheel",
                         f"the flanks of the section at h = {h:.4g} mm do not cross")

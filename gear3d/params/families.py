@@ -209,3 +209,9 @@ def all_params() -> dict:
                 out[p.name].append(p)
     out.setdefault("helix_angle_deg", []).append(CONV_HELIX)
     return out
+
+#: families planned against the resource budget before the build (gear3d.plan; the commands
+#: profile, body, inspect, check and the rack pair probe these): all tabulated ones
+FAMILY_FLAGS_PLANNED = ("involute", "sine", "sine-circular", "cycloidal", "epicycloid", "hypocycloid",
+                        "cycloid-disc", "cycloid-pins", "ec-pinion", "ec-wheel", "gerotor-inner",
+                        "gerotor-outer", "moineau-rotor", "moineau-stator", "triangular")
