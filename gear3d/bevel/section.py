@@ -40,12 +40,17 @@ KEEP = 4
 #: measured 5,000 a 6-tooth section at 19,000 vertices took 2-4 s inside the plan: the fuzz
 #: survey of 2026-11-26)
 WHOLE_IN_PLAN = 5000.0
+#: and only at a tolerance of at least this many modules: finer, a few-tooth (undercut)
+#: section costs far more than its vertices say (measured 2026-11-26: 6 and 4 teeth, m 1,
+#: at 1e-5 mm: 4,700 and 3,100 vertices in 0.3 and 0.4 s; 6 teeth at 1e-4 mm: 78 ms)
+FINEST_IN_PLAN = 1e-4
 
 
 def small(geo: PairGeometry, which: str, tolerance: float) -> bool:
     """Whether member ``which``'s section at ``tolerance`` (mm) is small enough for a plan
-    to build it whole (:data:`WHOLE_IN_PLAN`)."""
-    return member(geo, which).teeth * math.sqrt(geo.module / tolerance) <= WHOLE_IN_PLAN
+    to build it whole (:data:`WHOLE_IN_PLAN`, :data:`FINEST_IN_PLAN`)."""
+    return (tolerance >= FINEST_IN_PLAN * geo.module
+            and member(geo, which).teeth * math.sqrt(geo.module / tolerance) <= WHOLE_IN_PLAN)
 
 
 def prepare(geo: PairGeometry, which: str, zs: float, tolerance: float):
