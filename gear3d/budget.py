@@ -262,6 +262,10 @@ def profile_estimate(vertices: float, per_tooth: float = 0.0) -> Estimate:
     return e
 
 
+#: point-chord pairs one chunk of the body's measurement holds (gear3d.exact.distance)
+MEASURE_CHUNK = 4_000_000
+
+
 def body_estimate(triangles: float, manifold: bool = False, what: str = "", layer_vertices: float = 0.0,
                   teeth: int = 0, star: bool = False) -> Estimate:
     """A body of ``triangles`` (direct mesh, or manifold3d booleans when ``manifold``) whose
@@ -279,7 +283,7 @@ def body_estimate(triangles: float, manifold: bool = False, what: str = "", laye
         pairs = pts * (n if z <= 6 else 3 * n / z)       # all chords up to 6 teeth, else a window
         caps = COSTS["body.caps.star"].seconds * n if star and not manifold else COSTS["body.caps"].seconds * n * n
         e = Estimate(e.seconds + caps + COSTS["measure"].seconds * pairs,
-                     e.bytes, e.triangles, e.what)
+                     e.bytes + COSTS["measure"].bytes * min(pairs, MEASURE_CHUNK), e.triangles, e.what)
     return e
 
 

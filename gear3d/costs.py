@@ -50,8 +50,10 @@ COSTS = {
                            "zippers to a bore (involute z=1000, triangular z=10,000, cycloidal z=1000; 55,000-75,000 "
                            "vertices) and a ring z=200's rim: 0.22-0.36 us; x3 for the strip's repair passes"),
     # gear3d.exact distance: per (point, chord) pair of the brute-force window
-    "measure": Cost(2e-8, 0.0, 0.0, 0.0, "moineau-stator rho=288, e=0.1 at 0.3 um: 76,000 points x 5,452 "
-                    "chords in 6.2 s (15 ns a pair); involute z=6 at 10 um: 7.4 s in all"),
+    "measure": Cost(2e-8, 50.0, 0.0, 0.0, "moineau-stator rho=288, e=0.1 at 0.3 um: 76,000 points x 5,452 "
+                    "chords in 6.2 s (15 ns a pair); involute z=6 at 10 um: 7.4 s in all; bytes: a pair of a "
+                    "chunk of at most MEASURE_CHUNK (gear3d.exact.distance's 4 M): moineau-rotor z=1 at 2 um "
+                    "(89 M pairs) peaked at 258 MB with 60 MB before the body (fuzz survey, 2026-11-26)"),
     # manifold3d booleans (hubs, keyways, chamfers): extrude + warp + boolean + to_mesh64
     "body.manifold": Cost(4e-6, 600.0, 0.1, 60e6, "chamfered helical z=40..200: 2.5-3.5 us, "
                           "450-550 B a triangle"),

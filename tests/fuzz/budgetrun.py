@@ -4,7 +4,8 @@
 it with ``os.wait4`` (the CPU time and peak resident memory of its whole process tree, from
 the kernel) and reads the budget's test hook (``GEAR3D_BUDGET_LOG``: every plan and charge
 with its estimate). :func:`verdict` states the property every input must have: refused in
-one line at once, or finished within twice its own estimate and under 2 GiB.
+one line at once, or finished within twice its own estimate (CPU time and peak memory, each
+with the start-up the estimates leave out) and under 2 GiB.
 
 Time is CPU time (user + system), not wall time: the machine is shared, and the estimates
 are CPU seconds.
@@ -25,6 +26,11 @@ REFUSE_CPU = 1.0
 #: CPU seconds the estimates leave out: the interpreter, gear3d's and numpy's imports, the
 #: supervisor (measured: about 0.3 s; twice that for a busy machine's page faults)
 STARTUP_CPU = 0.6
+#: resident bytes the estimates leave out: the interpreter and the imports a format needs
+#: (numpy 35 MB; trimesh and scipy for a 3MF about 120 MB; matplotlib, OCP); a forked
+#: child also counts its parent's pages until it execs (pytest: about 60 MB). The survey of
+#: 2026-11-26 found every accepted run within 2 x its estimate + 150 MiB
+STARTUP_RSS = 256 * 1024 ** 2
 
 
 @dataclass
@@ -116,6 +122,9 @@ def verdict(r: Result) -> str:
         bad.append(f"{r.cpu:.2f} s of CPU > 2 x its estimate {r.estimate:.3g} s + {STARTUP_CPU:g} s")
     if r.rss > MAX_RSS:
         bad.append(f"peak RSS {r.rss / 2 ** 20:.0f} MiB > 2 GiB")
+    elif r.rss > 2 * r.estimate_bytes + STARTUP_RSS:
+        bad.append(f"peak RSS {r.rss / 2 ** 20:.0f} MiB > 2 x its estimate {r.estimate_bytes / 2 ** 20:.0f} MiB "
+                   f"+ {STARTUP_RSS / 2 ** 20:.0f} MiB")
     return "; ".join(bad)
 
 
