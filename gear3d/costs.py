@@ -104,6 +104,11 @@ COSTS = {
     "inspect": Cost(1.5e-7, 24.0, 0.05, 20e6, "measured 2026-11-26 (CPU, analysis.inspection.inspect alone): "
                     "sine z=7 / 20 at 0.1 um (2,814 / 7,410 a tooth) 1.35 / 5.46 s, involute z=20 at 0.1 um 2.17 s, "
                     "z=200 at 1 um 0.18 s, cycloidal z=30 at 0.1 um 1.38 s: 29-195 ns a (vertex a tooth)^2"),
+    # a harmonic drive's plain prisms (tubes, flanges, discs: circles at the tolerance), extruded and joined
+    # (manifold3d, lazily: the booleans run when the part is measured); per triangle, caps linear for circles
+    "harmonic.part": Cost(1.5e-5, 600.0, 0.0, 0.0, "measured 2026-11-26 (CPU, in process): single drive m 1, "
+                          "31/33 triangular at 1 um, 190,000 triangles of circles: 2.8 s in _prism and the "
+                          "parts' booleans (about 15 us a triangle); the fuzz survey found 4.6 s planned at 3.8 s"),
     # pinion on rack (analysis.rack_mesh): per roll state, and per (pinion vertex x rack chord) pair of a state
     "pair.rack": Cost(2e-3, 0.0, 0.0, 60e6, "measured 2026-11-26 (CPU): involute 20 / 100 teeth, cycloidal 30, "
                       "sine 200 at 0.1-1 um: 0.2-1.1 ms a state beside its pairs"),

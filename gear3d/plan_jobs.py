@@ -297,15 +297,15 @@ def plan_harmonic(design, wheel_profile, tolerance: float, threemf: bool = False
         tri = 0.0
         for n, what in _prisms(role, sk, tol):
             tri += 4.0 * n
-            teeth = what == f"the {role}"         # a plain circle's caps are not quadratic (measured)
-            add(budget.body_estimate(4.0 * n, True, f"{what} of {4.0 * n:,.0f} triangles",
-                                     layer_vertices=sk.layer_vertices if teeth else 0, teeth=sk.teeth))
+            what = f"{what} of {4.0 * n:,.0f} triangles"
+            add(budget.body_estimate(4.0 * n, True, what, layer_vertices=sk.layer_vertices, teeth=sk.teeth)
+                if what.startswith(f"the {role} of") else estimate("harmonic.part", 4.0 * n, 4.0 * n, what))
         add(write_estimate(".stl", triangles=tri))
         tri_all += tri
         r_wg = max(r_wg, sk.r_max) if role.startswith("flexspline") else r_wg
     if r_wg:
         n = 2.0 * len(circle_loop(r_wg, tol)) * (2 if bearing else 1)
-        add(budget.body_estimate(4.0 * n, True, f"the wave generator of {4.0 * n:,.0f} triangles"))
+        add(estimate("harmonic.part", 4.0 * n, 4.0 * n, f"the wave generator of {4.0 * n:,.0f} triangles"))
         add(write_estimate(".stl", triangles=4.0 * n))
         tri_all += 4.0 * n
     if threemf:
