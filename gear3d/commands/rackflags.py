@@ -13,6 +13,7 @@ from ..cliargs import number
 from ..export import check_output, exts, write
 from ..filesafe import atomic_path, check_path
 from ..params.families import FAMILY_FLAGS_PLANNED
+from .. import budget
 from ..budget import BudgetError
 from ..params import BODY
 
@@ -134,7 +135,7 @@ def run_pair_cli(args, family_params) -> int:
     kw = _rack_kw(args, family_params, out)
     z = kw.pop("teeth", 20)
     if mesh:
-        _plan_pinion_body(args.family, z, kw, out, width)
+        _plan_pinion_body(args.family, z, kw, out, width, getattr(args, "rack_teeth", None))
     pin, part, rep = rack_pair(args.family, z, getattr(args, "rack_teeth", None), **kw)
     if mesh:
         bodies = rack_pair_bodies(pin, part, rep, width)
@@ -164,21 +165,31 @@ def run_pair_cli(args, family_params) -> int:
     return 0
 
 
-def _plan_pinion_body(family: str, z: int, kw: dict, out: str, width: float) -> None:
-    """The pinion's body and the 3D file planned before the rolling check (the fuzz survey of
-    2026-11-26: a 10,000-tooth pinion's 3MF was refused after 2 s of work), as the family's
-    own gear (the rack-cut pinion has about its vertices); a parameter the probe does not
-    take is left to the builder to refuse."""
+def _plan_pinion_body(family: str, z: int, kw: dict, out: str, width: float, rack_teeth=None) -> None:
+    """The pinion's body, the rack's and the 3D file planned before the rolling check (the
+    fuzz survey of 2026-11-26: a 10,000-tooth pinion's 3MF was refused after 2 s of work, its
+    rack's end faces after 1 s), the pinion as the family's own gear (the rack-cut pinion has
+    about its vertices), the rack from one tooth (its end faces: a polygon, quadratic); a
+    parameter the probe does not take is left to the builder to refuse."""
+    import math
+
     from ..plan import plan_profile
+    from ..rack_part import PINION_ONLY, rack
     if family not in FAMILY_FLAGS_PLANNED:
         return
     try:
-        plan_profile(family, {k: v for k, v in kw.items() if k not in ("back_height", "clearance_coeff")}
-                     | {"teeth": z}, output=out, width=width)
+        est = plan_profile(family, {k: v for k, v in kw.items() if k not in ("back_height", "clearance_coeff")}
+                           | {"teeth": z}, output=out, width=width)
+        one = rack(family, teeth=1, **{k: v for k, v in kw.items() if k not in PINION_ONLY[family]})
     except BudgetError:
         raise
     except GearError:
-        pass
+        return
+    n = int(rack_teeth or math.ceil((z + 3) * one.module / one.pitch) + 4)      # rack_pair's default
+    nv = n * (len(one.chain) - 1) + 4.0
+    rk = budget.body_estimate(4 * nv, False, f"the rack's body of {nv:,.0f} vertices a layer", layer_vertices=nv,
+                              teeth=n)
+    budget.check(rk if est is None else est.then(rk), "teeth", z, rk)
 
 
 def rack_pair_bodies(pin, part, rep, width: float) -> list:

@@ -38,6 +38,8 @@ REFUSED = [
     # a rack pair's bodies and 3MF planned before the rolling check (was refused after 2.2 s)
     "--max-seconds 4 check pair involute --teeth 10000 --rack --rack-teeth 10 --width 0.5 -o r.3mf "
     "--module 0.410703 --tolerance 0.00205352",
+    # the rack's body planned too (its end faces, quadratic: refused after 1.04 s by the builder)
+    "--max-seconds 4 pair involute --teeth 10000 --rack --width 0.5 -o r.stl --module 0.496502 --tolerance 0.00640116",
     # a small bevel member's section was built whole inside the plan (2-4 s at 19,000 vertices)
     "--max-seconds 4 bevel --teeth 6 --mate-teeth 6 --module 1 --tolerance 1e-06 --part gear -o b.stl",
 ]
