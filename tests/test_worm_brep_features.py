@@ -140,17 +140,18 @@ def test_wheel_and_worm_features_in_the_brep(tmp_path):
 
 # ------------------------------------------------- a wheel whose flanks end below its tip
 
-#: two starts, 20 teeth (m 2, q 10, face width 18 mm): at the faces the flank envelopes end
-#: below the blank's tip (the worm's root shapes the tip there); the B-rep is refused. (Teeth
-#: that point near the kink, 12 to 18 teeth with one start, are made:
-#: tests/test_worm_brep_narrow_land.py.)
-Z2S = dict(part="wheel", module=2, starts=2, wheel_teeth=20, tolerance=0.1)
+#: two starts, 12 teeth (m 2, q 10, face width 18 mm): at the faces one flank envelope ends
+#: below the blank's tip (the worm's tip edge shapes that side of the tooth) and the teeth
+#: also point near the throat's kink; the B-rep is refused. (Either alone is made: the
+#: two-start 20-tooth wheel, tests/test_worm_brep_short_flank.py; one-start 12 to 18 teeth
+#: that point near the kink, tests/test_worm_brep_narrow_land.py.)
+Z2S = dict(part="wheel", module=2, starts=2, wheel_teeth=12, tolerance=0.1)
 
 
 def test_wheel_whose_flanks_end_below_the_tip_is_refused_in_one_line(tmp_path, capsys):
     from gear3d.cli import main
     out = tmp_path / "w.step"
-    rc = main(["worm", "--module", "2", "--starts", "2", "--wheel-teeth", "20", "--tolerance", "0.1",
+    rc = main(["worm", "--module", "2", "--starts", "2", "--wheel-teeth", "12", "--tolerance", "0.1",
                "--part", "wheel", "-o", str(out), "--step", "brep"])
     err = capsys.readouterr().err
     assert rc == 2 and err.count("\n") == 1 and list(tmp_path.iterdir()) == []

@@ -18,6 +18,11 @@ through the stack of certified sections.
   the two flank surfaces meet along their exact crossing (no tip face), and at h0 and h1
   the tip face ends in a degenerate edge (its row shrinks to the point where the flanks
   cross on the tip circle).
+* **A flank that ends below the tip** (:mod:`gear3d.export.step_brep_wheel_short`): near
+  the faces of a two-start wheel one flank envelope can lie wholly outside the blank, that
+  side of the tooth being the worm's tip edge's trochoid up to the tip; a band ends at the
+  height h_s where that starts (the flank face ends there in a degenerate edge), and beyond
+  it the flank has no face.
 * **Measured.** Every surface of tooth 0 is evaluated through OpenCascade at its u knots
   and their quarter points, on every row and at the middle of every pair of rows; each
   height's points are turned back by -section_turn(h) and measured against the exact
@@ -50,6 +55,7 @@ from ..errors import GearError, ToleranceError
 from .step_brep_occ import (bspline_curve, bspline_surface, plane_face, sew_solid, validate_solid,
                             wire_of_curves)
 from .step_brep_runs import ExactSet, exact_set, loop_runs, nearest_on_piece, rot2
+from .step_brep_wheel_short import short_interval, short_runs
 from .step_brep_wheel_tip import canonical_runs, pointed_band, pointed_interval, refuse_pointed, tip_land  # noqa: F401
 
 #: share of the tolerance given to the sections' polygons (used only to map the runs)
@@ -93,7 +99,9 @@ def section_runs(d, h: float, tol_s: float, kind: str = "land"):
                                 "a wheel whose teeth point or lose their tip land across the face width "
                                 "stays faceted") from None
     tip = len(p.pieces)
-    ex, runs = canonical_runs(d, h, p, ex, runs, kind)
+    ex, runs = canonical_runs(d, h, p, ex, runs, "land" if kind.startswith("short") else kind)
+    if kind.startswith("short"):            # "short-a", "short-edge-b", ...: a flank ending below the tip
+        ex, runs = short_runs(d, h, p, ex, runs, kind[-1], "edge" in kind)
     start = next((i for i, r in enumerate(runs) if r.piece == tip and r.k == 0), None)
     if start is None:
         raise GearError("step", "brep", "'faceted' for this wheel", f"the section at h = {h:.4g} mm has no tip")
@@ -123,15 +131,17 @@ def _signature(runs, z):
     return [(r.piece, r.k) for r in runs[:len(runs) // z]]
 
 
-def _bands(d, pointed=None):
-    """Band limits (mm): the faces, the throat's kinks and the ends (h0, h1) of the
-    ``pointed`` heights between them (limits within 1e-6 mm of one before are dropped)."""
+def _bands(d, pointed=None, short=None):
+    """Band limits (mm): the faces, the throat's kinks, the ends (h0, h1) of the
+    ``pointed`` heights and the start h_s of the ``short`` ones between them (limits within
+    1e-6 mm of one before are dropped)."""
     B = d.face_width
     br = [-B / 2, B / 2]
     kink = d.throat_break()
     if kink is not None and kink < B / 2 - 1e-9:
         br += [-kink, kink]
-    for h in pointed or ():
+    pointed = list(pointed or ()) + ([short[0]] if short else [])
+    for h in pointed:
         if h < B / 2:
             br += [-h, h]
     out = []
@@ -144,7 +154,12 @@ def _bands(d, pointed=None):
 
 
 def _kind(ctx, h: float) -> str:
-    """"land", "point" or "edge" (an end of the pointed heights) for height ``h`` (mm)."""
+    """"land", "point" or "edge" (an end of the pointed heights), or "short-<side>" /
+    "short-edge-<side>" (at and above h_s of the ``short`` heights) for height ``h`` (mm)."""
+    sh = ctx.get("short")
+    if sh is not None and abs(h) >= sh[0]:
+        side = sh[1] if h > 0 else {"a": "b", "b": "a"}[sh[1]]     # the section at -h mirrors the one at h
+        return ("short-edge-" if abs(h) == sh[0] else "short-") + side
     pt = ctx.get("pointed")
     if pt is None:
         return "land"
@@ -166,11 +181,16 @@ def _rows(ctx, heights):
     return [ctx["sections"][h] for h in heights]
 
 
+def _zero(run) -> bool:
+    """Whether ``run`` has zero length (a pointed tip, a short flank)."""
+    return run.t0 == run.t1 and np.array_equal(run.p0, run.p1)
+
+
 def _run_points(ex, run, n_u, turn):
     """(n_u, 2) points of one run of tooth 0 (mm), in place at its height: the exact piece
     at equally spaced parameters, its exact end points at the ends (all its end point for a
     run of zero length: a pointed tooth's tip)."""
-    if run.t0 == run.t1 and np.array_equal(run.p0, run.p1):
+    if _zero(run):
         return rot2(np.repeat(np.asarray(run.p0, float)[None], n_u, axis=0), turn)
     t = run.t0 + (run.t1 - run.t0) * np.linspace(0.0, 1.0, n_u)
     P = rot2(ex.pieces[run.piece](t), run.k * 2 * math.pi / ex.teeth)
@@ -188,8 +208,8 @@ def _band_nets(ctx, heights, n_u):
     out = []
     point = _kind(ctx, 0.5 * (heights[0] + heights[-1])) == "point"
     for j in range(len(ctx["signature"])):
-        if j == 0 and point:
-            out.append(None)
+        if (j == 0 and point) or all(_zero(runs[j]) for _, runs in rows):
+            out.append(None)            # no face: the tip where the tooth points, a short flank
             continue
         s = np.linspace(0.0, 1.0, n_u[j])
         C = []
@@ -251,7 +271,7 @@ def _fit_bands(ctx, tol):
     ``TARGET`` x that share, and a band whose error between the rows exceeds tol the rows
     (between - on the rows, against the rest of the tolerance). Fewer poles than doubling
     everything: the STEP file is smaller at the same measured bound."""
-    br = _bands(ctx["d"], ctx.get("pointed"))
+    br = _bands(ctx["d"], ctx.get("pointed"), ctx.get("short"))
     n_v = [START_ROWS] * (len(br) - 1)
     n_u = [START_COLUMNS] * len(ctx["signature"])
     for _round in range(MAX_ROUNDS + 1):
@@ -329,13 +349,16 @@ def precheck(d) -> None:
     and OCC's import): :func:`refuse_pointed` of design ``d``
     (:class:`gear3d.wormgear.design.WormDesign`) where its teeth point in the mid-plane or
     in separate bands (the exact pieces at 64 heights and the kink's three, about 0.05 s;
-    the scan :func:`wheel_solid` makes). Teeth that point in one band of heights each side
-    are made (:mod:`gear3d.export.step_brep_wheel_tip`).
+    the scan :func:`wheel_solid` makes), and :func:`short_interval`'s refusals. Teeth that
+    point in one band of heights each side are made (:mod:`gear3d.export.step_brep_wheel_tip`),
+    and flanks that end below the tip from h_s to the faces
+    (:mod:`gear3d.export.step_brep_wheel_short`).
 
     >>> from gear3d.wormgear.design import design
     >>> precheck(design(module=2, starts=1, wheel_teeth=30, diameter_quotient=10, worm_type="ZA"))
     """
     pointed_interval(d)
+    short_interval(d)
 
 
 def wheel_design(w, design=None):
@@ -362,6 +385,7 @@ def wheel_solid(w, design=None):
     tol = float(w.report["tolerance"])
     ctx = {"d": d, "tol_s": SECTION_SHARE * tol, "sections": {}}
     ctx["pointed"] = pointed_interval(d)
+    ctx["short"] = short_interval(d)
     _ex, runs0 = section_runs(d, 0.0, ctx["tol_s"])
     ctx["signature"] = _signature(runs0, d.wheel_teeth)
     bands, err = _fit_bands(ctx, tol)

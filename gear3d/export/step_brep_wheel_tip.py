@@ -36,7 +36,7 @@ from .step_brep_runs import ExactSet, Run, corner_params, rot2
 FACE_SNAP = 1e-6
 
 
-def _tip_corner(G, rt: float, rising: bool, n: int = 257):
+def tip_corner(G, rt: float, rising: bool, n: int = 257):
     """Parameter t of the exact piece ``G`` where it crosses the circle ``rt`` (mm) nearest
     the tooth's tip (the last crossing upward of a ``rising`` flank, the first downward of
     the other), or None where it does not reach the circle: the sign change on ``n``
@@ -53,7 +53,7 @@ def _tip_corner(G, rt: float, rising: bool, n: int = 257):
     return float(lo + (hi - lo) * fa / (fa - fb))
 
 
-def _flanks(d, h: float):
+def flank_pieces(d, h: float):
     """(pieces, index of the rising flank, index of the falling one) of the wheel's exact
     section at height ``h`` (the raw pieces :func:`gear3d.wormgear.wheel.section` uses)."""
     from ..envelope import rack_envelope
@@ -74,16 +74,16 @@ def tip_land(d, h: float) -> float:
     >>> round(tip_land(design(module=2, starts=1, wheel_teeth=20, diameter_quotient=10), 0.0), 3)
     1.383
     """
-    pieces, a, b = _flanks(d, h)
+    pieces, a, b = flank_pieces(d, h)
     rt = float(d.blank_tip_radius(h))
-    ta, tb = _tip_corner(pieces[a], rt, True), _tip_corner(pieces[b], rt, False)
+    ta, tb = tip_corner(pieces[a], rt, True), tip_corner(pieces[b], rt, False)
     if ta is None or tb is None:
         return -math.inf
     (xa, ya), (xb, yb) = pieces[a](np.array([ta]))[0], pieces[b](np.array([tb]))[0]
     return rt * (math.atan2(yb, xb) - math.atan2(ya, xa))
 
 
-def _scan(d, steps: int):
+def scan_heights(d, steps: int):
     """Heights |h| (mm) the scans look at: ``steps`` + 1 across the half face width, the
     throat's kink and 1 um either side of it."""
     half = d.face_width / 2
@@ -113,15 +113,15 @@ def pointed_band(d, steps: int = 64, h_tol: float = 1e-4):
     heights and the throat's kink (where a throated wheel's land is narrowest), the first
     one bisected to ``h_tol`` mm (``h_ok``: the last height before it that keeps a land, or
     h0 at h = 0); None when every one keeps a land."""
-    hs = _scan(d, steps)
-    bad = [h for h in hs if tip_land(d, h) < 0]
+    hs = scan_heights(d, steps)
+    bad = [h for h in hs if -math.inf < tip_land(d, h) < 0]
     if not bad:
         return None
     hi = bad[0]
     lo = max([h for h in hs if h < hi], default=hi)
     while hi - lo > h_tol and lo < hi:
         mid = 0.5 * (lo + hi)
-        lo, hi = (lo, mid) if tip_land(d, mid) < 0 else (mid, hi)
+        lo, hi = (lo, mid) if -math.inf < tip_land(d, mid) < 0 else (mid, hi)
     return lo, hi, bad[-1]
 
 
@@ -129,19 +129,12 @@ def pointed_interval(d, steps: int = 64):
     """(h0, h1) (mm): the heights |h| between which the wheel's teeth point, each end
     bisected on the exact land to 1e-12 mm (h1 = B/2 where they point up to the face);
     None where no scanned height points. GearError where the pointed heights are not one
-    interval per side or include the mid-plane (:func:`refuse_pointed`), or where a flank
-    envelope ends below the blank's tip (the tooth's top is then another piece: the
-    envelope of the worm's root, near the faces of a two-start set)."""
-    hs = _scan(d, steps)
+    interval per side or include the mid-plane (:func:`refuse_pointed`). Heights where a
+    flank envelope ends below the blank's tip (-inf land) are not pointed: see
+    :mod:`gear3d.export.step_brep_wheel_short`."""
+    hs = scan_heights(d, steps)
     land = [tip_land(d, h) for h in hs]
-    short = [i for i, w in enumerate(land) if w == -math.inf]
-    if short:
-        ok = hs[short[0] - 1] if short[0] else 0.0
-        fix = f"--face-width {math.floor(2 * ok * 100) / 100:g} mm or less, " if ok > 0.25 * d.module else ""
-        raise GearError("step", "brep", "'faceted' for this wheel",
-                        f"its flank envelopes end below the blank's tip from |h| = {hs[short[0]]:.3g} mm on "
-                        f"(the worm's root shapes the tip there); for a B-rep give {fix}--no-throat or more teeth")
-    bad = [i for i, w in enumerate(land) if w < 0]
+    bad = [i for i, w in enumerate(land) if -math.inf < w < 0]
     if not bad:
         return None
     if bad[0] == 0 or bad[-1] - bad[0] + 1 != len(bad):
@@ -171,10 +164,10 @@ def _ends(d, h: float, p, runs, point: bool):
     """(t on the rising flank, its end point, t on the falling flank, its start point) of
     tooth 0 (mm): the exact corners on the tip circle, or for a ``point``-ed tooth the
     flanks' exact crossing (Newton from the mapped crossing or the corners)."""
-    _, a, b = _flanks(d, h)
+    _, a, b = flank_pieces(d, h)
     rt = float(d.blank_tip_radius(h))
     ga, gb = p.pieces[a], p.pieces[b]
-    ta, tb = _tip_corner(ga, rt, True), _tip_corner(gb, rt, False)
+    ta, tb = tip_corner(ga, rt, True), tip_corner(gb, rt, False)
     if not point:
         if ta is None or tb is None:
             raise GearError("step", "brep", "'faceted' for this wheel",
@@ -198,7 +191,7 @@ def canonical_runs(d, h: float, p, ex, runs, kind: str):
     crossing; a tip run of zero length there) or "edge" (an end of the pointed heights: the
     corners coincide, a zero-length tip at the flanks' crossing)."""
     tip = len(p.pieces)
-    runs = _merged(runs)
+    runs = merged_runs(runs)
     if kind == "land" and any(r.piece == tip for r in runs):
         return ex, runs
     a, b, ta, Pa, tb, Pb = _ends(d, h, p, runs, kind != "land")
@@ -232,7 +225,7 @@ def _continues(a, b) -> bool:
             and np.allclose(a.p1, b.p0, rtol=0.0, atol=1e-9))
 
 
-def _merged(runs):
+def merged_runs(runs):
     """Runs with every run that continues the one before (:func:`_continues`) joined to it
     (the loop is cyclic)."""
     out = []

@@ -10,8 +10,8 @@ Found by a probe (2026-11-26):
 * a worm wheel of 12 teeth (ZA, q = 10, face width 10 mm) whose teeth point near the
   throat's kink, asked as a B-rep STEP: refused "as a finding" after its mesh was built
   (3.2 s CPU, 306 MB); its B-rep is made now, and the wheel B-rep that is still refused (a
-  two-start wheel whose flanks end below the blank's tip at the faces) is refused by
-  ``step_brep_wheel.precheck`` before the mesh and OCC;
+  two-start 12-tooth wheel whose flanks end below the blank's tip at the faces and whose
+  teeth also point) is refused by ``step_brep_wheel.precheck`` before the mesh and OCC;
 * face gears cut by a large shaper (64 teeth, shaper 28, 25 deg) have undercut sections
   above the limits each measured alone: ``--inner-radius 30.2`` (and the default) passed
   the validation and the builder refused a section with no range; now the limits are the
@@ -98,10 +98,11 @@ def test_face_gear_inner_radius_inside_the_undercut_refused_first(tmp_path, z2, 
 
 
 def test_worm_wheel_brep_whose_flanks_end_below_the_tip_refused_first(tmp_path):
-    """A two-start 20-tooth ZA wheel: its flank envelopes end below the blank's tip at the
-    faces (the worm's root shapes the tip there). (The 12-tooth wheel, face width 10 mm, that
-    was refused here for its pointed teeth, writes its B-rep now.)"""
-    value, allowed = _refused("worm --module 2 --starts 2 --wheel-teeth 20 --diameter-quotient 10 --worm-type ZA "
+    """A two-start 12-tooth ZA wheel: a flank envelope ends below the blank's tip at the
+    faces and its teeth also point. (The one-start 12-tooth wheel, face width 10 mm, that
+    was refused here for its pointed teeth, and the two-start 20-tooth wheel, whose flanks
+    alone end below the tip, write their B-rep now.)"""
+    value, allowed = _refused("worm --module 2 --starts 2 --wheel-teeth 12 --diameter-quotient 10 --worm-type ZA "
                               "--part wheel -o w.step --step brep", tmp_path, "step")
     assert value == "'brep'" and "'faceted'" in allowed and "--face-width" in allowed
 
@@ -110,7 +111,7 @@ def test_worm_wheel_brep_refused_first_in_a_scene(tmp_path):
     """The same wheel as a scene part (B-rep STEP): refused at plan time, naming the part's key."""
     toml = tmp_path.parent / f"{tmp_path.name}-w.toml"
     toml.write_text('[scene]\nname = "wp"\ntolerance = 0.01\n\n[[part]]\nname = "wheel"\nkind = "worm"\n'
-                    'part = "wheel"\nmodule = 2\nstarts = 2\nwheel_teeth = 20\ndiameter_quotient = 10\n'
+                    'part = "wheel"\nmodule = 2\nstarts = 2\nwheel_teeth = 12\ndiameter_quotient = 10\n'
                     'worm_type = "ZA"\noutputs = ["step"]\n\n[part.options.step]\n'
                     'kind = "brep"\n')
     value, allowed = _refused(f"build {toml} --out out", tmp_path, "step")
