@@ -91,9 +91,10 @@ COSTS = {
     "write.step": Cost(8.0e-5, 3000.0, 0.4, 60e6, "faceted STEP, 10,000-56,000 triangles: 1.0-3.3 s "
                        "(60-95 us a triangle), +65-158 MB"),
     # a B-rep STEP (gear3d.plan.brep_estimate): per surface sample measured, plus per face
-    "write.brep": Cost(2.5e-4, 20000.0, 1.2, 300e6, "measured 2026-11-26 in process (CPU): spur z=400 at "
+    "write.brep": Cost(2.5e-4, 20000.0, 1.2, 350e6, "measured 2026-11-26 in process (CPU): spur z=400 at "
                        "0.1 / 0.001 mm, 800 faces, 4,000 / 16,000 samples: 2.9 / 6.1 s, so 2.7e-4 s a sample; "
-                       "+1.2 s OpenCascade's import and first call; +296-336 MB (helical z=40, 200)"),
+                       "+1.2 s OpenCascade's import and first call; +296-336 MB (helical z=40, 200); a small worm "
+                       "wheel's B-rep peaked at 343 MB in all (the fuzz survey: stopped under 300 MiB, 294 planned)"),
     "brep.face": Cost(1.5e-3, 50000.0, 0.0, 0.0, "measured 2026-11-26 (CPU): spur z=700 / 1000 / 1500 at 0.1 mm, "
                       "1,400 / 2,000 / 3,000 flank faces: 4.2 / 6.0 / 11.5 s (3.0-3.8 ms a face, counted 4 a tooth)"),
     # conjugate contact (gear3d.analysis.contact): per wheel-1 angle of its grid (96 a pitch)

@@ -40,6 +40,9 @@ REFUSED = [
     "--module 0.410703 --tolerance 0.00205352",
     # the rack's body planned too (its end faces, quadratic: refused after 1.04 s by the builder)
     "--max-seconds 4 pair involute --teeth 10000 --rack --width 0.5 -o r.stl --module 0.496502 --tolerance 0.00640116",
+    # OpenCascade's import counted at its measured 336 MB (a wheel's B-rep met 300 MiB planned at 294)
+    "--max-seconds 4 --max-memory 300MiB worm --module 0.05 --starts 1 --wheel-teeth 8 --worm-type ZI --part wheel "
+    "--tolerance 0.005 --no-throat -o w.step --step brep",
     # a small bevel member's section was built whole inside the plan (2-4 s at 19,000 vertices)
     "--max-seconds 4 bevel --teeth 6 --mate-teeth 6 --module 1 --tolerance 1e-06 --part gear -o b.stl",
 ]
