@@ -16,8 +16,8 @@ ends below the blank's tip: the tooth's side there is the worm's tip edge's enve
   list the same) and the trochoid face runs up to the tip face
   (:func:`short_runs`).
 * **Refused** (one GearError line before any work): both flanks short, the short heights
-  not one interval reaching the face, a tooth that also points, or a trochoid that does not
-  reach the tip circle.
+  not one interval reaching the face, a tooth that also points, a trochoid that does not
+  reach the tip circle, or an h_s within 1 um of the face.
 
 Example (the two-start 20-tooth wheel: the falling flank ends below the tip from
 h = 8.917 mm on)::
@@ -97,6 +97,8 @@ def short_interval(d, steps: int = 64):
         mid = 0.5 * (lo + hi)
         lo, hi = (lo, mid) if end_gap(d, mid, side) > 0 else (mid, hi)
     h_s = 0.5 * (lo + hi)
+    if d.face_width / 2 - h_s <= 1e-6:
+        raise _refuse(d, h_s, "that height lies within 1 um of the face")
     if any(-math.inf < tip_land(d, h) < 0 for h in hs):
         raise _refuse(d, h_s, "its teeth also come to a point")
     for h in hs[first:]:
