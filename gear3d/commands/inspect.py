@@ -14,7 +14,7 @@ import sys
 import tempfile
 
 from .profile import DeprecatedFlag, add_profile_flags, family_params, print_notes
-from .. import profile
+from .. import budget, profile
 from ..errors import GearError
 from ..filesafe import LIVE_TEMPS
 
@@ -47,6 +47,9 @@ def run(args) -> int:
         from ..plan import plan_profile
         plan_profile(args.family, kw, figure=args.png, measure=True)
     prof = profile(args.family, **kw)
+    per = float(prof.report.get("vertices_per_tooth") or 0.0)    # refined corners can outgrow the plan's
+    budget.charge(budget.estimate("inspect", per * per, 0.0, f"measuring {per:,.0f} vertices a tooth"),
+                  "tolerance", prof.tolerance, key="inspect")
     ins = inspect(prof, span_teeth=args.span_teeth, pin_diameter=args.pin_diameter,
                   helix_angle_deg=args.helix_angle)
     sys.stdout.write(table(ins) + "\n")
