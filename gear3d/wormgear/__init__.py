@@ -226,21 +226,19 @@ validate.__signature__ = inspect.Signature(
 
 
 def _check_budget(d, part):
-    """Refuse, before any work, a set whose meshes would exceed the triangle budget
-    (estimates: the wheel's layers x vertices per layer, the worm's turns x layers)."""
+    """Refuse, before any work, a set whose bodies would exceed the budget, with the plan's
+    own estimate (:func:`gear3d.plan_sets.worm_counts`, ``COSTS["worm.body"]``) added to what
+    the job has charged so far. Nothing is charged here: the builders charge each body as
+    they reach it (the worm's layers, the wheel's sections and mesh); charging the whole set
+    here as well counted it twice (a module-100 worm's STL refused after 1.3 s of work)."""
     from .. import budget
-    tol = d.tolerance
-    est = 0.0
-    if part in ("wheel", "pair"):
-        per_tooth = 3 * math.pi * d.module / math.sqrt(8 * tol / d.module) + 20
-        layers = d.face_width / max(math.sqrt(8 * tol * d.module), 1e-3) + 3
-        est += 2 * d.wheel_teeth * per_tooth * layers
-    if part in ("worm", "pair"):
-        turns = d.worm_length / d.p
-        dth = math.sqrt(8 * 0.2 * tol / d.worm_tip_radius)
-        per_layer = 2 * math.pi * d.worm_tip_radius / math.sqrt(8 * tol * d.module) + 8 * d.starts
-        est += 2 * per_layer * turns / dth
-    budget.check_body(est, "tolerance", tol)
+    from ..plan_sets import worm_counts
+    c = worm_counts(d, part)
+    tri = c["wheel"] + c["worm"]
+    cost = budget.COSTS["worm.body"]
+    est = budget.Estimate(cost.fixed_seconds + cost.seconds * tri, cost.fixed_bytes + cost.bytes * tri, tri,
+                          f"a worm set of {tri:,.0f} triangles")
+    budget.check(budget.ledger().then(est), "tolerance", d.tolerance, est)
 
 
 def _report(d, part, w, wh) -> WormReport:

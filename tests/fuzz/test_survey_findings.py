@@ -19,8 +19,12 @@ distance written here, and the old start search's bytes (the same DXF).
 """
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import pytest
+
+import gear3d
 
 from .budgetrun import REFUSE_CPU, budget_refusal, run, verdict
 
@@ -55,6 +59,9 @@ WITHIN = [
     # a ZK worm's rolling check (its thread solved numerically): 3.2 s for 1.3 s planned under load
     pytest.param("worm --module 0.05 --starts 2 --wheel-teeth 8 --worm-type ZK --part wheel --tolerance 0.005 "
                  "--check --contact-png c.png", marks=pytest.mark.slow),
+    # a worm charged twice (the whole set before the work, then its layers): refused after 1.4-2.1 s
+    "--max-seconds 4 worm --module 100 --starts 1 --wheel-teeth 109 --worm-type ZK --part worm "
+    "--tolerance 0.0887124 -o w.stl",
     pytest.param("harmonic build --module 0.05 --z-flex 505 --z-circular 507 --tooth triangular --tolerance 1e-5 "
                  "-o hb --3mf", marks=pytest.mark.slow),
     # the parts' plain prisms at 15 us a triangle (4.6 s ran for 3.8 s planned at 10 us)
@@ -134,3 +141,45 @@ def test_an_internal_error_under_the_supervisor_says_one_line(tmp_path):
     lines = p.stderr.strip().splitlines()
     assert p.returncode == 70 and len(lines) == 1, (p.returncode, p.stderr)
     assert lines[0].startswith("gear3d: internal error: IndexError: list index out of range"), lines
+
+
+# ------------------------------------------------ inspect's span search on a shallow pointed tooth
+
+@pytest.mark.parametrize("z, half", [(20, 80.0), (13, 80.0), (7, 60.0), (12, 60.0)])
+def test_shallow_pointed_triangular_span_is_not_applicable_and_says_why(z, half):
+    """``inspect triangular --half-angle-deg 80`` (13, 20 teeth, ...) ended with exit 70:
+    "negative dimensions" in the span search (a tooth sector holding no flank vertex on one
+    side). Oracle, by brute force on the polygon: every vertex is a tip or a root, so a jaw
+    rests on a flank only lying flat on a flank edge, and the jaw over k teeth then needs
+    two flank edges whose outward normals are opposite. Where no two edges' normals are
+    opposite (z = 20 at 80 deg: (k - 1) 18 deg + 20 deg = 180 deg has no integer k), no span
+    exists and the report must say so in one note, not crash."""
+    from gear3d.analysis.inspection import inspect
+    p = gear3d.profile("triangular", teeth=z, half_angle_deg=half)
+    L = np.asarray(p.tooth_loop, float)
+    r = np.hypot(L[:, 0], L[:, 1])
+    assert np.all((r - np.roll(r, 1)) * (r - np.roll(r, -1)) > 0)   # a zigzag: tips and roots only
+    d = np.roll(L, -1, axis=0) - L
+    n = np.arctan2(-d[:, 0], d[:, 1])                     # edge normals (either sense)
+    gap = (n[:, None] - n[None, :] - math.pi) % (2 * math.pi)
+    gap = np.minimum(gap, 2 * math.pi - gap)              # 0 where two edges face opposite ways
+    flat = np.where(np.eye(len(n), dtype=bool), math.inf, np.minimum(gap, abs(gap - math.pi)))
+    ins = inspect(p)
+    if flat.min() > 1e-3:                                 # no two edges parallel: no span
+        assert ins.span_width is None and ins.span_teeth is None
+        assert any(s.startswith("span: no number of teeth") for s in ins.notes)
+    else:
+        assert ins.span_width is None or ins.span_width > 0
+
+
+def test_shallow_pointed_triangular_inspect_cli_one_line_refusal_for_a_given_k(tmp_path):
+    """The CLI: the report (exit 0) with the span's note; a given ``--span-teeth`` is refused
+    in one line naming the parameter (exit 2), never exit 70."""
+    import subprocess
+    import sys
+    base = [sys.executable, "-m", "gear3d.cli", "inspect", "triangular", "--teeth", "20", "--half-angle-deg", "80"]
+    ok = subprocess.run(base, capture_output=True, text=True, cwd=tmp_path)
+    assert ok.returncode == 0, ok.stderr
+    assert "span: no number of teeth puts both jaws on the flanks" in ok.stdout
+    bad = subprocess.run(base + ["--span-teeth", "3"], capture_output=True, text=True, cwd=tmp_path)
+    assert bad.returncode == 2 and bad.stderr.count("\n") == 1 and "span_teeth" in bad.stderr
