@@ -183,10 +183,10 @@ def span_profile(g: ToothGeometry, k: int):
     rel = (np.arctan2(T[:, 1], T[:, 0]) - g.c0 + math.pi) % (2 * math.pi) - math.pi
     low = T[rel < 0]                                 # tooth 0's lower flank, root to tip
     up = _rot(T[rel >= 0], (k - 1) * pitch)          # tooth k-1's upper flank, tip to root
+    if len(low) < 3 or len(up) < 3:                 # a flank of one edge or none (a shallow pointed
+        return None, None                           # tooth): no flank point a jaw could rest on alone
     cor = g.corner[idx]
     c_low, c_up = _with_mids_flags(cor[rel < 0]), _with_mids_flags(cor[rel >= 0])
-    if len(low) < 3 or len(up) < 3:
-        return None, None
     r_low, r_up = np.hypot(*low.T), np.hypot(*up.T)
     psi = g.c0 + (k - 1) * math.pi / z
     base = psi + math.pi / 2
@@ -539,8 +539,8 @@ def neck_profile(g: ToothGeometry, samples: int = 1500) -> Neck:
         py = a[None, :, 1] + s * dd[None, :, 1]
         rel = (np.arctan2(py, px) - g.c0 + math.pi) % (2 * math.pi) - math.pi
         m &= np.abs(rel) <= half
-        amin = np.minimum(amin, np.where(m, rel, np.inf).min(axis=1))
-        amax = np.maximum(amax, np.where(m, rel, -np.inf).max(axis=1))
+        amin = np.minimum(amin, np.where(m, rel, np.inf).min(axis=1, initial=np.inf))
+        amax = np.maximum(amax, np.where(m, rel, -np.inf).max(axis=1, initial=-np.inf))
     good = np.isfinite(amin) & np.isfinite(amax) & (amin < 0) & (amax > 0)
     span = np.clip(amax - amin, 0, math.pi)
     w[good] = 2 * radii[good] * np.sin(span[good] / 2)
