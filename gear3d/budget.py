@@ -196,13 +196,16 @@ class Estimate:
     """What a stage needs: CPU ``seconds``, peak ``bytes``, ``triangles`` (of its biggest
     object) and the words that say what was counted (``"500,000 profile vertices"``);
     ``bytes_what`` / ``triangles_what``: the words of the stage the peak comes from (default
-    ``what``)."""
+    ``what``); ``resident``: ``(stage, bytes)`` pairs, the part of ``bytes`` a stage leaves
+    resident after it (its once-only bytes: imports, pools; glibc keeps freed blocks), counted
+    under every later stage's peak too (:meth:`then`)."""
     seconds: float = 0.0
     bytes: float = 0.0
     triangles: float = 0.0
     what: str = ""
     bytes_what: str = ""
     triangles_what: str = ""
+    resident: tuple = ()
 
     def said(self, resource: str) -> str:
         """What the estimate of ``resource`` ("time", "memory", "triangles") counted."""
@@ -210,18 +213,42 @@ class Estimate:
         return w or self.what
 
     def then(self, other: "Estimate") -> "Estimate":
-        """This stage followed by ``other``: seconds add, peaks take the larger."""
+        """This stage followed by ``other``: seconds add, triangles take the larger; memory
+        is what both leave resident (each stage's once, :func:`_merge`) plus the larger of
+        their transient peaks (a stage's peak above what it leaves), in either order.
+
+        >>> a = Estimate(1.0, 100.0, resident=(("write.3mf", 80.0),))
+        >>> b = Estimate(1.0, 200.0, resident=(("body", 50.0),))
+        >>> a.then(b).bytes      # 80 + 50 resident + the body's 150 transient
+        280.0
+        """
         what = "; ".join(w for w in (self.what, other.what) if w)
         bw = (other if other.bytes > self.bytes else self).said("memory")
         tw = (other if other.triangles > self.triangles else self).said("triangles")
-        return Estimate(self.seconds + other.seconds, max(self.bytes, other.bytes),
-                        max(self.triangles, other.triangles), what, bw, tw)
+        res = _merge(self.resident, other.resident)
+        kept = sum(b for _, b in res)
+        peak = kept + max(self.bytes - self._kept(), other.bytes - other._kept())
+        return Estimate(self.seconds + other.seconds, peak,
+                        max(self.triangles, other.triangles), what, bw, tw, res)
+
+    def _kept(self) -> float:
+        return sum(b for _, b in self.resident)
 
     def peak(self, other: "Estimate") -> "Estimate":
         """The larger of two tries of the same stage, resource by resource."""
         pick = other if (other.seconds, other.bytes) > (self.seconds, self.bytes) else self
         return Estimate(max(self.seconds, other.seconds), max(self.bytes, other.bytes),
-                        max(self.triangles, other.triangles), pick.what)
+                        max(self.triangles, other.triangles), pick.what,
+                        resident=_merge(self.resident, other.resident))
+
+
+def _merge(a: tuple, b: tuple) -> tuple:
+    """``(stage, bytes)`` pairs of both, each stage once at its larger bytes (the imports
+    and pools of one kind of stage are paid once a process)."""
+    d = dict(a)
+    for k, v in b:
+        d[k] = max(d.get(k, 0.0), v)
+    return tuple(sorted(d.items()))
 
 
 def estimate(stage: str, count: float, triangles: float = 0.0, what: str = "") -> Estimate:
@@ -231,7 +258,8 @@ def estimate(stage: str, count: float, triangles: float = 0.0, what: str = "") -
     count = float(count)
     fixed = 0.0 if _LOCAL.once_paid else c.fixed_seconds
     return Estimate(fixed + c.seconds * count, c.fixed_bytes + c.bytes * count,
-                    float(triangles), what or f"{count:,.0f} items of {stage}")
+                    float(triangles), what or f"{count:,.0f} items of {stage}",
+                    resident=((stage, c.fixed_bytes),) if c.fixed_bytes else ())
 
 
 @contextlib.contextmanager
@@ -258,7 +286,7 @@ def profile_estimate(vertices: float, per_tooth: float = 0.0) -> Estimate:
         pairs = p * min(v, 3 * p)
         c = COSTS["profile.pairs"]
         e = Estimate(e.seconds + c.seconds * pairs, e.bytes, e.triangles,
-                     e.what + (f" ({p:,.0f} a tooth)" if pairs > 1e8 else ""))
+                     e.what + (f" ({p:,.0f} a tooth)" if pairs > 1e8 else ""), resident=e.resident)
     return e
 
 
@@ -283,7 +311,8 @@ def body_estimate(triangles: float, manifold: bool = False, what: str = "", laye
         pairs = pts * (n if z <= 6 else 3 * n / z)       # all chords up to 6 teeth, else a window
         caps = COSTS["body.caps.star"].seconds * n if star and not manifold else COSTS["body.caps"].seconds * n * n
         e = Estimate(e.seconds + caps + COSTS["measure"].seconds * pairs,
-                     e.bytes + COSTS["measure"].bytes * min(pairs, MEASURE_CHUNK), e.triangles, e.what)
+                     e.bytes + COSTS["measure"].bytes * min(pairs, MEASURE_CHUNK), e.triangles, e.what,
+                     resident=e.resident)
     return e
 
 
@@ -508,7 +537,7 @@ def check_rim(rim_radius, pitch_radius: float, tol: float, param: str = "rim_rad
     if _LOCAL.probe is not None:
         _LOCAL.probe["rim_vertices"] = n
     e = profile_estimate(n)
-    charge(Estimate(e.seconds, e.bytes, e.triangles, f"a rim circle of {n:,.0f} vertices"), param,
+    charge(Estimate(e.seconds, e.bytes, e.triangles, f"a rim circle of {n:,.0f} vertices", resident=e.resident), param,
            rim_radius * scale if shown is None else shown, key="rim")
 
 
