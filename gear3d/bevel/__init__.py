@@ -224,7 +224,7 @@ def _build(geo, geo_m, which: tuple, tol: float, check: bool, mounts: Mounts) ->
     if check:
         from .rolling import check_pair
         checked = check_pair(geo, tol, mform)
-    from .rolling import pairing
+    from .geometry import pairing
     part = "pair" if len(which) == 2 else which[0]
     rep = BevelReport(geo.form, part, geo.module, math.degrees(geo.pressure_angle), math.degrees(geo.shaft_angle),
                       geo.face_width, geo.cone_distance, geo.inner_cone_distance, geo.crown_teeth, tol,

@@ -62,6 +62,8 @@ GRID = 96
 CHECK_TOLERANCE = 1e-4
 #: mm on the sphere rolled: two paths of contact closer than this are one (conjugate action)
 BAND = 1e-6
+#: modules: a run of a section's boundary shorter than this is degenerate (merged or dropped)
+DEGENERATE = 1e-6
 
 
 @dataclass
@@ -103,19 +105,9 @@ def tooth(geo, which: str, tolerance: float = CHECK_TOLERANCE) -> Tooth:
     els = crown_elements(geo.form, geo.crown_teeth, a, c.dedendum_angle, -crown_depth(geo, c), turn)
     flank_el = els[len(els) // 2 + 2]                  # the mirrored flank: the upper side
     probe = sphere_envelope_piece(flank_el, c.pitch_angle, zs)
-    half = math.pi / c.teeth
-    parts, run = [], None
-    for r in wheel.runs:
-        t = np.linspace(r.a, r.b, RUN_SAMPLES)
-        g = np.asarray(r.f(t), float)
-        u = to_sphere(g, zs) * (FLIP if c.internal else 1.0)  # the unturned frame: pitch angle δ
-        az = np.arctan2(u[:, 1], u[:, 0])
-        if np.median(az) <= 0 or np.median(az) >= half:
-            continue
-        parts.append(u)
-        mid = 0.5 * (r.a + r.b)
-        if np.allclose(np.asarray(r.f(np.array([mid])), float), probe(np.array([mid])), atol=1e-9 * zs):
-            run = (r.a, r.b)
+    sides = side_runs(wheel.runs, zs, math.pi / c.teeth, c.internal, DEGENERATE * geo.module)
+    parts = [u for _, _, _, u in sides]
+    run = flank_run(sides, probe, zs)
     U = np.concatenate(_ordered(parts))
     th, az = np.arccos(np.clip(U[:, 2], -1, 1)), np.arctan2(U[:, 1], U[:, 0])
     th_tip, th_root = c.face_angle, c.root_angle
@@ -130,6 +122,58 @@ def tooth(geo, which: str, tolerance: float = CHECK_TOLERANCE) -> Tooth:
     loop = np.concatenate([U * [1.0, -1.0, 1.0], U[::-1]])
     b = _cusp(flank_el, c.pitch_angle, run[0], run[1])
     return Tooth(c.teeth, c.pitch_angle, th, az, th_tip, th_root, kth, kaz, flank_el, run[0], b, loop)
+
+
+def side_runs(runs, zs: float, half: float, internal: bool, min_length: float) -> list:
+    """The upper side's runs of tooth 0 (median azimuth in (0, ``half``) rad) as (f, a, b, u):
+    piece, parameters and :data:`RUN_SAMPLES` unit vectors (the unturned frame). A run
+    shorter than ``min_length`` (mm on the section's plane: a degenerate run at a corner,
+    which can appear or vanish with ULP-level changes of the section) is dropped, and runs of
+    one piece that then meet (ends within ``min_length``) are merged, so the samples stay
+    ordered and the flank is one run.
+
+    A run is anything with ``f``, ``a`` and ``b`` (here a circle of 10 mm split by a
+    1e-8 mm run):
+
+    >>> from types import SimpleNamespace as Run
+    >>> f = lambda t: np.column_stack([np.cos(np.asarray(t) / 5), np.sin(np.asarray(t) / 5)]) * 10
+    >>> runs = [Run(f=f, a=0.1, b=0.5), Run(f=f, a=0.5, b=0.5 + 5e-9), Run(f=f, a=0.5 + 5e-9, b=0.7)]
+    >>> [(a, round(b, 9)) for _, a, b, _ in side_runs(runs, 10.0, 0.5, False, 1e-6)]
+    [(0.1, 0.7)]
+    """
+    merged = []
+    for r in runs:
+        g = np.asarray(r.f(np.linspace(r.a, r.b, 9)), float)
+        if np.linalg.norm(np.diff(g, axis=0), axis=1).sum() < min_length:
+            continue                                   # degenerate
+        if merged and merged[-1][0] is r.f and np.linalg.norm(g[0] - merged[-1][3]) <= min_length \
+                and r.b >= merged[-1][2]:
+            merged[-1][2:] = [r.b, g[-1]]              # one run split by a degenerate one: whole again
+        else:
+            merged.append([r.f, r.a, r.b, g[-1]])
+    out = []
+    for f, a, b, _ in merged:
+        g = np.asarray(f(np.linspace(a, b, RUN_SAMPLES)), float)
+        u = to_sphere(g, zs) * (FLIP if internal else 1.0)  # the unturned frame: pitch angle δ
+        az = np.median(np.arctan2(u[:, 1], u[:, 0]))
+        if 0 < az < half:
+            out.append((f, a, b, u))
+    return out
+
+
+def flank_run(sides, probe, zs: float) -> tuple:
+    """(a, b): the longest of ``sides`` (:func:`side_runs`) whose midpoint lies on the exact
+    flank ``probe`` (within 1e-9 ``zs``), not the last one listed."""
+    best, length = None, -1.0
+    for f, a, b, u in sides:
+        mid = np.array([0.5 * (a + b)])
+        if np.allclose(np.asarray(f(mid), float), probe(mid), atol=1e-9 * zs):
+            d = float(np.linalg.norm(np.diff(u, axis=0), axis=1).sum())
+            if d > length:
+                best, length = (a, b), d
+    if best is None:
+        raise ValueError("the section has no run on the generated flank")
+    return best
 
 
 def polar_of(el, delta, t):
