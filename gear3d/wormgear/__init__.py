@@ -227,12 +227,12 @@ validate.__signature__ = inspect.Signature(
 
 def _check_budget(d, part):
     """Refuse, before any work, a set whose bodies would exceed the budget, with the plan's
-    own estimate (:func:`gear3d.plan_sets.worm_counts`, ``COSTS["worm.body"]``) added to what
+    own estimate (:func:`gear3d.wormgear.counts.worm_counts`, ``COSTS["worm.body"]``) added to what
     the job has charged so far. Nothing is charged here: the builders charge each body as
     they reach it (the worm's layers, the wheel's sections and mesh); charging the whole set
     here as well counted it twice (a module-100 worm's STL refused after 1.3 s of work)."""
     from .. import budget
-    from ..plan_sets import worm_counts
+    from .counts import worm_counts
     c = worm_counts(d, part)
     tri = c["wheel"] + c["worm"]
     cost = budget.COSTS["worm.body"]
