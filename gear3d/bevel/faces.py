@@ -90,7 +90,8 @@ def virtual_contact_ratio(geo, addenda=None) -> float:
     total = 0.0
     for c, h in zip((geo.gear, geo.mate), adds):
         rv = geo.cone_distance * math.tan(c.pitch_angle)
-        total += math.copysign(math.sqrt((rv + h) ** 2 - (rv * math.cos(a)) ** 2), rv) - rv * math.sin(a)
+        # an internal tip inside the base circle: its involute ends at the base circle (term r sin a)
+        total += math.copysign(math.sqrt(max((rv + h) ** 2 - (rv * math.cos(a)) ** 2, 0.0)), rv) - rv * math.sin(a)
     return total / (math.pi * m * math.cos(a))
 
 
