@@ -184,6 +184,9 @@ def _pt(r, a, z):
 #: arcs shorter than this (mm) are left out of a wire: a tooth pointed at the outer radius
 #: (the default outer radius is the pointing limit when the tip land is narrow everywhere)
 MIN_ARC = 1e-7
+#: an arc whose sagitta (mm) is below this is its chord: GC_MakeArcOfCircle refuses three
+#: points that are collinear within its precision (a nearly pointed tip's short arc)
+MIN_SAG = 1e-9
 
 
 def _arc(r, a0, a1, z):
@@ -192,6 +195,8 @@ def _arc(r, a0, a1, z):
     from OCP.GC import GC_MakeArcOfCircle
     if r * abs(a1 - a0) < MIN_ARC:
         return None
+    if r * (1.0 - math.cos(0.5 * (a1 - a0))) < MIN_SAG:      # three points collinear to OCC: the chord
+        return _line(_pt(r, a0, z), _pt(r, a1, z))
     return GC_MakeArcOfCircle(_pt(r, a0, z), _pt(r, 0.5 * (a0 + a1), z), _pt(r, a1, z)).Value()
 
 
