@@ -233,28 +233,10 @@ def test_narrow_land_wheel_brep_on_the_envelope(tmp_path):
     sections by OCC at h = 0, at the kink (the 0.048 mm land) and either side of it: every
     point of the tooth's top (above the pitch circle) within the tolerance of the oracle's
     outline (both flank envelopes and the land between them), and a land on every tooth."""
-    import trimesh
-    from OCP.BRep import BRep_Tool
-    from occread import is_valid, read_step, sub_shapes
     tol, z2 = 0.01, 20
-    s = gear3d.worm(part="wheel", module=M, starts=Z1, wheel_teeth=z2, diameter_quotient=Q,
-                    axial_pressure_angle_deg=ALPHA, worm_type="ZA", tolerance=tol)
-    w = s.parts()[0]
-    info = gear3d.write(s.parts(), tmp_path / "w.step", step="brep")
-    gear3d.write(s.parts(), tmp_path / "w.stl")
-    assert "B-rep measured max_error=" in info and 0 < w.report["brep"]["max_error"] <= tol
-    shape = read_step(tmp_path / "w.step")
-    (solid,) = sub_shapes(shape, "solid")
-    shells = sub_shapes(solid, "shell")
-    is_closed = getattr(BRep_Tool, "IsClosed_s", None) or BRep_Tool.IsClosed
-    assert is_valid(shape) and len(shells) == 1 and is_closed(shells[0])
-    from OCP.BRepGProp import BRepGProp
-    from OCP.GProp import GProp_GProps
-    props = GProp_GProps()
-    (getattr(BRepGProp, "VolumeProperties_s", None) or BRepGProp.VolumeProperties)(shape, props, 1e-5, True)
-    mesh = trimesh.load(tmp_path / "w.stl")
+    w, shape, volume, mesh = written_wheel(tmp_path, z2, tol)
     assert mesh.is_watertight
-    assert abs(props.Mass() - mesh.volume) <= (w.report["max_error"] + tol) * mesh.area
+    assert abs(volume - mesh.volume) <= (w.report["max_error"] + tol) * mesh.area
     k = _kink(z2)
     for h in (0.0, k - 0.25, k + 0.25):                   # the teeth about +y
         P = _folded(_section_points(shape, h, window=(-6.0, 6.0, 15.0)), z2)
@@ -323,26 +305,9 @@ def test_pointed_wheel_brep_on_the_envelope(tmp_path):
     tolerance) x area; sections by OCC where the tooth points (the flanks meet: every top
     point within the tolerance of the oracle's two flanks, and the tooth's tip at the
     oracle's crossing radius) and either side of the pointed heights (the land)."""
-    import trimesh
-    from OCP.BRep import BRep_Tool
-    from occread import is_valid, read_step, sub_shapes
     tol, z2 = 0.05, 16
-    s = gear3d.worm(part="wheel", module=M, starts=Z1, wheel_teeth=z2, diameter_quotient=Q,
-                    axial_pressure_angle_deg=ALPHA, worm_type="ZA", tolerance=tol)
-    w = s.parts()[0]
-    gear3d.write(s.parts(), tmp_path / "w.step", step="brep")
-    gear3d.write(s.parts(), tmp_path / "w.stl")
-    assert 0 < w.report["brep"]["max_error"] <= tol
-    shape = read_step(tmp_path / "w.step")
-    (solid,) = sub_shapes(shape, "solid")
-    (shell,) = sub_shapes(solid, "shell")
-    assert is_valid(shape) and (getattr(BRep_Tool, "IsClosed_s", None) or BRep_Tool.IsClosed)(shell)
-    from OCP.BRepGProp import BRepGProp
-    from OCP.GProp import GProp_GProps
-    props = GProp_GProps()
-    (getattr(BRepGProp, "VolumeProperties_s", None) or BRepGProp.VolumeProperties)(shape, props, 1e-5, True)
-    mesh = trimesh.load(tmp_path / "w.stl")
-    assert abs(props.Mass() - mesh.volume) <= (w.report["max_error"] + tol) * mesh.area
+    w, shape, volume, mesh = written_wheel(tmp_path, z2, tol)
+    assert abs(volume - mesh.volume) <= (w.report["max_error"] + tol) * mesh.area
     h0, h1 = _closing(z2, 0.0, _kink(z2)), _closing(z2, _kink(z2), 9.0)
     window = (-6.0, 6.0, 12.0)
     for h in (0.5 * (h0 + _kink(z2)), _kink(z2), -0.5 * (_kink(z2) + h1)):     # pointed
@@ -356,3 +321,27 @@ def test_pointed_wheel_brep_on_the_envelope(tmp_path):
         P = _folded(_section_points(shape, h, window=window), z2)
         top = np.hypot(P[:, 0], P[:, 1]) > z2 * M / 2
         assert land(z2, h) > 0 and _distance(P[top], _outline(z2, h)).max() <= tol, h
+
+
+def written_wheel(tmp_path, z2: int, tol: float, starts: int = Z1):
+    """The ZA wheel (m 2, q 10, 20 deg axial) written as B-rep STEP and STL in ``tmp_path``,
+    its B-rep read back by OpenCascade (one valid solid with a closed shell): (the part, the
+    shape, OCC's volume in mm^3, the STL read by trimesh)."""
+    import trimesh
+    from OCP.BRep import BRep_Tool
+    from OCP.BRepGProp import BRepGProp
+    from OCP.GProp import GProp_GProps
+    from occread import is_valid, read_step, sub_shapes
+    s = gear3d.worm(part="wheel", module=M, starts=starts, wheel_teeth=z2, diameter_quotient=Q,
+                    axial_pressure_angle_deg=ALPHA, worm_type="ZA", tolerance=tol)
+    w = s.parts()[0]
+    info = gear3d.write(s.parts(), tmp_path / "w.step", step="brep")
+    gear3d.write(s.parts(), tmp_path / "w.stl")
+    assert "B-rep measured max_error=" in info and 0 < w.report["brep"]["max_error"] <= tol
+    shape = read_step(tmp_path / "w.step")
+    (solid,) = sub_shapes(shape, "solid")
+    (shell,) = sub_shapes(solid, "shell")
+    assert is_valid(shape) and (getattr(BRep_Tool, "IsClosed_s", None) or BRep_Tool.IsClosed)(shell)
+    props = GProp_GProps()
+    (getattr(BRepGProp, "VolumeProperties_s", None) or BRepGProp.VolumeProperties)(shape, props, 1e-5, True)
+    return w, shape, props.Mass(), trimesh.load(tmp_path / "w.stl")

@@ -188,30 +188,13 @@ def test_short_flank_wheel_brep_on_the_envelope(tmp_path):
     of the oracle's outline (the flank that reaches the tip, the other side's tip-edge
     trochoid and the tip arc between them, the root fillet and root circle), not within it
     of an outline whose tip edge is 0.3 mm lower, and no point above the tip circle."""
-    import trimesh
-    from OCP.BRep import BRep_Tool
-    from occread import is_valid, read_step, sub_shapes
-    from test_worm_brep_narrow_land import _distance, _section_points
+    from test_worm_brep_narrow_land import _distance, _section_points, written_wheel
     tol = 0.05
-    s = gear3d.worm(part="wheel", module=M, starts=Z1, wheel_teeth=Z2, diameter_quotient=Q,
-                    axial_pressure_angle_deg=ALPHA, worm_type="ZA", tolerance=tol)
-    w = s.parts()[0]
-    gear3d.write(s.parts(), tmp_path / "w.step", step="brep")
-    gear3d.write(s.parts(), tmp_path / "w.stl")
-    assert 0 < w.report["brep"]["max_error"] <= tol
-    shape = read_step(tmp_path / "w.step")
-    (solid,) = sub_shapes(shape, "solid")
-    (shell,) = sub_shapes(solid, "shell")
-    assert is_valid(shape) and (getattr(BRep_Tool, "IsClosed_s", None) or BRep_Tool.IsClosed)(shell)
-    from OCP.BRepGProp import BRepGProp
-    from OCP.GProp import GProp_GProps
-    props = GProp_GProps()
-    (getattr(BRepGProp, "VolumeProperties_s", None) or BRepGProp.VolumeProperties)(shape, props, 1e-5, True)
-    mesh = trimesh.load(tmp_path / "w.stl")
+    w, shape, volume, mesh = written_wheel(tmp_path, Z2, tol, starts=Z1)
     # closed: every edge of the merged STL in an even number of triangles (the two-start
     # wheel's root gap closes to an edge in the mid-plane, where two sheets touch: 4 or 6)
     assert (np.unique(mesh.edges_sorted, axis=0, return_counts=True)[1] % 2 == 0).all()
-    assert abs(props.Mass() - mesh.volume) <= (w.report["max_error"] + tol) * mesh.area
+    assert abs(volume - mesh.volume) <= (w.report["max_error"] + tol) * mesh.area
     for h in (H_OUT, -H_OUT):
         P = folded(_section_points(shape, h, window=(-7.0, 7.0, 15.0)), h)
         r = np.hypot(P[:, 0], P[:, 1])
