@@ -172,20 +172,26 @@ def _axis_distance_line(q, u, O, k):
     return abs((q - O) @ n) / np.linalg.norm(n)
 
 
-def test_shifted_contact_ratio_against_the_line_of_action():
-    rep = crossed_pair(12, 14, 1.0, 45.0, shift_coeff=0.5, mate_shift_coeff=0.3)
+def _active_path(rep):
+    """The line of action (Q, u, k2, O2 of :func:`_line_of_action`) and the parameters
+    (lo, hi) of its active part: each flank from its tangency point (nearest its axis) to its
+    tip cylinder, the common stretch of both."""
+    from scipy.optimize import minimize_scalar
     Q, u, k2, O2 = _line_of_action(rep)
     ra1, ra2 = rep["gear"]["tip_radius"], rep["mate"]["tip_radius"]
     d1 = lambda s: _axis_distance(Q + s * u, np.zeros(3), np.array([0, 0, 1.0]))     # noqa: E731
     d2 = lambda s: _axis_distance(Q + s * u, O2, k2)                                   # noqa: E731
-    # tangency points (nearest each axis), then each flank from its tangency to its tip cylinder
-    from scipy.optimize import minimize_scalar
     s1 = minimize_scalar(d1, bracket=(-30, 0, 30), tol=1e-12).x
     s2 = minimize_scalar(d2, bracket=(-30, 0, 30), tol=1e-12).x
     sg = 1.0 if s2 > s1 else -1.0
     tip1 = brentq(lambda s: d1(s) - ra1, s1, s1 + sg * 40)
     tip2 = brentq(lambda s: d2(s) - ra2, s2, s2 - sg * 40)
-    lo, hi = max(min(s1, tip1), min(s2, tip2)), min(max(s1, tip1), max(s2, tip2))
+    return Q, u, k2, O2, max(min(s1, tip1), min(s2, tip2)), min(max(s1, tip1), max(s2, tip2))
+
+
+def test_shifted_contact_ratio_against_the_line_of_action():
+    rep = crossed_pair(12, 14, 1.0, 45.0, shift_coeff=0.5, mate_shift_coeff=0.3)
+    Q, u, k2, O2, lo, hi = _active_path(rep)
     eps = (hi - lo) / (math.pi * math.cos(AN))
     chk = check_crossed(rep, width=10.0, grid=6)
     assert chk["contact_ratio"] == pytest.approx(eps, abs=1e-6)
@@ -225,18 +231,8 @@ def test_narrow_faces_clip_the_path_of_contact():
     found here, clipped by the tip cylinders and by both faces (|z| <= w/2 in each wheel's
     frame: linear along the line)."""
     rep = crossed_pair(12, 14, 1.0, 45.0, shift_coeff=0.5, mate_shift_coeff=0.3)
-    Q, u, k2, O2 = _line_of_action(rep)
+    Q, u, k2, O2, lo, hi = _active_path(rep)
     w = 3.0
-    ra1, ra2 = rep["gear"]["tip_radius"], rep["mate"]["tip_radius"]
-    d1 = lambda s: _axis_distance(Q + s * u, np.zeros(3), np.array([0, 0, 1.0]))     # noqa: E731
-    d2 = lambda s: _axis_distance(Q + s * u, O2, k2)                                   # noqa: E731
-    from scipy.optimize import minimize_scalar
-    s1 = minimize_scalar(d1, bracket=(-30, 0, 30), tol=1e-12).x
-    s2 = minimize_scalar(d2, bracket=(-30, 0, 30), tol=1e-12).x
-    sg = 1.0 if s2 > s1 else -1.0
-    tip1 = brentq(lambda s: d1(s) - ra1, s1, s1 + sg * 40)
-    tip2 = brentq(lambda s: d2(s) - ra2, s2, s2 - sg * 40)
-    lo, hi = max(min(s1, tip1), min(s2, tip2)), min(max(s1, tip1), max(s2, tip2))
     for zc, dz in ((Q[2], u[2]), ((Q - O2) @ k2, u @ k2)):         # the height along the line in each wheel
         a, b = sorted(((-w / 2 - zc) / dz, (w / 2 - zc) / dz))
         lo, hi = max(lo, a), min(hi, b)
