@@ -57,9 +57,10 @@ CASES = [
     # longer serves: its end faces are a linear fan now (0.4 s in all)
     (("--max-seconds", "1"), "/api/download?family=triangular&teeth=10000&module=0.3&b.width=1&b.chamfer=0.01"
      "&fmt=stl", "time"),
-    # a 1,000-tooth helical body at 2 um, 50 mm wide: far more than 300 MiB (a worker starts near 120 MiB)
+    # a 1,000-tooth helical body at 2 um, 100 mm wide: far more than 300 MiB (a worker starts near 120 MiB;
+    # 50 mm wide fits since this session's lighter STL path)
     (("--max-memory", "300MiB", "--max-seconds", "600"),
-     "/api/download?family=involute&teeth=1000&tolerance=0.002&b.width=50&b.kind=helical&b.helix_angle_deg=30"
+     "/api/download?family=involute&teeth=1000&tolerance=0.002&b.width=100&b.kind=helical&b.helix_angle_deg=30"
      "&fmt=stl", "memory"),
 ]
 
