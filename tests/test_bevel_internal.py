@@ -160,16 +160,12 @@ def test_internal_spiral_check_face_contact_ratio():
     assert r["conjugate"] and r["contact_ratio"] == pytest.approx(exact_contact_ratio(g) + face, abs=1e-9)
 
 
-@pytest.mark.parametrize("z1, z2, psi, rc", [(20, 30, 35.0, None), (30, 20, 0.0, 30.0)])
-def test_internal_spiral_pair_in_mesh(z1, z2, psi, rc):
-    """Spiral (gear 1 external) and Zerol (gear 1 internal): no common volume beyond the chords
-    at two roll positions, contact when gear 1 turns 4 mrad either way; the internal body's
-    volume is the straight one's (each sphere turned rigidly) within its surface x tolerance."""
-    tol = 0.05
-    b = gear3d.bevel(teeth=z1, mate_teeth=z2, module=2.0, shaft_angle_deg=150, part="pair", tolerance=tol,
-                     spiral_angle_deg=psi, cutter_radius=rc)
+def assert_spiral_pair_in_mesh(b, z1, z2, tol, **straight):
+    """A spiral/Zerol pair ``b`` (gear 1, then the mate, placed in mesh): common volume below
+    0.02 mm³ (the chords) at two roll positions, above 1 mm³ when gear 1 turns 4 mrad more
+    either way (manifold3d); the internal body's volume is the straight pair's (``straight``:
+    the keywords of that bevel) within its surface x ``tol``."""
     gear, mate = b.bodies
-    assert b.report.max_error <= tol and b.report.spiral["kind"] == ("spiral" if psi else "zerol")
     for turn in (0.0, 0.1):
         T1, R2 = np.eye(4), np.eye(4)
         R2[:3, :3] = _rot(turn * z1 / z2)
@@ -178,9 +174,21 @@ def test_internal_spiral_pair_in_mesh(z1, z2, psi, rc):
             T1[:3, :3] = _rot(turn + extra)
             assert lo <= (gear.manifold.transform(T1[:3, :4]) ^ m2).volume() < hi
     inner = [x for x in b.bodies if x.manifold.genus() == 1][0]
-    straight = gear3d.bevel(teeth=z1, mate_teeth=z2, module=2.0, shaft_angle_deg=150, part=inner.name, tolerance=tol)
+    flat = gear3d.bevel(teeth=z1, mate_teeth=z2, part=inner.name, tolerance=tol, **straight)
     area = inner.manifold.surface_area()
-    assert inner.manifold.volume() == pytest.approx(straight.bodies[0].manifold.volume(), abs=area * tol)
+    assert inner.manifold.volume() == pytest.approx(flat.bodies[0].manifold.volume(), abs=area * tol)
+
+
+@pytest.mark.parametrize("z1, z2, psi, rc", [(20, 30, 35.0, None), (30, 20, 0.0, 30.0)])
+def test_internal_spiral_pair_in_mesh(z1, z2, psi, rc):
+    """Spiral (gear 1 external) and Zerol (gear 1 internal): no common volume beyond the chords
+    at two roll positions, contact when gear 1 turns 4 mrad either way; the internal body's
+    volume is the straight one's (each sphere turned rigidly) within its surface x tolerance."""
+    tol = 0.05
+    b = gear3d.bevel(teeth=z1, mate_teeth=z2, module=2.0, shaft_angle_deg=150, part="pair", tolerance=tol,
+                     spiral_angle_deg=psi, cutter_radius=rc)
+    assert b.report.max_error <= tol and b.report.spiral["kind"] == ("spiral" if psi else "zerol")
+    assert_spiral_pair_in_mesh(b, z1, z2, tol, module=2.0, shaft_angle_deg=150)
 
 
 def test_internal_figures_cli(tmp_path):
