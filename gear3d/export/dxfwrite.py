@@ -14,9 +14,12 @@ on saving), as an offset from the first entity's handle. Writing fills in the en
 Numbers are written as Python writes floats (``repr``: the shortest text that reads back
 as the same double), so the file holds exactly the arcs that were certified.
 
->>> import numpy as np, os, tempfile
+Vertices and bulges may be numpy arrays or plain lists (the module imports no numpy: the
+numpy-free DXF path, :mod:`gear3d.lite`, writes through it).
+
+>>> import os, tempfile
 >>> from gear3d.export.dxfwrite import write, Polyline
->>> sq = Polyline("OUTER", np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0]]), np.array([0.0, 0.5, 0.0]))
+>>> sq = Polyline("OUTER", [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0)], [0.0, 0.5, 0.0])
 >>> p = os.path.join(tempfile.mkdtemp(), "t.dxf")
 >>> write(p, "R2000", [sq], ((0.0, 0.0), (1.0, 1.0)))
 >>> "LWPOLYLINE" in open(p).read()
@@ -27,8 +30,6 @@ from __future__ import annotations
 import functools
 import math
 from pathlib import Path
-
-import numpy as np
 
 from ..records import dataclass
 
@@ -45,10 +46,10 @@ LAYERS = {"OUTER": 7, "INNER": 5, "LEAD_IN": 3}
 @dataclass
 class Polyline:
     """A closed contour: ``vertices`` (N, 2) mm and ``bulges`` (N,): segment k from vertex
-    k to k + 1 (the last back to the first)."""
+    k to k + 1 (the last back to the first); numpy arrays or lists."""
     layer: str
-    vertices: np.ndarray
-    bulges: np.ndarray
+    vertices: object
+    bulges: object
 
 
 @dataclass
@@ -132,16 +133,21 @@ def _template(version: str):
 
 # ------------------------------------------------------------------ entities
 
+def _plain(e: Polyline):
+    """The contour's vertices [(x, y)] and bulges [b] as Python floats."""
+    V, B = e.vertices, e.bulges
+    V = V.tolist() if hasattr(V, "tolist") else V
+    B = B.tolist() if hasattr(B, "tolist") else B
+    return [(float(x), float(y)) for x, y in V], [float(b) for b in B]
+
+
 def _poly(e: Polyline, h: str, owner: str) -> str:
-    xy = np.asarray(e.vertices, float)
-    b = np.asarray(e.bulges, float)
-    arc = b != 0
-    # one format string, one % (C speed): x, y and the bulge where it is not 0
-    fmt = "".join(np.where(arc, " 10\n%r\n 20\n%r\n 42\n%r\n", " 10\n%r\n 20\n%r\n").tolist())
-    vals = np.concatenate([xy, b[:, None]], axis=1)
-    flat = vals.ravel()[np.concatenate([np.ones((len(b), 2), bool), arc[:, None]], axis=1).ravel()]
+    V, B = _plain(e)
+    # x, y and the bulge where it is not 0, each as repr writes it
+    body = "".join(f" 10\n{x!r}\n 20\n{y!r}\n 42\n{b!r}\n" if b != 0 else f" 10\n{x!r}\n 20\n{y!r}\n"
+                   for (x, y), b in zip(V, B))
     return (f"  0\nLWPOLYLINE\n  5\n{h}\n330\n{owner}\n100\nAcDbEntity\n  8\n{e.layer}\n100\nAcDbPolyline\n"
-            f" 90\n{len(xy)}\n 70\n1\n" + fmt % tuple(flat.tolist()))
+            f" 90\n{len(V)}\n 70\n1\n" + body)
 
 
 def _line(layer, a, b, h: str, owner: str) -> str:
@@ -173,9 +179,8 @@ def bulge_to_arc(A, B, b):
 
 def _r12_entities(e: Polyline):
     """LINE/ARC entities of one contour in cutting order: (kind, data)."""
-    V = np.asarray(e.vertices, float)
-    W = np.roll(V, -1, axis=0)
-    for A, B, b in zip(V.tolist(), W.tolist(), np.asarray(e.bulges, float).tolist()):
+    V, Bs = _plain(e)
+    for A, B, b in zip(V, V[1:] + V[:1], Bs):
         if b == 0.0:
             yield "line", (A, B)
         else:
