@@ -319,6 +319,7 @@ LIGHT = {
     "gear3d.reports.profile": "profile and body reports (dataclasses)",
     "gear3d.reports.pairs": "the pair check's report (dataclasses)",
     "gear3d.reports.bevel": "the bevel set's reports (dataclasses)",
+    "gear3d.reports.bevelcheck": "the bevel pair's rolling check reports (dataclasses)",
     "gear3d.solids.kinds": "what a writer was given, told by its interface (standard library)",
     "gear3d.reports.worm": "the worm set's report (dataclasses, numpy)",
     "gear3d.reports.facegear": "the face gear set's report (dataclasses)",

@@ -7,7 +7,7 @@ keys. Reports also read like a mapping (``report["max_error"]``, ``report.get(..
 templates, the web page and user code that index them keep working.
 
 Each domain's reports live in their own submodule (:mod:`~gear3d.reports.base`,
-``profile``, ``pairs``, ``bevel``, ``worm``, ``facegear``, ``racks``, ``harmonic``, ``planetary``, ``scene``);
+``profile``, ``pairs``, ``bevel``, ``bevelcheck``, ``worm``, ``facegear``, ``racks``, ``harmonic``, ``planetary``, ``scene``);
 ``from gear3d.reports import X`` loads only X's submodule, on first use, so a profile or
 body command does not create the dataclasses of sets, scenes and strain-wave parts (each
 dataclass compiles its generated methods when it is made).
@@ -24,10 +24,10 @@ _LAZY = {
     "ProfileReport": "gear3d.reports.profile",
     "BodyReport": "gear3d.reports.profile",
     "PairReport": "gear3d.reports.pairs",
-    "BevelCheckReport": "gear3d.reports.bevel",
+    "BevelCheckReport": "gear3d.reports.bevelcheck",
     "MemberReport": "gear3d.reports.bevel",
     "BevelReport": "gear3d.reports.bevel",
-    "BevelSphereReport": "gear3d.reports.bevel",
+    "BevelSphereReport": "gear3d.reports.bevelcheck",
     "WormReport": "gear3d.reports.worm",
     "FaceGearReport": "gear3d.reports.facegear",
     "RackReport": "gear3d.reports.racks",
