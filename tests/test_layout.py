@@ -334,6 +334,7 @@ LIGHT = {
     "gear3d.budget": "resource estimates and checks (standard library)",
     "gear3d.costs": "the budget's per-item costs (standard library)",
     "gear3d.profiles": "the family registry (the families load on first use)",
+    "gear3d.fronts": "the thin fronts' published keyword signatures (standard library)",
     "gear3d.spec": "GearSpec and gear3d.profile, on top of the registry (bodies load on first use)",
     "gear3d.export": "the format registry (the formats load on first use)",
     "gear3d.filesafe": "destination checks and atomic writes (standard library)",

@@ -90,7 +90,7 @@ from ..records import dataclass
 from ..errors import GearError, check_choice, check_number
 from ..params import MESH_TOLERANCE
 from ..reports import BevelReport, MemberReport
-from ..profiles.keywords import front
+from ..fronts import front
 
 PARTS = ("gear", "mate", "pair")
 #: mm: default tolerance (bodies are meshes)

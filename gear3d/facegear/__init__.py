@@ -29,7 +29,7 @@ from dataclasses import dataclass
 from ..errors import GearError, check_choice, check_number
 from ..params import MESH_TOLERANCE
 from ..reports import FaceGearReport
-from ..profiles.keywords import front
+from ..fronts import front
 from .geometry import FaceGeometry, face_geometry
 from .section import section
 

@@ -29,7 +29,6 @@ gear3d.errors.GearError: pressure_angle_deg = 50 is not allowed: a number in [5,
 """
 from __future__ import annotations
 
-import inspect
 import math
 from dataclasses import fields
 
@@ -39,6 +38,7 @@ from ..records import dataclass
 from ..envelope import circle_loop
 from ..errors import GearError, check_bool, check_number
 from . import reject_unknown, table
+from ..fronts import front  # noqa: F401  (re-exported: the families' fronts)
 
 
 def _checked(obj, family: str, names) -> None:
@@ -228,21 +228,3 @@ def grouped(family: str, options: dict, *groups) -> tuple:
     owner = {f.name: g for g in groups for f in fields(g)}
     reject_unknown(family, {k: v for k, v in options.items() if k not in owner})
     return tuple(g(**{k: v for k, v in options.items() if owner[k] is g}) for g in groups)
-
-
-def front(order: tuple, *groups):
-    """Decorator: publish a thin front's keyword signature. ``order`` names every keyword
-    in its documented order: the function's own parameters and the fields of ``groups``
-    (keyword-only, with the fields' defaults); unknown ones still reach ``**extra``."""
-    def deco(fn):
-        sig = inspect.signature(fn)
-        own = {n: p for n, p in sig.parameters.items() if p.kind is not p.VAR_KEYWORD}
-        defaults = {f.name: f.default for g in groups for f in fields(g)}
-        if set(order) != set(own) | set(defaults) or len(order) != len(own) + len(defaults):
-            raise TypeError(f"{fn.__name__}: the published order does not name each keyword once")
-        params = [own[n] if n in own else inspect.Parameter(n, inspect.Parameter.KEYWORD_ONLY, default=defaults[n])
-                  for n in order]
-        params.append(inspect.Parameter("extra", inspect.Parameter.VAR_KEYWORD))
-        fn.__signature__ = sig.replace(parameters=params)
-        return fn
-    return deco
