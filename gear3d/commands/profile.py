@@ -292,6 +292,10 @@ def run(args) -> int:
         from .rackflags import run_profile_cli
         return run_profile_cli(args, family_params, _write_options)
     out = args.output
+    if isinstance(out, str) and out.lower().endswith(".dxf"):    # the common EDM case, before numpy
+        from ..lite.cli import run_fast
+        if run_fast(args) is not None:
+            return 0
     if out is not None:
         check_output(out, kinds="profile")
     from .figureflag import check_figure_arg, write_figure_arg

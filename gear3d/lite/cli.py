@@ -1,0 +1,107 @@
+"""``gear3d profile involute ... -o x.dxf`` without numpy, when every option is in scope.
+
+:func:`run_fast` is called by the profile command before anything imports numpy. It
+returns None (the numpy path then runs, unchanged) unless the run is the common wire-EDM
+case: family ``involute``, an external spur gear, flags among teeth, module, pressure
+angle, addendum, dedendum, tool tip radius (> 0) and a numeric profile shift, a ``.dxf``
+output in R2000 (default) or R12 with no other DXF option, no figure, 1e-5 mm <= tolerance
+<= the numpy path's largest, at most :data:`MAX_TEETH` teeth, default CPU and memory
+limits, and a tooth the fast path covers (:func:`gear3d.lite.tooth.half_tooth`: no
+undercut, not pointed). ``GEAR3D_LITE=0`` in the environment turns it off.
+
+The file is the same geometry certified the same way (:mod:`gear3d.lite.dxf`); the stdout
+line reports the certified error (``max_error``) like the numpy path's.
+
+>>> import argparse
+>>> run_fast(argparse.Namespace(family="sine", output="x.dxf")) is None     # not in scope
+True
+"""
+from __future__ import annotations
+
+import os
+import sys
+
+#: the family flags the fast path takes (any other flag given: the numpy path)
+KEYS = ("teeth", "module", "pressure_angle_deg", "addendum_coeff", "dedendum_coeff", "tip_radius_coeff",
+        "shift_coeff")
+#: the most teeth the fast path takes (its cost stays far below the default budget)
+MAX_TEETH = 1000
+#: mm: the finest tolerance the fast path takes
+MIN_TOLERANCE = 1e-5
+
+
+def in_scope(args) -> bool:
+    """The flags alone are in the fast path's scope (nothing is checked or raised here)."""
+    from ..commands.mateflags import tool_flags_given
+    from ..commands.profile import DXF_FLAGS, _flag_params, _given
+    out = getattr(args, "output", None)
+    if os.environ.get("GEAR3D_LITE") == "0" or args.family != "involute" or not isinstance(out, str) \
+            or not out.lower().endswith(".dxf"):
+        return False
+    if getattr(args, "rack", False) or args.internal or args.figure is not None or args.width is not None:
+        return False
+    for prm, dest in DXF_FLAGS:
+        v = getattr(args, dest, None)
+        if _given(v) and not (dest == "dxf_version" and str(v).upper() in ("R2000", "R12")):
+            return False
+    for dest, _p in _flag_params(helix=True):
+        v = getattr(args, dest, None)
+        if v is not None and (dest not in KEYS or isinstance(v, str)):
+            return False
+    return not tool_flags_given(args)
+
+
+def _budget_default() -> bool:
+    from ..budget import DEFAULT_MAX_MEMORY, DEFAULT_MAX_SECONDS, current
+    b = current()
+    return b.max_seconds >= DEFAULT_MAX_SECONDS and b.max_memory >= DEFAULT_MAX_MEMORY
+
+
+def run_fast(args):
+    """Run the command on the fast path and return 0, or return None (out of scope)."""
+    if getattr(args, "family", None) != "involute" or not in_scope(args) or not _budget_default():
+        return None
+    from ..commands.profile import family_params, print_notes
+    from ..export import check_output
+    from ..params import by_name
+    from ..params.tolerance import max_tolerance
+    out = args.output
+    check_output(out, kinds="profile")               # the numpy path's first checks, same errors
+    kw = family_params(args, out)
+    tab = by_name("involute")
+    g = {k: kw.get(k, tab[k].default) for k in KEYS}
+    z, m, tol = g["teeth"], g["module"], kw["tolerance"]
+    if not (3 <= z <= MAX_TEETH and MIN_TOLERANCE <= tol <= min(m / 4, max_tolerance(m))):
+        return None
+    from .tooth import half_tooth
+    tooth = half_tooth(z, m, g["pressure_angle_deg"], g["addendum_coeff"], g["dedendum_coeff"],
+                       g["tip_radius_coeff"], g["shift_coeff"])
+    if tooth is None:
+        return None
+    version = str(args.dxf_version or "R2000").upper()
+    rep = write_contour(tooth, z, tol, out, version)
+    sys.stdout.write(f"wrote {out}: involute z={z} max_error={rep['max_error']:.3g} mm (tolerance {tol:g} mm) "
+                     f"dxf {version}: {rep['arcs'] + rep['lines']} segments ({rep['arcs']} arcs + {rep['lines']} "
+                     f"lines; numpy-free path), measured max error {rep['max_error']:.3g} mm (curve->dxf "
+                     f"{rep['max_error']:.3g} mm), max tangent jump {rep['max_tangent_jump_deg']:.2g} deg, "
+                     f"{rep['corners']} true corners\n")
+    print_notes(args)
+    return 0
+
+
+def write_contour(tooth, z: int, tol: float, path, version: str = "R2000") -> dict:
+    """Certify the contour (:func:`gear3d.lite.dxf.certified_contour`) and write it to
+    ``path`` (atomic; nothing is written unless its certified error is within ``tol`` mm);
+    the report (dict, mm)."""
+    from ..errors import ToleranceError
+    from ..export import dxfwrite
+    from ..filesafe import atomic_path
+    from .dxf import bbox, certified_contour
+    c = certified_contour(tooth, z, tol)
+    if c is None or not c["max_error"] <= tol:
+        raise ToleranceError("tolerance", tol, "a larger tolerance for the arc fit",
+                             "no certified fit" if c is None else f"certified {c['max_error']:.3g} mm")
+    with atomic_path(path) as tmp:
+        dxfwrite.write(tmp, version, [dxfwrite.Polyline("OUTER", c["vertices"], c["bulges"])],
+                       bbox(c["vertices"], c["bulges"]))
+    return c
