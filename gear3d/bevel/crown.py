@@ -83,12 +83,23 @@ def element_xt(el, t):
     fan, T is the tangent perpendicular to the swept normal (the contact needs only that)."""
     t = np.asarray(t, float)
     if isinstance(el, Fan):
-        psi = el.psi0 + (el.psi1 - el.psi0) * t
-        x = np.broadcast_to(np.asarray(el.x, float), t.shape + (3,)).copy()
-        e, n = local_frame(np.asarray(el.x, float)[None, :])
-        T = -np.sin(psi)[:, None] * e + np.cos(psi)[:, None] * n
-        return x, T
+        return fan_xt(el)(t)
     return el.xt(t)
+
+
+def fan_xt(el: Fan):
+    """``xt(t) -> (X, T)`` (N, 3 each) of a fan, its corner and local frame made once: the
+    corner X repeated and the tangent perpendicular to the normal swept from ψ0 to ψ1."""
+    x = np.asarray(el.x, float)
+    e, n = local_frame(x[None, :])
+    psi0, dpsi = el.psi0, el.psi1 - el.psi0
+
+    def xt(t):
+        t = np.asarray(t, float)
+        psi = psi0 + dpsi * t
+        return (np.broadcast_to(x, t.shape + (3,)).copy(),
+                -np.sin(psi)[:, None] * e + np.cos(psi)[:, None] * n)
+    return xt
 
 
 def _latitude_arc(lam0, lam1, mu, name):

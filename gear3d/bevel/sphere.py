@@ -41,7 +41,7 @@ import math
 import numpy as np
 
 from ..envelope import EnvelopePiece
-from .crown import Fan, element_xt
+from .crown import Fan, fan_xt
 
 
 def crown_frame(delta: float) -> np.ndarray:
@@ -104,11 +104,16 @@ FLIP = np.array([1.0, -1.0, -1.0])
 def sphere_envelope_piece(el, delta: float, zs: float) -> EnvelopePiece:
     """Exact evaluator ``G(t) -> (N, 2)`` (mm, plane z = zs of the gear frame) of the
     envelope of one crown element rolling on the pitch cone of angle ``delta`` (rad), with
-    the tool's tangent at contact for the builder's regularity test (smooth pieces)."""
+    the tool's tangent at contact for the builder's regularity test (smooth pieces). The
+    element's fixed parts (a fan's local frame, the crown frame) are made once here: the
+    builder calls the evaluator some 10 times a piece."""
+    xt = fan_xt(el) if isinstance(el, Fan) else el.xt
+    project = _projector(delta, zs)
+
     def evaluate(t, tangent=True):
         t = np.atleast_1d(np.asarray(t, float))
-        X, T = element_xt(el, t)
-        return projected_envelope(X, T, delta, zs, tangent)
+        X, T = xt(t)
+        return project(X, T, tangent)
     return EnvelopePiece(evaluate, not isinstance(el, Fan))
 
 
@@ -118,31 +123,44 @@ def projected_envelope(X, T, delta: float, zs: float, tangent: bool = True):
     angle ``delta``: :func:`contact_roll`, :func:`generated_points` (an internal member in
     its own frame, :data:`FLIP`), :func:`gnomonic` and :func:`gnomonic_tangent` in one pass
     over the coordinates (the builder calls this for every sample batch)."""
-    lam_p = contact_roll(X, T)
-    psi = -lam_p
-    c1, s1 = np.cos(psi), np.sin(psi)
-    phi = psi / math.sin(delta)
-    c2, s2 = np.cos(-phi), np.sin(-phi)
-    Ct = crown_frame(delta).T
-    f = -1.0 if delta > math.pi / 2 else 1.0                 # internal: y and z turned over
+    return _projector(delta, zs)(X, T, tangent)
 
-    def roll(V):                 # the same operations as generated_points (the same bits)
-        R = np.empty_like(V)
-        R[:, 0], R[:, 1], R[:, 2] = c1 * V[:, 0] - s1 * V[:, 1], s1 * V[:, 0] + c1 * V[:, 1], V[:, 2]
-        R = R @ Ct
-        return c2 * R[:, 0] - s2 * R[:, 1], f * (s2 * R[:, 0] + c2 * R[:, 1]), f * R[:, 2]
-    gx, gy, gz = roll(X)
-    g = np.empty((len(gx), 2))
-    with np.errstate(divide="ignore", invalid="ignore"):
-        z = np.where(gz > 0, gz, np.nan)
-        g[:, 0], g[:, 1] = zs * gx / z, zs * gy / z
-        if not tangent:
-            return g, None
-        tx, ty, tz = roll(T)
-        zz = gz * gz
-        d = np.empty_like(g)
-        d[:, 0], d[:, 1] = zs * (tx * gz - gx * tz) / zz, zs * (ty * gz - gy * tz) / zz
-    return g, d
+
+def _projector(delta: float, zs: float):
+    """:func:`projected_envelope` for one pitch angle ``delta`` (rad) and plane ``zs`` (mm):
+    ``project(X, T, tangent)``, its constants (the crown frame, sin δ, the internal turn)
+    made once."""
+    Ct = crown_frame(delta).T
+    sd = math.sin(delta)
+    internal = delta > math.pi / 2                           # y and z turned over
+
+    def project(X, T, tangent=True):
+        lam_p = contact_roll(X, T)
+        psi = -lam_p
+        c1, s1 = np.cos(psi), np.sin(psi)
+        phi = psi / sd
+        c2, s2 = np.cos(-phi), np.sin(-phi)
+
+        def roll(V):             # the same operations as generated_points (the same bits)
+            R = np.empty_like(V)
+            R[:, 0], R[:, 1], R[:, 2] = c1 * V[:, 0] - s1 * V[:, 1], s1 * V[:, 0] + c1 * V[:, 1], V[:, 2]
+            R = R @ Ct
+            if internal:
+                return c2 * R[:, 0] - s2 * R[:, 1], -(s2 * R[:, 0] + c2 * R[:, 1]), -R[:, 2]
+            return c2 * R[:, 0] - s2 * R[:, 1], s2 * R[:, 0] + c2 * R[:, 1], R[:, 2]
+        gx, gy, gz = roll(X)
+        g = np.empty((len(gx), 2))
+        with np.errstate(divide="ignore", invalid="ignore"):
+            z = np.where(gz > 0, gz, np.nan)
+            g[:, 0], g[:, 1] = zs * gx / z, zs * gy / z
+            if not tangent:
+                return g, None
+            tx, ty, tz = roll(T)
+            zz = gz * gz
+            d = np.empty_like(g)
+            d[:, 0], d[:, 1] = zs * (tx * gz - gx * tz) / zz, zs * (ty * gz - gy * tz) / zz
+        return g, d
+    return project
 
 
 def sphere_envelope(elements, delta: float, zs: float):
