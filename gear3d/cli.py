@@ -259,6 +259,10 @@ def main(argv=None) -> int:
         sys.stderr.write(f"gear3d: error: {_one_line(e)}\n")
         return 2
     first = next((w for w in words if not w.startswith("-")), None)
+    if argv is None and first == "profile" and not lim:     # the numpy-free DXF path: no supervisor
+        from .lite.cli import fast_words
+        if fast_words(words):
+            return _main(words, lim)
     if argv is None and first in COMMANDS and first not in UNSUPERVISED and hasattr(os, "fork") \
             and os.environ.get("GEAR3D_NO_SUPERVISOR") != "1":
         from .watchdog import supervise

@@ -30,6 +30,69 @@ MAX_TEETH = 1000
 MIN_TOLERANCE = 1e-5
 
 
+#: the flags :func:`fast_words` takes (flag -> parameter); the value follows, or ``=value``
+WORD_FLAGS = {"--" + k.replace("_", "-"): k for k in KEYS + ("tolerance", "dxf_version")}
+WORD_FLAGS.update({"-o": "output", "--output": "output"})
+
+
+def fast_words(words) -> bool:
+    """True when the command line ``words`` (the budget flags already taken off) is a
+    fast-path run by a strict reading of its own: ``profile involute``, then only the
+    flags of :data:`WORD_FLAGS`, each once with a value in its table's range, an output
+    ending in ``.dxf`` and a tooth :func:`gear3d.lite.tooth.half_tooth` covers. The CLI
+    then runs it in its own process (the in-process guard's CPU timer and address-space
+    limit apply; the work is pure Python and bounded by the scope), without forking a
+    supervisor. Anything else (False) takes the usual way; nothing is raised here.
+
+    >>> fast_words(["profile", "involute", "--teeth", "20", "-o", "g.dxf"])
+    True
+    >>> fast_words(["profile", "involute", "--teeth", "20", "--kerf", "0.1", "-o", "g.dxf"])
+    False
+    """
+    if os.environ.get("GEAR3D_LITE") == "0" or words[:2] != ["profile", "involute"]:
+        return False
+    got, rest = {}, list(words[2:])
+    while rest:
+        w = rest.pop(0)
+        flag, eq, val = w.partition("=")
+        if flag not in WORD_FLAGS or WORD_FLAGS[flag] in got:
+            return False
+        if not eq:
+            if not rest:
+                return False
+            val = rest.pop(0)
+        got[WORD_FLAGS[flag]] = val
+    try:
+        return _fast_values(got)
+    except (ValueError, TypeError, ArithmeticError):
+        return False
+
+
+def _fast_values(got: dict) -> bool:
+    from ..errors import GearError
+    from ..params import by_name
+    from ..params.tolerance import max_tolerance
+    out = got.pop("output", "")
+    ver = got.pop("dxf_version", "R2000").upper()
+    if not out.lower().endswith(".dxf") or out.startswith("-") or ver not in ("R2000", "R12"):
+        return False
+    tab = by_name("involute")
+    g = {}
+    try:
+        for k in KEYS:
+            g[k] = tab[k].check(int(got[k]) if k == "teeth" else float(got[k])) if k in got else tab[k].default
+    except GearError:
+        return False
+    z, m = g["teeth"], g["module"]
+    from ..params import DEFAULT_TOLERANCE
+    tol = float(got.get("tolerance", DEFAULT_TOLERANCE))
+    if not (3 <= z <= MAX_TEETH and MIN_TOLERANCE <= tol <= min(m / 4, max_tolerance(m))):
+        return False
+    from .tooth import half_tooth
+    return half_tooth(z, m, g["pressure_angle_deg"], g["addendum_coeff"], g["dedendum_coeff"],
+                      g["tip_radius_coeff"], g["shift_coeff"]) is not None
+
+
 def in_scope(args) -> bool:
     """The flags alone are in the fast path's scope (nothing is checked or raised here)."""
     from ..commands.mateflags import tool_flags_given
