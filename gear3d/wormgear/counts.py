@@ -42,3 +42,23 @@ def worm_counts(d, part: str) -> dict:
     worm = WORM_FACTOR * 2 * per_layer * turns / dth if part in ("worm", "pair") else 0.0
     return {"wheel": wheel, "worm": worm, "layers": layers, "per_tooth": per_tooth, "per_layer": per_layer,
             "worm_layers": turns / dth, "by_section": by_section}
+
+
+def wheel_estimate(d, tol: float):
+    """The wheel body's own estimate (:class:`gear3d.budget.Estimate`) at ``tol`` (mm): its
+    :func:`worm_counts` triangles at ``COSTS["worm.body"]``, as the plan counts them
+    (:func:`gear3d.plan_sets.plan_worm`). The wheel builder charges it before it builds a
+    section or its mesh (:func:`gear3d.wormgear.wheel_body.wheel_body`).
+
+    >>> from gear3d.wormgear.design import design
+    >>> e = wheel_estimate(design(module=2, starts=1, wheel_teeth=30), 0.01)
+    >>> e.triangles > 0 and e.seconds > 0.4
+    True
+    """
+    from dataclasses import replace
+
+    from .. import budget
+    tri = worm_counts(replace(d, tolerance=tol) if tol != d.tolerance else d, "wheel")["wheel"]
+    c = budget.COSTS["worm.body"]
+    return budget.Estimate(c.fixed_seconds + c.seconds * tri, c.fixed_bytes + c.bytes * tri, tri,
+                           f"a worm wheel of {tri:,.0f} triangles")

@@ -211,9 +211,12 @@ def wheel_body(d, tolerance=None, bore=None, hub_diameter=None, hub_length=None,
                                                              unit="mm")
     feats = check_features(d, d.wheel_root_radius, bore, hub_diameter, hub_length, tol, keyway=keyway,
                            web_thickness=web_thickness, rim_diameter=rim_diameter)
-    V, F, info = _build(d, tol)
+    from .counts import wheel_estimate
+    with budget.stage():           # charged before any section or mesh; the mesh's count is a try of it
+        budget.charge(wheel_estimate(d, tol), "tolerance", tol, key="body")
+        V, F, info = _build(d, tol)
+        budget.check_body(len(F), "tolerance", tol)
     sec_err, band_err = info["section_max_error"], info["band_max_error"]
-    budget.check_body(len(F), "tolerance", tol)
     man = None
     if feats:
         man = _apply_features(V, F, d, feats, tol)
