@@ -74,7 +74,7 @@ def half_tooth(z: int, m: float, alpha_deg: float, ha: float = 1.0, hf: float = 
     uc = (-rho - vc * sa) / ca + u0
     if uc < -p / 2:
         return None
-    fu, fv = uc + rho * ca, vc + rho * sa
+    fv = vc + rho * sa                                       # the fillet ends on the flank line at height fv
     rf, ra = rp - hc + s, rp + hr + s
     if rf <= 0 or fv - s >= rp * sa * sa * (1 - 1e-9):        # undercut: the flank turns back at r_b
         return None
