@@ -212,7 +212,7 @@ def plan_bevel(kw: dict, output=None, step=None, png=None, json=None, preview=No
     figures; refused before any work (BudgetError)."""
     tol = check_number("tolerance", kw.get("tolerance", MESH_TOLERANCE), 1e-6, 1.0, unit="mm")
     part = check_choice("part", kw.get("part", "gear"), ("gear", "mate", "pair"))
-    from .bevel.spiral import pair_geometry_of
+    from .bevel.pairof import pair_geometry_of
     geo = pair_geometry_of(kw)
     est, tri, parts = Estimate(), 0.0, []
     cost = budget.COSTS["bevel.body"]

@@ -187,12 +187,12 @@ def _geometries(teeth, mate_teeth, module, cones: Cones, spiral: Spiral) -> tupl
     """(the pair's geometry with its tooth line, the same in the mate's form), validated."""
     from dataclasses import replace
     from .geometry import FORMS, ToothDepth, pair_geometry
-    from .spiral import with_tooth_line
+    from .pairof import tooth_line
     c = cones
     depth = ToothDepth(thickness_coeff=c.thickness_coeff)
     geo = pair_geometry(teeth, mate_teeth, module, c.face_width, c.pressure_angle_deg, c.shaft_angle_deg,
                         c.shift_coeff, c.form, depth, clearance=c.clearance)
-    geo = with_tooth_line(geo, spiral.spiral_angle_deg, spiral.cutter_radius, spiral.hand)
+    geo = tooth_line(geo, spiral.spiral_angle_deg, spiral.cutter_radius, spiral.hand)
     mform = geo.form if c.mate_form is None else check_choice("mate_form", c.mate_form, FORMS)
     if mform == geo.form:
         return geo, geo
@@ -204,7 +204,10 @@ def _geometries(teeth, mate_teeth, module, cones: Cones, spiral: Spiral) -> tupl
 def _build(geo, geo_m, which: tuple, tol: float, check: bool, mounts: Mounts) -> Bevel:
     """The bodies of ``which`` (gear, mate), placed as a pair when both, and the report."""
     from .body import mate_transform
-    from .spiral import body
+    if geo.line is None:                    # straight (the spiral module is not needed)
+        from .body import member_body as body
+    else:
+        from .spiral import body
     dist = {"gear": mounts.mounting_distance, "mate": mounts.mate_mounting_distance}
     check_mounts(geo, dist, which)
     bodies = [body(geo if w == "gear" else geo_m, w, tol) for w in which]

@@ -140,6 +140,23 @@ def flank_turn(geo, cone) -> float:
         / geo.cone_distance
 
 
+def cones_of(kw: dict) -> PairGeometry:
+    """The straight pair geometry (:func:`pair_geometry`, no tooth line) of
+    :func:`gear3d.bevel`'s keywords ``kw`` (teeth, mate_teeth, module in mm, face_width,
+    pressure and shaft angles in deg, shift and thickness coefficients, form, clearance);
+    :func:`gear3d.bevel.pair_geometry_of` adds a spiral or Zerol tooth line.
+
+    >>> g = cones_of({"teeth": 20, "mate_teeth": 40, "module": 2.0})
+    >>> round(math.degrees(g.gear.pitch_angle), 4), g.line is None     # atan(20/40)
+    (26.5651, True)
+    """
+    return pair_geometry(kw["teeth"], kw["mate_teeth"], kw["module"], kw.get("face_width"),
+                         kw.get("pressure_angle_deg", 20.0), kw.get("shaft_angle_deg", 90.0),
+                         kw.get("shift_coeff", 0.0), kw.get("form", "spherical-involute"),
+                         depth=ToothDepth(thickness_coeff=kw.get("thickness_coeff", 0.0)),
+                         clearance=kw.get("clearance", "standard"))
+
+
 def pair_geometry(teeth, mate_teeth, module, face_width=None, pressure_angle_deg=20.0,
                   shaft_angle_deg=90.0, shift_coeff=0.0, form="spherical-involute",
                   depth: ToothDepth = ToothDepth(), clearance="standard") -> PairGeometry:

@@ -45,7 +45,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ..errors import GearError, ToleranceError, check_choice, check_number
-from .geometry import ToothDepth, pair_geometry
+from .geometry import cones_of
 from .body import CLIPPER_ROUNDING, BevelBody, cap_segments, caps, edge_sine, member_body
 from .section import member, section
 
@@ -112,12 +112,7 @@ def pair_geometry_of(kw: dict):
     >>> round(math.degrees(g.gear.pitch_angle), 4), round(g.cone_distance, 4)   # atan(20/40), m z2 / 2 / sin d2
     (26.5651, 44.7214)
     """
-    geo = pair_geometry(kw["teeth"], kw["mate_teeth"], kw["module"], kw.get("face_width"),
-                        kw.get("pressure_angle_deg", 20.0), kw.get("shaft_angle_deg", 90.0),
-                        kw.get("shift_coeff", 0.0), kw.get("form", "spherical-involute"),
-                        depth=ToothDepth(thickness_coeff=kw.get("thickness_coeff", 0.0)),
-                        clearance=kw.get("clearance", "standard"))
-    return with_tooth_line(geo, kw.get("spiral_angle_deg"), kw.get("cutter_radius"), kw.get("hand"))
+    return with_tooth_line(cones_of(kw), kw.get("spiral_angle_deg"), kw.get("cutter_radius"), kw.get("hand"))
 
 
 def with_tooth_line(geo, spiral_angle_deg, cutter_radius, hand):
