@@ -206,7 +206,7 @@ def fit_piece(piece, budget: float, start=None):
         return [A], [b], arc_error(f, t0, t1, A, B, b, (A, B))
     V, Bs, worst = [], [], 0.0
     P, T = A, point_tangent(f, t0, sgn)[1]
-    todo = [(t0 + (t1 - t0) * k / 2, t0 + (t1 - t0) * (k + 1) / 2) for k in range(2)]
+    todo = [(t0, t1)]
     while todo:
         ta, tb = todo.pop(0)
         arcs, P1, T1, err = span(f, ta, tb, sgn, P, T)
