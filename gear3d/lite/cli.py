@@ -129,6 +129,8 @@ def run_fast(args):
     from ..params import by_name
     from ..params.tolerance import max_tolerance
     out = args.output
+    if args.tolerance is not None and not args.tolerance >= MIN_TOLERANCE:
+        return None                                   # the numpy path refuses or takes it
     check_output(out, kinds="profile")               # the numpy path's first checks, same errors
     kw = family_params(args, out)
     tab = by_name("involute")
