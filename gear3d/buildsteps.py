@@ -16,6 +16,7 @@ import numpy as np
 from .records import dataclass
 from . import budget as _budget
 from .corners import chords_near, corner_angle, exact_crossing, new_vertices, refine
+from .plan_corners import corner_estimate, corner_refinement
 from .envelope import PRUNE_SHARE, RIM_SHARE, circle_loop, pattern, signed_area, trim
 from .errors import GearError, ToleranceError
 from .geometry import point_segment_distance, rotate, segment_foot, unique_sorted
@@ -223,8 +224,15 @@ def sample_pieces(pieces, fs, teeth: int, tol: float, budget: float):
     the physical branches end exactly there. Returns (samples, fewest vertices per tooth)."""
     tess = [tessellate(f, budget) for f in fs]
     samples = Samples(list(fs), [x.t for x in tess], [x.points for x in tess], [x.deviation for x in tess])
-    _budget.check_profile(teeth * sum(len(t) - 1 for t in samples.ts), "teeth" if teeth > 1000 else "tolerance",
-                          teeth if teeth > 1000 else tol, info={"teeth": teeth, "points": samples.pts})
+    # the trimmed corners' refinement, planned from this period (gear3d.plan_corners): its
+    # work charged, its vertices counted with the profile's
+    param, value = ("teeth", teeth) if teeth > 1000 else ("tolerance", tol)
+    cr = corner_refinement(samples.pts, samples.devs, teeth, tol,
+                           any(getattr(G, "tool_tangent", None) is not None for G in pieces))
+    if cr["visits"]:
+        _budget.charge(corner_estimate(cr, teeth), param, value, key="corners")
+    _budget.check_profile(teeth * (sum(len(t) - 1 for t in samples.ts) + cr["vertices"]), param, value,
+                          info={"teeth": teeth, "points": samples.pts, "corner_vertices": cr["vertices"]})
     for i, G in enumerate(pieces):
         t2 = with_transitions(G, samples.ts[i])
         if len(t2) != len(samples.ts[i]):

@@ -33,6 +33,11 @@ COSTS = {
     # gear3d.model.build_profile after sampling: pattern, trim (Clipper), corners, measure
     "profile": Cost(12e-6, 900.0, 0.05, 40e6, "involute z=3000 (66,000 vertices) 0.31 s, +22 MB; "
                     "triangular z=20,000 (100,000 vertices) 0.21 s, +24 MB; cycloidal 0.38 s"),
+    # gear3d.buildsteps.trim_and_refine: a trimmed corner's visit (its exact crossing, its chords'
+    # refinement) and, per visit, each sample of the period searched for chords near it (x3 copies)
+    "profile.corners": Cost(1.5e-4, 0.0, 0.0, 0.0, "triangular z=7, 80 deg, m 3, 1e-3 (2026-11-26): 8,927 "
+                            "visits of up to 3,910 samples, 3.2 s; chords_near 2.2e-8 s a sample, Newton 0.3 ms"),
+    "profile.corners.near": Cost(1.5e-8, 0.0, 0.0, 0.0, "the same run: chords_near over 3 x 3,910 chords"),
     # gear3d.buildsteps.sector_distance: per (point, edge) pair near tooth 0, numpy in chunks
     "profile.pairs": Cost(1e-8, 0.0, 0.0, 0.0, "moineau-stator rho=1e5, e=1: 27,800 x 55,600 pairs, 5.4 s"),
     # solids.body: the layer mesh (float64 V, int64 F, intermediates) and its measurement

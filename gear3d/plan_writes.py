@@ -145,6 +145,8 @@ def sketch_star(sk, layer_vertices: float = 0.0) -> bool:
     n = float(layer_vertices or sk.layer_vertices)
     if COSTS["body.caps"].seconds * n * n < STAR_TEST_ABOVE:
         return False
+    if sk.per_tooth > 2 * len(sk.period):
+        return False        # trimmed corners refined far past the sampled period (gear3d.plan_corners): unsure
     from .solids.caps import star_period
     try:
         return star_period([sk.period], int(sk.teeth))
