@@ -212,13 +212,16 @@ def corner_refinement(pts_list, devs, teeth: int, tol: float, prune: bool = Fals
     module doc.
 
     The bow tie of :func:`crossings` whose first chord sags 4 um (a curve's chord) at
-    tol = 10 um: the target is 10 / 3 / 4 um (sin gamma = 1, one retry), 4.8 times finer,
-    so two bisections (4 chords: 3 vertices), and the corner's own vertex:
+    tol = 10 um: the target is 10 / 3 um (sin gamma = 1, no retry), 1.2 times finer, so one
+    bisection (one vertex), and the corner's own vertex; at 20 um sag, 6 times finer: two
+    bisections (three vertices):
 
     >>> p = [np.array([[0.0, 0.0], [2.0, 2.0], [2.0, 0.0]]), np.array([[2.0, 0.0], [0.0, 2.0], [0.0, 0.0]])]
     >>> r = corner_refinement(p, [np.array([4e-3, 0.0]), np.zeros(2)], 1, 1e-2)
     >>> r["corners"], r["vertices"], r["samples"]
-    (1, 4.0, 9.0)
+    (1, 2.0, 7.0)
+    >>> corner_refinement(p, [np.array([20e-3, 0.0]), np.zeros(2)], 1, 1e-2)["refined"]
+    3.0
     """
     from .buildsteps import CORNER_SHARE, CORNER_SHRINK, MIN_CORNER_SINE
     n0 = float(sum(len(p) for p in pts_list))
