@@ -36,12 +36,15 @@ import numpy as np
 #: crossings are looked for on the period's chords cut to at most this many cells' width
 #: (a grid of that size: pairs are only tested within a cell)
 _CELL_CHORDS = 2.0
+#: tolerances: two crossing chords whose spread (see :func:`crossings`) is within this
+#: many tolerances track one curve (the tip arcs of neighbouring teeth wider than the pitch)
+OVERLAP = 2.0
 #: mm: a crossing this near a sample is that sample, not a new corner (corners.new_vertices)
 RAW_EPS = 1e-7
 #: visits of each planned corner over the refinement's passes and attempts (the first pass, the
 #: passes that still refine, the last one that finds nothing to do: measured 2026-11-26,
 #: triangular z=7, 80 deg: 8,927 visits of 3,863 final corners)
-VISITS = 2.5
+VISITS = 2.0
 
 
 def _chords(pts_list, teeth: int, k: int):
@@ -90,18 +93,20 @@ def _pairs(ka, kb):
 def crossings(pts_list, teeth: int):
     """Proper crossings of tooth 0's sampled period (``pts_list``: each piece's samples, mm)
     with itself and with its neighbours' copies: ``(piece, chord)`` on tooth 0 for both
-    chords of each crossing (a copy's chord by its own index) and the crossing angles' sines.
+    chords of each crossing (a copy's chord by its own index), the crossing angles' sines and
+    each crossing's spread (mm: how far the shorter chord's ends stray from the other's line,
+    half its length x the sine; within a tolerance or two, both chords track one curve).
 
     A bow tie (one tooth, its loop crossing itself at (1, 1), at right angles):
 
     >>> p = [np.array([[0.0, 0.0], [2.0, 2.0], [2.0, 0.0]]), np.array([[2.0, 0.0], [0.0, 2.0], [0.0, 0.0]])]
-    >>> pa, ja, pb, jb, s = crossings(p, 1)
+    >>> pa, ja, pb, jb, s, _ = crossings(p, 1)
     >>> len(s), (int(pa[0]), int(ja[0])), (int(pb[0]), int(jb[0])), round(float(s[0]), 3)
     (1, (0, 0), (1, 0), 1.0)
     """
     a0, b0, p0, i0 = _chords(pts_list, teeth, 0)
     if not len(a0):
-        return (np.zeros(0, int),) * 4 + (np.zeros(0),)
+        return (np.zeros(0, int),) * 4 + (np.zeros(0),) * 2
     ln = np.hypot(*(b0 - a0).T)
     h = max(float(np.median(ln[ln > 0])) if (ln > 0).any() else 1.0, 1e-9) * _CELL_CHORDS
     span = float(np.ptp(np.concatenate([a0, b0]), axis=0).max())
@@ -128,7 +133,9 @@ def crossings(pts_list, teeth: int):
         ends = np.stack([a0[i[hit]], b0[i[hit]], a1[j[hit]], b1[j[hit]]])
         clear = np.hypot(*(ends - x[None]).transpose(2, 0, 1)).min(axis=0) > RAW_EPS
         keep = clear & on_outline(x, d1[hit] / n1[:, None], d2[hit] / n2[:, None], np.minimum(n1, n2), pts_list, teeth)
-        out.append((p0[i[hit]][keep], i0[i[hit]][keep], p1[j[hit]][keep], i1[j[hit]][keep], sine[keep]))
+        spread = 0.5 * np.minimum(n1, n2) * sine
+        out.append((p0[i[hit]][keep], i0[i[hit]][keep], p1[j[hit]][keep], i1[j[hit]][keep], sine[keep],
+                    spread[keep]))
     return tuple(np.concatenate(c) for c in zip(*out))
 
 
@@ -225,15 +232,17 @@ def corner_refinement(pts_list, devs, teeth: int, tol: float, prune: bool = Fals
     """
     from .buildsteps import CORNER_SHARE, CORNER_SHRINK, MIN_CORNER_SINE
     n0 = float(sum(len(p) for p in pts_list))
-    pa, ja, pb, jb, sine = crossings(pts_list, teeth)
+    pa, ja, pb, jb, sine, spread = crossings(pts_list, teeth)
     if prune:       # an envelope's needles sharper than prune_spikes' angle are cut off, not refined
         from .envelope import prune_spikes
         sharp = sine > math.sin(math.radians(prune_spikes.__defaults__[-1]))
-        pa, ja, pb, jb, sine = pa[sharp], ja[sharp], pb[sharp], jb[sharp], sine[sharp]
+        pa, ja, pb, jb, sine, spread = pa[sharp], ja[sharp], pb[sharp], jb[sharp], sine[sharp], spread[sharp]
     if not len(sine):
         return {"corners": 0, "visits": 0.0, "vertices": 0.0, "samples": n0, "refined": 0.0, "overlaps": 0.0}
-    flat = sine < MIN_CORNER_SINE              # bounded only by 2 d / sin gamma: one retry planned
-    target = CORNER_SHARE * tol * np.maximum(sine, MIN_CORNER_SINE) / np.where(flat, CORNER_SHRINK, 1.0)
+    # nearly tangent (bounded only by 2 d / sin gamma) or both chords on one curve (refined
+    # chords cross again, ever flatter): the floor's target and one retry planned
+    flat = (sine < MIN_CORNER_SINE) | (spread <= OVERLAP * tol)
+    target = CORNER_SHARE * tol * np.where(flat, MIN_CORNER_SINE / CORNER_SHRINK, sine)
     best = [np.full(len(d), np.inf) for d in devs]            # each chord's finest target
     for p, j in ((pa, ja), (pb, jb)):
         for o in (-1, 0, 1):                                   # the chord and its neighbours
@@ -254,8 +263,8 @@ def corner_refinement(pts_list, devs, teeth: int, tol: float, prune: bool = Fals
 
 #: extra pattern-and-trim passes of the whole profile a refinement takes (the first pass
 #: is the profile's own): the one that finds nothing left to refine; nearly tangent
-#: overlaps, whose refined chords cross again, take every pass of two attempts
-EXTRA_PASSES, OVERLAP_PASSES = 1, 9
+#: overlaps, whose refined chords cross again, take more (two attempts of a few passes)
+EXTRA_PASSES, OVERLAP_PASSES = 1, 4
 
 
 def corner_estimate(plan: dict, teeth: int):

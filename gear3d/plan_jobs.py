@@ -362,3 +362,24 @@ def plan_harmonic_check(flex_call, rigid_call, tolerance: float, positions: int,
     by_positions = one <= budget.current().max_seconds
     return budget.check(total, "positions" if by_positions else "tolerance", positions if by_positions else tol,
                         roll)
+
+
+def body_plan(family: str, pk: dict, bk: dict, output=None, step=None, planned: bool = True):
+    """``gear3d body FAMILY ... [-o OUT]`` planned as the command line and the web page
+    (:func:`gear3d.web.builds.build_body`) both plan it: the body tolerance (``bk``'s, set to
+    the profile's ``pk["tolerance"]`` when absent; ``bk`` is updated), the profile at the
+    share of it the body gives the profile (:meth:`gear3d.spec.GearSpec.profile_tolerance`),
+    then :func:`gear3d.plan.plan_body` (skipped when not ``planned``). Returns (the
+    :class:`gear3d.spec.GearSpec` whose ``body(**bk)`` builds it, the estimate or None).
+
+    >>> spec, est = body_plan("involute", {"teeth": 20, "tolerance": 0.01}, {"kind": "spur", "width": 5.0})
+    >>> est.triangles > 0, spec.family
+    (True, 'involute')
+    """
+    from .plan import plan_body
+    from .spec import GearSpec
+    bk.setdefault("tolerance", pk["tolerance"])
+    spec = GearSpec(family, {k: v for k, v in pk.items() if k != "tolerance"})
+    if not planned:
+        return spec, None
+    return spec, plan_body(family, dict(pk, tolerance=spec.profile_tolerance(**bk)), bk, output, step)

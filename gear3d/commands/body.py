@@ -8,7 +8,6 @@ from __future__ import annotations
 import sys
 
 from .profile import add_param_flag, add_profile_flags, family_params, print_notes
-from ..spec import GearSpec
 from ..conventions import uses_conventions
 from ..export import check_output, formats_for, write
 from ..params import BODY, BODY_PARAMS, MESH_TOLERANCE
@@ -67,14 +66,11 @@ def run(args) -> int:
     fp = family_params(args, out, mesh=True)
     if uses_conventions(fp):                  # normal sizes are taken at the body's helix angle
         fp["helix_angle_deg"] = kw.get("helix_angle_deg", 0.0)
-    # the spec builds the profile once, at the share of the body tolerance the body plan gives it
-    kw.setdefault("tolerance", fp["tolerance"])
-    spec = GearSpec(args.family, {k: v for k, v in fp.items() if k != "tolerance"})
-    fp["tolerance"] = spec.profile_tolerance(**kw)         # what the plan charges for
+    # the spec builds the profile once, at the share of the body tolerance the body plan gives it;
+    # profile, layers and export refused before any is built, by the plan the web page makes too
+    from ..plan_jobs import body_plan
     from .profile import FAMILY_FLAGS_PLANNED
-    if args.family in FAMILY_FLAGS_PLANNED:     # profile, layers and export: refused before any is built
-        from ..plan import plan_body
-        plan_body(args.family, fp, kw, out, args.step)
+    spec, _ = body_plan(args.family, fp, kw, out, args.step, args.family in FAMILY_FLAGS_PLANNED)
     b = spec.body(**kw)
     if out is None:
         from ..export.json_format import dumps

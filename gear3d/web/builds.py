@@ -31,7 +31,6 @@ from .. import plan, profile
 from ..errors import GearError
 from ..export import FORMATS
 from ..params import DEFAULT_TOLERANCE, MESH_TOLERANCE
-from ..spec import GearSpec
 from ..watchdog import LimitError
 from . import strict
 
@@ -89,10 +88,9 @@ def build_body(family: str, pk: dict, bk: dict, output=None):
     """``gear3d body FAMILY ...``'s body: the body tolerance (default the profile's), the
     profile built at the share of it the body plan gives the profile
     (:meth:`gear3d.spec.GearSpec.body`), planned first."""
+    from ..plan_jobs import body_plan
     bk = dict(bk)
-    bk.setdefault("tolerance", pk["tolerance"])
-    spec = GearSpec(family, {k: v for k, v in pk.items() if k != "tolerance"})
-    plan.plan_body(family, dict(pk, tolerance=spec.profile_tolerance(**bk)), bk, output)
+    spec, _ = body_plan(family, pk, bk, output)          # the command line's own plan
     return spec.body(**bk)
 
 
