@@ -4,11 +4,12 @@ The scalar twin of :mod:`gear3d.export.arccert` (which works on numpy arrays), w
 same certificate. A piece is ``(t0, t1, kind, f)``, ``f(t) -> (x, y, dx/dt, dy/dt)`` mm
 (:mod:`gear3d.lite.tooth`); travel runs from t0 to t1.
 
-**Fit.** Each piece is cut into spans in its parameter; a span from (P0, T0) to (P1, T1)
-(exact points and unit tangents, travel order) is the equal tangent length biarc (two arcs
-meeting at J, tangent Tm there). A span whose certified error exceeds the budget is cut
-into more spans, ``ceil(1.2 (err / budget)^(1/3))`` (a biarc's error falls with the cube of
-its length). A circle piece (root, tip) is one arc. Consecutive spans share their end
+**Fit.** Each piece is cut into spans in its parameter, greedily from its start; a span
+from (P0, T0) to (P1, T1) (exact points and unit tangents, travel order) is the equal
+tangent length biarc (two arcs meeting at J, tangent Tm there). A span whose certified
+error exceeds the budget is shortened to 0.9 (budget / err)^(1/3) of its length (at most
+0.7; a biarc's error grows with the cube of its length) and tried again; an accepted
+span's length, scaled the same way (at most doubled), is the next one's first try. A circle piece (root, tip) is one arc. Consecutive spans share their end
 point and tangent, so the chain is tangent-continuous inside a piece; at a piece joint the
 two pieces' own tangents meet (the rack is smooth there: the jump is rounding), and their
 gap |end of one - start of the next| is added to the error.
@@ -206,18 +207,19 @@ def fit_piece(piece, budget: float, start=None):
         return [A], [b], arc_error(f, t0, t1, A, B, b, (A, B))
     V, Bs, worst = [], [], 0.0
     P, T = A, point_tangent(f, t0, sgn)[1]
-    todo = [(t0, t1)]
-    while todo:
-        ta, tb = todo.pop(0)
+    ta, step = t0, t1 - t0
+    while ta != t1:
+        tb = t1 if abs(step) >= abs(t1 - ta) else ta + step
         arcs, P1, T1, err = span(f, ta, tb, sgn, P, T)
         if arcs is not None and err <= budget:
             V += [a[0] for a in arcs]
             Bs += [a[1] for a in arcs]
             worst = max(worst, err)
-            P, T = P1, T1
+            # the next span's first try: this one's length by the cube law (at most doubled)
+            step = (tb - ta) * min(2.0, 0.9 * (budget / max(err, 1e-300)) ** (1 / 3))
+            P, T, ta = P1, T1, tb
             continue
         if abs(tb - ta) <= 1e-9 * abs(t1 - t0) or len(V) > 1 << 16:
             return None
-        k = 2 if arcs is None else max(2, math.ceil(1.2 * (err / budget) ** (1 / 3)))
-        todo[:0] = [(ta + (tb - ta) * j / k, ta + (tb - ta) * (j + 1) / k) for j in range(k)]
+        step = (tb - ta) * (0.5 if arcs is None else min(0.7, 0.9 * (budget / err) ** (1 / 3)))
     return V, Bs, worst
