@@ -9,16 +9,19 @@ where the ray at 0 deg meets it, tooth 0's tip centre (r_a, 0), and runs counter
 as the numpy path's.
 
 **The rotation's rounding, bounded and added to the certificate** (u = 2^-53, R = the
-largest radius of a vertex or an arc, mm): the angle 2 pi k / z is computed with a relative
-error <= 3u, so <= 3u 2 pi < 19u rad, which moves a point <= 19u R; cos and sin are within
-1 ulp (<= 2u) and the products and sum of x cos - y sin round by <= 3u R, <= 10u R in all;
-the joint vertex of the mirrored and the turned half (one written point for both) lies
-<= 4u R from either. A written vertex is then <= 33u R from its exact image, and an arc
-through two such vertices with the same bulge (|b| <= tan(22.5 deg)) lies within
-sqrt(2) x 33u R < 48u R of the image arc (a point of the arc is A + (B - A) w with
-|w| + |1 - w| <= sqrt(2)). The certificate adds 64u R. A reader rebuilding the arcs
-from the file's numbers in double precision adds 64 ulps of max(1, R), as
-:func:`gear3d.export.dxf._rounding`. The file is written only when the certified error
+largest radius of a vertex or an arc, mm). (1) The angle 2 pi k / z is computed with a
+relative error <= 3u (pi, the product, the quotient), so <= 3u 2 pi < 19u rad: a point
+moves <= 19u R. (2) Evaluating the turn: cos and sin within 1 ulp (<= 2u each) and the two
+products and the sum of x cos - y sin rounded: <= 6u R. A turned vertex thus lies <= 25u R
+from the exact turn of the certified one. (3) The vertex at a root centre is written once
+for two arcs: the turned half's first vertex; the mirrored arc was certified ending at the
+mirror of the computed root point, which lies <= 2 eps from that point's exact turn, eps
+<= 7u R being how far the computed point sits off its exact angle -pi/z (the angle's and
+cos/sin's rounding): <= 25u R + 14u R = 39u R in all. (4) An arc whose two end points move
+<= d with its bulge unchanged (|b| <= tan(22.5 deg)) moves <= sqrt(2) d (its points are
+A + (B - A) w with |w| + |1 - w| <= sqrt(2)): <= 56u R. The certificate adds 128u R (twice
+that). A reader rebuilding the arcs from the file's numbers in double precision adds 64
+ulps of max(1, R), as :func:`gear3d.export.dxf._rounding`. The file is written only when the certified error
 plus both is within the tolerance (else ToleranceError: nothing is written).
 
 >>> import os, tempfile
@@ -154,7 +157,7 @@ def certified_contour(tooth, z: int, tol: float):
     n = len(V)
     R = max([tooth.tip_radius] + [arc_radius(V[i], V[i + 1] if i + 1 < n else (tooth.tip_radius, 0.0), B[i])
                                   for i in range(n)])
-    rounding = 64 * U * R + 64 * math.ulp(max(1.0, R))
+    rounding = 128 * U * R + 64 * math.ulp(max(1.0, R))
     jumps = joint_jumps(verts, bul, 2 * n + 1)
     corners = {n - corner, n + corner}                # the flank / tip joints of period 0
     smooth = [j for i, j in enumerate(jumps) if i % (2 * n) not in corners]
