@@ -9,8 +9,8 @@ from (P0, T0) to (P1, T1) (exact points and unit tangents, travel order) is the 
 tangent length biarc (two arcs meeting at J, tangent Tm there). A span whose certified
 error exceeds the budget is shortened to 0.9 (budget / err)^(1/3) of its length (at most
 0.7; a biarc's error grows with the cube of its length) and tried again; an accepted
-span's length, scaled the same way (at most doubled), is the next one's first try. A circle piece (root, tip) is one arc. Consecutive spans share their end
-point and tangent, so the chain is tangent-continuous inside a piece; at a piece joint the
+span's length, scaled the same way (at most doubled), is the next one's first try. A
+circle piece (root, tip) is one arc. Consecutive spans share their end point and tangent, so the chain is tangent-continuous inside a piece; at a piece joint the
 two pieces' own tangents meet (the rack is smooth there: the jump is rounding), and their
 gap |end of one - start of the next| is added to the error.
 
@@ -27,7 +27,9 @@ plus the interpolation margin max |second difference| / 4, plus the residual
 |(G(tJ) - J).Tm| and the distances of G(tJ) to both circles.
 
 >>> import math
->>> circ = (0.0, math.pi / 2, "tip", lambda t: (10 * math.cos(t), 10 * math.sin(t), -10 * math.sin(t), 10 * math.cos(t)))
+>>> def f(t):
+...     return 10 * math.cos(t), 10 * math.sin(t), -10 * math.sin(t), 10 * math.cos(t)
+>>> circ = (0.0, math.pi / 2, "tip", f)
 >>> V, B, err = fit_piece(circ, 1e-3)
 >>> len(V), round(B[0], 12), err < 1e-12        # one exact arc of 90 deg: bulge tan(90/4 deg)
 (1, 0.414213562373, True)
