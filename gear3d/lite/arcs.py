@@ -10,8 +10,9 @@ tangent length biarc (two arcs meeting at J, tangent Tm there). A span whose cer
 error exceeds the budget is shortened to 0.9 (budget / err)^(1/3) of its length (at most
 0.7; a biarc's error grows with the cube of its length) and tried again; an accepted
 span's length, scaled the same way (at most doubled), is the next one's first try. A
-circle piece (root, tip) is one arc. Consecutive spans share their end point and tangent, so the chain is tangent-continuous inside a piece; at a piece joint the
-two pieces' own tangents meet (the rack is smooth there: the jump is rounding), and their
+circle piece (root, tip) is one arc. Consecutive spans share their end point and tangent,
+so the chain is tangent-continuous inside a piece; at a piece joint the two pieces' own
+tangents meet (the rack is smooth there: the jump is rounding), and their
 gap |end of one - start of the next| is added to the error.
 
 **Certificate** (per arc, as :func:`gear3d.export.arccert.certify`): the arc with centre
