@@ -219,25 +219,27 @@ def generate(pieces, teeth: int, internal: bool, tol: float, rim_radius, clip_ra
 
 
 def sample_pieces(pieces, fs, teeth: int, tol: float, budget: float):
-    """Stage 1: tessellate every piece within ``budget`` (mm, measured); check the
-    resource budget before the period is repeated; add the singular points as samples, so
-    the physical branches end exactly there. Returns (samples, fewest vertices per tooth)."""
+    """Stage 1: tessellate every piece within ``budget`` (mm, measured); add the singular
+    points as samples, so the physical branches end exactly there; plan the trimmed corners'
+    refinement (:func:`gear3d.plan_corners.corner_refinement`) and check the resource budget
+    for it and the profile before the period is repeated. Returns (samples, fewest vertices
+    per tooth)."""
     tess = [tessellate(f, budget) for f in fs]
     samples = Samples(list(fs), [x.t for x in tess], [x.points for x in tess], [x.deviation for x in tess])
+    param, value = ("teeth", teeth) if teeth > 1000 else ("tolerance", tol)
+    for i, G in enumerate(pieces):
+        t2 = with_transitions(G, samples.ts[i])
+        if len(t2) != len(samples.ts[i]):
+            samples.ts[i], samples.pts[i] = t2, fs[i](t2)
+            samples.devs[i] = chord_deviation(fs[i], t2, samples.pts[i])
     # the trimmed corners' refinement, planned from this period (gear3d.plan_corners): its
     # work charged, its vertices counted with the profile's
-    param, value = ("teeth", teeth) if teeth > 1000 else ("tolerance", tol)
     cr = corner_refinement(samples.pts, samples.devs, teeth, tol,
                            any(getattr(G, "tool_tangent", None) is not None for G in pieces))
     if cr["visits"]:
         _budget.charge(corner_estimate(cr, teeth), param, value, key="corners")
     _budget.check_profile(teeth * (sum(len(t) - 1 for t in samples.ts) + cr["vertices"]), param, value,
                           info={"teeth": teeth, "points": samples.pts, "corner_vertices": cr["vertices"]})
-    for i, G in enumerate(pieces):
-        t2 = with_transitions(G, samples.ts[i])
-        if len(t2) != len(samples.ts[i]):
-            samples.ts[i], samples.pts[i] = t2, fs[i](t2)
-            samples.devs[i] = chord_deviation(fs[i], t2, samples.pts[i])
     return samples, float(sum(x.min_vertices for x in tess))
 
 

@@ -139,6 +139,8 @@ def crossings(pts_list, teeth: int):
     return tuple(np.concatenate(c) for c in zip(*out))
 
 
+#: crossings x loop vertices the outline test takes at most (about a second)
+MAX_OUTLINE_PAIRS = 20_000_000
 #: teeth copies either side of tooth 0 the outline test closes its loop with (more teeth:
 #: the rest of the gear is replaced by a path through the centre, which turns the same way
 #: about every point near tooth 0)
@@ -188,6 +190,8 @@ def on_outline(x, u1, u2, length, pts_list, teeth: int) -> np.ndarray:
     if not len(x):
         return np.zeros(0, bool)
     loop = _loop(pts_list, teeth)
+    if len(x) * len(loop) > MAX_OUTLINE_PAIRS:
+        return np.ones(len(x), bool)          # too many to test: all kept (the plan errs high)
     sense = 1.0 if _winding(loop, np.zeros((1, 2)))[0] >= 0 else -1.0
     eps = 1e-3 * length[:, None]
     q = np.concatenate([x + eps * (sa * u1 + sb * u2) for sa in (1, -1) for sb in (1, -1)])
@@ -243,18 +247,17 @@ def corner_refinement(pts_list, devs, teeth: int, tol: float, prune: bool = Fals
     # chords cross again, ever flatter): the floor's target and one retry planned
     flat = (sine < MIN_CORNER_SINE) | (spread <= OVERLAP * tol)
     target = CORNER_SHARE * tol * np.where(flat, MIN_CORNER_SINE / CORNER_SHRINK, sine)
-    best = [np.full(len(d), np.inf) for d in devs]            # each chord's finest target
+    # the period's chords in chain order (a piece's last chord meets the next one's first)
+    dev = np.concatenate([np.asarray(d, float) for d in devs])
+    start = np.cumsum([0] + [len(d) for d in devs])[:-1]
+    best = np.full(len(dev), np.inf)                          # each chord's finest target
     for p, j in ((pa, ja), (pb, jb)):
         for o in (-1, 0, 1):                                   # the chord and its neighbours
-            for i in np.unique(p):
-                sel = p == i
-                jj = np.clip(j[sel] + o, 0, len(devs[i]) - 1)
-                np.minimum.at(best[i], jj, target[sel])
-    added = [added_vertices(np.asarray(d, float), np.where(np.isfinite(t), t, np.inf)) for d, t in zip(devs, best)]
-    extra = float(sum(a.sum() for a in added))
+            np.minimum.at(best, np.clip(start[p] + j + o, 0, len(dev) - 1), target)
+    added = added_vertices(dev, best)
+    extra = float(added.sum())
     # nearly tangent overlaps: every vertex added on a chord of a floored crossing is a corner
-    again = float(sum(added[i][np.unique(jx[flat & (p == i)])].sum() for p, jx in ((pa, ja), (pb, jb))
-                      for i in np.unique(p[flat])))
+    again = float(added[np.unique(np.concatenate([start[pa[flat]] + ja[flat], start[pb[flat]] + jb[flat]]))].sum())
     corners = len(sine) + again
     # each corner is one more outline vertex (Clipper's crossing point)
     return {"corners": int(len(sine)), "visits": VISITS * corners, "vertices": extra + corners, "samples": n0 + extra,
