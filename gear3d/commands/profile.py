@@ -294,7 +294,7 @@ def run(args) -> int:
     out = args.output
     if isinstance(out, str) and out.lower().endswith(".dxf"):    # the common EDM case, before numpy
         from ..lite.cli import run_fast
-        if run_fast(args) is not None:
+        if run_fast(args, family_params, DXF_FLAGS) is not None:
             return 0
     if out is not None:
         check_output(out, kinds="profile")

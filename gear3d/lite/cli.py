@@ -13,13 +13,20 @@ The file is the same geometry certified the same way (:mod:`gear3d.lite.dxf`); t
 line reports the certified error (``max_error``) like the numpy path's.
 
 >>> import argparse
->>> run_fast(argparse.Namespace(family="sine", output="x.dxf")) is None     # not in scope
+>>> run_fast(argparse.Namespace(family="sine", output="x.dxf"), None) is None     # not in scope
 True
 """
 from __future__ import annotations
 
 import os
 import sys
+
+from ..budget import DEFAULT_MAX_MEMORY, DEFAULT_MAX_SECONDS, current
+from ..errors import GearError, ToleranceError
+from ..export import check_output
+from ..filesafe import atomic_path
+from ..params import DEFAULT_TOLERANCE, by_name
+from ..params.tolerance import max_tolerance
 
 #: the family flags the fast path takes (any other flag given: the numpy path)
 KEYS = ("teeth", "module", "pressure_angle_deg", "addendum_coeff", "dedendum_coeff", "tip_radius_coeff",
@@ -69,9 +76,6 @@ def fast_words(words) -> bool:
 
 
 def _fast_values(got: dict) -> bool:
-    from ..errors import GearError
-    from ..params import by_name
-    from ..params.tolerance import max_tolerance
     out = got.pop("output", "")
     ver = got.pop("dxf_version", "R2000").upper()
     if not out.lower().endswith(".dxf") or out.startswith("-") or ver not in ("R2000", "R12"):
@@ -84,7 +88,6 @@ def _fast_values(got: dict) -> bool:
     except GearError:
         return False
     z, m = g["teeth"], g["module"]
-    from ..params import DEFAULT_TOLERANCE
     tol = float(got.get("tolerance", DEFAULT_TOLERANCE))
     if not (3 <= z <= MAX_TEETH and MIN_TOLERANCE <= tol <= min(m / 4, max_tolerance(m))):
         return False
@@ -93,46 +96,42 @@ def _fast_values(got: dict) -> bool:
                       g["tip_radius_coeff"], g["shift_coeff"]) is not None
 
 
-def in_scope(args) -> bool:
-    """The flags alone are in the fast path's scope (nothing is checked or raised here)."""
-    from ..commands.mateflags import tool_flags_given
-    from ..commands.profile import DXF_FLAGS, _flag_params, _given
+def in_scope(args, dxf_flags=()) -> bool:
+    """The command's output, options and DXF flags (``dxf_flags``: (Param, dest) pairs, the
+    profile command's :data:`DXF_FLAGS`) are in the fast path's scope; the family flags
+    are looked at by :func:`run_fast` once checked. Nothing is raised here."""
     out = getattr(args, "output", None)
     if os.environ.get("GEAR3D_LITE") == "0" or args.family != "involute" or not isinstance(out, str) \
             or not out.lower().endswith(".dxf"):
         return False
     if getattr(args, "rack", False) or args.internal or args.figure is not None or args.width is not None:
         return False
-    for prm, dest in DXF_FLAGS:
+    for _prm, dest in dxf_flags:
         v = getattr(args, dest, None)
-        if _given(v) and not (dest == "dxf_version" and str(v).upper() in ("R2000", "R12")):
+        if v is not None and v is not False and not (dest == "dxf_version" and str(v).upper() in ("R2000", "R12")):
             return False
-    for dest, _p in _flag_params(helix=True):
-        v = getattr(args, dest, None)
-        if v is not None and (dest not in KEYS or isinstance(v, str)):
-            return False
+    from ..commands.mateflags import tool_flags_given
     return not tool_flags_given(args)
 
 
 def _budget_default() -> bool:
-    from ..budget import DEFAULT_MAX_MEMORY, DEFAULT_MAX_SECONDS, current
     b = current()
     return b.max_seconds >= DEFAULT_MAX_SECONDS and b.max_memory >= DEFAULT_MAX_MEMORY
 
 
-def run_fast(args):
-    """Run the command on the fast path and return 0, or return None (out of scope)."""
-    if getattr(args, "family", None) != "involute" or not in_scope(args) or not _budget_default():
+def run_fast(args, family_params, dxf_flags=()):
+    """Run ``gear3d profile`` on the fast path and return 0, or return None (out of scope:
+    the numpy path runs). ``family_params(args, out)``: the profile command's checked family
+    keywords (its refusals are the numpy path's own); ``dxf_flags``: see :func:`in_scope`."""
+    if getattr(args, "family", None) != "involute" or not in_scope(args, dxf_flags) or not _budget_default():
         return None
-    from ..commands.profile import family_params, print_notes
-    from ..export import check_output
-    from ..params import by_name
-    from ..params.tolerance import max_tolerance
     out = args.output
     if args.tolerance is not None and not args.tolerance >= MIN_TOLERANCE:
         return None                                   # the numpy path refuses or takes it
     check_output(out, kinds="profile")               # the numpy path's first checks, same errors
     kw = family_params(args, out)
+    if any(k not in KEYS + ("tolerance",) or isinstance(v, str) for k, v in kw.items()):
+        return None
     tab = by_name("involute")
     g = {k: kw.get(k, tab[k].default) for k in KEYS}
     z, m, tol = g["teeth"], g["module"], kw["tolerance"]
@@ -150,7 +149,8 @@ def run_fast(args):
                      f"lines; numpy-free path), measured max error {rep['max_error']:.3g} mm (curve->dxf "
                      f"{rep['max_error']:.3g} mm), max tangent jump {rep['max_tangent_jump_deg']:.2g} deg, "
                      f"{rep['corners']} true corners\n")
-    print_notes(args)
+    for note in getattr(args, "deprecation_notes", None) or ():     # as the profile command's print_notes
+        sys.stderr.write(note + "\n")
     return 0
 
 
@@ -158,9 +158,7 @@ def write_contour(tooth, z: int, tol: float, path, version: str = "R2000") -> di
     """Certify the contour (:func:`gear3d.lite.dxf.certified_contour`) and write it to
     ``path`` (atomic; nothing is written unless its certified error is within ``tol`` mm);
     the report (dict, mm)."""
-    from ..errors import ToleranceError
     from ..export import dxfwrite
-    from ..filesafe import atomic_path
     from .dxf import bbox, certified_contour
     c = certified_contour(tooth, z, tol)
     if c is None or not c["max_error"] <= tol:
