@@ -33,6 +33,8 @@ import math
 
 import numpy as np
 
+from .geometry import unique_sorted
+
 #: crossings are looked for on the period's chords cut to at most this many cells' width
 #: (a grid of that size: pairs are only tested within a cell)
 _CELL_CHORDS = 2.0
@@ -86,8 +88,17 @@ def _pairs(ka, kb):
     j = obs[np.repeat(lo, n) + np.arange(n.sum()) - np.repeat(np.cumsum(n) - n, n)]
     if not len(i):
         return i, j
-    u = np.unique(i.astype(np.int64) * (len(ob) + 1) + j)
+    u = unique_sorted(np.sort(i.astype(np.int64) * (len(ob) + 1) + j))
     return u // (len(ob) + 1), u % (len(ob) + 1)
+
+
+def _median(x) -> float:
+    """``np.median`` of a non-empty 1-D array (the middle value, or the mean of the two) without
+    importing ``numpy.ma``, which ``np.median`` and ``np.unique`` do on first use: about 8 ms
+    of every process that builds a profile."""
+    s = np.sort(x)
+    h = len(s) // 2
+    return float(s[h]) if len(s) % 2 else float((s[h - 1] + s[h]) / 2)
 
 
 def crossings(pts_list, teeth: int):
@@ -108,7 +119,7 @@ def crossings(pts_list, teeth: int):
     if not len(a0):
         return (np.zeros(0, int),) * 4 + (np.zeros(0),) * 2
     ln = np.hypot(*(b0 - a0).T)
-    h = max(float(np.median(ln[ln > 0])) if (ln > 0).any() else 1.0, 1e-9) * _CELL_CHORDS
+    h = max(_median(ln[ln > 0]) if (ln > 0).any() else 1.0, 1e-9) * _CELL_CHORDS
     span = float(np.ptp(np.concatenate([a0, b0]), axis=0).max())
     h = max(h, span / 4096)                        # at most 4096 x 4096 cells a side
     k0 = _cells(a0, b0, h)
@@ -257,7 +268,7 @@ def corner_refinement(pts_list, devs, teeth: int, tol: float, prune: bool = Fals
     added = added_vertices(dev, best)
     extra = float(added.sum())
     # nearly tangent overlaps: every vertex added on a chord of a floored crossing is a corner
-    again = float(added[np.unique(np.concatenate([start[pa[flat]] + ja[flat], start[pb[flat]] + jb[flat]]))].sum())
+    again = float(added[unique_sorted(np.sort(np.concatenate([start[pa[flat]] + ja[flat], start[pb[flat]] + jb[flat]])))].sum())
     corners = len(sine) + again
     # each corner is one more outline vertex (Clipper's crossing point)
     return {"corners": int(len(sine)), "visits": VISITS * corners, "vertices": extra + corners, "samples": n0 + extra,
