@@ -85,3 +85,87 @@ def crossed(teeth, mate_teeth, normal_module=1.0, helix_angle_deg=45.0, shaft_an
         from .crossed_roll import check_crossed
         rep["check"] = check_crossed(rep, width)
     return CrossedPair(rep, pair_bodies(rep, width, tolerance) if bodies else [])
+
+
+class SetReport(dict):
+    """A crossed set's report (a dict) as the scene reads a set's: :meth:`to_dict`."""
+
+    def to_dict(self) -> dict:
+        """A plain dict copy."""
+        return dict(self)
+
+
+class CrossedSet(NamedTuple):
+    """A crossed pair as a template's set part (``kind = "crossed"``): ``report``
+    (:class:`SetReport`: the pair's report, its ``check`` when rolled, and the bodies'
+    ``tolerance``, ``triangles``, ``volume``, ``max_error``) and ``bodies`` ([gear, mate])."""
+    report: SetReport
+    bodies: list
+
+
+def crossed_set(teeth, mate_teeth, width, normal_module=1.0, helix_angle_deg=45.0, shaft_angle_deg=90.0,
+                normal_pressure_angle_deg=20.0, addendum_coeff=1.0, shift_coeff=0.0, mate_shift_coeff=0.0,
+                center_distance=None, speed_rpm=None, check=False, tolerance=MESH_TOLERANCE) -> CrossedSet:
+    """A crossed helical pair built for a scene (``[[part]] kind = "crossed"``): both bodies
+    ``width`` mm wide at ``tolerance`` mm, placed in mesh on their own axes
+    (:func:`gear3d.analysis.crossed.pair_bodies`), and the report (``check``: the rolling
+    check). The keywords are :func:`crossed`'s (mm, degrees); planned first.
+
+    >>> s = crossed_set(12, 14, 4.0, tolerance=0.05)
+    >>> [b.name for b in s.bodies], round(s.report["center_distance"], 4), s.report["max_error"] <= 0.05
+    (['gear', 'mate'], 18.3848, True)
+    """
+    opts = _options(normal_pressure_angle_deg, addendum_coeff, shift_coeff, mate_shift_coeff, center_distance,
+                    speed_rpm)
+    c = crossed(teeth, mate_teeth, normal_module, helix_angle_deg, shaft_angle_deg, width=width, tolerance=tolerance,
+                bodies=True, check=_flag(check), **opts)
+    rep = SetReport(c.report, tolerance=tolerance, width=width, kind="crossed-helical",
+                    triangles=int(sum(b.report["triangles"] for b in c.bodies)),
+                    volume=float(sum(b.report["volume"] for b in c.bodies)),
+                    max_error=max(b.report["max_error"] for b in c.bodies),
+                    profile_max_error=max(b.report["profile_max_error"] for b in c.bodies),
+                    watertight=all(b.report["watertight"] for b in c.bodies))
+    return CrossedSet(rep, c.bodies)
+
+
+def _options(an, ha, x1, x2, a, rpm) -> dict:
+    """:func:`crossed`'s ``**options`` from :func:`crossed_set`'s keywords (None: left out)."""
+    return {k: v for k, v in (("normal_pressure_angle_deg", an), ("addendum_coeff", ha), ("shift_coeff", x1),
+                              ("mate_shift_coeff", x2), ("center_distance", a), ("speed_rpm", rpm)) if v is not None}
+
+
+def _flag(v) -> bool:
+    if not isinstance(v, bool):
+        raise GearError("check", v, "true or false")
+    return v
+
+
+def validate_set(kw: dict) -> dict:
+    """The checks of :func:`crossed_set` but the bodies (GearError naming the key): the
+    pair's numbers, ``check``, ``width`` and the wheels' helix range; returns the pair's report."""
+    from .crossed import at_center_distance, crossed_pair
+    from ..errors import check_number
+    from ..plan_sets import plan_crossed
+    kw = dict(kw)
+    if kw.get("width") is None:
+        raise GearError("width", None, "a number > 0 mm (the face width of both gears)")
+    width = check_number("width", kw.pop("width"), 0, 10_000, lo_open=True, unit="mm")
+    _flag(kw.pop("check", False))
+    a = kw.pop("center_distance", None)
+    tol = kw.pop("tolerance", MESH_TOLERANCE)
+    opts = _options(*(kw.pop(k, None) for k in ("normal_pressure_angle_deg", "addendum_coeff", "shift_coeff",
+                                                "mate_shift_coeff")), None, kw.pop("speed_rpm", None))
+    rep = crossed_pair(kw.pop("teeth"), kw.pop("mate_teeth"), kw.pop("normal_module", 1.0),
+                       kw.pop("helix_angle_deg", 45.0), kw.pop("shaft_angle_deg", 90.0), **opts)
+    rep = rep if a is None else at_center_distance(rep, a)
+    plan_crossed(rep, width, tol, None)         # the helix range (the bodies' transverse pressure angle)
+    return rep
+
+
+def plan_set(kw: dict, output=None, json=None, step=None):
+    """:func:`crossed_set`'s whole plan for one output (``output`` a mesh file, ``json``
+    the report): both bodies, the file and the check; refused before any work
+    (:func:`gear3d.plan_sets.plan_crossed`)."""
+    from ..plan_sets import plan_crossed
+    rep = validate_set(kw)
+    return plan_crossed(rep, kw["width"], kw.get("tolerance", MESH_TOLERANCE), output, check=bool(kw.get("check")))

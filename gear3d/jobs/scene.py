@@ -6,8 +6,8 @@ output file. A pair adds a ``check`` (:func:`gear3d.analysis.pairs.check_pair` o
 profiles at the ``check`` tolerance) and a placed multi-body ``write`` per mesh kind
 (:func:`gear3d.solids.place_pair`; the second wheel of a twisted pair is a
 ``[part.body] mate = "<first>"`` body). A harmonic assembly builds the seed 002 parts. A
-``kind = "worm"`` / ``"bevel"`` / ``"face-gear"`` part builds its set (:func:`gear3d.worm`,
-:func:`gear3d.bevel`, :func:`gear3d.face_gear`; planned first) once per mesh tolerance,
+``kind = "worm"`` / ``"bevel"`` / ``"face-gear"`` / ``"crossed"`` part builds its set (:func:`gear3d.worm`,
+:func:`gear3d.bevel`, :func:`gear3d.face_gear`, a crossed helical pair; planned first) once per mesh tolerance,
 and a worm wheel's mid-plane section for dxf/png.
 ``[scene.options.3mf]`` (``arrange``, ``gap``) applies to the parts', pairs' and
 assemblies' 3MF files.
@@ -273,7 +273,9 @@ def _plan_set(job: Job, part: PartSpec, kind, tol, path, prefix, step=None):
     """The set's whole-command plan (:mod:`gear3d.plan_sets`) for one output, as its CLI
     command plans it: refused before any work, naming the part's key."""
     from .. import plan_sets
-    plan = {"worm": plan_sets.plan_worm, "bevel": plan_sets.plan_bevel, "face-gear": plan_sets.plan_face_gear}
+    from ..analysis.crossed_api import plan_set
+    plan = {"worm": plan_sets.plan_worm, "bevel": plan_sets.plan_bevel, "face-gear": plan_sets.plan_face_gear,
+            "crossed": plan_set}
     out = {"json": {"json": path}, "png": {"png": path}}.get(kind, {"output": path})
     if part.family == "worm" and kind in ("dxf", "png"):
         out = {"output": path, "bodies": False} if kind == "dxf" else dict(out, bodies=False)

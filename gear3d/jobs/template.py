@@ -74,6 +74,18 @@ Scene (``[scene]``, ``[[part]]``, ``[[pair]]``, ``[[assembly]]``)::
     module = 1
     outputs = ["stl", "json"]      # stl 3mf json step (faceted, or exact as above)
 
+    [[part]]                       # a crossed helical pair, both gears placed in mesh
+    name = "crossed"
+    kind = "crossed"
+    teeth = 12
+    mate_teeth = 14
+    normal_module = 1
+    helix_angle_deg = 45           # wheel 1's (right hand > 0); wheel 2 gets shaft_angle_deg - it
+    shaft_angle_deg = 90
+    width = 8                      # face width of both gears (mm)
+    check = true                   # the rolling check in the json
+    outputs = ["3mf", "json"]      # stl 3mf json step (faceted, or exact as above)
+
     [[pair]]                       # placed (place_pair) and checked (check_pair)
     name = "mesh"
     parts = ["pinion", "wheel"]
@@ -228,7 +240,7 @@ def _pair(file, i, rp, by, seen):
     for j, n in enumerate(ps):
         if by[n].rack:
             fail(file, f"{label}.parts[{j}]", n, "a gear part (a pinion on a rack: gear3d pair FAMILY --rack)")
-        if by[n].family in ("worm", "bevel", "face-gear"):
+        if by[n].family in ("worm", "bevel", "face-gear", "crossed"):
             fail(file, f"{label}.parts[{j}]", n,
                  f"a gear part (a {by[n].family} set is its own pair: part = \"pair\", check = true)")
     outs = kinds_at(file, f"{label}.outputs", rp.get("outputs", ["json"]), ("json",) + MESH_KINDS)

@@ -261,15 +261,18 @@ BEVEL_KINDS = ("stl", "3mf", "json", "step")
 #: the output kinds of a ``kind = "face-gear"`` part: its bodies (STEP faceted, or exact with
 #: ``[options.step] kind = "brep"``), its report
 FACE_KINDS = ("stl", "3mf", "json", "step")
+#: the output kinds of a ``kind = "crossed"`` part (a crossed helical pair): both bodies
+#: placed in mesh (STEP faceted, or exact with ``[options.step] kind = "brep"``), its report
+CROSSED_KINDS = ("stl", "3mf", "json", "step")
 #: the set part kinds: a scene's ``[[part]] kind = ...``, built by its own builder
-SET_KINDS = {"worm": WORM_KINDS, "bevel": BEVEL_KINDS, "face-gear": FACE_KINDS}
+SET_KINDS = {"worm": WORM_KINDS, "bevel": BEVEL_KINDS, "face-gear": FACE_KINDS, "crossed": CROSSED_KINDS}
 
 
 def set_builder(kind):
     """The builder of a set part ``kind`` (its keywords: the part's keys and ``tolerance``)."""
     import importlib
     mod, fn = {"worm": ("..wormgear", "worm"), "bevel": ("..bevel", "build"),
-               "face-gear": ("..facegear", "build")}[kind]
+               "face-gear": ("..facegear", "build"), "crossed": ("..analysis.crossed_api", "crossed_set")}[kind]
     return getattr(importlib.import_module(mod, __package__), fn)
 
 
@@ -297,6 +300,9 @@ def _set_check(kind, kw) -> tuple:
         return WORM_KINDS if kw.get("part", "pair") != "worm" else ("stl", "3mf", "json", "step")
     if kind == "bevel":
         _bevel_check(kw)
+    elif kind == "crossed":
+        from ..analysis.crossed_api import validate_set
+        validate_set(kw)
     else:
         _face_check(kw)
     return SET_KINDS[kind]
@@ -330,8 +336,9 @@ def _face_check(kw):
 
 
 def _set_part(file, key, raw, default_outputs, require_name):
-    """A set part (``kind`` = worm | bevel | face-gear): the keywords of :func:`gear3d.worm`,
-    :func:`gear3d.bevel` or :func:`gear3d.face_gear` but ``tolerance`` (the scene's per
+    """A set part (``kind`` = worm | bevel | face-gear | crossed): the keywords of :func:`gear3d.worm`,
+    :func:`gear3d.bevel`, :func:`gear3d.face_gear` or
+    :func:`gear3d.analysis.crossed_api.crossed_set` but ``tolerance`` (the scene's per
     output kind), checked by the builder's own rules before any work. Outputs
     (:data:`SET_KINDS`): stl/3mf (the bodies; a pair as two named objects in 3MF), json
     (the report), step (bevel, faceted), dxf/png (worm: the wheel's mid-plane section)."""
