@@ -220,7 +220,8 @@ def run(args, alias: bool = False) -> int:
     if getattr(args, "crossed", False) and not alias:
         return run_crossed(args)
     if not alias:
-        refuse_crossed_flags(args, ("shaft_angle_deg", "helix_angle_deg", "speed_rpm", "crossed_check"))
+        refuse_crossed_flags(args, ("shaft_angle_deg", "helix_angle_deg", "speed_rpm", "crossed_check",
+                                    "crossed_step"))
     if getattr(args, "rack", False):
         return _rack_pair(args, alias)
     if getattr(args, "width", None) is not None:

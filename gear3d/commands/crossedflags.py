@@ -12,7 +12,8 @@ its ``check``); exit 1 on interference too. ``check pair`` prints one summary li
 with ``--json`` / ``-o FILE.json``); the alias prints the JSON on stdout when no file is
 asked for, as it always did. Exit 1 when the contact ratio is below 1.
 
-``-o pair.3mf --width W [--tolerance T]`` (or .stl .step .obj .ply .vtu) also writes both
+``-o pair.3mf --width W [--tolerance T]`` (or .stl .step .obj .ply .vtu; ``--step brep``:
+exact B-rep solids in the STEP) also writes both
 helical bodies placed in mesh at the centre distance and shaft angle
 (:func:`gear3d.analysis.crossed.pair_bodies`): two named objects in 3MF, one mesh in STL.
 
@@ -35,7 +36,7 @@ from ..filesafe import atomic_path, check_path
 #: the 3D outputs of a crossed pair (-o, with --width): both helical bodies placed in mesh
 MESH_EXTS = exts("mesh")
 #: the flags that only --crossed takes (``dest`` names)
-CROSSED_ONLY = ("shaft_angle_deg", "speed_rpm", "crossed_check")
+CROSSED_ONLY = ("shaft_angle_deg", "speed_rpm", "crossed_check", "crossed_step")
 
 
 def add_crossed_flags(c, *, helix: bool = True) -> None:
@@ -54,13 +55,17 @@ def add_crossed_flags(c, *, helix: bool = True) -> None:
     c.add_argument("--check", dest="crossed_check", action="store_true", default=None,
                    help="--crossed: roll the pair (faces --width W mm) on its exact flanks: interference, "
                         "backlash, transmission error, contact ratio of conjugate action")
+    c.add_argument("--step", dest="crossed_step", default=None, choices=["faceted", "brep"],
+                   help="--crossed with -o FILE.step: planar facets (default) or exact B-rep solids "
+                        "(B-spline flanks, needs OpenCascade)")
 
 
 def refuse_crossed_flags(args, names=CROSSED_ONLY) -> None:
     """One line for a --crossed flag given without --crossed."""
     for n in names:
         if getattr(args, n, None) is not None:
-            raise GearError("check" if n == "crossed_check" else n, getattr(args, n), "only with --crossed")
+            raise GearError({"crossed_check": "check", "crossed_step": "step"}.get(n, n), getattr(args, n),
+                            "only with --crossed")
 
 
 def run_crossed(args, alias: bool = False) -> int:
@@ -83,6 +88,8 @@ def run_crossed(args, alias: bool = False) -> int:
         check_path(js, "json" if args.json is not None else "output", (".json",))
     if mesh:
         check_output(out, kinds="body")
+    if args.crossed_step is not None and not (mesh and out.lower().endswith((".step", ".stp"))):
+        raise GearError("step", args.crossed_step, "only with a STEP output (-o FILE.step) of the crossed pair")
     if (mesh or args.crossed_check) and args.width is None:
         raise GearError("width", None, "a number > 0 mm (--width) for a 3D output or --check of the crossed pair")
     if not (mesh or args.crossed_check) and args.width is not None:
@@ -136,7 +143,7 @@ def _write_bodies(args, rep: dict, out: str, tol: float) -> None:
     ``out`` (3MF: two named objects; STL: one mesh), at the tolerance ``tol`` (mm)."""
     from ..analysis.crossed import pair_bodies
     bodies = pair_bodies(rep, args.width, tol)
-    info = write(bodies, out)
+    info = write(bodies, out, **({"step": args.crossed_step} if args.crossed_step else {}))
     sys.stdout.write(f"wrote {out}: crossed helical bodies 'gear' and 'mate', width {args.width:g} mm, "
                      f"a = {rep['center_distance']:.6g} mm, shaft angle {rep['shaft_angle_deg']:g} deg, "
                      f"{sum(b.report['triangles'] for b in bodies)} triangles (tolerance {tol:g} mm)"

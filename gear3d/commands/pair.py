@@ -26,5 +26,6 @@ def add_parser(sub):
 def run(args) -> int:
     if getattr(args, "crossed", False):
         return run_crossed(args, alias=True)
-    refuse_crossed_flags(args, ("shaft_angle_deg", "helix_angle_deg", "speed_rpm", "crossed_check"))
+    refuse_crossed_flags(args, ("shaft_angle_deg", "helix_angle_deg", "speed_rpm", "crossed_check",
+                                "crossed_step"))
     return check_run(args, alias=True)
