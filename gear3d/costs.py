@@ -38,6 +38,9 @@ COSTS = {
     "profile.corners": Cost(1.5e-4, 0.0, 0.0, 0.0, "triangular z=7, 80 deg, m 3, 1e-3 (2026-11-26): 8,927 "
                             "visits of up to 3,910 samples, 3.2 s; chords_near 2.2e-8 s a sample, Newton 0.3 ms"),
     "profile.corners.near": Cost(1.5e-8, 0.0, 0.0, 0.0, "the same run: chords_near over 3 x 3,910 chords"),
+    # one more pass of trim_and_refine over the whole profile (pattern, Clipper trim, new vertices)
+    "profile.pass": Cost(3e-6, 0.0, 0.0, 0.0, "involute z=3000 at 0.1 um (2026-11-26): two passes over "
+                         "204,000 vertices, 0.47 s: 1.2 us a vertex, x2.5"),
     # gear3d.buildsteps.sector_distance: per (point, edge) pair near tooth 0, numpy in chunks
     "profile.pairs": Cost(1e-8, 0.0, 0.0, 0.0, "moineau-stator rho=1e5, e=1: 27,800 x 55,600 pairs, 5.4 s"),
     # solids.body: the layer mesh (float64 V, int64 F, intermediates) and its measurement

@@ -229,19 +229,19 @@ def corner_refinement(pts_list, devs, teeth: int, tol: float, prune: bool = Fals
     samples, mm; ``devs``: each chord's measured deviation, mm) at ``tol`` (mm; ``prune``:
     an envelope's, whose needles :func:`gear3d.envelope.prune_spikes` removes): a dict of
     ``corners`` (crossings found), ``visits`` (corner visits planned), ``vertices`` (added to
-    the period's outline: the refined samples and a vertex at each corner) and ``samples``
+    the period's outline: the refined samples, and a corner at each where refined chords
+    cross again) and ``samples``
     (the period's samples afterwards), ``refined`` (the samples bisection adds). See the
     module doc.
 
     The bow tie of :func:`crossings` whose first chord sags 4 um (a curve's chord) at
     tol = 10 um: the target is 10 / 3 um (sin gamma = 1, no retry), 1.2 times finer, so one
-    bisection (one vertex), and the corner's own vertex; at 20 um sag, 6 times finer: two
-    bisections (three vertices):
+    bisection (one vertex); at 20 um sag, 6 times finer: two bisections (three vertices):
 
     >>> p = [np.array([[0.0, 0.0], [2.0, 2.0], [2.0, 0.0]]), np.array([[2.0, 0.0], [0.0, 2.0], [0.0, 0.0]])]
     >>> r = corner_refinement(p, [np.array([4e-3, 0.0]), np.zeros(2)], 1, 1e-2)
     >>> r["corners"], r["vertices"], r["samples"]
-    (1, 2.0, 7.0)
+    (1, 1.0, 7.0)
     >>> corner_refinement(p, [np.array([20e-3, 0.0]), np.zeros(2)], 1, 1e-2)["refined"]
     3.0
     """
@@ -264,14 +264,16 @@ def corner_refinement(pts_list, devs, teeth: int, tol: float, prune: bool = Fals
     best = np.full(len(dev), np.inf)                          # each chord's finest target
     for p, j in ((pa, ja), (pb, jb)):
         for o in (-1, 0, 1):                                   # the chord and its neighbours
-            np.minimum.at(best, np.clip(start[p] + j + o, 0, len(dev) - 1), target)
+            jj = np.clip(start[p] + j + o, 0, len(dev) - 1)
+            np.minimum.at(best, jj, target)
     added = added_vertices(dev, best)
     extra = float(added.sum())
     # nearly tangent overlaps: every vertex added on a chord of a floored crossing is a corner
     again = float(added[unique_sorted(np.sort(np.concatenate([start[pa[flat]] + ja[flat], start[pb[flat]] + jb[flat]])))].sum())
     corners = len(sine) + again
-    # each corner is one more outline vertex (Clipper's crossing point)
-    return {"corners": int(len(sine)), "visits": VISITS * corners, "vertices": extra + corners, "samples": n0 + extra,
+    # outline vertices: the refined samples (some are trimmed away: the plan errs high) and,
+    # where refined chords cross again (nearly tangent), a corner at each
+    return {"corners": int(len(sine)), "visits": VISITS * corners, "vertices": extra + again, "samples": n0 + extra,
             "refined": extra, "overlaps": again}
 
 
@@ -285,8 +287,9 @@ def corner_estimate(plan: dict, teeth: int):
     """The refinement's own work (:class:`gear3d.budget.Estimate`) of a
     :func:`corner_refinement` ``plan`` for ``teeth`` teeth: its corner visits
     (``COSTS["profile.corners"]``), each searching the period's samples in three tooth
-    copies (``COSTS["profile.corners.near"]``), and :data:`EXTRA_PASSES` more trims of the
-    refined profile (:data:`OVERLAP_PASSES` when refined chords cross again) (``COSTS["profile"]`` a vertex). Memory: the refined vertices are
+    copies (``COSTS["profile.corners.near"]``), and :data:`EXTRA_PASSES` more passes over the
+    refined profile (pattern, trim, corners: ``COSTS["profile.pass"]`` a vertex;
+    :data:`OVERLAP_PASSES` when refined chords cross again) (``COSTS["profile"]`` a vertex). Memory: the refined vertices are
     charged with the profile itself.
 
     >>> corner_estimate({"corners": 0, "visits": 0.0, "vertices": 0.0, "samples": 40.0}, 20).seconds
@@ -299,5 +302,5 @@ def corner_estimate(plan: dict, teeth: int):
     sec = v * (COSTS["profile.corners"].seconds + 3 * n * COSTS["profile.corners.near"].seconds)
     if plan.get("refined"):                   # chords to bisect: the passes that refine, and one more
         passes = OVERLAP_PASSES if plan.get("overlaps") else EXTRA_PASSES
-        sec += passes * COSTS["profile"].seconds * teeth * n
+        sec += passes * COSTS["profile.pass"].seconds * teeth * n
     return Estimate(sec, 0.0, 0.0, f"refining {plan['corners']:,} trimmed corner(s) to {n:,.0f} samples a tooth")

@@ -4,8 +4,8 @@ the probe's sketch by :func:`gear3d.plan.probe_call`).
 
 Oracles: a brute-force bisection of an exact circular arc (the sagitta r (1 - cos(phi/2))
 of each sub-chord, halved until within the target) for the refinement law's count; the real
-builder's own refined sample count and outline vertex count (read from its run) against the
-plan; the CLI's exit code, its one line naming the limit flag, no file, and the refinement
+builder's own refined samples, corners and outline vertices (read from its run) against the
+plan (the samples within 1-4x, the corners and the outline at most planned); the CLI's exit code, its one line naming the limit flag, no file, and the refinement
 never reached (the builder's refine step replaced by a recorder).
 """
 from __future__ import annotations
@@ -39,19 +39,25 @@ def test_the_bisection_law_counts_what_halving_an_arc_adds(r, phi, target):
 
 
 class _Run:
-    """The real builder's refinement of one profile: samples before and after it."""
+    """The real builder's refinement of one profile (samples before and after it, its
+    corners) and the plan its first sampling made (``buildsteps.corner_refinement``)."""
 
     def __init__(self, monkeypatch):
-        self.before = self.after = self.corners = None
-        real = bs.trim_and_refine
+        self.before = self.after = self.corners = self.plan = None
+        real, plan_ = bs.trim_and_refine, bs.corner_refinement
 
         def spy(samples, *a, **k):
             self.before = sum(len(t) - 1 for t in samples.ts)
             out = real(samples, *a, **k)
             self.after = sum(len(t) - 1 for t in samples.ts)
-            self.corners = len(out.corners)          # each a new outline vertex (Clipper's crossing)
+            self.corners = len(out.corners)
             return out
+
+        def planned(*a, **k):
+            self.plan = self.plan or plan_(*a, **k)
+            return self.plan
         monkeypatch.setattr(bs, "trim_and_refine", spy)
+        monkeypatch.setattr(bs, "corner_refinement", planned)
 
 
 CASES = [
@@ -66,13 +72,15 @@ CASES = [
 
 @pytest.mark.parametrize("family, kw", CASES, ids=[f"{f}-{k['teeth']}" for f, k in CASES])
 def test_the_plan_bounds_the_real_refinement(monkeypatch, family, kw):
-    sk = plan.probe_profile(family, kw)
     run = _Run(monkeypatch)
     p = profile(family, **kw)
-    planned_added = sk.per_tooth - run.before            # corner vertices: refined samples and corners
-    real_added = run.after - run.before + run.corners
-    assert real_added <= planned_added <= 4 * real_added
-    assert p.report["vertices"] <= sk.vertices + (sk.rim_vertices or 0)     # the outline within the plan
+    sk = plan.probe_profile(family, kw)
+    real = run.after - run.before                        # samples the refinement added to tooth 0
+    # (a corner's neighbour chords are planned even where the builder finds them fine: a few samples)
+    assert real <= run.plan["refined"] <= max(4 * real, 4)
+    assert run.corners <= run.plan["corners"] + run.plan["overlaps"]
+    # the outline (the report's vertices: trimmed, corners included) within the plan's count
+    assert p.report["vertices"] <= sk.vertices + (sk.rim_vertices or 0)
 
 
 def test_pointed_overlapping_teeth_are_refused_before_their_refinement(monkeypatch, tmp_path):
