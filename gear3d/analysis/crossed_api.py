@@ -4,8 +4,13 @@ from __future__ import annotations
 
 from typing import NamedTuple
 
-from ..errors import GearError
+from ..errors import GearError, check_number
 from ..params import MESH_TOLERANCE
+
+
+#: :func:`crossed`'s keywords beyond its named ones (``**options``)
+OPTIONS = ("normal_pressure_angle_deg", "addendum_coeff", "shift_coeff", "mate_shift_coeff", "center_distance",
+           "speed_rpm")
 
 
 class CrossedPair(NamedTuple):
@@ -64,11 +69,9 @@ def crossed(teeth, mate_teeth, normal_module=1.0, helix_angle_deg=45.0, shaft_an
     (19.1848, True)
     """
     from .crossed import at_center_distance, crossed_pair, pair_bodies
-    known = ("normal_pressure_angle_deg", "addendum_coeff", "shift_coeff", "mate_shift_coeff", "center_distance",
-             "speed_rpm")
     for k in options:
-        if k not in known:
-            raise GearError(k, options[k], "not a parameter of a crossed pair (one of " + ", ".join(known) + ")")
+        if k not in OPTIONS:
+            raise GearError(k, options[k], "not a parameter of a crossed pair (one of " + ", ".join(OPTIONS) + ")")
     a = options.pop("center_distance", None)
     rep = crossed_pair(teeth, mate_teeth, normal_module, helix_angle_deg, shaft_angle_deg, **options)
     if a is not None:
@@ -104,21 +107,19 @@ class CrossedSet(NamedTuple):
 
 
 def crossed_set(teeth, mate_teeth, width, normal_module=1.0, helix_angle_deg=45.0, shaft_angle_deg=90.0,
-                normal_pressure_angle_deg=20.0, addendum_coeff=1.0, shift_coeff=0.0, mate_shift_coeff=0.0,
-                center_distance=None, speed_rpm=None, check=False, tolerance=MESH_TOLERANCE) -> CrossedSet:
+                check=False, tolerance=MESH_TOLERANCE, **options) -> CrossedSet:
     """A crossed helical pair built for a scene (``[[part]] kind = "crossed"``): both bodies
     ``width`` mm wide at ``tolerance`` mm, placed in mesh on their own axes
     (:func:`gear3d.analysis.crossed.pair_bodies`), and the report (``check``: the rolling
-    check). The keywords are :func:`crossed`'s (mm, degrees); planned first.
+    check). The keywords are :func:`crossed`'s (mm, degrees; ``**options``: :data:`OPTIONS`);
+    planned first.
 
     >>> s = crossed_set(12, 14, 4.0, tolerance=0.05)
     >>> [b.name for b in s.bodies], round(s.report["center_distance"], 4), s.report["max_error"] <= 0.05
     (['gear', 'mate'], 18.3848, True)
     """
-    opts = _options(normal_pressure_angle_deg, addendum_coeff, shift_coeff, mate_shift_coeff, center_distance,
-                    speed_rpm)
     c = crossed(teeth, mate_teeth, normal_module, helix_angle_deg, shaft_angle_deg, width=width, tolerance=tolerance,
-                bodies=True, check=_flag(check), **opts)
+                bodies=True, check=_flag(check), **options)
     rep = SetReport(c.report, tolerance=tolerance, width=width, kind="crossed-helical",
                     triangles=int(sum(b.report["triangles"] for b in c.bodies)),
                     volume=float(sum(b.report["volume"] for b in c.bodies)),
@@ -126,12 +127,6 @@ def crossed_set(teeth, mate_teeth, width, normal_module=1.0, helix_angle_deg=45.
                     profile_max_error=max(b.report["profile_max_error"] for b in c.bodies),
                     watertight=all(b.report["watertight"] for b in c.bodies))
     return CrossedSet(rep, c.bodies)
-
-
-def _options(an, ha, x1, x2, a, rpm) -> dict:
-    """:func:`crossed`'s ``**options`` from :func:`crossed_set`'s keywords (None: left out)."""
-    return {k: v for k, v in (("normal_pressure_angle_deg", an), ("addendum_coeff", ha), ("shift_coeff", x1),
-                              ("mate_shift_coeff", x2), ("center_distance", a), ("speed_rpm", rpm)) if v is not None}
 
 
 def _flag(v) -> bool:
@@ -144,7 +139,6 @@ def validate_set(kw: dict) -> dict:
     """The checks of :func:`crossed_set` but the bodies (GearError naming the key): the
     pair's numbers, ``check``, ``width`` and the wheels' helix range; returns the pair's report."""
     from .crossed import at_center_distance, crossed_pair
-    from ..errors import check_number
     from ..plan_sets import plan_crossed
     kw = dict(kw)
     if kw.get("width") is None:
@@ -153,8 +147,7 @@ def validate_set(kw: dict) -> dict:
     _flag(kw.pop("check", False))
     a = kw.pop("center_distance", None)
     tol = kw.pop("tolerance", MESH_TOLERANCE)
-    opts = _options(*(kw.pop(k, None) for k in ("normal_pressure_angle_deg", "addendum_coeff", "shift_coeff",
-                                                "mate_shift_coeff")), None, kw.pop("speed_rpm", None))
+    opts = {k: kw.pop(k) for k in OPTIONS if k in kw}
     rep = crossed_pair(kw.pop("teeth"), kw.pop("mate_teeth"), kw.pop("normal_module", 1.0),
                        kw.pop("helix_angle_deg", 45.0), kw.pop("shaft_angle_deg", 90.0), **opts)
     rep = rep if a is None else at_center_distance(rep, a)

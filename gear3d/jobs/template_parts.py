@@ -287,6 +287,9 @@ def _set_keys(kind) -> tuple:
     if kind == "bevel":                   # gear3d.bevel's keywords beyond its named ones (**options)
         from ..bevel import OPTIONS
         more = list(OPTIONS)
+    if kind == "crossed":                 # crossed_set's **options
+        from ..analysis.crossed_api import OPTIONS as CROSSED_OPTIONS
+        more = list(CROSSED_OPTIONS)
     return ([k for k, p in ps.items() if k != "tolerance" and p.kind is not p.VAR_KEYWORD] + more,
             tuple(k for k, p in ps.items() if p.default is inspect.Parameter.empty and p.kind is not p.VAR_KEYWORD))
 
