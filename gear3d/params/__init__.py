@@ -43,8 +43,8 @@ from .families import (ADD, CONV_HELIX, CONVENTION_FAMILIES, CONVENTIONS, DED, D
                        PRESSURE, RIM, TEETH, TIP, TOLERANCE, all_params, by_name, check_excludes,
                        check_family, family_table)
 from .bodies import BODY, BODY_KINDS, BODY_PARAMS, PAIR, PAIR_PARAMS, check_body
-from .sets import (BEVEL_FORMS, BEVEL_PARAMS, FACE_GEAR_PARAMS, PLANETARY, PLANETARY_FAMILIES, PLANETARY_PARAMS, SPACINGS,
-                   WORM_PARAMS)
+from .sets import (BEVEL_FORMS, BEVEL_PARAMS, CROSSED_PARAMS, FACE_GEAR_PARAMS, PLANETARY, PLANETARY_FAMILIES,
+                   PLANETARY_PARAMS, SPACINGS, WORM_PARAMS)
 from .exporters import DXF_PARAMS, EXPORT_PARAMS, STEP_PARAMS, SVG_PARAMS, THREEMF_PARAMS
 from .reference import markdown, md_rows
 
@@ -53,6 +53,6 @@ __all__ = ["Param", "declare", "union", "DEFAULT_TOLERANCE", "MAX_TOLERANCE_SHAR
            "CONVENTIONS", "DED", "DIAMETRAL_PITCH", "FAMILY_PARAMS", "INTERNAL", "MODULE", "NORMAL_MODULE",
            "NORMAL_PRESSURE", "NOT_TABULATED", "PRESSURE", "RIM", "TEETH", "TIP", "TOLERANCE", "all_params",
            "by_name", "check_excludes", "check_family", "family_table", "BODY", "BODY_KINDS", "BODY_PARAMS",
-           "PAIR", "PAIR_PARAMS", "check_body", "BEVEL_FORMS", "BEVEL_PARAMS", "FACE_GEAR_PARAMS", "PLANETARY", "PLANETARY_FAMILIES", "PLANETARY_PARAMS",
+           "PAIR", "PAIR_PARAMS", "check_body", "BEVEL_FORMS", "BEVEL_PARAMS", "CROSSED_PARAMS", "FACE_GEAR_PARAMS", "PLANETARY", "PLANETARY_FAMILIES", "PLANETARY_PARAMS",
            "SPACINGS", "WORM_PARAMS", "DXF_PARAMS", "EXPORT_PARAMS", "STEP_PARAMS",
            "SVG_PARAMS", "THREEMF_PARAMS", "markdown", "md_rows"]

@@ -1,4 +1,4 @@
-"""The keyword tables of the worm, bevel, face gear and planetary sets (``gear3d.worm``, ``gear3d.bevel``,
+"""The keyword tables of the worm, bevel, face gear, crossed pair and planetary sets (``gear3d.worm``, ``gear3d.bevel``,
 ``gear3d.face_gear``, ``gear3d.planetary.planetary_set``; their CLI flags, template keys and web forms)."""
 from __future__ import annotations
 
@@ -119,6 +119,30 @@ FACE_GEAR_PARAMS: tuple = (
             "the shaper's, R2 - R1 wide, own frame) or pair (both, the pinion placed in mesh)"),
     _p("tolerance", float, "mm", 1e-5, 1, default=MESH_TOLERANCE,
        help="max deviation of the mesh from the exact tooth surfaces"),
+)
+
+#: ``gear3d.crossed(...)`` keywords the page offers (a crossed helical pair, :mod:`gear3d.analysis.crossed_api`;
+#: ranges checked again by :func:`gear3d.analysis.crossed.crossed_pair`; the CLI's ``--crossed`` flags)
+CROSSED_PARAMS: tuple = (
+    _p("teeth", int, "", 5, 10_000, default=12, help="teeth of wheel 1 (z1)"),
+    _p("mate_teeth", int, "", 5, 10_000, default=14, help="teeth of wheel 2 (z2)"),
+    _p("normal_module", float, "mm", 0, 1000, lo_open=True, default=1.0, help="normal module m_n"),
+    _p("helix_angle_deg", float, "deg", -80, 80, default=45.0,
+       help="helix angle b1 of wheel 1 (right hand > 0); wheel 2 gets the shaft angle - b1",
+       limits="both |b| within the bodies' range (transverse pressure angle <= 45 deg)"),
+    _p("shaft_angle_deg", float, "deg", 0, 180, lo_open=True, hi_open=True, default=90.0, help="shaft angle S"),
+    _p("normal_pressure_angle_deg", float, "deg", 10, 35, default=20.0, help="normal pressure angle a_n"),
+    _p("addendum_coeff", float, "x m", 0.3, 2.0, default=1.0, help="addendum h_a (normal modules)"),
+    _p("shift_coeff", float, "x m", -1.0, 1.5, default=0.0, help="normal profile shift x1 of wheel 1"),
+    _p("mate_shift_coeff", float, "x m", -1.0, 1.5, default=0.0, help="normal profile shift x2 of wheel 2"),
+    _p("center_distance", float, "mm", 0, None, lo_open=True,
+       help="centre distance (default the zero-backlash one, r1 + r2 + (x1 + x2) m_n)",
+       limits="the tips clear of the roots, at most 2 m_n beyond the zero-backlash one"),
+    _p("width", float, "mm", 0, 10_000, lo_open=True, default=6.0, help="face width of both gears"),
+    _p("check", bool, default=True,
+       help="roll the pair on its exact flanks: interference, backlash, contact ratio of conjugate action"),
+    _p("tolerance", float, "mm", 1e-6, 1, default=MESH_TOLERANCE,
+       help="max deviation of the bodies from the exact flanks"),
 )
 
 #: the generation forms of a bevel tooth (:mod:`gear3d.bevel.geometry`)
