@@ -102,16 +102,15 @@ def probe_call(build, tolerance=1e-3) -> Sketch | None:
 
 
 def write_estimate(ext: str, *, vertices: float = 0.0, per_tooth: float = 0.0, triangles: float = 0.0,
-                   brep: Estimate | None = None, kerf: float = 0.0) -> Estimate:
+                   brep: Estimate | None = None, kerf: float = 0.0, fallback: bool = False) -> Estimate:
     """An export's estimate: 2D formats from the profile's ``vertices`` (``per_tooth``: of
-    one period; DXF and SVG of few teeth, or with a ``kerf`` (mm, any teeth), also their
-    sampled fallback), 3D formats from the body's ``triangles`` (a B-rep STEP: its
-    :func:`brep_estimate` ``brep``).
+    one period; DXF and SVG of few teeth, with a ``kerf`` (mm, any teeth) or a ``fallback``
+    (an outline of refined corners), also their sampled fallback), 3D formats from the
+    body's ``triangles`` (a B-rep STEP: its :func:`brep_estimate` ``brep``).
 
-    A kerf offset often cannot be followed on the exact pieces (an offset cusp where the
-    curve bends tighter than the kerf: measured 2026-11-26 at 1 um, involute z=12 -0.5 mm,
-    z=40 +-0.9 mm, cycloidal z=20 +-0.3 mm and sine z=20 -0.2 mm all took the sampled
-    route, 0.4-3.8 s), so it is charged whatever the teeth.
+    A kerf offset often cannot be followed on the exact pieces (an offset cusp where the curve
+    bends tighter than the kerf: measured 2026-11-26 at 1 um, involute z=12 -0.5 mm, z=40 +-0.9
+    mm, cycloidal z=20 +-0.3 mm, sine z=20 -0.2 mm took it, 0.4-3.8 s): charged at any teeth.
 
     >>> write_estimate(".dxf", vertices=1920, per_tooth=48).seconds < 0.2
     True
@@ -122,7 +121,7 @@ def write_estimate(ext: str, *, vertices: float = 0.0, per_tooth: float = 0.0, t
     if ext in (".dxf", ".svg"):
         what = f"the {ext[1:].upper()} of {vertices:,.0f} vertices"
         est = estimate("write" + ext, vertices, 0.0, what)
-        few = not per_tooth or vertices / per_tooth <= FALLBACK_TEETH
+        few = fallback or not per_tooth or vertices / per_tooth <= FALLBACK_TEETH
         if few or kerf:                                                  # and the sampled fallback
             k = math.sqrt(REFERENCE_FACTOR)
             ref = budget.profile_estimate(k * vertices, k * per_tooth)
@@ -501,7 +500,8 @@ def plan_profile(family: str, params: dict, output=None, width=None, figure=None
         est = est.then(budget.body_estimate(tri, layer_vertices=sk.layer_vertices, teeth=sk.teeth, star=sketch_star(sk)))
         est = est.then(write_estimate(ext, triangles=tri))
     elif ext:
-        est = est.then(write_estimate(ext, vertices=sk.vertices, per_tooth=sk.per_tooth, kerf=kerf_of({"kerf": kerf})))
+        est = est.then(write_estimate(ext, vertices=sk.vertices, per_tooth=sk.per_tooth, kerf=kerf_of({"kerf": kerf}),
+                                      fallback=sk.per_tooth > 2 * len(sk.period)))    # gear3d.plan_corners
     if figure:
         est = est.then(estimate("figure", sk.vertices, 0.0, f"a figure of {sk.vertices:,.0f} vertices"))
     if measure:                         # the span's jaw directions x flank points: a tooth's vertices squared

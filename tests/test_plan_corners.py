@@ -5,7 +5,8 @@ the probe's sketch by :func:`gear3d.plan.probe_call`).
 Oracles: a brute-force bisection of an exact circular arc (the sagitta r (1 - cos(phi/2))
 of each sub-chord, halved until within the target) for the refinement law's count; the real
 builder's own refined samples, corners and outline vertices (read from its run) against the
-plan (the samples within 1-4x, the corners and the outline at most planned); the CLI's exit code, its one line naming the limit flag, no file, and the refinement
+plan (the samples within 1-4x, the corners and the outline at most planned); the CLI's
+exit code, its one line naming the limit flag, no file, and the refinement
 never reached (the builder's refine step replaced by a recorder).
 """
 from __future__ import annotations
@@ -89,8 +90,13 @@ def test_pointed_overlapping_teeth_are_refused_before_their_refinement(monkeypat
     monkeypatch.setattr(bs.Samples, "refine", lambda *a, **k: calls.append(a))
     monkeypatch.chdir(tmp_path)
     base = ["triangular", "--teeth", "7", "--half-angle-deg", "80", "--module", "3", "--tolerance", "1e-3"]
-    for cmd, flag, value in (("profile", "--max-seconds", "1"), ("body", "--max-triangles", "200000")):
-        rc = main([cmd, *base, flag, value, "-o", "out." + ("dxf" if cmd == "profile" else "stl")])
+    # its DXF takes the writer's sampled fallback (a reference 20x finer, corners and all):
+    # planned, it is refused at once under the default 60 s (it was refused after 4 s of work,
+    # naming the reference's tolerance 5e-05)
+    for cmd, flag, value, out in (("profile", "--max-seconds", "1", "out.svg"),
+                                  ("profile", "--max-seconds", "60", "out.dxf"),
+                                  ("body", "--max-triangles", "200000", "out.stl")):
+        rc = main([cmd, *base, flag, value, "-o", out])
         assert rc == 2
     assert calls == [] and list(tmp_path.iterdir()) == []
 
