@@ -503,11 +503,14 @@ def log_plan(est: Estimate) -> None:
 
 # ------------------------------------------------------------------------ the builders' checks
 
-def check_profile(vertices: float, param: str, value, info: dict | None = None) -> Estimate:
+def check_profile(vertices: float, param: str, value, info: dict | None = None,
+                  work: Estimate | None = None) -> Estimate:
     """Charge a profile of ``vertices`` vertices before it is patterned and trimmed
-    (``info``: the sampled period, ``{"teeth", "points"}``, for :func:`probing`)."""
+    (``info``: the sampled period, ``{"teeth", "points"}``, for :func:`probing`; ``work``:
+    its trimmed corners' refinement, :func:`gear3d.plan_corners.corner_estimate`)."""
     per = float(vertices) / max(int(info["teeth"]), 1) if info else 0.0
-    return charge(profile_estimate(vertices, per), param, value, info, key="profile")
+    est = profile_estimate(vertices, per)
+    return charge(work.then(est) if work is not None and work.seconds else est, param, value, info, key="profile")
 
 
 #: a ring's rim radius is at most this many pitch radii: a larger one is a plate with a

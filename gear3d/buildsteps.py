@@ -236,10 +236,9 @@ def sample_pieces(pieces, fs, teeth: int, tol: float, budget: float):
     # work charged, its vertices counted with the profile's
     cr = corner_refinement(samples.pts, samples.devs, teeth, tol,
                            any(getattr(G, "tool_tangent", None) is not None for G in pieces))
-    if cr["visits"]:
-        _budget.charge(corner_estimate(cr, teeth), param, value, key="corners")
     _budget.check_profile(teeth * (sum(len(t) - 1 for t in samples.ts) + cr["vertices"]), param, value,
-                          info={"teeth": teeth, "points": samples.pts, "corner_vertices": cr["vertices"]})
+                          info={"teeth": teeth, "points": samples.pts, "corner_vertices": cr["vertices"]},
+                          work=corner_estimate(cr, teeth))
     return samples, float(sum(x.min_vertices for x in tess))
 
 
