@@ -138,6 +138,7 @@ CROSSED_PARAMS: tuple = (
     _p("center_distance", float, "mm", 0, None, lo_open=True,
        help="centre distance (default the zero-backlash one, r1 + r2 + (x1 + x2) m_n)",
        limits="the tips clear of the roots, at most 2 m_n beyond the zero-backlash one"),
+    _p("speed_rpm", float, "rpm", 0, 1e6, lo_open=True, help="speed of wheel 1, for the sliding speed in m/s"),
     _p("width", float, "mm", 0, 10_000, lo_open=True, default=6.0, help="face width of both gears"),
     _p("check", bool, default=True,
        help="roll the pair on its exact flanks: interference, backlash, contact ratio of conjugate action"),

@@ -16,11 +16,13 @@ body parameters as ``b.<name>``, pair parameters as ``pair.<name>``; never paths
 The page is a sibling of the command line, not a layer on it: the form's texts become the
 library's keywords through the parameter tables (:mod:`gear3d.web.formargs`), and the builds
 (:mod:`gear3d.web.builds`) call the library, each planned against the budget before it
-builds. The worm, bevel and face gear sets (``family=worm``, ``family=bevel``,
-``family=face-gear``) have one form (their table, in the profile section): the 2D preview is
-the worm wheel's mid-plane section, the bevel gear's heel section or the face gear's sections
-at R1, mid and R2 unrolled; body and downloads are the set's bodies (the face gear's JSON: its
-report).
+builds. The worm, bevel, face gear and crossed helical sets (``family=worm``, ``family=bevel``,
+``family=face-gear``, ``family=crossed``) have one form (their table, in the profile section):
+the 2D preview is the worm wheel's mid-plane section, the bevel gear's heel section, the face
+gear's sections at R1, mid and R2 unrolled, or the crossed pair's wheel 1 transverse section
+with the pair's report and rolling check (centre distance, backlash, contact ratio); body and
+downloads are the set's bodies (the face gear's JSON: its report; the crossed pair's bodies
+placed in mesh).
 
 Builds run in worker processes (``create_app(workers=True)``, as ``gear3d serve`` does:
 :mod:`gear3d.web.workers`), each under the watchdog: a build that runs past its CPU-time or

@@ -11,9 +11,10 @@ status, media type, headers and bytes out), so a worker's answer crosses a pipe 
 * :func:`pair_check` - ``{"report", "summary", "animation"}`` (``gear3d.check_pair``);
 * :func:`download` - the file ``gear3d body``/``gear3d profile ... -o`` writes, from the same
   library calls, written into a folder the caller owns;
-* :func:`set_preview`, :func:`set_body`, :func:`set_download` - the same for worm, bevel and
-  face gear sets (the wheel's mid-plane section; the bevel gear's heel section; the face
-  gear's sections at R1, mid and R2, :mod:`gear3d.web.faceset`).
+* :func:`set_preview`, :func:`set_body`, :func:`set_download` - the same for worm, bevel,
+  face gear and crossed helical sets (the wheel's mid-plane section; the bevel gear's heel
+  section; the face gear's sections at R1, mid and R2, :mod:`gear3d.web.faceset`; wheel 1's
+  transverse section and the crossed pair's check, :mod:`gear3d.web.crossedset`).
 
 Example::
 
@@ -161,6 +162,8 @@ def _default_teeth(family: str):
 
 #: the face gear set's family name on the page (its CLI command's)
 FACE = "face-gear"
+#: the crossed helical pair's family name on the page (:mod:`gear3d.web.crossedset`)
+CROSSED = "crossed"
 
 def _worm_design(kw: dict):
     from ..wormgear import validate
@@ -188,6 +191,11 @@ def set_preview(family: str, kw: dict) -> Reply:
         from .faceset import face_preview
         rep, svg = face_preview(kw)
         return json_reply({"svg": svg, "report": rep, "neck": None, "ms": round(1000 * (time.perf_counter() - t0), 1)})
+    if family == CROSSED:
+        from .crossedset import crossed_preview
+        rep, p = crossed_preview(kw)
+        return json_reply({"svg": profile_svg(p), "report": rep, "neck": neck(p),
+                           "ms": round(1000 * (time.perf_counter() - t0), 1)})
     p = set_section(family, kw, min(kw.get("tolerance", DEFAULT_TOLERANCE), DEFAULT_TOLERANCE))
     what = "wheel mid-plane section" if family == "worm" else "gear heel section"
     return json_reply({"svg": profile_svg(p), "report": dict(p.report, section=what), "neck": neck(p),
@@ -201,6 +209,9 @@ def _set_bodies(family: str, kw: dict, output=None, step=None) -> tuple:
     if family == FACE:
         from .faceset import face_bodies
         return face_bodies(kw, output, step)
+    if family == CROSSED:
+        from .crossedset import crossed_bodies
+        return crossed_bodies(kw, output)
     from ..plan_sets import plan_bevel, plan_worm
     (plan_worm if family == "worm" else plan_bevel)(kw, output, step)
     if family == "worm":
@@ -217,7 +228,7 @@ def _set_bodies(family: str, kw: dict, output=None, step=None) -> tuple:
 def set_body(family: str, kw: dict) -> Reply:
     """The 3D preview of a set at the coarser of the print tolerance and the form's."""
     bodies, rep = _set_bodies(family, dict(kw, tolerance=max(kw["tolerance"], PREVIEW_TOLERANCE)))
-    rep = dict(rep, family=family, kind=kw.get("part"))
+    rep = dict(rep, family=family, kind=kw.get("part") or rep.get("kind"))
     if "triangles" not in rep:
         rep["triangles"] = sum(int(v or 0) for k, v in rep.items() if k.endswith("_triangles"))
     return _mesh_reply(bodies, rep)
@@ -244,6 +255,7 @@ def set_download(family: str, kw: dict, opts: dict, fmt: str, folder: str) -> Re
         part = kw.get("part")
     teeth = kw.get("wheel_teeth", 30) if family == "worm" else kw.get("teeth")
     media = MEDIA[fmt][1]
+    part = "pair" if family == CROSSED else part
     return _file_reply(path, media, f"{family}-z{teeth}-{part}.{fmt}")
 
 

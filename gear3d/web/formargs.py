@@ -22,15 +22,16 @@ from __future__ import annotations
 from ..cliargs import plain_int, plain_number
 from ..errors import GearError
 from ..export import kind_options
-from ..params import (BEVEL_PARAMS, BODY, DEFAULT_TOLERANCE, FACE_GEAR_PARAMS, FAMILY_PARAMS, MESH_TOLERANCE, PAIR,
+from ..params import (BEVEL_PARAMS, BODY, CROSSED_PARAMS, DEFAULT_TOLERANCE, FACE_GEAR_PARAMS, FAMILY_PARAMS, MESH_TOLERANCE, PAIR,
                       WORM_PARAMS, check_excludes)
 
 _TRUE, _FALSE = ("1", "true", "on", "yes"), ("0", "false", "off", "no")
 
 #: sets built by their own function (not a profile family): name -> their table
-SETS = {"worm": WORM_PARAMS, "bevel": BEVEL_PARAMS, "face-gear": FACE_GEAR_PARAMS}
+SETS = {"worm": WORM_PARAMS, "bevel": BEVEL_PARAMS, "face-gear": FACE_GEAR_PARAMS, "crossed": CROSSED_PARAMS}
 #: keywords a set's function needs even at their default (the table's)
-SET_NEEDS = {"bevel": ("teeth", "mate_teeth", "module"), "face-gear": ("teeth", "module")}
+SET_NEEDS = {"bevel": ("teeth", "mate_teeth", "module"), "face-gear": ("teeth", "module"),
+             "crossed": ("teeth", "mate_teeth", "width", "check")}
 #: the face gear's shaper when the form names neither shaper nor pinion (the builder needs one)
 FACE_START_SHAPER = 20
 

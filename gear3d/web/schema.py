@@ -31,7 +31,7 @@ PREFIXES = {"body": "b.", "pair": "pair.", "export": "x."}
 
 #: sets (not profile families) the page builds, and the downloads each offers
 SET_DOWNLOADS = {"worm": ("stl", "3mf", "step", "dxf"), "bevel": ("stl", "3mf", "step"),
-                 "face-gear": ("stl", "3mf", "step", "json")}
+                 "face-gear": ("stl", "3mf", "step", "json"), "crossed": ("stl", "3mf", "step")}
 #: downloads of a profile family (body: stl 3mf step; profile: dxf svg)
 FAMILY_DOWNLOADS = ("stl", "3mf", "step", "dxf", "svg")
 
@@ -67,12 +67,16 @@ LABELS = {
     "shaft_length": "Worm shaft length", "clearance": "Tip clearance", "mounting_distance": "Mounting distance",
     "mate_mounting_distance": "Mate's mounting distance", "shaper_teeth": "Shaper teeth",
     "pinion_teeth": "Pinion teeth", "inner_radius": "Inner radius", "outer_radius": "Outer radius",
-    "rim": "Rim below the root",
+    "rim": "Rim below the root", "mate_shift_coeff": "Profile shift of the mate", "check": "Rolling check",
+    "speed_rpm": "Speed",
 }
 #: labels a set words its own way
 SET_LABELS = {"bevel": {"form": "Tooth form", "teeth": "Teeth of the gear", "hand": "Spiral hand"},
               "worm": {"module": "Axial module", "hand": "Hand", "tolerance": "Tolerance"},
-              "face-gear": {"teeth": "Teeth of the face gear", "pressure_angle_deg": "Shaper pressure angle"}}
+              "face-gear": {"teeth": "Teeth of the face gear", "pressure_angle_deg": "Shaper pressure angle"},
+              "crossed": {"teeth": "Teeth of wheel 1", "mate_teeth": "Teeth of wheel 2",
+                          "helix_angle_deg": "Helix angle of wheel 1", "shift_coeff": "Profile shift of wheel 1",
+                          "mate_shift_coeff": "Profile shift of wheel 2", "check": "Rolling check"}}
 #: form groups, in order; a parameter not named here is "tooth form"
 GROUPS = ("size", "tooth form", "body", "print compensation", "pair", "accuracy")
 _GROUP_OF = {
@@ -83,7 +87,7 @@ _GROUP_OF = {
                      "hub_diameter", "hub_length", "set_screw", "lightening_holes", "web_thickness",
                      "rim_diameter", "name"), "body"),
     **dict.fromkeys(("xy_offset", "elephant_foot", "chamfer"), "print compensation"),
-    **dict.fromkeys(("mate_teeth", "mate", "center_distance", "friction"), "pair"),
+    **dict.fromkeys(("mate_teeth", "mate", "center_distance", "friction", "check", "speed_rpm"), "pair"),
     **dict.fromkeys(("starts", "wheel_teeth", "diameter_quotient", "worm_pitch_diameter", "worm_length",
                      "face_width", "shaft_angle_deg"), "size"),
     **dict.fromkeys(("worm_bore", "wheel_bore", "part", "wheel_keyway", "shaft_diameter", "shaft_length",

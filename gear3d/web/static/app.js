@@ -212,6 +212,23 @@ async function preview() {
     setStatus(`preview ${res.body.ms} ms`);
     return;
   }
+  if (r.crossed) {          // a crossed helical pair: its placement and rolling check, wheel 1's section drawn
+    const c = r.check || {}, s = r.section_report || {};
+    table($("#report"), [
+      ["section", r.section], ["centre distance", fmt(r.center_distance, " mm")],
+      ["shaft angle", fmt(r.shaft_angle_deg, " deg")],
+      ["helix angles", `${fmt(r.gear.helix_angle_deg, " deg")} / ${fmt(r.mate.helix_angle_deg, " deg")}`],
+      ["contact ratio", fmt(r.contact_ratio), r.contact_ratio < 1],
+      ["normal backlash (at this distance)", fmt(r.normal_backlash, " mm")],
+      ["check: interference", r.check ? fmt(c.interference) : "-", !!c.interference],
+      ["check: normal backlash", r.check ? `${fmt(c.backlash_normal_min, " mm")} .. ${fmt(c.backlash_normal_max, " mm")}` : "-"],
+      ["check: contact ratio", r.check ? fmt(c.contact_ratio) : "-", r.check && c.contact_ratio < 1],
+      ["sliding / pitch speed", fmt(r.sliding_per_pitch_speed)],
+      ["section max_error (measured)", fmt(s.max_error * 1000, " um")], ["tolerance", fmt(s.tolerance * 1000, " um")],
+    ]);
+    setStatus(`preview ${res.body.ms} ms`);
+    return;
+  }
   table($("#report"), [
     ...(r.section ? [["section", r.section]] : []),
     ["max_error (measured)", fmt(r.max_error * 1000, " um")], ["tolerance", fmt(r.tolerance * 1000, " um")],
@@ -472,7 +489,8 @@ async function loadFamily(name) {
   const isSet = !!schema.set;
   for (const id of ["#section-body", "#section-pair", "#pair-panel"]) $(id).hidden = isSet;
   const titles = {worm: ["Worm pair", "Wheel mid-plane section"], bevel: ["Bevel pair", "Gear heel section"],
-                  "face-gear": ["Face gear set", "Sections at R1, mid-radius and R2, unrolled"]};
+                  "face-gear": ["Face gear set", "Sections at R1, mid-radius and R2, unrolled"],
+                  crossed: ["Crossed helical pair", "Wheel 1 transverse section; the pair's check"]};
   $("#title-profile").textContent = isSet ? titles[name][0] : "Profile";
   $("#preview-title").textContent = isSet ? titles[name][1] : "Profile";
   for (const b of document.querySelectorAll("#downloads button")) b.hidden = !(schema.downloads || []).includes(b.dataset.fmt);
