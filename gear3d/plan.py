@@ -27,7 +27,7 @@ import math
 import sys
 
 from .records import dataclass
-from . import budget
+from . import budget, probecache
 from .budget import Estimate, estimate
 from .export.registry import FORMATS
 from .solids.kinds import is_rack
@@ -79,7 +79,7 @@ def probe_call(build, tolerance=1e-3) -> Sketch | None:
     drive's tooth profile, say) at ``tolerance`` (mm)."""
     import numpy as np
 
-    with budget.probing() as root:
+    with budget.probing() as root, probecache.probing():     # its sampled period kept for the build
         try:
             build()
         except budget.Probe as p:

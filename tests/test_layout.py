@@ -306,6 +306,7 @@ LIGHT = {
     "gear3d": "the package root: the exception types and the family registry",
     "gear3d.errors": "the exception types and their one-line messages (standard library)",
     "gear3d.records": "dataclasses.dataclass's classes, made with fewer compilations (standard library)",
+    "gear3d.probecache": "the probe's sampled period kept for the build (standard library)",
     "gear3d.params": "the parameter tables (standard library)",
     "gear3d.params.param": "the Param type (standard library)",
     "gear3d.params.tolerance": "the tolerance facts (plain numbers)",

@@ -7,7 +7,7 @@ closed forms (sine-circular, ...) hand their exact evaluators to the same builde
 from __future__ import annotations
 
 from ..errors import GearError, ToleranceError, check_bool, check_number
-from .. import budget
+from .. import budget, probecache
 from ..conventions import to_transverse, uses_conventions
 from ..params import (MAX_TOLERANCE_TEXT, MIN_TOLERANCE, MODULE, TEETH, by_name, check_excludes, family_table,
                       max_tolerance)
@@ -54,7 +54,9 @@ def build(family: str, **params):
         params["internal"] = check_bool("internal", params["internal"])
     if family != "mate" and params.get("rim_radius") is not None and not params.get("internal"):
         raise GearError("rim_radius", params["rim_radius"], "only for a ring gear (internal=True)")
-    with budget.stage():             # one profile: its re-checks are tries, not a sum
+    # one profile: its re-checks are tries, not a sum; its first sampled period may be the
+    # one a plan's probe of the same build just made (gear3d.probecache)
+    with budget.stage(), probecache.building(probecache.build_key(family, params)):
         return FAMILIES[family](**params)
 
 
