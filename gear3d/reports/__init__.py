@@ -7,7 +7,7 @@ keys. Reports also read like a mapping (``report["max_error"]``, ``report.get(..
 templates, the web page and user code that index them keep working.
 
 Each domain's reports live in their own submodule (:mod:`~gear3d.reports.base`,
-``profile``, ``pairs``, ``bevel``, ``bevelcheck``, ``worm``, ``facegear``, ``racks``, ``harmonic``, ``planetary``, ``scene``);
+``profile``, ``body``, ``pairs``, ``bevel``, ``bevelcheck``, ``worm``, ``facegear``, ``racks``, ``harmonic``, ``planetary``, ``scene``);
 ``from gear3d.reports import X`` loads only X's submodule, on first use, so a profile or
 body command does not create the dataclasses of sets, scenes and strain-wave parts (each
 dataclass compiles its generated methods when it is made).
@@ -22,7 +22,7 @@ import importlib
 _LAZY = {
     "Report": "gear3d.reports.base",
     "ProfileReport": "gear3d.reports.profile",
-    "BodyReport": "gear3d.reports.profile",
+    "BodyReport": "gear3d.reports.body",
     "PairReport": "gear3d.reports.pairs",
     "BevelCheckReport": "gear3d.reports.bevelcheck",
     "MemberReport": "gear3d.reports.bevel",
