@@ -81,7 +81,9 @@ class _Walk:
     def stage(self, k: str) -> None:
         s = self.g.stages[k]
         i = s.inputs
-        if s.kind == "profile" and "family" in i and not i.get("rack") and not i.get("section"):
+        if i.get("set") and s.ctx.get("plan") is not None:     # a set part: its command's own plan, once
+            self.add(s.ctx["plan"])
+        elif s.kind == "profile" and "family" in i and not i.get("rack") and not i.get("section"):
             sk = self.probe(i["family"], dict(i["params"], tolerance=i["tolerance"]))
             if sk is not None:
                 self.sketch[k] = sk

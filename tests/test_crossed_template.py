@@ -214,3 +214,22 @@ def test_crossed_step_flag_refusals(tmp_path, capsys, argv, param):
     lines = capsys.readouterr().err.strip().splitlines()
     assert len(lines) == 1 and f"{param} = 'brep'" in lines[0]
     assert os.listdir(tmp_path) == []
+
+
+def test_scene_plan_charges_each_set_once(tmp_path, capsys):
+    """Two crossed parts whose own plans each fit a time limit but not together: the scene's
+    plan sums them and refuses the whole scene before any work, naming scene.tolerance (the
+    sets' plans used to be checked one by one, never added to the scene's total)."""
+    from gear3d.analysis.crossed_api import plan_set
+    kws = [dict(teeth=z, mate_teeth=30, width=5, check=True, tolerance=0.05) for z in (12, 13)]
+    e1, e2 = (plan_set(kw, output=str(tmp_path / "x.stl")).seconds for kw in kws)
+    limit = 1.01 * max(e1, e2)
+    assert e1 + e2 > limit
+    src = tmp_path / "s.toml"
+    src.write_text('[scene]\nname = "s"\ntolerance = 0.05\nmax_seconds = %r\n' % limit + "".join(
+        f'[[part]]\nname = "c{z}"\nkind = "crossed"\nteeth = {z}\nmate_teeth = 30\nwidth = 5\ncheck = true\n'
+        'outputs = ["stl"]\n' for z in (12, 13)))
+    assert main(["build", str(src), "--out", str(tmp_path / "out")]) == 2
+    lines = capsys.readouterr().err.strip().splitlines()
+    assert len(lines) == 1 and "scene.tolerance" in lines[0], lines
+    assert not (tmp_path / "out").exists()

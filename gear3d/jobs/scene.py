@@ -271,7 +271,8 @@ def _set_output(stage, b):
 
 def _plan_set(job: Job, part: PartSpec, kind, tol, path, prefix, step=None):
     """The set's whole-command plan (:mod:`gear3d.plan_sets`) for one output, as its CLI
-    command plans it: refused before any work, naming the part's key."""
+    command plans it: refused before any work, naming the part's key; returns its Estimate
+    (the scene's plan charges the set's build once, :func:`gear3d.plan_jobs.plan_graph`)."""
     from .. import plan_sets
     from ..analysis.crossed_api import plan_set
     plan = {"worm": plan_sets.plan_worm, "bevel": plan_sets.plan_bevel, "face-gear": plan_sets.plan_face_gear,
@@ -282,7 +283,7 @@ def _plan_set(job: Job, part: PartSpec, kind, tol, path, prefix, step=None):
     if step is not None:                 # a set's B-rep STEP (gear3d bevel/worm/face-gear --step brep)
         out = dict(out, step=step)
     try:
-        plan[part.family](dict(part.params, tolerance=tol), **out)
+        est = plan[part.family](dict(part.params, tolerance=tol), **out)
         if part.family == "worm" and step == "brep" and part.params.get("part", "pair") != "worm":
             from ..export.step_brep_wheel import precheck      # a wheel B-rep not made, before its mesh (#27)
             from ..wormgear import validate
@@ -291,6 +292,7 @@ def _plan_set(job: Job, part: PartSpec, kind, tol, path, prefix, step=None):
         p = getattr(e, "param", None)
         raise TemplateError(job.file, f"{prefix}.{p}" if p else prefix, getattr(e, "value", None),
                             getattr(e, "allowed", str(e)), getattr(e, "why", "")) from None
+    return est
 
 
 def set_targets(g: Graph, job: Job, part: PartSpec, out_dir, prefix) -> dict:
@@ -306,10 +308,11 @@ def set_targets(g: Graph, job: Job, part: PartSpec, out_dir, prefix) -> dict:
         path = out_path(out_dir, fname, job.file, f"{prefix}.name")
         step = {**job.options.get("step", {}), **part.options.get("step", {})}      # the scene's, then the part's
         brep = kind == "step" and step.get("step", "faceted") != "faceted"
-        _plan_set(job, part, kind, tol, path, prefix, step="brep" if brep else None)
-        # stage kinds as the report reads them: the section is a profile, the set a body
+        est = _plan_set(job, part, kind, tol, path, prefix, step="brep" if brep else None)
+        # stage kinds as the report reads them: the section is a profile, the set a body;
+        # ``plan``: the first output's whole-command estimate, charged once by the scene's plan
         src = g.add("profile" if sec else "body", {"params": part.params, "tolerance": tol, "section": sec,
-                                                   "set": part.family},
+                                                   "set": part.family}, plan=est,
                     fn=run_set, label=f"{part.family} {what} ".replace("  ", " ") +
                     " ".join(f"{k}={v}" for k, v in sorted(part.params.items()) if k != "part") + f" @ {tol:g} mm",
                     file=job.file, prefix=prefix, keys=tuple(part.params))

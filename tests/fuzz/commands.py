@@ -306,7 +306,7 @@ def _toml(v):
 
 @st.composite
 def scene_part(draw, i):
-    kind = draw(st.sampled_from(["gear", "gear", "gear", "bevel", "worm", "face-gear", "rack"]))
+    kind = draw(st.sampled_from(["gear", "gear", "gear", "bevel", "worm", "face-gear", "rack", "crossed"]))
     t = lambda a, b: int(draw(ints(a, b)))           # noqa: E731
     if kind == "bevel":
         keys = {"kind": "bevel", "part": draw(st.sampled_from(["gear", "pair"])), "teeth": t(6, 400),
@@ -319,6 +319,10 @@ def scene_part(draw, i):
         z2 = t(16, 400)
         keys = {"kind": "face-gear", "teeth": z2, "shaper_teeth": min(t(8, 40), z2 // 2), "module": 1.0,
                 "outputs": '["stl", "json"]'}
+    elif kind == "crossed":
+        keys = {"kind": "crossed", "teeth": t(5, 400), "mate_teeth": t(5, 400),
+                "normal_module": float(draw(num(0.2, 5, True))), "helix_angle_deg": draw(st.sampled_from([30, 45, 60])),
+                "width": 5, "check": draw(st.sampled_from(["true", "false"])), "outputs": '["stl", "json"]'}
     elif kind == "rack":
         keys = {"family": "involute", "rack": "true", "teeth": t(1, 5000), "body": '{ width = 5 }'}
     else:
@@ -328,7 +332,8 @@ def scene_part(draw, i):
                                      '{ width = 5, chamfer = 0.2, bore = 3 }']))
         keys = {"family": fam, "teeth": t(3, 20_000), "module": float(draw(num(0.05, 5, True))), "body": body}
     lines = [f'[[part]]\nname = "p{i}"'] + [f"{k} = {_toml(v)}" for k, v in keys.items()]
-    return "\n".join(lines).replace('rack = "true"', "rack = true") + "\n"
+    text = "\n".join(lines).replace('rack = "true"', "rack = true")
+    return text.replace('check = "true"', "check = true").replace('check = "false"', "check = false") + "\n"
 
 
 @st.composite
