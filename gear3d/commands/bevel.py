@@ -26,7 +26,7 @@ REQUIRED = ("teeth", "mate_teeth", "module")
 
 
 def add_parser(sub):
-    from .profile import add_table_flag
+    from .tableflags import add_table_flag
     p = sub.add_parser("bevel", help="bevel gears: straight, spiral, Zerol (spherical-involute or octoid) -> .stl .3mf .step + .json")
     for prm in BEVEL_PARAMS:          # the set's table (gear3d.params): flags, ranges, defaults, help
         add_table_flag(p, prm, prm.name in REQUIRED)

@@ -4,8 +4,9 @@ from __future__ import annotations
 import argparse
 import sys
 
-from ..cliargs import number, number_or_auto
+from ..cliargs import number
 from .mateflags import add_mate_flags, build_mate, tool_flags_given
+from .tableflags import add_table_flag, arg_type  # noqa: F401  (the set commands take them here too)
 from .. import profile
 from ..errors import GearError, ToleranceError
 from ..export import check_output, exts, formats_for, write
@@ -69,25 +70,6 @@ def flag_table(helix: bool = False) -> list:
     if key not in _MADE:
         _MADE[key] = tuple((p.flag, arg_type(p), p.help_text(), dest, p) for dest, p in _flag_params(helix))
     return list(_MADE[key])
-
-
-def arg_type(p):
-    if p.kind is int:
-        return number("int", p.lo, p.hi, lo_open=p.lo_open, hi_open=p.hi_open, unit=p.unit_text)
-    if p.kind is float:
-        make = number_or_auto if p.auto else number
-        return make("float", p.lo, p.hi, lo_open=p.lo_open, hi_open=p.hi_open, unit=p.unit_text)
-    return str
-
-
-def add_table_flag(parser, prm, required: bool = False) -> None:
-    """One flag of a set's keyword table (``gear3d.params``: flag, range, default, help): a
-    choice, or a number checked against the table's range (``required``: no default)."""
-    if prm.choices:
-        parser.add_argument(prm.flag, default=prm.default, choices=list(prm.choices), help=prm.help_text())
-    else:
-        parser.add_argument(prm.flag, type=arg_type(prm), default=None if required else prm.default,
-                            required=required, help=prm.help_text(default_text="" if required else None))
 
 
 class DeprecatedFlag(argparse.Action):
