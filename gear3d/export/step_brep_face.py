@@ -239,6 +239,23 @@ def _mirror(net):
     return net * np.array([1.0, -1.0, 1.0])
 
 
+def _pointed(nets, r: float) -> float:
+    """A tip land at radius ``r`` narrower than the sewing tolerance (a tooth at the pointing
+    limit) is closed: the flank's tip corner there is moved onto the tooth's mid-plane y = 0
+    (by at most half the land, < SEW_TOL / 2 mm), so it meets its mirror image and the tip arc
+    is left out; sewing would otherwise merge the land's two corners into a degenerate edge
+    (40/20 teeth, m 2, at the pointing limit: a land of 2.6e-7 mm). Returns how far the pole
+    moved (mm; 0 when not): the surface moves no farther (a B-spline's convex hull)."""
+    from .step_brep_occ import SEW_TOL
+    n, moved = nets[1][0], 0.0
+    for end in (0, -1):
+        x, y, z = n[-1, end]
+        if abs(math.hypot(x, y) - r) < 1e-6 * max(r, 1.0) and 2 * r * abs(math.atan2(y, x)) < SEW_TOL:
+            n[-1, end] = (math.hypot(x, y), 0.0, z)
+            moved = max(moved, float(math.hypot(math.hypot(x, y) - x, y)))
+    return moved
+
+
 def tooth_faces(g, nets, r1: float, r2: float):
     """The faces of tooth 0 (one pitch, space middle to space middle; see the module doc)."""
     from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace
@@ -285,6 +302,7 @@ def face_solid(b, geometry=None):
     r1, r2, tol = float(par["inner_radius"]), float(par["outer_radius"]), float(b.report["tolerance"])
     t0 = time.perf_counter()
     nets, rows, err = fit(g, r1, r2, tol)
+    err += _pointed(nets, r2)                    # a land narrower than sewing closed (< 5e-7 mm)
     t1 = time.perf_counter()
     shape = sew_solid(_turned(tooth_faces(g, nets, r1, r2), g.teeth))
     info = validate_solid(shape, b, tol, "face gear", VOLUME_EPS)
