@@ -443,6 +443,7 @@ def _check_worm_and_bevel(page, tmp_path, capsys):
     _stl_download_is_the_cli_s(page, tmp_path, capsys, main, "bevel-z20-gear.stl",
                                ["bevel", "--teeth", "20", "--mate-teeth", "40", "--module", "2"])
     _check_face_gear(page, tmp_path, capsys, main)
+    _check_crossed(page, tmp_path, capsys, main)
     page.select_option("#family", "involute")
     page.wait_for_selector("body[data-family='involute'] #preview svg.gear3d-preview")
     assert page.is_visible("#section-body") and page.is_visible("#download-svg")
@@ -456,6 +457,23 @@ def _check_face_gear(page, tmp_path, capsys, main):
     assert page.is_visible("#download-json") and page.is_hidden("#download-dxf")
     _stl_download_is_the_cli_s(page, tmp_path, capsys, main, "face-gear-z40-gear.stl",
                                ["face-gear", "--teeth", "40", "--shaper-teeth", "20", "--module", "1"])
+
+
+def _check_crossed(page, tmp_path, capsys, main):
+    """The crossed helical pair: wheel 1's transverse section drawn (pitch radius
+    z1 m_n / (2 cos b1)), the pair's centre distance m_n/2 (z1/cos b1 + z2/cos b2) and its
+    check in the report, an STL of both gears that is ``gear3d check pair --crossed``'s bytes."""
+    import math
+    page.select_option("#family", "crossed")
+    page.wait_for_selector("body[data-family='crossed'] #preview svg.gear3d-preview[data-teeth='12']")
+    c45 = math.cos(math.radians(45))
+    assert abs(float(page.get_attribute("#preview svg .full circle.pitch-circle", "r")) - 12 / (2 * c45)) < 1e-5
+    report = page.inner_text("#report")
+    assert f"{(12 + 14) / (2 * c45):.5g} mm" in report and "check: contact ratio" in report
+    assert page.is_visible("#download-step") and page.is_hidden("#download-json")
+    _stl_download_is_the_cli_s(page, tmp_path, capsys, main, "crossed-z12-pair.stl",
+                               ["check", "pair", "involute", "--crossed", "--teeth", "12", "--mate-teeth", "14",
+                                "--module", "1", "--helix-angle-deg", "45", "--width", "6"])
 
 
 def _stl_download_is_the_cli_s(page, tmp_path, capsys, main, name, argv):
