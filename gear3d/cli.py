@@ -262,7 +262,10 @@ def main(argv=None) -> int:
     if argv is None and first == "profile" and not lim:     # the numpy-free DXF path: no supervisor
         from .lite.cli import fast_words
         if fast_words(words):
-            return _main(words, lim)
+            code = _main(words, lim)          # its file written and closed (gear3d.filesafe)
+            if _console_script():
+                _exit_now(code)
+            return code
     if argv is None and first in COMMANDS and first not in UNSUPERVISED and hasattr(os, "fork") \
             and os.environ.get("GEAR3D_NO_SUPERVISOR") != "1":
         from .watchdog import supervise
@@ -285,11 +288,12 @@ def _console_script() -> bool:
 
 
 def _exit_now(code: int) -> None:
-    """End the supervisor's process with ``code`` at once (standard streams flushed): the
-    child did the work and wrote and closed every file, and the supervisor holds nothing
-    to release, so the interpreter's teardown (a last full collection, every module's
-    objects freed: 6-10 ms of CPU of the helical STL command's 160 ms, issue 28) is
-    skipped, as the child ends (:func:`gear3d.watchdog.supervise`)."""
+    """End the ``gear3d`` process with ``code`` at once (standard streams flushed), after a
+    supervised command (the child did the work and wrote and closed every file; the
+    supervisor holds nothing to release) or the numpy-free DXF path (its file written and
+    closed): the interpreter's teardown (a last full collection, every module's objects
+    freed: 6-10 ms of CPU of the helical STL command's 160 ms, issue 28) is skipped, as the
+    supervised child ends (:func:`gear3d.watchdog.supervise`)."""
     for stream in (sys.stdout, sys.stderr):
         try:
             stream.flush()

@@ -45,3 +45,20 @@ def test_a_script_calling_main_goes_on_after_it(tmp_path):
             "rc = main()\nprint('after', rc)\n")
     r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
     assert r.returncode == 0 and r.stdout.strip().splitlines()[-1] == "after 2"
+
+
+@pytest.mark.parametrize("entry", ENTRIES)
+def test_the_numpy_free_dxf_ends_whole(entry, tmp_path):
+    # the numpy-free DXF path runs in the console's own process and ends it at once too
+    out = tmp_path / "g.dxf"
+    r = subprocess.run([*entry, "profile", "involute", "--teeth", "20", "--module", "1", "--tolerance", "0.003", "-o", str(out)],
+                       capture_output=True, text=True, timeout=120)
+    assert r.returncode == 0, r.stderr
+    assert r.stdout.startswith(f"wrote {out}") and "numpy-free path" in r.stdout
+    lines = out.read_text().split("\n")
+    assert [x.strip() for x in lines[-3:]] == ["0", "EOF", ""]         # a whole DXF: its EOF group last
+    ezdxf = pytest.importorskip("ezdxf")
+    doc = ezdxf.readfile(str(out))                                      # read back independently
+    (poly,) = doc.modelspace()
+    assert poly.dxftype() == "LWPOLYLINE" and poly.closed and len(poly) == 480   # the 480 arcs printed
+    assert "480 segments (480 arcs" in r.stdout
