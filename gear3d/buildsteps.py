@@ -16,7 +16,8 @@ import numpy as np
 from .records import dataclass
 from . import budget as _budget
 from . import probecache as _probecache
-from .corners import chords_near, corner_angle, exact_crossing, new_vertices, refine
+from .corners import (CORNER_SHARE, CORNER_SHRINK, MIN_CORNER_SINE, chords_near, corner_angle, exact_crossing,
+                      new_vertices, refine)
 from .plan_corners import corner_estimate, corner_refinement
 from .envelope import PRUNE_SHARE, RIM_SHARE, circle_loop, pattern, signed_area, trim
 from .errors import GearError, ToleranceError
@@ -34,19 +35,12 @@ TRANSITION_ROUNDS = 9
 #: the blank's radius lies this many tolerances beyond the nominal tip (its chords sag
 #: by up to one tolerance and must never touch the true tip)
 BLANK_MARGIN = 2
-#: trimmed corners: chords near a corner are refined to CORNER_SHARE x tol x sin(gamma),
-#: which puts the corner within (2/3) tol of the exact crossing (see trim_and_refine)
-CORNER_SHARE = 1 / 3
-#: the smallest crossing angle's sine the refinement target uses (a grazing crossing
-#: would otherwise ask for endless refinement; the measured corner error still decides)
-MIN_CORNER_SINE = 0.01
 #: chords within NEAR_CHORDS x tol of a corner are the ones that may make it
 NEAR_CHORDS = 2
 #: refine-and-trim passes per attempt; attempts, each shrinking the chords' share by
 #: CORNER_SHRINK, before the builder refuses the tolerance
 REFINE_PASSES = 5
 CORNER_ATTEMPTS = 4
-CORNER_SHRINK = 4
 #: a raw sample within SURVIVED x tol of the trimmed polygon survived trimming (the
 #: polygon is within tol of the exact boundary, the sample on it: 2 tol with room)
 SURVIVED = 2

@@ -17,6 +17,16 @@ from .geometry import point_segment_distance, rotate
 from .curves import crossing as exact_crossing  # noqa: F401  (the one Newton crossing)
 from .tessellate import MAX_VERTICES, split_chords
 
+#: trimmed corners: chords near a corner are refined to CORNER_SHARE x tol x sin(gamma),
+#: which puts the corner within (2/3) tol of the exact crossing (see
+#: gear3d.buildsteps.trim_and_refine; gear3d.plan_corners plans the same law)
+CORNER_SHARE = 1 / 3
+#: the smallest crossing angle's sine the refinement target uses (a grazing crossing
+#: would otherwise ask for endless refinement; the measured corner error still decides)
+MIN_CORNER_SINE = 0.01
+#: each refinement attempt after the first shrinks the chords' share by CORNER_SHRINK
+CORNER_SHRINK = 4
+
 
 _rot = rotate
 

@@ -33,6 +33,9 @@ import math
 
 import numpy as np
 
+from .budget import COSTS, Estimate
+from .corners import CORNER_SHARE, CORNER_SHRINK, MIN_CORNER_SINE
+from .envelope import prune_spikes
 from .geometry import unique_sorted
 
 #: crossings are looked for on the period's chords cut to at most this many cells' width
@@ -245,11 +248,9 @@ def corner_refinement(pts_list, devs, teeth: int, tol: float, prune: bool = Fals
     >>> corner_refinement(p, [np.array([20e-3, 0.0]), np.zeros(2)], 1, 1e-2)["refined"]
     3.0
     """
-    from .buildsteps import CORNER_SHARE, CORNER_SHRINK, MIN_CORNER_SINE
     n0 = float(sum(len(p) for p in pts_list))
     pa, ja, pb, jb, sine, spread = crossings(pts_list, teeth)
     if prune:       # an envelope's needles sharper than prune_spikes' angle are cut off, not refined
-        from .envelope import prune_spikes
         sharp = sine > math.sin(math.radians(prune_spikes.__defaults__[-1]))
         pa, ja, pb, jb, sine, spread = pa[sharp], ja[sharp], pb[sharp], jb[sharp], sine[sharp], spread[sharp]
     if not len(sine):
@@ -295,7 +296,6 @@ def corner_estimate(plan: dict, teeth: int):
     >>> corner_estimate({"corners": 0, "visits": 0.0, "vertices": 0.0, "samples": 40.0}, 20).seconds
     0.0
     """
-    from .budget import COSTS, Estimate
     v, n = float(plan["visits"]), float(plan["samples"])
     if not v:
         return Estimate()

@@ -34,9 +34,10 @@ from . import budget
 from .budget import Estimate, estimate
 from .errors import GearError, check_number
 from .params import MIN_TOLERANCE
-from .plan import (Sketch, kerf_of, body_layers, pair_estimate, probe_call, probe_profile, sketch_contact,
+from .plan import (Sketch, kerf_of, body_layers, pair_estimate, plan_body, probe_call, probe_profile, sketch_contact,
                    write_estimate)
 from .plan_writes import sketch_star
+from .spec import GearSpec
 
 #: body keywords that make the builder use manifold3d booleans (COSTS["body.manifold"])
 FEATURES = ("chamfer", "elephant_foot", "gap", "hub_length", "keyway", "set_screw", "lightening_holes",
@@ -378,8 +379,6 @@ def body_plan(family: str, pk: dict, bk: dict, output=None, step=None, planned: 
     >>> est.triangles > 0, spec.family
     (True, 'involute')
     """
-    from .plan import plan_body
-    from .spec import GearSpec
     bk.setdefault("tolerance", pk["tolerance"])
     spec = GearSpec(family, {k: v for k, v in pk.items() if k != "tolerance"})
     if not planned:
