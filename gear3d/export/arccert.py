@@ -368,7 +368,8 @@ def certify(R: Runs, u0, u1, P0, P1, T0, T1, j0=None, j1=None, known=None) -> Sp
     A2 = uJ[:, None] + (u1 - uJ)[:, None] * v
     pts = R.eval_u(np.concatenate([uJ[:, None], (uJ + hJ)[:, None], A1, A2], axis=1).ravel()).reshape(n, -1, 2)
     gj = np.einsum("nkj,nj->nk", pts[:, :2] - J[:, None, :], Tm)
-    der = (gj[:, 1] - gj[:, 0]) / hJ
+    with np.errstate(invalid="ignore", divide="ignore"):     # a zero-length span: no Newton step (der is nan)
+        der = (gj[:, 1] - gj[:, 0]) / hJ
     uJ1 = np.clip(uJ - np.where(der > 0, gj[:, 0] / np.where(der > 0, der, 1.0), 0.0), lo, hi)
     Q1, Q2 = pts[:, 2:2 + len(v)], pts[:, 2 + len(v):]
     Q1[:, 0], Q2[:, -1] = P0, P1

@@ -187,3 +187,17 @@ def test_shallow_pointed_triangular_inspect_cli_one_line_refusal_for_a_given_k(t
     assert "span: no number of teeth puts both jaws on the flanks" in ok.stdout
     bad = subprocess.run(base + ["--span-teeth", "3"], capture_output=True, text=True, cwd=tmp_path)
     assert bad.returncode == 2 and bad.stderr.count("\n") == 1 and "span_teeth" in bad.stderr
+
+
+def test_a_zero_length_arc_span_refusal_is_one_line(tmp_path):
+    """A triangular DXF whose arc fit cannot reach its tolerance (the survey after the corner
+    plan: z 40, 77.9 deg, m 0.645, tol 0.00693) printed numpy's RuntimeWarning for a
+    zero-length span before its refusal: three lines on stderr. Oracle: the child's stderr
+    is the one refusal line naming the tolerance, exit 2, no file."""
+    import subprocess
+    import sys
+    cmd = [sys.executable, "-m", "gear3d.cli", "profile", "triangular", "--teeth", "40", "--half-angle-deg", "77.9",
+           "--module", "0.645", "--tolerance", "0.00693", "-o", "t.dxf"]
+    p = subprocess.run(cmd, capture_output=True, text=True, cwd=tmp_path, timeout=120)
+    assert p.returncode == 2 and p.stderr.count("\n") == 1, (p.returncode, p.stderr)
+    assert "tolerance = 0.00693" in p.stderr and not (tmp_path / "t.dxf").exists()
