@@ -22,6 +22,7 @@ import numpy as np
 import pytest
 
 from gear3d.cli import main
+from tests.templatevariant import refused_build
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 TEMPLATE = os.path.join(ROOT, "templates", "crossed-pair.toml")
@@ -108,14 +109,6 @@ def test_crossed_template_builds_like_the_cli(tmp_path):
     assert (out / "crossed-60.step").read_bytes().startswith(b"ISO-10303-21;")     # read back by OCC below
 
 
-def _variant(tmp_path, old, new):
-    text = open(TEMPLATE, encoding="utf-8").read()
-    assert old in text
-    src = tmp_path / "s.toml"
-    src.write_text(text.replace(old, new, 1))
-    return src
-
-
 @pytest.mark.parametrize("old,new,key", [
     ("width = 6\n", "", "part[crossed-90].width"),
     ("width = 6\n", "width = -1\n", "part[crossed-90].width"),
@@ -131,11 +124,8 @@ def test_crossed_part_refusals_name_the_key_and_write_nothing(tmp_path, capsys, 
     """A missing or bad width, a helix angle whose bodies cannot be cut, a bad value, an
     unknown key, an output the kind has not, a plan over the budget: exit 2, one stderr
     line naming the key path and the allowed range, no output folder."""
-    src = _variant(tmp_path, old, new)
-    assert main(["build", str(src), "--out", str(tmp_path / "out")]) == 2
-    lines = capsys.readouterr().err.strip().splitlines()
+    lines = refused_build(tmp_path, capsys, TEMPLATE, old, new)
     assert len(lines) == 1 and key in lines[0] and "allowed" in lines[0], lines
-    assert not (tmp_path / "out").exists() or not os.listdir(tmp_path / "out")
 
 
 def test_crossed_part_not_in_a_pair(tmp_path):

@@ -10,6 +10,8 @@ import os
 
 import pytest
 
+from tests.templatevariant import refused_build
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 TEMPLATE = os.path.join(ROOT, "templates", "bevel-set.toml")
 TOL = 0.05          # the template's [scene] tolerance
@@ -44,14 +46,6 @@ def test_bevel_set_template_builds_like_the_cli(tmp_path):
     assert sorted(scene.geometry) == ["gear", "mate"]          # the pair: two named objects
 
 
-def _variant(tmp_path, old, new):
-    text = open(TEMPLATE, encoding="utf-8").read()
-    assert old in text
-    src = tmp_path / "s.toml"
-    src.write_text(text.replace(old, new, 1))
-    return src
-
-
 @pytest.mark.parametrize("old,new,key", [
     ("mate_teeth = 18\n", "mate_teeth = 18\ncolour = 3\n", "part[bevel-pair].colour"),
     ("teeth = 12\n", "teeth = 2\n", "part[bevel-pair].teeth"),
@@ -63,13 +57,8 @@ def _variant(tmp_path, old, new):
 def test_set_part_refusals_name_the_key_and_write_nothing(tmp_path, capsys, old, new, key):
     """An unknown key, an out-of-range value, an output the kind has not and a plan over the
     time budget: exit 2, one stderr line naming the key path, no output folder."""
-    from gear3d.cli import main
-    src = _variant(tmp_path, old, new)
-    assert main(["build", str(src), "--out", str(tmp_path / "out")]) == 2
-    err = capsys.readouterr().err
-    lines = err.strip().splitlines()
-    assert len(lines) == 1 and key in lines[0], err
-    assert not (tmp_path / "out").exists() or not os.listdir(tmp_path / "out")
+    lines = refused_build(tmp_path, capsys, TEMPLATE, old, new)
+    assert len(lines) == 1 and key in lines[0], lines
 
 
 def test_set_part_not_in_a_pair(tmp_path):
