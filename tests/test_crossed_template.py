@@ -196,9 +196,9 @@ def test_crossed_template_brep_step(tmp_path):
     (["--step", "brep", "-o", "x.3mf", "--width", "5"], "step"),
     (["--step", "brep"], "step"),
 ])
-def test_crossed_step_flag_refusals(tmp_path, capsys, argv, param):
+def test_crossed_step_flag_refusals(tmp_path, capsys, monkeypatch, argv, param):
     """``--step`` only with a STEP output: exit 2, one line naming ``step``, no file."""
-    os.chdir(tmp_path)
+    monkeypatch.chdir(tmp_path)
     assert main(["check", "pair", "involute", "--crossed", "--teeth", "12", "--mate-teeth", "14",
                  "--helix-angle-deg", "45"] + argv) == 2
     lines = capsys.readouterr().err.strip().splitlines()
