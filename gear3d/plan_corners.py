@@ -153,8 +153,10 @@ def crossings(pts_list, teeth: int):
     return tuple(np.concatenate(c) for c in zip(*out))
 
 
-#: crossings x loop vertices the outline test takes at most (about a second)
-MAX_OUTLINE_PAIRS = 20_000_000
+#: crossings x loop vertices the outline test takes at most (four probes each, about 0.2 s;
+#: the plan must refuse in well under a second: a 3-tooth cycloidal at 1e-5 mm, 46 crossings
+#: x 106,000 vertices, took 2 s with the old angle sum and a 20,000,000 cap)
+MAX_OUTLINE_PAIRS = 2_000_000
 #: teeth copies either side of tooth 0 the outline test closes its loop with (more teeth:
 #: the rest of the gear is replaced by a path through the centre, which turns the same way
 #: about every point near tooth 0)
@@ -183,14 +185,28 @@ def _loop(pts_list, teeth: int) -> np.ndarray:
 
 
 def _winding(loop: np.ndarray, q: np.ndarray) -> np.ndarray:
-    """Winding numbers of the closed polyline ``loop`` about each point of ``q`` (in chunks)."""
+    """Winding numbers of the closed polyline ``loop`` about each point of ``q`` (in chunks):
+    the signed crossings of each edge with the ray from the point towards +x (an upward edge
+    crossing it counts +1, a downward one -1; half-open in y, so a vertex on the ray counts
+    once). About 10x cheaper than summing the edges' turning angles (``arctan2``).
+
+    >>> sq = np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]])
+    >>> _winding(sq, np.array([[0.5, 0.5], [2.0, 0.5], [0.5, 0.0 + 1e-9]])).tolist()
+    [1.0, 0.0, 1.0]
+    """
+    a, b = loop, np.roll(loop, -1, axis=0)
     w = np.empty(len(q))
     step = max(1, 2_000_000 // max(len(loop), 1))
+    dy = b[:, 1] - a[:, 1]
+    slope = np.divide(b[:, 0] - a[:, 0], dy, out=np.zeros_like(dy), where=dy != 0)
     for s0 in range(0, len(q), step):
-        d = loop[None, :, :] - q[s0:s0 + step, None, :]
-        a = np.arctan2(d[..., 1], d[..., 0])
-        da = np.diff(np.concatenate([a, a[:, :1]], axis=1), axis=1)
-        w[s0:s0 + step] = np.round(((da + np.pi) % (2 * np.pi) - np.pi).sum(axis=1) / (2 * np.pi))
+        qq = q[s0:s0 + step]
+        below_a = a[None, :, 1] <= qq[:, None, 1]
+        below_b = b[None, :, 1] <= qq[:, None, 1]
+        cross = below_a != below_b                                  # the edge spans the ray's y
+        x_at = a[None, :, 0] + (qq[:, None, 1] - a[None, :, 1]) * slope[None, :]
+        sign = np.where(below_a, 1.0, -1.0)                         # upward: from below to above
+        w[s0:s0 + step] = np.where(cross & (x_at > qq[:, None, 0]), sign, 0.0).sum(axis=1)
     return w
 
 

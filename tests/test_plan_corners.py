@@ -107,3 +107,24 @@ def test_the_refusal_is_one_line_naming_the_flag(capsys, tmp_path):
     err = capsys.readouterr().err.strip().splitlines()
     assert rc == 2 and len(err) == 1
     assert "tolerance = 0.001" in err[0] and "--max-seconds" in err[0] and "trimmed corner" in err[0]
+
+
+def test_winding_is_the_turning_angle_sum():
+    """The outline test's winding numbers (signed ray crossings) against the turning-angle
+    sum written here, about random self-crossing star loops (several turns, either sense)."""
+    from gear3d.plan_corners import _winding
+    rng = np.random.default_rng(7)
+    checked = 0
+    for _ in range(120):
+        n = int(rng.integers(3, 50))
+        t = np.sort(rng.uniform(0, 2 * np.pi, n)) * int(rng.integers(1, 4))
+        r = rng.uniform(0.2, 2, n)
+        loop = np.c_[r * np.cos(t), r * np.sin(t)] * rng.choice([1.0, -1.0])
+        q = rng.uniform(-2, 2, (200, 2))
+        d = loop[None] - q[:, None]
+        a = np.arctan2(d[..., 1], d[..., 0])
+        turn = np.diff(np.concatenate([a, a[:, :1]], axis=1), axis=1)
+        oracle = np.round(((turn + np.pi) % (2 * np.pi) - np.pi).sum(axis=1) / (2 * np.pi))
+        assert (_winding(loop, q) == oracle).all()
+        checked += int((oracle != 0).sum())
+    assert checked > 1000          # enough points inside some turn were compared
