@@ -41,6 +41,7 @@ import dataclasses
 import operator
 import reprlib
 import sys
+import types
 import weakref
 
 __all__ = ["dataclass"]
@@ -141,7 +142,7 @@ def _simple(cls, options) -> bool:
 
 
 def _write_init(cls, frozen: bool) -> None:
-    """The ``__init__`` :mod:`dataclasses` writes (the same source, one compilation)."""
+    """The ``__init__`` :mod:`dataclasses` writes, made on first use (:class:`_LazyInit`)."""
     flds = dataclasses.fields(cls)
     missing = dataclasses.MISSING
     seen_default = False
@@ -151,57 +152,224 @@ def _write_init(cls, frozen: bool) -> None:
                 seen_default = True
             elif seen_default:
                 raise TypeError(f"non-default argument {f.name!r} follows default argument")
-    loc = {f"_type_{f.name}": f.type for f in flds}
+    # the values dataclasses reads now (a Field changed later changes nothing, as there)
+    rows = tuple((f.name, f.type, f.default, f.default_factory, f.init) for f in flds)
+    self_name = "__dataclass_self__" if "self" in cls.__dataclass_fields__ else "self"
+    cls.__init__ = _LazyInit(rows, frozen, hasattr(cls, "__post_init__"), self_name)
+
+
+def _init_source(rows, frozen: bool, post: bool, self_name: str):
+    """The source text and local values :mod:`dataclasses` (3.11) compiles for ``__init__``."""
+    missing = dataclasses.MISSING
+    loc = {f"_type_{name}": tp for name, tp, *_ in rows}
     loc.update({"MISSING": missing, "_HAS_DEFAULT_FACTORY": _FACTORY, "__dataclass_builtins_object__": object})
-    body, args = [], ["self"]
-    for f in flds:
-        if f.default_factory is not missing:
-            loc[f"_dflt_{f.name}"] = f.default_factory
-            value = (f"_dflt_{f.name}() if {f.name} is _HAS_DEFAULT_FACTORY else {f.name}" if f.init
-                     else f"_dflt_{f.name}()")
-        elif f.init:
-            if f.default is not missing:
-                loc[f"_dflt_{f.name}"] = f.default
-            value = f.name
+    body, args = [], [self_name]
+    for name, _, default, factory, init in rows:
+        if factory is not missing:
+            loc[f"_dflt_{name}"] = factory
+            value = f"_dflt_{name}() if {name} is _HAS_DEFAULT_FACTORY else {name}" if init else f"_dflt_{name}()"
+        elif init:
+            if default is not missing:
+                loc[f"_dflt_{name}"] = default
+            value = name
         else:
             continue
-        body.append(f"__dataclass_builtins_object__.__setattr__(self,{f.name!r},{value})" if frozen
-                    else f"self.{f.name}={value}")
-    if hasattr(cls, "__post_init__"):
-        body.append("self.__post_init__()")
-    for f in flds:
-        if f.init:
-            default = ("" if f.default is missing and f.default_factory is missing
-                       else f"=_dflt_{f.name}" if f.default is not missing else "=_HAS_DEFAULT_FACTORY")
-            args.append(f"{f.name}:_type_{f.name}{default}")
+        body.append(f"__dataclass_builtins_object__.__setattr__({self_name},{name!r},{value})" if frozen
+                    else f"{self_name}.{name}={value}")
+    if post:
+        body.append(f"{self_name}.__post_init__()")
+    for name, _, default, factory, init in rows:
+        if init:
+            dflt = ("" if default is missing and factory is missing
+                    else f"=_dflt_{name}" if default is not missing else "=_HAS_DEFAULT_FACTORY")
+            args.append(f"{name}:_type_{name}{dflt}")
     loc["_return_type"] = None
     text = "\n".join(f"  {b}" for b in body or ["pass"])
     text = (f"def __create_fn__({', '.join(loc)}):\n def __init__({','.join(args)})->_return_type:\n"
             f"{text}\n return __init__")
-    cls.__init__ = _LazyInit(text, loc)
+    return text, loc
 
 
 class _LazyInit:
-    """A class's ``__init__`` compiled on first use: the first lookup of ``__init__`` on the
+    """A class's ``__init__`` made on first use: the first lookup of ``__init__`` on the
     class or an instance (the first instance, ``inspect.signature``, ``cls.__init__``)
-    compiles :func:`_write_init`'s source and puts the function on the class in its place.
-    A process imports about 60 gear3d dataclasses and makes instances of a third of them,
-    so two thirds of the compilations (about 0.15 ms each) are never paid."""
+    makes the function and puts it on the class in its place. A process imports about 60
+    gear3d dataclasses and makes instances of a third of them, so two thirds are never made.
 
-    def __init__(self, text: str, loc: dict):
-        self.text, self.loc = text, loc
+    The function is :mod:`dataclasses`' own: compiled from its source text
+    (:func:`_init_source`, about 0.15 ms), or for a class whose ``__init__`` fields all
+    have no default or a plain one (no ``default_factory``) built without a compilation
+    from the shared code of its kind (:func:`_template_init`)."""
+
+    def __init__(self, rows, frozen: bool, post: bool, self_name: str):
+        self.rows, self.frozen, self.post, self.self_name = rows, frozen, post, self_name
 
     def __get__(self, obj, owner=None):
         for cls in (owner or type(obj)).__mro__:         # the class this __init__ was written for
             if cls.__dict__.get("__init__") is self:
                 break
         mod = sys.modules.get(cls.__module__)
-        ns = {}
-        # compiled without this module's ``from __future__ import annotations`` (as dataclasses does)
-        exec(compile(self.text, "<string>", "exec", dont_inherit=True), mod.__dict__ if mod is not None else {}, ns)
-        fn = ns["__create_fn__"](**self.loc)
+        fn = None
+        if mod is not None:
+            try:
+                fn = _template_init(self.rows, self.frozen, self.post, self.self_name, mod.__dict__)
+            except Exception:                            # any surprise: the compiled source below
+                fn = None
+        if fn is None:
+            text, loc = _init_source(self.rows, self.frozen, self.post, self.self_name)
+            ns = {}
+            # compiled without this module's ``from __future__ import annotations`` (as dataclasses does)
+            exec(compile(text, "<string>", "exec", dont_inherit=True), mod.__dict__ if mod is not None else {}, ns)
+            fn = ns["__create_fn__"](**loc)
         _attach(cls, "__init__", fn)
         return fn if obj is None else fn.__get__(obj, owner)
+
+
+def _template_init(rows, frozen: bool, post: bool, self_name: str, module_globals: dict):
+    """The ``__init__`` function the source of :func:`_init_source` compiles to, made from
+    the code of its kind (:class:`_Kind`), or None where that code does not apply (a
+    ``default_factory``, no field, a field named as a name of the code, 255 fields or more,
+    a Python other than 3.11/3.12).
+
+    Example::
+
+        >>> import dataclasses
+        >>> rows = (("x", float, dataclasses.MISSING, dataclasses.MISSING, True),
+        ...         ("y", int, 2, dataclasses.MISSING, True))
+        >>> fn = _template_init(rows, False, False, "self", {"__name__": "demo"})
+        >>> fn.__code__.co_varnames, fn.__defaults__, fn.__annotations__
+        (('self', 'x', 'y'), (2,), {'x': <class 'float'>, 'y': <class 'int'>, 'return': None})
+    """
+    if not _TEMPLATES or self_name != "self":
+        return None
+    missing = dataclasses.MISSING
+    names, notes, defaults = [], {}, []
+    for name, tp, default, factory, init in rows:
+        if factory is not missing:
+            return None
+        if init:
+            names.append(name)
+            notes[name] = tp
+            if default is not missing:
+                defaults.append(default)
+    if not names or len(names) >= 255 or _RESERVED.intersection(names):
+        return None
+    kind = _KINDS.get((frozen, post), missing)
+    if kind is missing:
+        kind = _KINDS[frozen, post] = _Kind.derive(frozen, post)
+    code = kind.code(tuple(names)) if kind is not None else None
+    if code is None:
+        return None
+    closure = (types.CellType(object),) if code.co_freevars else None
+    fn = types.FunctionType(code, module_globals, "__init__", tuple(defaults) or None, closure)
+    notes["return"] = None
+    fn.__annotations__ = notes
+    return fn
+
+
+#: the template path's Pythons (whose code for ``self.x=x`` lines is affine in the field's index)
+_TEMPLATES = sys.version_info[:2] in ((3, 11), (3, 12))
+#: names in the code of every kind: a field named so goes to the compiled source
+_RESERVED = frozenset({"self", "__dataclass_self__", "__post_init__", "__setattr__",
+                       "__dataclass_builtins_object__"})
+#: (frozen, has __post_init__) -> its _Kind (None: the code of 1-3 fields is not affine)
+_KINDS: dict = {}
+_PLACEHOLDERS = ("f000", "f001", "f002")
+
+
+class _Kind:
+    """The code of :mod:`dataclasses`' ``__init__`` for every number of fields of one kind
+    (frozen or not, with ``__post_init__`` or not), from one compilation of the source for
+    1, 2 and 3 fields named ``f000``-``f002``: the bytecode and line table of n fields are
+    a head, n chunks and a tail whose bytes are affine in n and in the chunk's index
+    (argument, attribute-name and constant indices), and the name tuples hold the field
+    names in one place. The three compiled codes fix and check that (else no kind). The
+    code made is the compiled one but for the columns of the line table (the template's
+    names are four characters long); lines are the same, so tracebacks are."""
+
+    def __init__(self, first, code_model, table_model, tuples):
+        self.first, self.code_model, self.table_model, self.tuples = first, code_model, table_model, tuples
+
+    @classmethod
+    def derive(cls, frozen: bool, post: bool):
+        text = "def __create_fn__(__dataclass_builtins_object__):\n"
+        for n in (1, 2, 3):
+            names = _PLACEHOLDERS[:n]
+            body = [f"__dataclass_builtins_object__.__setattr__(self,{x!r},{x})" if frozen else f"self.{x}={x}"
+                    for x in names] + (["self.__post_init__()"] if post else [])
+            text += f" def __init__({','.join(('self',) + names)})->_return_type:\n"
+            text += "".join(f"  {b}\n" for b in body)
+        text += " return __init__"
+        outer = compile(text, "<string>", "exec", dont_inherit=True).co_consts[0]
+        codes = [c for c in outer.co_consts if isinstance(c, types.CodeType)]
+        if len(codes) != 3:
+            return None
+        c1, c2, c3 = codes
+        same = ("co_flags", "co_freevars", "co_cellvars", "co_stacksize", "co_exceptiontable", "co_kwonlyargcount",
+                "co_posonlyargcount", "co_name", "co_qualname")
+        if any(getattr(c1, a, 0) != getattr(c, a, 0) for c in (c2, c3) for a in same):
+            return None
+        code_model = _affine(c1.co_code, c2.co_code, c3.co_code)
+        table_model = _affine(c1.co_linetable, c2.co_linetable, c3.co_linetable)
+        tuples = {a: _slot(getattr(c1, a), getattr(c2, a), getattr(c3, a))
+                  for a in ("co_varnames", "co_names", "co_consts")}
+        if code_model is None or table_model is None or None in tuples.values():
+            return None
+        return cls(c1.replace(co_firstlineno=2), code_model, table_model, tuples)
+
+    def code(self, names: tuple):
+        """The code object of the ``__init__`` of the fields ``names`` (None: out of range)."""
+        n = len(names)
+        code, table = _expand(self.code_model, n), _expand(self.table_model, n)
+        if code is None or table is None:
+            return None
+        fill = {a: t[:i] + names + t[i + 1:] if i is not None else t for a, (t, i) in self.tuples.items()}
+        return self.first.replace(co_argcount=n + 1, co_nlocals=n + 1, co_code=code, co_linetable=table, **fill)
+
+
+def _slot(t1: tuple, t2: tuple, t3: tuple):
+    """(t1, i): the tuples of 1, 2 and 3 fields are t1 with its item i (the placeholder
+    ``f000``) replaced by the fields' placeholders (i None: the same tuple); None if not."""
+    i = t1.index(_PLACEHOLDERS[0]) if _PLACEHOLDERS[0] in t1 else None
+    for t, n in ((t2, 2), (t3, 3)):
+        if t != (t1[:i] + _PLACEHOLDERS[:n] + t1[i + 1:] if i is not None else t1):
+            return None
+    return t1, i
+
+
+def _affine(s1: bytes, s2: bytes, s3: bytes):
+    """The model of bytes made of a head, n chunks of one length and a tail, whose values
+    are affine in n and the chunk index, fitted to the bytes of n = 1 and 2 and checked on
+    n = 3 (None: no such model): (head, its step in n, chunk, its steps in index and n,
+    tail, its step in n)."""
+    size = len(s2) - len(s1)
+    if size <= 0 or len(s3) - len(s2) != size:
+        return None
+    common = next((i for i, (a, b) in enumerate(zip(s1, s2)) if a != b), len(s1))
+    for p in range(min(common, len(s1) - size), -1, -1):   # where the first chunk starts
+        head, chunk, tail = s1[:p], s1[p:p + size], s1[p + size:]
+        diff = lambda a, b: tuple(y - x for x, y in zip(a, b))
+        model = (head, diff(head, s2[:p]), chunk, diff(s2[p:p + size], s2[p + size:p + 2 * size]),
+                 diff(chunk, s2[p:p + size]), tail, diff(tail, s2[p + 2 * size:]))
+        if _expand(model, 3) == s3:
+            return model
+    return None
+
+
+def _expand(model, n: int):
+    """The bytes of :func:`_affine`'s ``model`` for n chunks (None: a byte out of 0..255)."""
+    head, dhead, chunk, dindex, dn, tail, dtail = model
+    shift = lambda part, step: bytes(x + (n - 1) * d for x, d in zip(part, step))
+    try:
+        base = shift(chunk, dn)
+        out = bytearray(base * n)
+        size = len(chunk)
+        for j, d in enumerate(dindex):
+            if d:
+                out[j::size] = bytes(range(base[j], base[j] + n * d, d))
+        return shift(head, dhead) + bytes(out) + shift(tail, dtail)
+    except ValueError:                                       # a byte < 0 or > 255
+        return None
 
 
 def _freeze(cls) -> None:

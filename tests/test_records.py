@@ -208,3 +208,201 @@ def test_subclass_of_a_stdlib_dataclass():
         Sub = deco(frozen=True)(type("Sub", (Base,), {"__annotations__": {"b": "int"}, "b": 2,
                                                       "__module__": __name__}))
         assert repr(Sub(1)) == "Sub(a=1, b=2)" and Sub(1) == Sub(1, 2) and hash(Sub(1)) == hash((1, 2))
+
+
+# ---------------------------------------------------------------- __init__ without a compilation
+# records builds most __init__s from one code per kind (frozen or not, __post_init__ or not)
+# instead of compiling each class's source; the stdlib's compiled __init__ is the oracle.
+
+import sys                                   # noqa: E402
+import types                                 # noqa: E402
+
+from hypothesis import given, settings, strategies as st   # noqa: E402
+
+from gear3d import records                   # noqa: E402
+
+CODE = ("co_code", "co_consts", "co_names", "co_varnames", "co_freevars", "co_cellvars", "co_argcount",
+        "co_posonlyargcount", "co_kwonlyargcount", "co_nlocals", "co_stacksize", "co_flags", "co_firstlineno",
+        "co_filename", "co_name", "co_qualname", "co_exceptiontable")
+#: Python 3.11's dataclasses compiles the source records compiles (3.13's is another text)
+SAME_SOURCE = sys.version_info[:2] == (3, 11)
+
+
+def _code_facts(fn):
+    """What a code object states but the columns of its line table (the template's
+    placeholder names are 4 characters long): lines of every instruction included."""
+    c = fn.__code__
+    return ({a: getattr(c, a) for a in CODE}, list(c.co_lines()), [p[:2] for p in c.co_positions()])
+
+
+def _make(deco, spec, frozen, post, base=None, name="C"):
+    """A class from ``spec`` [(name, how)] made by ``deco``: how is 'req' (no default), a
+    ('dflt', value), 'factory' (default_factory=list), 'noinit' (init=False, default 7) or
+    'noinit_factory'; __post_init__ stores a mark; ``base``: a dataclass to inherit."""
+    ns = {"__annotations__": {}, "__module__": __name__, "__qualname__": name}
+    for fname, how in spec:
+        ns["__annotations__"][fname] = "int" if how == "req" else float
+        if isinstance(how, tuple):
+            ns[fname] = how[1]
+        elif how == "factory":
+            ns[fname] = field(default_factory=list)
+        elif how == "noinit":
+            ns[fname] = field(init=False, default=7)
+        elif how == "noinit_factory":
+            ns[fname] = field(init=False, default_factory=dict)
+    if post:
+        def __post_init__(self):
+            object.__setattr__(self, "_mark", len(vars(self)))
+        ns["__post_init__"] = __post_init__
+    return deco(frozen=frozen)(type(name, (base,) if base else (), ns))
+
+
+def _outcome(cls, args, kwargs):
+    """repr and state of ``cls(*args, **kwargs)``, or its error's type and message."""
+    try:
+        obj = cls(*args, **kwargs)
+    except Exception as e:                            # the messages are compared
+        return f"{type(e).__name__}: {e}"
+    return repr(obj), sorted(vars(obj).items(), key=repr)
+
+
+def _calls(spec):
+    """Calls of every kind: all positional, all keyword, required only, one missing, one
+    extra, an unknown keyword, one argument given twice, none."""
+    init = [n for n, how in spec if how not in ("noinit", "noinit_factory")]
+    req = [n for n, how in spec if how == "req"]
+    vals = list(range(10, 10 + len(init)))
+    out = [(vals, {}), ((), dict(zip(init, vals))), ((), {n: 1 for n in req}), ((), {}),
+           (vals + [99], {}), (vals, {"nope": 1})]
+    if req:
+        out.append(((), {n: 1 for n in req[1:]}))
+    if init:
+        out.append(([vals[0]], {init[0]: 5}))
+    return out
+
+
+def _compare(spec, frozen, post, base_spec=None):
+    """Everything about the two classes' __init__ and their calls is the same."""
+    got = []
+    for deco in (STD, fast):
+        try:
+            base = _make(deco, base_spec, frozen, False, name="B") if base_spec else None
+            cls = _make(deco, spec, frozen, post, base)
+        except TypeError as e:                        # a default before a non-default, in both
+            got.append(f"TypeError: {e}")
+            continue
+        init = cls.__init__
+        facts = dict(sig=str(inspect.signature(cls)), ann=repr(init.__annotations__), dflt=repr(init.__defaults__),
+                     kw=init.__kwdefaults__, names=(init.__name__, init.__qualname__, init.__module__),
+                     closure=[c.cell_contents for c in init.__closure__ or ()], glob=init.__globals__ is globals(),
+                     doc=cls.__doc__, calls=[_outcome(cls, a, k) for a, k in _calls((base_spec or []) + spec)])
+        if SAME_SOURCE:
+            facts["code"] = _code_facts(init)
+        got.append(facts)
+    assert got[0] == got[1]
+    return got[1]
+
+
+NAMES = st.sampled_from(["a", "b2", "x_long_field_name", "self", "object", "MISSING", "f000", "_type_a",
+                         "_return_type", "q" * 40, "w", "zz", "h"])
+HOW = st.one_of(st.just("req"), st.tuples(st.just("dflt"), st.sampled_from([0.5, None, (1, 2), "s"])),
+                st.sampled_from(["factory", "noinit", "noinit_factory"]))
+
+
+def _spec(draw_names, hows, defaults_last):
+    spec = list(dict(zip(draw_names, hows)).items())          # unique names, first kept
+    if defaults_last:                                         # the order dataclasses accepts
+        spec.sort(key=lambda item: item[1] != "req")
+    return spec
+
+
+def test_random_classes_against_dataclasses(monkeypatch):
+    """Hypothesis over class shapes (0-12 fields, defaults, factories, init=False,
+    frozen, __post_init__, a dataclass base): the same __init__ (code, signature,
+    annotations, defaults, closure) and the same results and TypeErrors of calls."""
+    made = []
+    real = records._template_init
+
+    def spy(*a):
+        fn = real(*a)
+        made.append(fn is not None)
+        return fn
+    monkeypatch.setattr(records, "_template_init", spy)
+
+    @settings(max_examples=250, deadline=None, database=None)
+    @given(st.lists(NAMES, max_size=12), st.lists(HOW, min_size=12, max_size=12), st.booleans(), st.booleans(),
+           st.booleans(), st.sampled_from([None, [("base_a", "req")], [("base_a", ("dflt", 1.0))]]))
+    def check(names, hows, frozen, post, defaults_last, base_spec):
+        _compare(_spec(names, hows, defaults_last or base_spec is not None), frozen, post, base_spec)
+    check()
+    assert sum(made) >= 100 and len(made) - sum(made) >= 20, (sum(made), len(made))   # both paths ran
+
+
+@pytest.mark.parametrize("frozen", [False, True])
+@pytest.mark.parametrize("post", [False, True])
+def test_template_code_is_the_compiled_code_up_to_80_fields(frozen, post):
+    """Every number of fields 1-80 (the chunk model is fitted on 1-3), names of 1-40
+    characters, and defaults on the last half."""
+    for n in range(1, 81):
+        spec = [(f"{'v' * (1 + (7 * i) % 40)}{i}", "req" if i < n // 2 else ("dflt", float(i))) for i in range(n)]
+        got = _compare(spec, frozen, post)
+        assert got["calls"][0][0].count("=") == n
+    assert records._KINDS[frozen, post] is not None or not records._TEMPLATES
+
+
+def test_beyond_254_fields_and_other_fallbacks(monkeypatch):
+    """255 arguments do not fit the one-byte indices: compiled source, the same class; a
+    failing template build and a Python without templates give the compiled source too."""
+    spec = [(f"f{i}", "req") for i in range(300)]
+    assert records._template_init(tuple((n, int, dataclasses.MISSING, dataclasses.MISSING, True) for n, _ in spec),
+                                  False, False, "self", {}) is None
+    _compare(spec, True, False)
+    small = [("a", "req"), ("b", ("dflt", 2.0))]
+    monkeypatch.setattr(records, "_template_init", lambda *a: 1 / 0)
+    _compare(small, True, True)
+    monkeypatch.undo()
+    monkeypatch.setattr(records, "_TEMPLATES", False)
+    assert _make(fast, small, False, False).__init__.__code__.co_linetable \
+        == _make(STD, small, False, False).__init__.__code__.co_linetable       # compiled: columns too
+    _compare(small, False, False)
+
+
+def test_affine_model_refuses_what_it_cannot_reproduce():
+    """The model of bytes (head, n chunks, tail affine in n and index) reproduces a
+    sequence written here and refuses one that is not affine or not of chunks."""
+    seq = lambda n: bytes([1, 2] + [b for k in range(n) for b in (9, 10 + k, 20 + n)] + [5, n])
+    model = records._affine(seq(1), seq(2), seq(3))
+    assert model is not None and all(records._expand(model, n) == seq(n) for n in range(1, 60))
+    assert records._expand(model, 300) is None                        # 10 + 299 > 255
+    squares = lambda n: bytes([1] + [n * n] * n)
+    assert records._affine(squares(1), squares(2), squares(3)) is None
+    assert records._affine(b"ab", b"abc", b"abcde") is None           # chunks of unequal length
+    assert records._slot(("x", "f000"), ("x", "f000", "f001"), ("x", "f000", "f001", "f002")) == (("x", "f000"), 1)
+    assert records._slot(("f000",), ("f001", "f000"), ("f000", "f001", "f002")) is None
+
+
+def test_template_instances_pickle_and_frozen_errors():
+    """An instance of a template-made class pickles; a frozen one refuses assignment."""
+    for frozen in (False, True):
+        cls = _make(fast, [("a", "req"), ("b", ("dflt", 1.5))], frozen, True, name=f"Pickled{int(frozen)}")
+        globals()[cls.__qualname__] = cls
+        obj = cls(3, b=4.5)
+        assert records._template_init(*_rows(cls, frozen)) is not None
+        back = pickle.loads(pickle.dumps(obj))
+        assert back == obj and vars(back) == {"a": 3, "b": 4.5, "_mark": 2}
+        if frozen:
+            with pytest.raises(dataclasses.FrozenInstanceError, match="cannot assign to field 'a'"):
+                obj.a = 1
+
+
+def _rows(cls, frozen):
+    rows = tuple((f.name, f.type, f.default, f.default_factory, f.init) for f in dataclasses.fields(cls))
+    return rows, frozen, hasattr(cls, "__post_init__"), "self", vars(sys.modules[cls.__module__])
+
+
+def test_frozen_init_has_its_own_cell():
+    """The frozen __init__'s closure holds its own cell with ``object`` (as dataclasses')."""
+    a = _make(fast, [("a", "req")], True, False, name="CellA")
+    b = _make(fast, [("a", "req")], True, False, name="CellB")
+    ca, cb = a.__init__.__closure__[0], b.__init__.__closure__[0]
+    assert isinstance(ca, types.CellType) and ca is not cb and ca.cell_contents is object
