@@ -340,17 +340,24 @@ def _slot(t1: tuple, t2: tuple, t3: tuple):
 def _affine(s1: bytes, s2: bytes, s3: bytes):
     """The model of bytes made of a head, n chunks of one length and a tail, whose values
     are affine in n and the chunk index, fitted to the bytes of n = 1 and 2 and checked on
-    n = 3 (None: no such model): (head, its step in n, chunk, its steps in index and n,
-    tail, its step in n)."""
+    n = 3 (None: no such model): (head, chunk, tail, and each one's steps as (position,
+    step) pairs: the head's, chunk's and tail's in n, the chunk's in its index).
+
+    Example (a chunk ``9, 10 + index, 20 + n`` between a head and a tail ``5, n``)::
+
+        >>> seq = lambda n: bytes([1, 2] + [b for k in range(n) for b in (9, 10 + k, 20 + n)] + [5, n])
+        >>> list(_expand(_affine(seq(1), seq(2), seq(3)), 4)) == list(seq(4))
+        True
+    """
     size = len(s2) - len(s1)
     if size <= 0 or len(s3) - len(s2) != size:
         return None
     common = next((i for i, (a, b) in enumerate(zip(s1, s2)) if a != b), len(s1))
+    steps = lambda a, b: tuple((j, y - x) for j, (x, y) in enumerate(zip(a, b)) if y != x)
     for p in range(min(common, len(s1) - size), -1, -1):   # where the first chunk starts
         head, chunk, tail = s1[:p], s1[p:p + size], s1[p + size:]
-        diff = lambda a, b: tuple(y - x for x, y in zip(a, b))
-        model = (head, diff(head, s2[:p]), chunk, diff(s2[p:p + size], s2[p + size:p + 2 * size]),
-                 diff(chunk, s2[p:p + size]), tail, diff(tail, s2[p + 2 * size:]))
+        model = (head, chunk, tail, steps(head, s2[:p]), steps(chunk, s2[p:p + size]), steps(tail, s2[p + 2 * size:]),
+                 steps(s2[p:p + size], s2[p + size:p + 2 * size]))
         if _expand(model, 3) == s3:
             return model
     return None
@@ -358,16 +365,20 @@ def _affine(s1: bytes, s2: bytes, s3: bytes):
 
 def _expand(model, n: int):
     """The bytes of :func:`_affine`'s ``model`` for n chunks (None: a byte out of 0..255)."""
-    head, dhead, chunk, dindex, dn, tail, dtail = model
-    shift = lambda part, step: bytes(x + (n - 1) * d for x, d in zip(part, step))
+    head, chunk, tail, dhead, dn, dtail, dindex = model
     try:
-        base = shift(chunk, dn)
-        out = bytearray(base * n)
+        parts = []
+        for part, steps in ((head, dhead), (chunk, dn), (tail, dtail)):
+            part = bytearray(part)
+            for j, d in steps:
+                part[j] += (n - 1) * d
+            parts.append(part)
+        head, chunk, tail = parts
         size = len(chunk)
-        for j, d in enumerate(dindex):
-            if d:
-                out[j::size] = bytes(range(base[j], base[j] + n * d, d))
-        return shift(head, dhead) + bytes(out) + shift(tail, dtail)
+        body = bytearray(chunk * n)
+        for j, d in dindex:
+            body[j::size] = bytes(range(chunk[j], chunk[j] + n * d, d))
+        return bytes(head + body + tail)
     except ValueError:                                       # a byte < 0 or > 255
         return None
 
