@@ -298,6 +298,8 @@ def _compare(spec, frozen, post, base_spec=None):
                      doc=cls.__doc__, calls=[_outcome(cls, a, k) for a, k in _calls((base_spec or []) + spec)])
         if SAME_SOURCE:
             facts["code"] = _code_facts(init)
+            if any(how in ("factory", "noinit_factory") for _, how in spec):    # compiled: columns too
+                facts["table"] = init.__code__.co_linetable
         got.append(facts)
     assert got[0] == got[1]
     return got[1]
