@@ -13,9 +13,17 @@ parallel curves: the distance is r_b times the difference of their roll angles),
 working flank between radii ``R_LO`` and ``R_HI``. The tooth phase (where tooth 0 sits) is
 fitted for each mesh; the tooth thickness is the theoretical one, not fitted.
 
-gear3d's sources are byte-compiled first (``compileall``), as an installed package is.
+gear3d runs as a user's ``pip install`` leaves it (``--install wheel``, the default): from its
+wheel, built from this checkout, in a virtual environment of its own (``--venv``, default
+``out/bench-venv``; made with gear3d's dependencies the first time, gear3d reinstalled every
+run), with that environment's ``python`` for the floors. This machine's own interpreter carries
+an editable install's finder and a sandbox certificate hook in its ``.pth`` files, which import
+``pathlib``, ``tempfile``, ``typing`` and ``importlib.resources`` in every process (``python
+-c pass`` 35 ms against 10 ms); one row, ``checkout``, still runs the matched tolerance from
+this checkout (byte-compiled first, as an installed package is) for comparison, and
+``--install checkout`` runs every row so.
 
-Run:  python benchmarks/peers.py [--runs 5] [--publish] [--case worm]
+Run:  python benchmarks/peers.py [--runs 5] [--publish] [--case worm] [--install wheel|checkout]
 (``--case worm``: the worm pair against BOSL2's worm() + worm_gear(), benchmarks/peers_worm.py;
 ``--case brep``: the B-rep STEP against cq_gears (CadQuery), benchmarks/peers_brep.py)
 ``--dxf``: gear3d's 2D DXF against BOSL2's spur20_2d.scad (benchmarks/peers_dxf.py).
@@ -46,6 +54,8 @@ RP = Z * M / 2
 RB = RP * math.cos(math.radians(ALPHA))
 R_LO, R_HI = RP - 0.4 * M, RP + 0.85 * M       # working flank, clear of root fillet and tip
 TOLS = [0.01, 0.006, 0.005, 0.004, 0.003, 0.002, 0.001]
+#: the interpreter the gear3d rows, the floors and the analyses run with (see the module doc)
+PYTHON = sys.executable
 
 
 def cpu_run(cmd, cwd=None, env=None) -> float:
@@ -62,8 +72,22 @@ def gear3d_script() -> str:
     """The ``gear3d`` console script installed next to this Python (what ``pip install``
     makes), else the first on PATH. A version manager's shim on PATH (pyenv's is a bash
     script that runs ``pyenv exec``) would add its own ~50 ms of CPU to every run."""
-    own = Path(sys.executable).with_name("gear3d")
+    own = Path(PYTHON).with_name("gear3d")
     return str(own) if own.exists() else (shutil.which("gear3d") or "gear3d")
+
+
+def bench_venv(venv: Path) -> Path:
+    """The ``python`` of a virtual environment holding gear3d installed from its wheel (built
+    from this checkout): made with gear3d's dependencies when missing, gear3d reinstalled
+    (without touching the dependencies) otherwise."""
+    py = venv / "bin" / "python"
+    if not py.exists():
+        subprocess.run([sys.executable, "-m", "venv", str(venv)], check=True)
+        subprocess.run([str(py), "-m", "pip", "install", "-q", str(ROOT)], check=True)
+    else:
+        subprocess.run([str(py), "-m", "pip", "install", "-q", "--no-deps", "--force-reinstall", str(ROOT)],
+                       check=True)
+    return py
 
 
 def openscad_path() -> str | None:
@@ -166,6 +190,11 @@ def main(argv=None) -> int:
     ap.add_argument("--publish", action="store_true")
     ap.add_argument("--dxf", action="store_true",
                     help="the 2D DXF against BOSL2's spur20_2d.scad instead (benchmarks/peers_dxf.py)")
+    ap.add_argument("--install", choices=["wheel", "checkout"], default="wheel",
+                    help="wheel: gear3d from its wheel in a virtual environment of its own (default); "
+                         "checkout: this checkout with this interpreter")
+    ap.add_argument("--venv", default=str(ROOT / "out" / "bench-venv"),
+                    help="the virtual environment of --install wheel (default out/bench-venv)")
     ap.add_argument("--case", choices=["helical", "worm", "brep"], default="helical",
                     help="helical: the reference helical gear (default); worm: the worm pair (peers_worm.py); "
                          "brep: the B-rep STEP against cq_gears (peers_brep.py)")
@@ -185,24 +214,33 @@ def main(argv=None) -> int:
     openscad = openscad_path()
     if openscad is None:
         return 2
+    global PYTHON
+    compile_gear3d()
+    checkout = gear3d_script()
+    if args.install == "wheel":
+        PYTHON = str(bench_venv(Path(args.venv)))
     gear3d = gear3d_script()
     work = Path(tempfile.mkdtemp(prefix="gear3d-peers-"))
     jobs = {"BOSL2 (OpenSCAD)": ([openscad, "-o", str(work / "bosl2.stl"), "helical20.scad"], PEERS,
                                  work / "bosl2.stl", "slices=20"),
-            "python -c 'import numpy, manifold3d'": ([sys.executable, "-c", "import numpy, manifold3d"],
+            "python -c 'import numpy, manifold3d'": ([PYTHON, "-c", "import numpy, manifold3d"],
                                                       None, None, "(floor)"),
-            "python -c 'import numpy'": ([sys.executable, "-c", "import numpy"], None, None, "(floor)"),
-            "python -c 'pass'": ([sys.executable, "-c", "pass"], None, None,
+            "python -c 'import numpy'": ([PYTHON, "-c", "import numpy"], None, None, "(floor)"),
+            "python -c 'pass'": ([PYTHON, "-c", "pass"], None, None,
                                  "(the interpreter alone: site and its .pth files)"),
             "python -c 'import numpy', one BLAS thread": (["env", "OPENBLAS_NUM_THREADS=1", "OMP_NUM_THREADS=1",
-                                                         sys.executable, "-c", "import numpy"], None, None,
+                                                         PYTHON, "-c", "import numpy"], None, None,
                                                         "(floor as gear3d imports it)")}
     for t in TOLS:
         out = work / f"gear3d_{t}.stl"
         jobs[f"gear3d tol {t:g}"] = ([gear3d, "body", "involute", "--teeth", str(Z), "--module", str(M),
                                       "--kind", "helical", "--helix-angle-deg", str(BETA), "--width", str(WIDTH),
                                       "--bore", "5", "--tolerance", str(t), "-o", str(out)], None, out, f"tol {t:g} mm")
-    compile_gear3d()
+    if args.install == "wheel":              # the matched tolerance as this checkout runs it
+        cmd = list(jobs["gear3d tol 0.003"][0])
+        out = work / "checkout_0.003.stl"
+        jobs["checkout: gear3d tol 0.003"] = ([checkout, *cmd[1:-1], str(out)], None, out,
+                                              "tol 0.003 mm, this checkout (editable, this machine's .pth files)")
     times = {k: [] for k in jobs}
     for i in range(args.runs):                       # interleaved: the machine's load hits all alike
         for k, (cmd, cwd, _out, _s) in jobs.items():
@@ -229,7 +267,9 @@ def main(argv=None) -> int:
         mark = " **(matched)**" if r is matched else ""
         lines.append(f"| {r['tool']}{mark} | {r['setting']} | {r['cpu_s']:.3f} | {r['cpu_ratio']:.2f} | {tri} | {ver} | {fe} |")
     head = (f"Machine: {platform.machine()}, {os.cpu_count()} cores, Python {platform.python_version()}, "
-            f"load average {load[0]:.2f} / {load[1]:.2f} / {load[2]:.2f}; {args.runs} interleaved runs each.")
+            f"load average {load[0]:.2f} / {load[1]:.2f} / {load[2]:.2f}; {args.runs} interleaved runs each; "
+            + ("gear3d installed from its wheel in a virtual environment of its own (the floors run with its python)."
+               if args.install == "wheel" else "gear3d run from this checkout (editable) with this interpreter."))
     verdict = ("No gear3d tolerance reached BOSL2's flank error." if matched is None else
                f"At equal or better flank error ({matched['flank_error'] * 1e3:.2f} µm against "
                f"{bosl['flank_error'] * 1e3:.2f} µm) gear3d ({matched['setting']}) takes "
@@ -297,13 +337,13 @@ def import_costs(cmd, runs: int) -> list:
     (median of ``runs`` fresh processes): the interpreter's start-up (``python -c pass``:
     site, its .pth files), numpy, manifold3d, then every gear3d module the command loads
     (found by running it once in process), in the order it loads them."""
-    out = subprocess.run([sys.executable, "-c", LOADED, *cmd], capture_output=True, text=True, check=True).stdout
+    out = subprocess.run([PYTHON, "-c", LOADED, *cmd], capture_output=True, text=True, check=True).stdout
     loaded = next(ln for ln in out.splitlines() if ln.startswith("MODULES ")).split()[1:]
     env = dict(os.environ, OPENBLAS_NUM_THREADS="1")             # as the gear3d command sets it
     per = {"Python start-up (python -c pass: site, .pth files)": []}
     for _ in range(runs):
-        per[next(iter(per))].append(cpu_run([sys.executable, "-c", "pass"]))
-        r = subprocess.run([sys.executable, "-c", IMPORTS, *loaded], capture_output=True, text=True,
+        per[next(iter(per))].append(cpu_run([PYTHON, "-c", "pass"]))
+        r = subprocess.run([PYTHON, "-c", IMPORTS, *loaded], capture_output=True, text=True,
                            check=True, env=env)
         for k, v in json.loads(r.stdout).items():
             per.setdefault(k, []).append(v)
@@ -316,7 +356,7 @@ def _importtime(code_args, runs: int, env) -> dict:
     ever adds to a time; a median still carried single 5-8 ms spikes at load 5)."""
     per, cum = {}, {}
     for _ in range(runs):
-        err = subprocess.run([sys.executable, "-X", "importtime", *code_args], capture_output=True, text=True,
+        err = subprocess.run([PYTHON, "-X", "importtime", *code_args], capture_output=True, text=True,
                              env=env, check=True).stderr
         for ln in err.splitlines():
             parts = ln.split("|")
@@ -365,7 +405,7 @@ def in_process_aims() -> dict:
     """Issue 28's in-process aims, CPU ms in a fresh process: the first call and the median
     of 30 of a 20-tooth profile at 0.001 mm, and of a helical body + STL at 0.01 mm
     (profile at its share, body with its measurement, binary STL written)."""
-    r = subprocess.run([sys.executable, "-c", AIMS], capture_output=True, text=True, check=True,
+    r = subprocess.run([PYTHON, "-c", AIMS], capture_output=True, text=True, check=True,
                        env=dict(os.environ, OPENBLAS_NUM_THREADS="1"))
     res = json.loads(r.stdout)
     return {k: (v if isinstance(v, float) else statistics.median(v)) * 1000 for k, v in res.items()}
