@@ -85,3 +85,15 @@ def test_families_says_what_each_needs(capsys):
     for fam in FAMILY_PARAMS:
         assert fam in rows and "--" in rows[fam], rows.get(fam)
     assert "gear3d.mate" in rows["mate"] and "--mate rolled" in rows["mate"]
+
+
+@pytest.mark.parametrize("columns", ["200", "50", "", "abc", "-3"])
+def test_help_width_is_argparse_own(monkeypatch, columns):
+    """gear3d's parser gives its formatter the width without importing shutil: every
+    command's help is the text argparse's own formatter (shutil's terminal width) gives."""
+    import gear3d.cli as cli
+    monkeypatch.setenv("COLUMNS", columns)
+    ours = {name: p.format_help() for name, p in _commands()}
+    monkeypatch.setattr(cli._Parser, "_get_formatter", argparse.ArgumentParser._get_formatter)
+    stock = {name: p.format_help() for name, p in _commands()}
+    assert len(ours) >= 20 and ours == stock
