@@ -20,6 +20,14 @@ what the generated ones return (Python 3.10-3.11's generated code):
   None and ``compare``, or ``hash=True``), for ``eq`` and ``frozen`` classes; ``None`` (not
   hashable) for ``eq`` classes that are not frozen; a class's own ``__hash__`` is kept.
 
+The ``__init__`` is the one :mod:`dataclasses` (3.11) compiles, made on the class's first
+use, and mostly without a compilation: for fields with no default or a plain one (no
+``default_factory``), its code is built from the code of its kind (frozen or not,
+``__post_init__`` or not) that this module's ``.pyc`` holds for 1-3 fields, with the
+field names filled in (:class:`_Kind`; about 10 us, against about 0.15 ms for compiling the
+source). That code differs from the compiled one only in the columns of its line table,
+which no traceback shows (its file, ``<string>``, has no source); lines are the same.
+
 A method the class defines itself is kept, as :mod:`dataclasses` keeps it.
 ``dataclasses.fields``, ``replace``, ``asdict`` and ``is_dataclass`` see a dataclass, and
 ``__dataclass_params__`` states the ``repr``/``eq`` asked for. ``order``, ``unsafe_hash`` and
@@ -37,6 +45,7 @@ Example::
 """
 from __future__ import annotations
 
+import __future__
 import dataclasses
 import operator
 import reprlib
@@ -196,10 +205,10 @@ class _LazyInit:
     makes the function and puts it on the class in its place. A process imports about 60
     gear3d dataclasses and makes instances of a third of them, so two thirds are never made.
 
-    The function is :mod:`dataclasses`' own: compiled from its source text
-    (:func:`_init_source`, about 0.1 ms), or for a class whose ``__init__`` fields all
-    have no default or a plain one (no ``default_factory``) built without a compilation
-    from the shared code of its kind (:func:`_template_init`)."""
+    The function is :mod:`dataclasses`' own: for a class whose ``__init__`` fields all have
+    no default or a plain one (no ``default_factory``), built without a compilation from
+    the code of its kind (:func:`_template_init`); else compiled from its source
+    (:func:`_init_source`, about 0.1 ms)."""
 
     def __init__(self, rows, frozen: bool, post: bool, self_name: str):
         self.rows, self.frozen, self.post, self.self_name = rows, frozen, post, self_name
@@ -274,37 +283,90 @@ _RESERVED = frozenset({"self", "__dataclass_self__", "__post_init__", "__setattr
                        "__dataclass_builtins_object__"})
 #: (frozen, has __post_init__) -> its _Kind (None: the code of 1-3 fields is not affine)
 _KINDS: dict = {}
-_PLACEHOLDERS = ("f000", "f001", "f002")
+_PLACEHOLDERS = ("f000", "f001", "f002")         # the names in _init_samples
+
+
+#: the compiler flag of ``from __future__ import annotations`` (this module's; not dataclasses')
+_FUTURE_FLAGS = __future__.annotations.compiler_flag
+
+
+def _init_samples(__dataclass_builtins_object__):
+    """Never called: its nested functions are what :mod:`dataclasses` compiles for the
+    ``__init__`` of 1, 2 and 3 fields (``f000``-``f002``) of each kind: not frozen, not
+    frozen with ``__post_init__``, frozen, frozen with ``__post_init__`` (the same lines;
+    in this module, their code is read from its ``.pyc`` at import, not compiled)."""
+    def __init__(self,f000):
+        self.f000=f000
+    def __init__(self,f000,f001):
+        self.f000=f000
+        self.f001=f001
+    def __init__(self,f000,f001,f002):
+        self.f000=f000
+        self.f001=f001
+        self.f002=f002
+    def __init__(self,f000):
+        self.f000=f000
+        self.__post_init__()
+    def __init__(self,f000,f001):
+        self.f000=f000
+        self.f001=f001
+        self.__post_init__()
+    def __init__(self,f000,f001,f002):
+        self.f000=f000
+        self.f001=f001
+        self.f002=f002
+        self.__post_init__()
+    def __init__(self,f000):
+        __dataclass_builtins_object__.__setattr__(self,'f000',f000)
+    def __init__(self,f000,f001):
+        __dataclass_builtins_object__.__setattr__(self,'f000',f000)
+        __dataclass_builtins_object__.__setattr__(self,'f001',f001)
+    def __init__(self,f000,f001,f002):
+        __dataclass_builtins_object__.__setattr__(self,'f000',f000)
+        __dataclass_builtins_object__.__setattr__(self,'f001',f001)
+        __dataclass_builtins_object__.__setattr__(self,'f002',f002)
+    def __init__(self,f000):
+        __dataclass_builtins_object__.__setattr__(self,'f000',f000)
+        self.__post_init__()
+    def __init__(self,f000,f001):
+        __dataclass_builtins_object__.__setattr__(self,'f000',f000)
+        __dataclass_builtins_object__.__setattr__(self,'f001',f001)
+        self.__post_init__()
+    def __init__(self,f000,f001,f002):
+        __dataclass_builtins_object__.__setattr__(self,'f000',f000)
+        __dataclass_builtins_object__.__setattr__(self,'f001',f001)
+        __dataclass_builtins_object__.__setattr__(self,'f002',f002)
+        self.__post_init__()
 
 
 class _Kind:
     """The code of :mod:`dataclasses`' ``__init__`` for every number of fields of one kind
-    (frozen or not, with ``__post_init__`` or not), from one compilation of the source for
-    1, 2 and 3 fields named ``f000``-``f002``: the bytecode and line table of n fields are
+    (frozen or not, with ``__post_init__`` or not), from the code of 1, 2 and 3 fields named
+    ``f000``-``f002`` (:func:`_init_samples`): the bytecode and line table of n fields are
     a head, n chunks and a tail whose bytes are affine in n and in the chunk's index
-    (argument, attribute-name and constant indices), and the name tuples hold the field
-    names in one place. The three compiled codes fix and check that (else no kind). The
-    code made is the compiled one but for the columns of the line table (the template's
-    names are four characters long); lines are the same, so tracebacks are."""
+    (argument, attribute-name, constant and closure indices), and the name tuples hold the
+    field names in one place. The three codes fix that and check it (else no kind: the
+    source is compiled). The code made is the compiled one but for the columns of the line
+    table (the placeholders' columns); its lines are the same, so tracebacks are.
+
+    Example::
+
+        >>> kind = _Kind.derive(False, False)
+        >>> kind.code(("a", "bc")).co_varnames, kind.code(("a", "bc")).co_names
+        (('self', 'a', 'bc'), ('a', 'bc'))
+    """
 
     def __init__(self, first, code_model, table_model, tuples):
         self.first, self.code_model, self.table_model, self.tuples = first, code_model, table_model, tuples
 
     @classmethod
     def derive(cls, frozen: bool, post: bool):
-        text = "def __create_fn__(__dataclass_builtins_object__):\n"
-        for n in (1, 2, 3):
-            names = _PLACEHOLDERS[:n]
-            body = [f"__dataclass_builtins_object__.__setattr__(self,{x!r},{x})" if frozen else f"self.{x}={x}"
-                    for x in names] + (["self.__post_init__()"] if post else [])
-            text += f" def __init__({','.join(('self',) + names)})->_return_type:\n"
-            text += "".join(f"  {b}\n" for b in body)
-        text += " return __init__"
-        outer = compile(text, "<string>", "exec", dont_inherit=True).co_consts[0]
-        codes = [c for c in outer.co_consts if isinstance(c, types.CodeType)]
-        if len(codes) != 3:
+        codes = [c for c in _init_samples.__code__.co_consts if isinstance(c, types.CodeType)]
+        if len(codes) != 12:
             return None
-        c1, c2, c3 = codes
+        k = 6 * frozen + 3 * post
+        c1, c2, c3 = (c.replace(co_filename="<string>", co_firstlineno=2, co_qualname="__create_fn__.<locals>.__init__",
+                                co_flags=c.co_flags & ~_FUTURE_FLAGS) for c in codes[k:k + 3])
         same = ("co_flags", "co_freevars", "co_cellvars", "co_stacksize", "co_exceptiontable", "co_kwonlyargcount",
                 "co_posonlyargcount", "co_name", "co_qualname")
         if any(getattr(c1, a, 0) != getattr(c, a, 0) for c in (c2, c3) for a in same):
@@ -315,7 +377,7 @@ class _Kind:
                   for a in ("co_varnames", "co_names", "co_consts")}
         if code_model is None or table_model is None or None in tuples.values():
             return None
-        return cls(c1.replace(co_firstlineno=2), code_model, table_model, tuples)
+        return cls(c1, code_model, table_model, tuples)
 
     def code(self, names: tuple):
         """The code object of the ``__init__`` of the fields ``names`` (None: out of range)."""
@@ -352,9 +414,13 @@ def _affine(s1: bytes, s2: bytes, s3: bytes):
     size = len(s2) - len(s1)
     if size <= 0 or len(s3) - len(s2) != size:
         return None
-    common = next((i for i, (a, b) in enumerate(zip(s1, s2)) if a != b), len(s1))
+    # the head and the tail are affine in n: at most the first `front` and last `back` bytes
+    affine = lambda a, b, c: b - a == c - b
+    front = next((i for i, abc in enumerate(zip(s1, s2, s3)) if not affine(*abc)), len(s1))
+    back = next((i for i, abc in enumerate(zip(reversed(s1), reversed(s2), reversed(s3))) if not affine(*abc)),
+                len(s1))
     steps = lambda a, b: tuple((j, y - x) for j, (x, y) in enumerate(zip(a, b)) if y != x)
-    for p in range(min(common, len(s1) - size), -1, -1):   # where the first chunk starts
+    for p in range(max(len(s1) - size - back, 0), min(front, len(s1) - size) + 1):   # where the chunks start
         head, chunk, tail = s1[:p], s1[p:p + size], s1[p + size:]
         model = (head, chunk, tail, steps(head, s2[:p]), steps(chunk, s2[p:p + size]), steps(tail, s2[p + 2 * size:]),
                  steps(s2[p:p + size], s2[p + size:p + 2 * size]))
