@@ -55,11 +55,16 @@ class EnvelopePiece:
     (None for corners, whose normal sweeps). On a regular branch the envelope runs the
     same way as the tool (dG/dt . tangent > 0); past a singular point it runs backwards,
     and that branch lies inside the tool: the builder drops it before trimming.
+
+    ``batch_key`` (hashable, or None): pieces with the same key can be evaluated together
+    in one call of :meth:`evaluate_many` (one set of array operations for all of them).
     """
 
-    def __init__(self, evaluate, smooth: bool):
+    def __init__(self, evaluate, smooth: bool, batch_key=None, element=None):
         self._evaluate = evaluate
         self.smooth = smooth
+        self.batch_key = batch_key
+        self.element = element
 
     def __call__(self, t):
         return self._evaluate(np.asarray(t, float), False)[0]
@@ -71,6 +76,68 @@ class EnvelopePiece:
         """(G(t), tool tangent at t) in one evaluation (smooth pieces)."""
         return self._evaluate(np.asarray(t, float), True)
 
+    @staticmethod
+    def evaluate_many(pieces, counts, t) -> np.ndarray:
+        """G (mm, (N, 2)) of several pieces sharing one ``batch_key`` at once: ``t`` (N,)
+        holds ``counts[i]`` consecutive parameters of ``pieces[i]`` for each i in turn. The
+        same numbers as calling each piece on its own block (the same operations, point by
+        point).
+
+        >>> from gear3d.racks import involute_rack
+        >>> ps = [p for p, _ in rack_envelope(involute_rack(1.0), 10.0)][:3]
+        >>> t = np.array([0.1, 0.5, 0.9, 0.3])
+        >>> g = EnvelopePiece.evaluate_many(ps, [1, 2, 1], t)
+        >>> bool(np.array_equal(g[1:3], ps[1](t[1:3])))
+        True
+        """
+        key = pieces[0].batch_key
+        if key is None or any(p.batch_key != key for p in pieces):
+            raise ValueError("evaluate_many: pieces without one common batch_key")
+        return _rack_many(pieces, counts, np.asarray(t, float), *key[1:])
+
+
+def _rack_contact(u, v, du, dv, radius, shift, sigma, tangent):
+    """G (and the tool tangent) of rack points (u, v) with tangents (du, dv): the shared
+    part of every rack envelope evaluator (see :func:`rack_envelope_piece`)."""
+    h = v - shift
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ycon = -h * (dv / du)               # Y of the contact point (X axis through pitch point)
+    bad = ~np.isfinite(ycon)
+    if bad.any():                           # normal parallel to the datum: contact only on it
+        ycon[bad] = np.where(np.abs(h[bad]) < 1e-15, 0.0, np.nan)
+    phi = (ycon - u) / radius               # the rack translation at contact, over r
+    c, s = np.cos(phi), np.sin(phi)
+    X = radius - sigma * h
+    G = np.empty(ycon.shape + (2,))
+    G[..., 0] = c * X + s * ycon
+    G[..., 1] = c * ycon - s * X
+    if not tangent:
+        return G, None
+    tx, ty = -sigma * dv, du
+    T = np.empty_like(G)
+    T[..., 0] = c * tx + s * ty
+    T[..., 1] = c * ty - s * tx
+    return G, T
+
+
+def _rack_many(pieces, counts, t, radius, shift, sigma):
+    """:meth:`EnvelopePiece.evaluate_many` for rack envelope pieces: each element's (u, v,
+    du, dv) on its block of ``t``, then one :func:`_rack_contact` for all."""
+    n_all = len(t)
+    u, v, du, dv = np.empty(n_all), np.empty(n_all), np.empty(n_all), np.empty(n_all)
+    a = 0
+    for p, n in zip(pieces, counts):
+        b = a + int(n)
+        if b > a:
+            el = p.element
+            if isinstance(el, Corner):      # as rack_element_uvn, without its full_like arrays
+                psi = el.psi0 + (el.psi1 - el.psi0) * t[a:b]
+                u[a:b], v[a:b], du[a:b], dv[a:b] = el.u, el.v, -np.sin(psi), np.cos(psi)
+            else:
+                u[a:b], v[a:b], du[a:b], dv[a:b] = el.uv(t[a:b])
+        a = b
+    return _rack_contact(u, v, du, dv, radius, shift, sigma, False)[0]
+
 
 def rack_envelope_piece(el, radius: float, shift: float, internal: bool):
     """Exact evaluator ``G(t)`` (mm, gear frame) of the envelope of one rack element.
@@ -78,31 +145,16 @@ def rack_envelope_piece(el, radius: float, shift: float, internal: bool):
     ``radius`` is the pitch radius (mm); ``shift`` the rack displacement x*m (mm, positive
     away from the gear material); ``internal`` cuts a ring (rack teeth point outward).
     Points that never touch the gear (normal parallel to the datum) come out as NaN.
+    Pieces of one rack, radius, shift and side share a ``batch_key``
+    (:meth:`EnvelopePiece.evaluate_many`).
     """
     sigma = -1.0 if internal else 1.0
+    radius, shift = float(radius), float(shift)
 
     def evaluate(t, tangent=True):
         u, v, du, dv = rack_element_uvn(el, t)
-        h = v - shift
-        with np.errstate(divide="ignore", invalid="ignore"):
-            ycon = -h * (dv / du)               # Y of the contact point (X axis through pitch point)
-        bad = ~np.isfinite(ycon)
-        if bad.any():                           # normal parallel to the datum: contact only on it
-            ycon[bad] = np.where(np.abs(h[bad]) < 1e-15, 0.0, np.nan)
-        phi = (ycon - u) / radius               # the rack translation at contact, over r
-        c, s = np.cos(phi), np.sin(phi)
-        X = radius - sigma * h
-        G = np.empty(ycon.shape + (2,))
-        G[..., 0] = c * X + s * ycon
-        G[..., 1] = c * ycon - s * X
-        if not tangent:
-            return G, None
-        tx, ty = -sigma * dv, du
-        T = np.empty_like(G)
-        T[..., 0] = c * tx + s * ty
-        T[..., 1] = c * ty - s * tx
-        return G, T
-    return EnvelopePiece(evaluate, not isinstance(el, Corner))
+        return _rack_contact(u, v, du, dv, radius, shift, sigma, tangent)
+    return EnvelopePiece(evaluate, not isinstance(el, Corner), ("rack", radius, shift, sigma), el)
 
 
 def rack_envelope(rack: Rack, radius: float, shift: float = 0.0, internal: bool = False):

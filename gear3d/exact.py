@@ -28,7 +28,6 @@ import math
 
 import numpy as np
 
-from .records import dataclass
 from .geometry import check_points, rotate, segment_foot
 
 #: Newton iterations on the foot-point parameter (quadratic convergence from a chord start)
@@ -43,25 +42,54 @@ ZOOMS = 2
 WINDOW_MIN_TEETH = 6
 
 
-@dataclass
 class _Piece:
-    f: object              # exact evaluator G(t) -> (N, 2) mm, t in [0, 1]
-    t: np.ndarray          # sample parameters
-    p: np.ndarray          # G(t) (mm)
-    alive: np.ndarray      # (len(t),) bool: the sample survived trimming
-    keep: np.ndarray       # (len(t) - 1,) bool: the chord carries boundary
-    lo: np.ndarray         # (len(t) - 1,) the parameter range a foot point may use
-    hi: np.ndarray         #   around each chord
-    cuts: dict             # chord -> parameter of the trimmed corner on it
+    """One exact piece of the period and its sample chords (see :func:`_piece`)."""
+    __slots__ = ("f", "t", "p", "alive", "keep", "lo", "hi", "cuts")
+
+    def __init__(self, f, t, p, alive, keep, lo, hi, cuts):
+        self.f = f              # exact evaluator G(t) -> (N, 2) mm, t in [0, 1]
+        self.t = t              # sample parameters
+        self.p = p              # G(t) (mm)
+        self.alive = alive      # (len(t),) bool: the sample survived trimming
+        self.keep = keep        # (len(t) - 1,) bool: the chord carries boundary
+        self.lo = lo            # (len(t) - 1,) the parameter range a foot point may use
+        self.hi = hi            #   around each chord
+        self.cuts = cuts        # chord -> parameter of the trimmed corner on it
+
+    def __repr__(self):
+        return f"_Piece({len(self.t)} samples, {int(self.keep.sum())} chords kept)"
 
 
-def _piece(f, t, alive, cuts=None, mid_alive=None) -> _Piece:
+def _sample_all(fs, ts) -> list:
+    """G(t) (mm) of every piece ``fs[i]`` at its samples ``ts[i]``: pieces that share a
+    ``batch_key`` in one call (the same numbers as one call each)."""
+    ts = [np.asarray(t, float) for t in ts]
+    out = [None] * len(fs)
+    groups = {}
+    for i, f in enumerate(fs):
+        key = getattr(f, "batch_key", None)
+        if key is None:
+            out[i] = np.asarray(f(ts[i]), float)
+        else:
+            groups.setdefault(key, []).append(i)
+    for idx in groups.values():
+        g = np.asarray(fs[idx[0]].evaluate_many([fs[i] for i in idx], [len(ts[i]) for i in idx],
+                                                np.concatenate([ts[i] for i in idx])), float)
+        a = 0
+        for i in idx:
+            out[i] = g[a:a + len(ts[i])]
+            a += len(ts[i])
+    return out
+
+
+def _piece(f, t, alive, cuts=None, mid_alive=None, p=None) -> _Piece:
     """One piece's chords: a chord carries boundary when one of its ends survived trimming,
     and its foot points may move one chord width beyond its ends (clipped to [0, 1]); a
-    chord that runs into a trimmed corner stops at the corner's parameter ``cuts[j]``."""
+    chord that runs into a trimmed corner stops at the corner's parameter ``cuts[j]``.
+    ``p``: G(t) when already evaluated."""
     t = np.asarray(t, float)
     alive = np.asarray(alive, bool)
-    p = np.asarray(f(t), float)
+    p = np.asarray(f(t) if p is None else p, float)
     t0, t1 = t[:-1], t[1:]
     w = t1 - t0
     keep = alive[:-1] | alive[1:]
@@ -93,29 +121,17 @@ class ExactBoundary:
         self.polygon_error = float(polygon_error)
         self.pitch = 2 * math.pi / self.teeth
         self.pieces = []
-        for f, t, alive, *extra in pieces:
-            pc = _piece(f, t, alive, *extra)
+        pieces = [tuple(x) for x in pieces]
+        ps = _sample_all([x[0] for x in pieces], [x[1] for x in pieces])
+        for (f, t, alive, *extra), p in zip(pieces, ps):
+            extra = (extra + [None, None])[:2]
+            pc = _piece(f, t, alive, *extra, p=p)
             if len(t) < 2 or not np.any(pc.keep):
                 continue
             self.pieces.append(pc)
         self.circles = [float(r) for r in circles]
-        a, b, owner = [], [], []
-        copies = (-1, 0, 1) if self.teeth > 1 else (0,)
-        for i, pc in enumerate(self.pieces):
-            idx = np.nonzero(pc.keep)[0]
-            for k in copies:
-                q = rotate(pc.p, k * self.pitch) if k else pc.p
-                a.append(q[idx])
-                b.append(q[idx + 1])
-                owner.append(np.stack([np.full(len(idx), i), np.full(len(idx), k), idx], axis=1))
-        # the angle the period is centred on (tooth 0 for rack-cut gears; a rolled mate's
-        # period can sit elsewhere)
-        pts = np.concatenate([pc.p[pc.alive] for pc in self.pieces]) if self.pieces else np.zeros((0, 2))
-        u = pts / np.maximum(np.hypot(pts[:, 0], pts[:, 1]), 1e-300)[:, None]
-        self._center = float(np.arctan2(u[:, 1].sum(), u[:, 0].sum())) if len(u) else 0.0
-        self._a = np.concatenate(a) if a else np.zeros((0, 2))
-        self._b = np.concatenate(b) if b else np.zeros((0, 2))
-        self._owner = np.concatenate(owner) if owner else np.zeros((0, 3), int)
+        self._index_pieces()
+        self._index_chords()
         # angular index of the chords (used for gears of more than WINDOW_MIN_TEETH teeth)
         a1 = np.arctan2(self._a[:, 1], self._a[:, 0])
         a2 = np.arctan2(self._b[:, 1], self._b[:, 0])
@@ -178,6 +194,91 @@ class ExactBoundary:
         return out
 
     # ------------------------------------------------------------------ internals
+    def _index_pieces(self):
+        """Flat arrays over all pieces (their samples and chords, for per-foot look-ups) and
+        the evaluation groups: pieces that share a ``batch_key`` (rack envelope pieces of one
+        rack, :meth:`gear3d.envelope.EnvelopePiece.evaluate_many`) are evaluated in one
+        call, any other piece on its own (:meth:`_evaluate`)."""
+        ps = self.pieces
+        nt = np.array([len(pc.t) for pc in ps], int)
+        #: first sample / first chord of each piece in the flat arrays
+        self._toff = np.concatenate([[0], np.cumsum(nt)[:-1]]).astype(int) if len(ps) else np.zeros(0, int)
+        self._coff = self._toff - np.arange(len(ps))
+        self._nt = nt
+
+        def cat(xs, dtype):
+            return np.concatenate(xs).astype(dtype) if xs else np.zeros(0, dtype)
+        self._T = cat([pc.t for pc in ps], float)
+        self._alive = cat([pc.alive for pc in ps], bool)
+        self._tlo = cat([pc.lo for pc in ps], float)
+        self._thi = cat([pc.hi for pc in ps], float)
+        self._known = np.zeros(len(self._tlo), bool)
+        for i, pc in enumerate(ps):
+            self._known[[self._coff[i] + j for j in pc.cuts]] = True
+        # trusted chords: both ends and both neighbours' far ends survived (or the piece
+        # ends there) and no trimmed corner cuts it, so every foot on it is kept as found
+        self._trusted = np.zeros(len(self._tlo), bool)
+        for i, pc in enumerate(ps):
+            al = pc.alive
+            left = np.concatenate([[True], al[:-2]])
+            right = np.concatenate([al[2:], [True]])
+            self._trusted[self._coff[i]:self._coff[i] + len(al) - 1] = al[:-1] & al[1:] & left & right
+        self._trusted &= ~self._known
+        groups, keys = [], {}
+        for i, pc in enumerate(ps):
+            key = getattr(pc.f, "batch_key", None)
+            if key is not None and key in keys:
+                groups[keys[key]].append(i)
+                continue
+            if key is not None:
+                keys[key] = len(groups)
+            groups.append([i])
+        self._groups = groups
+        self._rank = np.empty(len(ps), int)
+        self._rank[[i for g in groups for i in g]] = np.arange(len(ps))
+        self._group_of_rank = np.array([gi for gi, g in enumerate(groups) for _ in g], int)
+        self._group_start = np.array([0] + [len(g) for g in groups[:-1]], int).cumsum()
+
+    def _index_chords(self):
+        """The chords that carry boundary (a, b in mm), of tooth 0 and its two neighbours'
+        copies, piece by piece, and their owners (piece, copy, chord); the angle the period
+        is centred on (tooth 0 for rack-cut gears; a rolled mate's period can sit elsewhere)."""
+        copies = np.array((-1, 0, 1) if self.teeth > 1 else (0,))
+        ps = self.pieces
+        P = np.concatenate([pc.p for pc in ps]) if ps else np.zeros((0, 2))
+        turned = np.stack([rotate(P, k * self.pitch) if k else P for k in copies.tolist()])
+        idx = [np.nonzero(pc.keep)[0] for pc in ps]
+        nc = len(copies)
+        piece = np.concatenate([np.full(nc * len(j), i) for i, j in enumerate(idx)]) if ps else np.zeros(0, int)
+        chord = np.concatenate([np.tile(j, nc) for j in idx]) if ps else np.zeros(0, int)
+        copy = np.concatenate([np.repeat(copies, len(j)) for j in idx]) if ps else np.zeros(0, int)
+        gs = self._toff[piece] + chord
+        ck = np.searchsorted(copies, copy)
+        self._a, self._b = turned[ck, gs], turned[ck, gs + 1]
+        self._owner = np.stack([piece, copy, chord], axis=1).astype(int)
+        pts = np.concatenate([pc.p[pc.alive] for pc in ps]) if ps else np.zeros((0, 2))
+        u = pts / np.maximum(np.hypot(pts[:, 0], pts[:, 1]), 1e-300)[:, None]
+        self._center = float(np.arctan2(u[:, 1].sum(), u[:, 0].sum())) if len(u) else 0.0
+
+    def _evaluate(self, r: np.ndarray, t: np.ndarray) -> np.ndarray:
+        """G (mm, (n, k, 2)) at parameters ``t`` (n, k): row i on the piece of rank ``r[i]``
+        (rows sorted by rank); one evaluator call per group of pieces."""
+        n, k = t.shape
+        out = np.empty((n, k, 2))
+        g = self._group_of_rank[r]
+        cut = np.flatnonzero(g[1:] != g[:-1]) + 1
+        for a, b in zip([0, *cut.tolist()], [*cut.tolist(), n]):
+            grp = self._groups[g[a]]
+            tt = t[a:b].ravel()
+            if len(grp) == 1:
+                y = self.pieces[grp[0]].f(tt)
+            else:
+                counts = np.bincount(r[a:b] - self._group_start[g[a]], minlength=len(grp)) * k
+                fs = [self.pieces[i].f for i in grp]
+                y = fs[0].evaluate_many(fs, counts, tt)
+            out[a:b] = np.asarray(y, float).reshape(b - a, k, 2)
+        return out
+
     def _distance(self, q: np.ndarray) -> np.ndarray:
         if len(q) == 0:
             return np.zeros(0)
@@ -196,45 +297,71 @@ class ExactBoundary:
             rows = np.repeat(np.arange(len(q)), m)
             jc = cand.ravel()
             j = cols[rows, jc] if cols is not None else jc
-            sj = s[rows, jc]
+            # a chord much farther than the nearest trusted one cannot hold the nearest
+            # exact point (see _reach)
             piece, copy, chord = self._owner[j].T
-            qc = rotate(q0[rows], -copy * self.pitch)       # in the chord's own copy frame
-            dist = np.full(len(j), np.inf)
-            for i in sorted(set(piece.tolist())):
-                sel = np.nonzero(piece == i)[0]
-                pc = self.pieces[i]
-                d_i, foot, t_i = self._newton(pc, qc[sel], chord[sel], sj[sel])
-                # a foot off the chords whose both ends survived may lie on a branch that
-                # trimming cut away: keep it only if it lies on the trimmed polygon;
-                # otherwise bound the distance by the polygon's own (+ its measured error)
-                c = chord[sel]
-                # inside the boundary: a chord with both ends alive, and a foot within it
-                # or within a neighbouring chord whose ends are alive too
-                nt = len(pc.t)
-                left = pc.alive[np.maximum(c - 1, 0)] & (c > 0)
-                right = pc.alive[np.minimum(c + 2, nt - 1)] & (c + 2 < nt)
-                inside = (pc.alive[c] & pc.alive[c + 1]
-                          & ((t_i >= pc.t[c]) | left) & ((t_i <= pc.t[c + 1]) | right))
-                # on a chord cut at a known corner, a foot within [lo, hi] is on the boundary
-                if pc.cuts:
-                    known = np.array([j in pc.cuts for j in c], bool)
-                    inside |= known & (t_i >= pc.lo[c]) & (t_i <= pc.hi[c])
-                sus = np.nonzero(~inside)[0]
-                if len(sus) and self.polygon is not None:
-                    on = self._on_polygon(foot[sus])
-                    bad = sus[~on]
-                    if len(bad):
-                        ends = pc.alive[c[bad]] | pc.alive[c[bad] + 1]
-                        d_i[bad] = np.where(
-                            ends, self._clamp(pc, qc[sel][bad], c[bad], t_i[bad]),
-                            # no surviving end to pull back to: bound it by the polygon
-                            self._poly_dist(qc[sel][bad]) + self.polygon_error)
-                dist[sel] = d_i
+            dc = d[rows, jc]
+            dref = np.where(self._trusted[self._coff[piece] + chord], dc, np.inf).reshape(len(q), m).min(axis=1)
+            near = dc <= np.repeat(dref, m) + self._reach
+            j, rows, piece, copy, chord = j[near], rows[near], piece[near], copy[near], chord[near]
+            # every candidate foot at once, sorted by piece (grouped evaluations)
+            order = np.argsort(self._rank[piece], kind="stable")
+            qc = rotate(q0[rows[order]], -copy[order] * self.pitch)   # in the chord's own copy frame
+            dist = np.full(len(q) * m, np.inf)
+            sub = np.empty(len(j))
+            sub[order] = self._feet(piece[order], chord[order], qc)
+            dist[near] = sub
             best = dist.reshape(len(q), m).min(axis=1)
         r = np.hypot(q[:, 0], q[:, 1])
         for R in self.circles:
             best = np.minimum(best, np.abs(r - R))
         return best
+
+    def _feet(self, pi: np.ndarray, c: np.ndarray, qc: np.ndarray) -> np.ndarray:
+        """Distances (mm) from points ``qc`` to the exact pieces ``pi`` near their chords
+        ``c`` (rows sorted by piece rank): Newton's feet, checked against trimming."""
+        T, al, lo, hi = self._T, self._alive, self._tlo, self._thi
+        r = self._rank[pi]
+        gs, gc = self._toff[pi] + c, self._coff[pi] + c        # flat sample / chord index
+        d_i, foot, t_i = self._newton(r, qc, T[gs], T[gs + 1], lo[gc], hi[gc])
+        # a foot off the chords whose both ends survived may lie on a branch that trimming
+        # cut away: keep it only if it lies on the trimmed polygon; otherwise bound the
+        # distance by the polygon's own (+ its measured error).
+        # inside the boundary: a chord with both ends alive, and a foot within it or within
+        # a neighbouring chord whose ends are alive too
+        left = al[np.maximum(gs - 1, 0)] & (c > 0)
+        right = al[np.minimum(gs + 2, len(al) - 1)] & (c + 2 < self._nt[pi])
+        inside = al[gs] & al[gs + 1] & ((t_i >= T[gs]) | left) & ((t_i <= T[gs + 1]) | right)
+        # on a chord cut at a known corner, a foot within [lo, hi] is on the boundary
+        inside |= self._known[gc] & (t_i >= lo[gc]) & (t_i <= hi[gc])
+        sus = np.nonzero(~inside)[0]
+        if len(sus) and self.polygon is not None:
+            bad = sus[~self._on_polygon(foot[sus])]
+            if len(bad):
+                g = gs[bad]
+                d_i[bad] = np.where(
+                    al[g] | al[g + 1], self._clamp(r[bad], qc[bad], np.where(al[g], T[g], T[g + 1]), t_i[bad]),
+                    # no surviving end to pull back to: bound it by the polygon
+                    self._poly_dist(qc[bad]) + self.polygon_error)
+        return d_i
+
+    @property
+    def _reach(self) -> float:
+        """How much farther (mm) than the nearest *trusted* candidate chord another candidate
+        chord may lie and still be followed to the exact curve.
+
+        A trusted chord (:meth:`_index_pieces`) and its two neighbours survived trimming
+        whole, so its foot is never checked against the polygon: its distance bounds the
+        point's distance from above, up to the chord's sag. The exact curve lies within the
+        measured chord sag (at most :attr:`polygon_error`) of its chords, so a candidate more
+        than twice the sag farther than a trusted one (its own curve, and its neighbours'
+        where its foot may run, being farther still) cannot hold a nearer foot; twice that
+        again is kept as margin. Chords cut by trimming never set the reference: a chord
+        that runs into a trimmed corner can pass close to a point its surviving curve does
+        not. Without a measured error (no polygon): every candidate."""
+        if self.polygon is None or not self.polygon_error > 0:
+            return np.inf
+        return 4 * self.polygon_error + 1e-9
 
     @property
     def _slack(self) -> float:
@@ -242,23 +369,23 @@ class ExactBoundary:
         the polygon's measured error (chord sag, corners), plus rounding."""
         return self.polygon_error + 1e-9
 
-    def _clamp(self, pc: _Piece, q: np.ndarray, chord: np.ndarray, t_off: np.ndarray) -> np.ndarray:
-        """Distance from ``q`` to the exact curve ``pc`` with the foot pulled back from
-        ``t_off`` (past a trimmed corner) to the last parameter, toward the chord's surviving
-        end, whose point still lies on the trimmed polygon (16-section, 2^-16 of the step)."""
-        t_a = np.where(pc.alive[chord], pc.t[chord], pc.t[chord + 1])
+    def _clamp(self, r: np.ndarray, q: np.ndarray, t_a: np.ndarray, t_off: np.ndarray) -> np.ndarray:
+        """Distance from ``q`` to the exact piece of rank ``r`` with the foot pulled back from
+        ``t_off`` (past a trimmed corner) to the last parameter, toward ``t_a`` (the chord's
+        surviving end), whose point still lies on the trimmed polygon (16-section, 2^-16 of
+        the step)."""
         lo, hi = t_a, t_off
         frac = np.arange(1, 16) / 16
         rows = np.arange(len(q))
         for _ in range(4):
             x = lo[:, None] + (hi - lo)[:, None] * frac[None, :]
-            on = self._on_polygon(pc.f(x.ravel())).reshape(x.shape)
+            on = self._on_polygon(self._evaluate(r, x).reshape(-1, 2)).reshape(x.shape)
             # the last grid point still on the polygon, counting from lo (all on: the last)
             k = np.where(on.all(axis=1), len(frac), np.argmin(on, axis=1)) - 1
             new_lo = np.where(k >= 0, x[rows, np.maximum(k, 0)], lo)
             hi = np.where(k + 1 < len(frac), x[rows, np.minimum(k + 1, len(frac) - 1)], hi)
             lo = new_lo
-        d = np.hypot(*(pc.f(lo) - q).T)
+        d = np.hypot(*(self._evaluate(r, lo[:, None])[:, 0] - q).T)
         return np.where(np.isfinite(d), d, np.inf)
 
     def _on_polygon(self, pts: np.ndarray) -> np.ndarray:
@@ -294,42 +421,44 @@ class ExactBoundary:
             out[s0:s0 + step] = d.min(axis=1)
         return out
 
-    @staticmethod
-    def _newton(pc: _Piece, q: np.ndarray, chord: np.ndarray, s: np.ndarray):
-        """Distance (mm) from points ``q`` to piece ``pc`` near the given chords, the foot
-        points (mm) and their parameters."""
-        t0, t1 = pc.t[chord], pc.t[chord + 1]
+    def _newton(self, r, q, t0, t1, lo, hi):
+        """Distance (mm) from points ``q`` to the pieces of rank ``r`` near the chords
+        [t0, t1] (a foot may use [lo, hi]), the foot points (mm) and their parameters."""
         w = t1 - t0
-        lo, hi = pc.lo[chord], pc.hi[chord]
         n = len(q)
+        rows = np.arange(n)
         # start from the nearest of a few exact points along the chord's parameter interval
         # (parametrisations can be far from uniform: near a pitch point G ~ t^2)
         a, b = np.maximum(t0, lo), np.minimum(t1, hi)
         b = np.maximum(a, b)
         tp = a[:, None] + (b - a)[:, None] * _PROBES[None, :]
-        gp0 = pc.f(tp.ravel()).reshape(n, len(_PROBES), 2)
+        gp0 = self._evaluate(r, tp)
         dp = np.hypot(gp0[..., 0] - q[:, None, 0], gp0[..., 1] - q[:, None, 1])
         dp = np.where(np.isfinite(dp), dp, np.inf)
         k = np.argmin(dp, axis=1)
-        t = tp[np.arange(n), k]
+        dmin = dp[rows, k]
+        t = tp[rows, k]
         # zoom twice around the best probe (a parametrisation can crowd a chord's whole
         # travel into a small part of its parameter interval)
         span = (b - a) / (len(_PROBES) - 1)
         for _ in range(ZOOMS):
             tz = np.clip(t[:, None] + span[:, None] * (2 * _PROBES[None, :] - 1), lo[:, None], hi[:, None])
-            gz = pc.f(tz.ravel()).reshape(n, len(_PROBES), 2)
+            gz = self._evaluate(r, tz)
             dz = np.hypot(gz[..., 0] - q[:, None, 0], gz[..., 1] - q[:, None, 1])
             dz = np.where(np.isfinite(dz), dz, np.inf)
             kz = np.argmin(dz, axis=1)
-            better = dz[np.arange(n), kz] < dp[np.arange(n), k]
-            t = np.where(better, tz[np.arange(n), kz], t)
+            t = np.where(dz[rows, kz] < dmin, tz[rows, kz], t)
             span = span / 4
         h = np.minimum(np.maximum(w * 1e-4, 1e-12), 0.25)
         for _ in range(NEWTON_STEPS):
             # a central stencil kept inside [0, 1] (derivatives at tc, a point within h of t)
             tc = np.clip(t, h, 1 - h)
-            g = pc.f(np.concatenate([t, tc, tc + h, tc - h]))
-            g0, gc, gp, gm = g[:n], g[n:2 * n], g[2 * n:3 * n], g[3 * n:]
+            g = self._evaluate(r, np.stack([tc, tc + h, tc - h], axis=1))
+            gc, gp, gm = g[:, 0], g[:, 1], g[:, 2]
+            moved = np.nonzero(tc != t)[0]        # G(t) is G(tc) unless the stencil moved
+            g0 = gc.copy()
+            if len(moved):
+                g0[moved] = self._evaluate(r[moved], t[moved, None])[:, 0]
             d1 = (gp - gm) / (2 * h)[:, None]
             d2 = (gp - 2 * gc + gm) / (h * h)[:, None]
             e = g0 - q
@@ -338,13 +467,11 @@ class ExactBoundary:
             ok = np.isfinite(fval) & np.isfinite(fder) & (fder > 0)
             step = np.where(ok, fval / np.where(ok, fder, 1.0), 0.0)
             t = np.clip(t - step, lo, hi)
-        g = pc.f(t)
+        g = self._evaluate(r, t[:, None])[:, 0]
         d = np.hypot(*(g - q).T)
         d = np.where(np.isfinite(d), d, np.inf)
         # never worse than the best exact start point (inside the chord's own interval)
-        k = np.argmin(dp, axis=1)
-        dmin = dp[np.arange(n), k]
         worse = ~(d <= dmin)
-        g = np.where(worse[:, None], gp0[np.arange(n), k], g)
-        t = np.where(worse, tp[np.arange(n), k], t)
+        g = np.where(worse[:, None], gp0[rows, k], g)
+        t = np.where(worse, tp[rows, k], t)
         return np.minimum(d, dmin), g, t
