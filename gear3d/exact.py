@@ -36,8 +36,12 @@ NEWTON_STEPS = 3
 CANDIDATES = 3
 #: start parameters probed along a chord's interval (fractions)
 _PROBES = np.linspace(0.0, 1.0, 9)
-#: zooms of the probes around the best one before Newton's method
+#: zooms of the probes around the best one before Newton's method (for the feet where
+#: Newton's method from the best probe itself has not settled)
 ZOOMS = 2
+#: a last Newton step below this share of the chord's parameter interval has settled
+#: (Newton's error after it is about its square: 1e-12 of the interval)
+SETTLED = 1e-6
 #: gears with more teeth than this search chords by polar angle (fewer: all chords)
 WINDOW_MIN_TEETH = 6
 
@@ -262,21 +266,25 @@ class ExactBoundary:
 
     def _evaluate(self, r: np.ndarray, t: np.ndarray) -> np.ndarray:
         """G (mm, (n, k, 2)) at parameters ``t`` (n, k): row i on the piece of rank ``r[i]``
-        (rows sorted by rank); one evaluator call per group of pieces."""
+        (rows sorted by rank)."""
         n, k = t.shape
-        out = np.empty((n, k, 2))
+        return self._evaluate_flat(np.repeat(r, k) if k > 1 else r, t.ravel()).reshape(n, k, 2)
+
+    def _evaluate_flat(self, r: np.ndarray, t: np.ndarray) -> np.ndarray:
+        """G (mm, (N, 2)) at parameters ``t`` (N,) on the pieces of rank ``r`` (N,), sorted by
+        rank; one evaluator call per group of pieces."""
+        out = np.empty((len(t), 2))
         g = self._group_of_rank[r]
         cut = np.flatnonzero(g[1:] != g[:-1]) + 1
-        for a, b in zip([0, *cut.tolist()], [*cut.tolist(), n]):
+        for a, b in zip([0, *cut.tolist()], [*cut.tolist(), len(t)]):
             grp = self._groups[g[a]]
-            tt = t[a:b].ravel()
             if len(grp) == 1:
-                y = self.pieces[grp[0]].f(tt)
+                y = self.pieces[grp[0]].f(t[a:b])
             else:
-                counts = np.bincount(r[a:b] - self._group_start[g[a]], minlength=len(grp)) * k
+                counts = np.bincount(r[a:b] - self._group_start[g[a]], minlength=len(grp))
                 fs = [self.pieces[i].f for i in grp]
-                y = fs[0].evaluate_many(fs, counts, tt)
-            out[a:b] = np.asarray(y, float).reshape(b - a, k, 2)
+                y = fs[0].evaluate_many(fs, counts, t[a:b])
+            out[a:b] = np.asarray(y, float).reshape(b - a, 2)
         return out
 
     def _distance(self, q: np.ndarray) -> np.ndarray:
@@ -423,11 +431,14 @@ class ExactBoundary:
 
     def _newton(self, r, q, t0, t1, lo, hi):
         """Distance (mm) from points ``q`` to the pieces of rank ``r`` near the chords
-        [t0, t1] (a foot may use [lo, hi]), the foot points (mm) and their parameters."""
-        w = t1 - t0
+        [t0, t1] (a foot may use [lo, hi]), the foot points (mm) and their parameters.
+
+        Newton's method starts from the nearest of nine exact points along the chord's
+        parameter interval; a foot whose last step has not settled (above :data:`SETTLED`
+        of the interval, clipped to [lo, hi], or undefined) starts again from the zooms'
+        nearest point (:meth:`_zoom`), as every foot once did."""
         n = len(q)
         rows = np.arange(n)
-        # start from the nearest of a few exact points along the chord's parameter interval
         # (parametrisations can be far from uniform: near a pitch point G ~ t^2)
         a, b = np.maximum(t0, lo), np.minimum(t1, hi)
         b = np.maximum(a, b)
@@ -437,36 +448,12 @@ class ExactBoundary:
         dp = np.where(np.isfinite(dp), dp, np.inf)
         k = np.argmin(dp, axis=1)
         dmin = dp[rows, k]
-        t = tp[rows, k]
-        # zoom twice around the best probe (a parametrisation can crowd a chord's whole
-        # travel into a small part of its parameter interval)
-        span = (b - a) / (len(_PROBES) - 1)
-        for _ in range(ZOOMS):
-            tz = np.clip(t[:, None] + span[:, None] * (2 * _PROBES[None, :] - 1), lo[:, None], hi[:, None])
-            gz = self._evaluate(r, tz)
-            dz = np.hypot(gz[..., 0] - q[:, None, 0], gz[..., 1] - q[:, None, 1])
-            dz = np.where(np.isfinite(dz), dz, np.inf)
-            kz = np.argmin(dz, axis=1)
-            t = np.where(dz[rows, kz] < dmin, tz[rows, kz], t)
-            span = span / 4
-        h = np.minimum(np.maximum(w * 1e-4, 1e-12), 0.25)
-        for _ in range(NEWTON_STEPS):
-            # a central stencil kept inside [0, 1] (derivatives at tc, a point within h of t)
-            tc = np.clip(t, h, 1 - h)
-            g = self._evaluate(r, np.stack([tc, tc + h, tc - h], axis=1))
-            gc, gp, gm = g[:, 0], g[:, 1], g[:, 2]
-            moved = np.nonzero(tc != t)[0]        # G(t) is G(tc) unless the stencil moved
-            g0 = gc.copy()
-            if len(moved):
-                g0[moved] = self._evaluate(r[moved], t[moved, None])[:, 0]
-            d1 = (gp - gm) / (2 * h)[:, None]
-            d2 = (gp - 2 * gc + gm) / (h * h)[:, None]
-            e = g0 - q
-            fval = np.einsum("ij,ij->i", e, d1)
-            fder = np.einsum("ij,ij->i", d1, d1) + np.einsum("ij,ij->i", e, d2)
-            ok = np.isfinite(fval) & np.isfinite(fder) & (fder > 0)
-            step = np.where(ok, fval / np.where(ok, fder, 1.0), 0.0)
-            t = np.clip(t - step, lo, hi)
+        h = np.minimum(np.maximum((t1 - t0) * 1e-4, 1e-12), 0.25)
+        t, settled = self._newton_steps(r, q, tp[rows, k], h, lo, hi, SETTLED * (b - a))
+        redo = np.nonzero(~settled)[0]
+        if len(redo):
+            tz = self._zoom(r[redo], q[redo], tp[redo, k[redo]], dmin[redo], (b - a)[redo], lo[redo], hi[redo])
+            t[redo] = self._newton_steps(r[redo], q[redo], tz, h[redo], lo[redo], hi[redo], None)[0]
         g = self._evaluate(r, t[:, None])[:, 0]
         d = np.hypot(*(g - q).T)
         d = np.where(np.isfinite(d), d, np.inf)
@@ -475,3 +462,61 @@ class ExactBoundary:
         g = np.where(worse[:, None], gp0[rows, k], g)
         t = np.where(worse, tp[rows, k], t)
         return np.minimum(d, dmin), g, t
+
+    def _zoom(self, r, q, t, dmin, width, lo, hi):
+        """The start parameter for Newton's method: the nearest of nine exact points around
+        ``t`` (the best probe, at distance ``dmin``), twice, each time a quarter as wide (a
+        parametrisation can crowd a chord's whole travel into a small part of its
+        parameter interval ``width``)."""
+        rows = np.arange(len(q))
+        span = width / (len(_PROBES) - 1)
+        for _ in range(ZOOMS):
+            tz = np.clip(t[:, None] + span[:, None] * (2 * _PROBES[None, :] - 1), lo[:, None], hi[:, None])
+            gz = self._evaluate(r, tz)
+            dz = np.hypot(gz[..., 0] - q[:, None, 0], gz[..., 1] - q[:, None, 1])
+            dz = np.where(np.isfinite(dz), dz, np.inf)
+            kz = np.argmin(dz, axis=1)
+            t = np.where(dz[rows, kz] < dmin, tz[rows, kz], t)
+            span = span / 4
+        return t
+
+    def _newton_steps(self, r, q, t, h, lo, hi, tiny):
+        """:data:`NEWTON_STEPS` of Newton's method on ``(G(t) - q)·G'(t) = 0`` from ``t``
+        (G' and G'' from central differences, step ``h``), kept in [lo, hi]: the parameters
+        and, per row, whether the last step was below ``tiny``, well defined and not
+        clipped (None when ``tiny`` is None)."""
+        for _ in range(NEWTON_STEPS):
+            # a central stencil kept inside [0, 1] (derivatives at tc, a point within h of t)
+            tc = np.clip(t, h, 1 - h)
+            g, g0 = self._stencil(r, t, tc, h)
+            gc, gp, gm = g[:, 0], g[:, 1], g[:, 2]
+            d1 = (gp - gm) / (2 * h)[:, None]
+            d2 = (gp - 2 * gc + gm) / (h * h)[:, None]
+            e = g0 - q
+            fval = np.einsum("ij,ij->i", e, d1)
+            fder = np.einsum("ij,ij->i", d1, d1) + np.einsum("ij,ij->i", e, d2)
+            ok = np.isfinite(fval) & np.isfinite(fder) & (fder > 0)
+            step = np.where(ok, fval / np.where(ok, fder, 1.0), 0.0)
+            free = t - step
+            t = np.clip(free, lo, hi)
+        if tiny is None:
+            return t, None
+        return t, ok & (np.abs(step) <= tiny) & (t == free)
+
+    def _stencil(self, r, t, tc, h):
+        """G at (tc, tc + h, tc - h) per row ((n, 3, 2), mm) and G(t) ((n, 2)): G(tc) unless
+        the stencil was moved inside [0, 1], those rows evaluated in the same call."""
+        n = len(t)
+        moved = np.nonzero(tc != t)[0]
+        ts = np.stack([tc, tc + h, tc - h], axis=1).ravel()
+        if not len(moved):
+            g = self._evaluate_flat(np.repeat(r, 3), ts).reshape(n, 3, 2)
+            return g, g[:, 0]
+        rr = np.concatenate([np.repeat(r, 3), r[moved]])
+        order = np.argsort(rr, kind="stable")
+        out = np.empty((len(rr), 2))
+        out[order] = self._evaluate_flat(rr[order], np.concatenate([ts, t[moved]])[order])
+        g = out[:3 * n].reshape(n, 3, 2)
+        g0 = g[:, 0].copy()
+        g0[moved] = out[3 * n:]
+        return g, g0
