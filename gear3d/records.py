@@ -52,6 +52,7 @@ import reprlib
 import sys
 import types
 import weakref
+from keyword import iskeyword
 
 __all__ = ["dataclass"]
 
@@ -177,6 +178,8 @@ def _init_source(rows, frozen: bool, post: bool, self_name: str):
     loc = {"_HAS_DEFAULT_FACTORY": _FACTORY, "__dataclass_builtins_object__": object}
     body, args, defaults, notes = [], [self_name], [], {}
     for name, tp, default, factory, init in rows:
+        if not name.isascii():               # the parser normalises it (NFKC): refused as dataclasses does
+            loc[f"_type_{name}"] = tp
         if init:
             args.append(name)
             notes[name] = tp
@@ -237,8 +240,8 @@ class _LazyInit:
 def _template_init(rows, frozen: bool, post: bool, self_name: str, module_globals: dict):
     """The ``__init__`` function the source of :func:`_init_source` compiles to, made from
     the code of its kind (:class:`_Kind`), or None where that code does not apply (a
-    ``default_factory``, no field, a field named as a name of the code, 255 fields or more,
-    a Python other than 3.11/3.12).
+    ``default_factory``, no field, a field named as a name of the code or not an ASCII
+    identifier, 255 fields or more, a Python other than 3.11/3.12).
 
     Example::
 
@@ -261,8 +264,9 @@ def _template_init(rows, frozen: bool, post: bool, self_name: str, module_global
             notes[name] = tp
             if default is not missing:
                 defaults.append(default)
-    if not names or len(names) >= 255 or _RESERVED.intersection(names):
-        return None
+    if (not names or len(names) >= 255 or _RESERVED.intersection(names)
+            or not all(n.isascii() and n.isidentifier() and not iskeyword(n) for n in names)):
+        return None                          # (the compiled source refuses a name that is no identifier)
     kind = _KINDS.get((frozen, post), missing)
     if kind is missing:
         kind = _KINDS[frozen, post] = _Kind.derive(frozen, post)

@@ -428,3 +428,16 @@ def test_a_plain_class_compiles_nothing(monkeypatch):
     assert seen == []
     _make(fast, [("a", "req"), ("b", "factory")], False, False)(1)
     assert len(seen) == 1 and "_dflt_b() if b is _HAS_DEFAULT_FACTORY else b" in seen[0]
+
+
+@pytest.mark.parametrize("key", ["class", "a b", "\ufb01"])
+def test_a_field_name_that_is_no_identifier_fails_as_in_dataclasses(key):
+    """A name no ``def`` can take (a keyword, a space; a ligature, which the parser
+    normalises) goes to the compiled source, which refuses it with dataclasses' error
+    (when the class is made: its doc needs the signature)."""
+    errors = []
+    for deco in (STD, fast):
+        with pytest.raises((SyntaxError, TypeError)) as e:
+            deco(type("C", (), {"__annotations__": {key: int}}))(1)
+        errors.append(type(e.value))
+    assert errors[0] == errors[1]
