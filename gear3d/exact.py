@@ -101,10 +101,14 @@ def _piece(f, t, alive, cuts=None, mid_alive=None, p=None) -> _Piece:
         keep = keep | np.asarray(mid_alive, bool)
     lo, hi = np.clip(t0 - w, 0, 1), np.clip(t1 + w, 0, 1)
     for j, c in (cuts or {}).items():
+        # no foot crosses a trimmed corner onto the cut-away side: not from this chord,
+        # nor from a neighbour whose range reaches past the corner
         if alive[j]:
             hi[j] = c
+            hi[:j] = np.minimum(hi[:j], c)
         else:
             lo[j] = c
+            lo[j + 1:] = np.maximum(lo[j + 1:], c)
     return _Piece(f, t, p, alive, keep, lo, hi, dict(cuts or {}))
 
 
@@ -408,8 +412,12 @@ class ExactBoundary:
         if not fin.any():                       # NaN / inf points are never on the polygon
             return np.zeros(len(pts), bool)
         m = 2 * slack + 1e-9
-        lo, hi = pts[fin].min(axis=0) - m, pts[fin].max(axis=0) + m
-        near = ((np.maximum(a, b) >= lo) & (np.minimum(a, b) <= hi)).all(axis=1)
+        box = pts if fin.all() else pts[fin]
+        lo, hi = box.min(axis=0) - m, box.max(axis=0) + m
+        box = getattr(self, "_edge_box", None)
+        if box is None or box[0] is not self.polygon:     # the edges' boxes, made once
+            box = self._edge_box = (self.polygon, np.minimum(a, b), np.maximum(a, b))
+        near = ((box[2] >= lo) & (box[1] <= hi)).all(axis=1)
         if not near.any():
             return np.zeros(len(pts), bool)
         a, b = a[near], b[near]

@@ -1,0 +1,262 @@
+"""Issue #28: the exact distance (gear3d.exact) with grouped rack evaluators, candidate
+pruning and Newton's method from the best probe, against independent oracles.
+
+* the involute flank: the closed-form distance to the involute of the base circle (the foot
+  of a point q satisfies q . e(phi) = rb, so it is solved for, not searched), points on all
+  teeth and both flanks, on, inside and outside the flank;
+* the root fillet of a sharp-cornered rack: the trochoid of the rack corner, written here,
+  sampled at 10^6 points and refined by golden-section search;
+* the rack envelope evaluated for several pieces in one call (EnvelopePiece.evaluate_many):
+  its tip line lands on the root circle, its root line on the tip circle, its flank on the
+  involute and its corner on the trochoid (the formulas above);
+* a boundary that mixes grouped and ungrouped pieces (a test double with a batch key, and
+  plain functions), interleaved: the distance to circular arcs, in closed form.
+
+The distance must never come out below the oracle (beyond rounding): it certifies a
+tolerance.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+import gear3d
+from gear3d.envelope import EnvelopePiece, rack_envelope
+from gear3d.exact import ExactBoundary
+from gear3d.racks import involute_rack
+
+class Gear:
+    """A standard involute gear (no shift, no backlash, pressure angle 20 deg) cut by a
+    sharp-cornered rack, in closed form: z teeth, module m (mm)."""
+
+    def __init__(self, z, m):
+        self.z, self.m, alpha = z, m, math.radians(20.0)
+        self.rp = z * m / 2
+        self.rb = self.rp * math.cos(alpha)
+        #: half the tooth angle at the base circle
+        self.psi_b = math.pi / (2 * z) + math.tan(alpha) - alpha
+        self.hc = 1.25 * m                       # rack tooth height (cuts the root)
+        #: the sharp rack corner (u, v): flank u = -p/4 - v tan(alpha) at v = hc
+        self.uc, self.vc = -math.pi * m / 4 - self.hc * math.tan(alpha), self.hc
+
+    def flank(self, u):
+        """Tooth 0's upper involute flank at roll parameter u >= 0 (mm) and its unit
+        normal (out of the tooth): P = rb (e(phi) + u e_perp(phi)), phi = psi_b - u."""
+        phi = self.psi_b - np.asarray(u, float)
+        e = np.stack([np.cos(phi), np.sin(phi)], axis=-1)
+        ep = np.stack([-np.sin(phi), np.cos(phi)], axis=-1)
+        return self.rb * (e + np.asarray(u)[..., None] * ep), ep
+
+    def involute_distance(self, q, u_lo, u_hi):
+        """Closed-form distance (mm) from points q to tooth 0's upper flank for u in
+        [u_lo, u_hi]: the feet solve q . e(psi_b - u) = rb, i.e. u = psi_b - theta_q -/+
+        acos(rb/|q|); the interval's ends are candidates too."""
+        q = np.asarray(q, float)
+        rq, th = np.hypot(q[:, 0], q[:, 1]), np.arctan2(q[:, 1], q[:, 0])
+        cands = [np.full(len(q), u_lo), np.full(len(q), u_hi)]
+        acs = np.arccos(np.clip(self.rb / rq, -1, 1))
+        for sgn in (-1, 1):
+            cands.append(np.clip(self.psi_b - th + sgn * acs, u_lo, u_hi))
+        return np.min([np.hypot(*(self.flank(u)[0] - q).T) for u in cands], axis=0)
+
+    def trochoid(self, s):
+        """The rack corner's path in the gear frame (mm) while the rack moves by s (mm):
+        the rack point (u, v) sits at (r - v, u + s) with the pitch point on the x axis,
+        and the gear has turned by s / r. It rounds tooth 0's lower flank's root."""
+        s = np.asarray(s, float)
+        p = np.stack([np.full_like(s, self.rp - self.vc), self.uc + s], axis=-1)
+        return _rot(p, -s / self.rp)
+
+    def trochoid_distance(self, q, s_lo, s_hi, n=1_000_000):
+        """Distance (mm) from each point q to the trochoid over s in [s_lo, s_hi]: the
+        nearest of n samples, then golden-section search on the bracket around it."""
+        s = np.linspace(s_lo, s_hi, n)
+        T = self.trochoid(s)
+        out = []
+        g = (math.sqrt(5) - 1) / 2
+        for x in np.asarray(q, float):
+            k = int(np.argmin((T[:, 0] - x[0]) ** 2 + (T[:, 1] - x[1]) ** 2))
+            a, b = s[max(k - 1, 0)], s[min(k + 1, n - 1)]
+            f = lambda t: float(np.hypot(*(self.trochoid(np.array([t]))[0] - x)))   # noqa: E731
+            c, d = b - g * (b - a), a + g * (b - a)
+            for _ in range(80):
+                if f(c) < f(d):
+                    b = d
+                else:
+                    a = c
+                c, d = b - g * (b - a), a + g * (b - a)
+            out.append(min(f(0.5 * (a + b)), float(np.hypot(*(T[k] - x)))))
+        return np.array(out)
+
+    def junction(self):
+        """Where the trochoid crosses tooth 0's lower flank (undercut: the trimmed corner at
+        the fillet's top): s of the trochoid and u of the involute, by bisection on the
+        polar angle difference at the same radius."""
+        def gap(s):
+            p = self.trochoid(np.array([s]))[0]
+            a = math.acos(self.rb / math.hypot(*p))
+            return math.atan2(p[1], p[0]) + self.psi_b - (math.tan(a) - a)
+        s0 = -self.uc
+        lo = s0 + math.sqrt(self.rb ** 2 - (self.rp - self.vc) ** 2) + 1e-9     # |T| = rb
+        hi = s0 + 3 * self.hc / math.tan(math.radians(20.0))
+        assert gap(lo) * gap(hi) < 0
+        for _ in range(200):
+            mid = 0.5 * (lo + hi)
+            lo, hi = (mid, hi) if gap(mid) * gap(lo) > 0 else (lo, mid)
+        sx = 0.5 * (lo + hi)
+        return sx, math.sqrt((math.hypot(*self.trochoid(np.array([sx]))[0]) / self.rb) ** 2 - 1)
+
+
+def _rot(p, a):
+    c, s = np.cos(a), np.sin(a)
+    return np.stack([c * p[..., 0] - s * p[..., 1], s * p[..., 0] + c * p[..., 1]], axis=-1)
+
+
+Z, M = 30, 2.0
+G30 = Gear(Z, M)
+RP, RB, HC, U_C = G30.rp, G30.rb, G30.hc, G30.uc
+
+
+@pytest.fixture(scope="module")
+def sharp():
+    return gear3d.profile("involute", teeth=Z, module=M, tip_radius_coeff=0, tolerance=1e-3)
+
+
+def _teeth_and_mirror(p):
+    """The points on teeth 0, 1, 7 and 29 and mirrored onto the lower flanks."""
+    out = [_rot(p, 2 * math.pi * k / Z) for k in (0, 1, 7, 29)]
+    return np.concatenate(out + [o * np.array([1.0, -1.0]) for o in out])
+
+
+def test_flank_distance_matches_the_closed_form_involute(sharp):
+    g = G30
+    # the flank's middle (its ends meet the fillet and the tip): radii rb + 0.4 .. tip - 0.4
+    u = np.sqrt((np.linspace(RB + 0.4, RP + M - 0.4, 9) / RB) ** 2 - 1)
+    P, n = g.flank(u)
+    offs = np.array([-0.05, -1e-3, -1e-6, 0.0, 1e-6, 1e-3, 0.05])
+    q = (P[:, None, :] + offs[None, :, None] * n[:, None, :]).reshape(-1, 2)
+    rng = np.random.default_rng(3)
+    q = np.concatenate([q, P + rng.normal(size=P.shape) * 0.02])       # off the normal too
+    u_lo, u_hi = math.sqrt(((RB + 0.1) / RB) ** 2 - 1), math.sqrt(((RP + M - 0.1) / RB) ** 2 - 1)
+    want = g.involute_distance(q, u_lo, u_hi)
+    # along the normal the oracle's foot is the flank point itself
+    assert np.abs(want[:len(offs) * len(u)] - np.tile(np.abs(offs), len(u))).max() < 1e-12
+    Q = _teeth_and_mirror(q)
+    got = sharp.exact_distance(Q)
+    want = np.tile(want, 8)
+    assert np.all(got >= want - 1e-12)                  # never below the true distance
+    assert np.abs(got - want).max() < 1e-8
+
+
+def test_root_fillet_distance_matches_the_sampled_trochoid(sharp):
+    g = G30
+    s0 = -g.uc                                           # the corner's deepest point
+    s = s0 + np.linspace(2.0, 5.0, 6)
+    P = g.trochoid(s)
+    assert np.hypot(*P.T).max() < RB - 0.05              # below the base circle: no involute
+    tang = g.trochoid(s + 1e-6) - g.trochoid(s - 1e-6)
+    n = np.stack([-tang[:, 1], tang[:, 0]], axis=1) / np.hypot(*tang.T)[:, None]
+    offs = np.array([-0.01, -1e-4, 0.0, 1e-4, 0.01])
+    q = (P[:, None, :] + offs[None, :, None] * n[:, None, :]).reshape(-1, 2)
+    want = g.trochoid_distance(q, s0, s0 + 8.0)
+    # the root circle (r - hc) is farther than the fillet for all of them
+    assert np.all(np.abs(np.hypot(*q.T) - (RP - HC)) > want + 0.01)
+    Q = _teeth_and_mirror(q)
+    got = sharp.exact_distance(Q)
+    want = np.tile(want, 8)
+    assert np.all(got >= want - 1e-12)
+    assert np.abs(got - want).max() < 1e-8
+
+
+def test_distance_near_the_trimmed_fillet_corner():
+    # undercut: the corner's trochoid cuts the flank, trimming leaves a corner where they
+    # cross; its nearest chords include cut-away ones, which pruning must not trust
+    g = Gear(12, 2.0)
+    p = gear3d.profile("involute", teeth=12, module=2.0, tip_radius_coeff=0, tolerance=1e-3)
+    sx, ux = g.junction()
+    X = g.trochoid(np.array([sx]))[0]
+    rng = np.random.default_rng(17)
+    q = np.concatenate([X + rng.normal(size=(60, 2)) * sig for sig in (0.003, 0.02, 0.08)])
+    u_tip = math.sqrt(((g.rp + g.m - 0.1) / g.rb) ** 2 - 1)
+    want = np.minimum(g.trochoid_distance(q, -g.uc, sx), g.involute_distance(q * [1, -1], ux, u_tip))
+    got = p.exact_distance(q)
+    err = got - want
+    assert np.abs(err).max() < 1e-8
+
+
+def test_rack_pieces_evaluated_together_lie_on_their_closed_forms():
+    g = G30
+    pieces = {}
+    for f, name in rack_envelope(involute_rack(M, tip_radius_coeff=0), RP):
+        pieces.setdefault(name, f)                      # the first half period's elements
+    order = ["rack-tip", "rack-tip-corner", "rack-flank", "rack-root"]
+    fs = [pieces[k] for k in order]
+    counts = [5, 0, 7, 3]                               # an empty block in the middle
+    rng = np.random.default_rng(5)
+    t = rng.uniform(0.02, 0.98, sum(counts))
+    G = EnvelopePiece.evaluate_many(fs, counts, t)
+    tip, flank_pts, root = G[:5], G[5:12], G[12:]
+    assert np.abs(np.hypot(*tip.T) - (RP - HC)).max() < 1e-12       # the root circle
+    assert np.abs(np.hypot(*root.T) - (RP + M)).max() < 1e-12       # the tip circle
+    # the rack's right flank cuts tooth 0's lower flank: mirror it onto the upper one
+    assert g.involute_distance(flank_pts * [1, -1], 0.0, 2.0).max() < 1e-12
+    G2 = EnvelopePiece.evaluate_many(fs, [0, 6, 0, 0], np.linspace(0.05, 0.95, 6))
+    d = g.trochoid_distance(G2, -g.uc - 1.0, -g.uc + 10.0, n=500_000)
+    assert d.max() < 1e-9                                            # the corner's trochoid
+    with pytest.raises(ValueError):
+        EnvelopePiece.evaluate_many([fs[0], EnvelopePiece(lambda t, tg: (t, None), True)], [1, 1], [0.5, 0.5])
+
+
+class _Arcs:
+    """A test double: arcs of radius ``r`` (mm) about the origin from angle a0 to a1, with
+    a batch key, so that ExactBoundary evaluates several of them in one call."""
+    batch_key = ("arcs",)
+
+    def __init__(self, r, a0, a1):
+        self.r, self.a0, self.a1 = r, a0, a1
+
+    def __call__(self, t):
+        a = self.a0 + (self.a1 - self.a0) * np.asarray(t, float)
+        return self.r * np.stack([np.cos(a), np.sin(a)], axis=-1)
+
+    @staticmethod
+    def evaluate_many(pieces, counts, t):
+        bounds = np.cumsum([0] + list(counts))
+        return np.concatenate([p(t[a:b]) for p, a, b in zip(pieces, bounds[:-1], bounds[1:])])
+
+
+def _plain_arc(r, a0, a1):
+    return lambda t: _Arcs(r, a0, a1)(t)
+
+
+def arc_distance(q, r, a0, a1):
+    """Closed-form distance from points q to the arc (radius r, angles a0..a1 < a0 + pi)."""
+    rq, th = np.hypot(q[:, 0], q[:, 1]), np.arctan2(q[:, 1], q[:, 0])
+    mid = 0.5 * (a0 + a1)
+    inside = np.abs((th - mid + np.pi) % (2 * np.pi) - np.pi) <= 0.5 * (a1 - a0)
+    ends = [np.hypot(*(q - r * np.array([math.cos(a), math.sin(a)])).T) for a in (a0, a1)]
+    return np.where(inside, np.abs(rq - r), np.minimum(*ends))
+
+
+def test_grouped_and_single_pieces_interleaved_match_the_arcs():
+    arcs = [(5.0, 0.0, 0.5, True), (6.0, 0.6, 1.1, False), (7.0, 1.2, 1.7, True),
+            (5.5, 1.8, 2.3, False), (6.5, 2.4, 2.9, True)]
+    pieces = []
+    for r, a0, a1, grouped in arcs:
+        f = _Arcs(r, a0, a1) if grouped else _plain_arc(r, a0, a1)
+        t = np.linspace(0.0, 1.0, 17)
+        pieces.append((f, t, np.ones(len(t), bool)))
+    b = ExactBoundary(pieces, teeth=1)
+    assert [len(g) for g in b._groups] == [3, 1, 1]     # the three batch-keyed arcs together
+    rng = np.random.default_rng(11)
+    ang = rng.uniform(0.0, 2.9, 4000)
+    rad = rng.uniform(4.5, 7.5, 4000)
+    q = np.stack([rad * np.cos(ang), rad * np.sin(ang)], axis=1)
+    want = np.min([arc_distance(q, r, a0, a1) for r, a0, a1, _ in arcs], axis=0)
+    got = b.distance(q)
+    # the nearest of three chords is followed: points about as near to two arcs can be
+    # measured to the nearer one's neighbour only when the chords mislead (not here)
+    assert np.all(got >= want - 1e-12)
+    assert np.abs(got - want).max() < 1e-9
