@@ -42,6 +42,8 @@ ZOOMS = 2
 #: a last Newton step below this share of the chord's parameter interval has settled
 #: (Newton's error after it is about its square: 1e-12 of the interval)
 SETTLED = 1e-6
+#: a last Newton step below this share is followed by one more (about its square next)
+CLOSE = 1e-3
 #: gears with more teeth than this search chords by polar angle (fewer: all chords)
 WINDOW_MIN_TEETH = 6
 
@@ -457,10 +459,17 @@ class ExactBoundary:
         k = np.argmin(dp, axis=1)
         dmin = dp[rows, k]
         h = np.minimum(np.maximum((t1 - t0) * 1e-4, 1e-12), 0.25)
-        t, settled = self._newton_steps(r, q, tp[rows, k], h, lo, hi, SETTLED * (b - a))
+        width = b - a
+        t, settled, close = self._newton_steps(r, q, tp[rows, k], h, lo, hi, width)
+        # one more step where the last one was already small (quadratic convergence: the
+        # next is about its square), the zooms and a fresh start for the rest
+        more = np.nonzero(~settled & close)[0]
+        if len(more):
+            t[more], settled[more], _ = self._newton_steps(r[more], q[more], t[more], h[more], lo[more],
+                                                           hi[more], width[more], steps=1)
         redo = np.nonzero(~settled)[0]
         if len(redo):
-            tz = self._zoom(r[redo], q[redo], tp[redo, k[redo]], dmin[redo], (b - a)[redo], lo[redo], hi[redo])
+            tz = self._zoom(r[redo], q[redo], tp[redo, k[redo]], dmin[redo], width[redo], lo[redo], hi[redo])
             t[redo] = self._newton_steps(r[redo], q[redo], tz, h[redo], lo[redo], hi[redo], None)[0]
         g = self._evaluate(r, t[:, None])[:, 0]
         d = np.hypot(*(g - q).T)
@@ -488,12 +497,12 @@ class ExactBoundary:
             span = span / 4
         return t
 
-    def _newton_steps(self, r, q, t, h, lo, hi, tiny):
-        """:data:`NEWTON_STEPS` of Newton's method on ``(G(t) - q)·G'(t) = 0`` from ``t``
-        (G' and G'' from central differences, step ``h``), kept in [lo, hi]: the parameters
-        and, per row, whether the last step was below ``tiny``, well defined and not
-        clipped (None when ``tiny`` is None)."""
-        for _ in range(NEWTON_STEPS):
+    def _newton_steps(self, r, q, t, h, lo, hi, width, steps=NEWTON_STEPS):
+        """``steps`` steps of Newton's method on ``(G(t) - q)·G'(t) = 0`` from ``t`` (G' and
+        G'' from central differences, step ``h``), kept in [lo, hi]: the parameters and, per
+        row, whether the last step was well defined, not clipped and below :data:`SETTLED`
+        (settled) or :data:`CLOSE` (close) of ``width`` (None, None when ``width`` is None)."""
+        for _ in range(steps):
             # a central stencil kept inside [0, 1] (derivatives at tc, a point within h of t)
             tc = np.clip(t, h, 1 - h)
             g, g0 = self._stencil(r, t, tc, h)
@@ -507,9 +516,10 @@ class ExactBoundary:
             step = np.where(ok, fval / np.where(ok, fder, 1.0), 0.0)
             free = t - step
             t = np.clip(free, lo, hi)
-        if tiny is None:
-            return t, None
-        return t, ok & (np.abs(step) <= tiny) & (t == free)
+        if width is None:
+            return t, None, None
+        fine = ok & (t == free)
+        return t, fine & (np.abs(step) <= SETTLED * width), fine & (np.abs(step) <= CLOSE * width)
 
     def _stencil(self, r, t, tc, h):
         """G at (tc, tc + h, tc - h) per row ((n, 3, 2), mm) and G(t) ((n, 2)): G(tc) unless
