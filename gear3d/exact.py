@@ -223,17 +223,15 @@ class ExactBoundary:
         self._tlo = cat([pc.lo for pc in ps], float)
         self._thi = cat([pc.hi for pc in ps], float)
         self._known = np.zeros(len(self._tlo), bool)
-        for i, pc in enumerate(ps):
-            self._known[[self._coff[i] + j for j in pc.cuts]] = True
+        self._known[[self._coff[i] + j for i, pc in enumerate(ps) for j in pc.cuts]] = True
         # trusted chords: both ends and both neighbours' far ends survived (or the piece
         # ends there) and no trimmed corner cuts it, so every foot on it is kept as found
-        self._trusted = np.zeros(len(self._tlo), bool)
-        for i, pc in enumerate(ps):
-            al = pc.alive
-            left = np.concatenate([[True], al[:-2]])
-            right = np.concatenate([al[2:], [True]])
-            self._trusted[self._coff[i]:self._coff[i] + len(al) - 1] = al[:-1] & al[1:] & left & right
-        self._trusted &= ~self._known
+        pc_of = np.repeat(np.arange(len(ps)), nt - 1)         # each chord's piece
+        c = np.arange(len(self._tlo)) - self._coff[pc_of]     # its index in the piece
+        s0, al = c + self._toff[pc_of], self._alive           # its first sample (flat)
+        self._trusted = (al[s0] & al[s0 + 1] & ~self._known
+                         & ((c == 0) | al[np.maximum(s0 - 1, 0)])
+                         & ((c + 2 >= nt[pc_of]) | al[np.minimum(s0 + 2, len(al) - 1)]))
         groups, keys = [], {}
         for i, pc in enumerate(ps):
             key = getattr(pc.f, "batch_key", None)
@@ -257,13 +255,17 @@ class ExactBoundary:
         ps = self.pieces
         P = np.concatenate([pc.p for pc in ps]) if ps else np.zeros((0, 2))
         turned = np.stack([rotate(P, k * self.pitch) if k else P for k in copies.tolist()])
-        idx = [np.nonzero(pc.keep)[0] for pc in ps]
         nc = len(copies)
-        piece = np.concatenate([np.full(nc * len(j), i) for i, j in enumerate(idx)]) if ps else np.zeros(0, int)
-        chord = np.concatenate([np.tile(j, nc) for j in idx]) if ps else np.zeros(0, int)
-        copy = np.concatenate([np.repeat(copies, len(j)) for j in idx]) if ps else np.zeros(0, int)
+        keep = np.concatenate([pc.keep for pc in ps]) if ps else np.zeros(0, bool)
+        gk = np.nonzero(keep)[0]                                # kept chords (flat index)
+        pk = np.repeat(np.arange(len(ps)), [len(pc.keep) for pc in ps])[gk]
+        # piece by piece, each copy in turn, chords in order
+        ck = np.repeat(np.arange(nc), len(gk))
+        order = np.lexsort((np.tile(gk, nc), ck, np.tile(pk, nc)))
+        ck, piece = ck[order], np.tile(pk, nc)[order]
+        chord = np.tile(gk, nc)[order] - self._coff[piece]
+        copy = copies[ck]
         gs = self._toff[piece] + chord
-        ck = np.searchsorted(copies, copy)
         self._a, self._b = turned[ck, gs], turned[ck, gs + 1]
         self._owner = np.stack([piece, copy, chord], axis=1).astype(int)
         pts = np.concatenate([pc.p[pc.alive] for pc in ps]) if ps else np.zeros((0, 2))
