@@ -20,13 +20,10 @@ what the generated ones return (Python 3.10-3.11's generated code):
   None and ``compare``, or ``hash=True``), for ``eq`` and ``frozen`` classes; ``None`` (not
   hashable) for ``eq`` classes that are not frozen; a class's own ``__hash__`` is kept.
 
-The ``__init__`` is the one :mod:`dataclasses` (3.11) compiles, made on the class's first
-use, and mostly without a compilation: for fields with no default or a plain one (no
-``default_factory``), its code is built from the code of its kind (frozen or not,
-``__post_init__`` or not) that this module's ``.pyc`` holds for 1-3 fields, with the
-field names filled in (:class:`_Kind`; about 10 us, against about 0.15 ms for compiling the
-source). That code differs from the compiled one only in the columns of its line table,
-which no traceback shows (its file, ``<string>``, has no source); lines are the same.
+The ``__init__`` is the one :mod:`dataclasses` (3.11) compiles, compiled on the class's
+first use from its body and argument names only (its annotations and defaults are set on
+the function, not compiled into its ``def`` line: the same code, about 40% less
+compilation).
 
 A method the class defines itself is kept, as :mod:`dataclasses` keeps it.
 ``dataclasses.fields``, ``replace``, ``asdict`` and ``is_dataclass`` see a dataclass, and
@@ -45,14 +42,11 @@ Example::
 """
 from __future__ import annotations
 
-import __future__
 import dataclasses
 import operator
 import reprlib
 import sys
-import types
 import weakref
-from keyword import iskeyword
 
 __all__ = ["dataclass"]
 
@@ -208,10 +202,8 @@ class _LazyInit:
     makes the function and puts it on the class in its place. A process imports about 60
     gear3d dataclasses and makes instances of a third of them, so two thirds are never made.
 
-    The function is :mod:`dataclasses`' own: for a class whose ``__init__`` fields all have
-    no default or a plain one (no ``default_factory``), built without a compilation from
-    the code of its kind (:func:`_template_init`); else compiled from its source
-    (:func:`_init_source`, about 0.1 ms)."""
+    The function is :mod:`dataclasses`' own, compiled from its source (:func:`_init_source`,
+    about 0.1 ms)."""
 
     def __init__(self, rows, frozen: bool, post: bool, self_name: str):
         self.rows, self.frozen, self.post, self.self_name = rows, frozen, post, self_name
@@ -221,236 +213,13 @@ class _LazyInit:
             if cls.__dict__.get("__init__") is self:
                 break
         mod = sys.modules.get(cls.__module__)
-        fn = None
-        if mod is not None:
-            try:
-                fn = _template_init(self.rows, self.frozen, self.post, self.self_name, mod.__dict__)
-            except Exception:                            # any surprise: the compiled source below
-                fn = None
-        if fn is None:
-            text, loc, defaults, notes = _init_source(self.rows, self.frozen, self.post, self.self_name)
-            ns = {}
-            exec(compile(text, "<string>", "exec", dont_inherit=True), mod.__dict__ if mod is not None else {}, ns)
-            fn = ns["__create_fn__"](**loc)
-            fn.__defaults__, fn.__annotations__ = defaults, notes
+        text, loc, defaults, notes = _init_source(self.rows, self.frozen, self.post, self.self_name)
+        ns = {}
+        exec(compile(text, "<string>", "exec", dont_inherit=True), mod.__dict__ if mod is not None else {}, ns)
+        fn = ns["__create_fn__"](**loc)
+        fn.__defaults__, fn.__annotations__ = defaults, notes
         _attach(cls, "__init__", fn)
         return fn if obj is None else fn.__get__(obj, owner)
-
-
-def _template_init(rows, frozen: bool, post: bool, self_name: str, module_globals: dict):
-    """The ``__init__`` function the source of :func:`_init_source` compiles to, made from
-    the code of its kind (:class:`_Kind`), or None where that code does not apply (a
-    ``default_factory``, no field, a field named as a name of the code or not an ASCII
-    identifier, 255 fields or more, a Python other than 3.11/3.12).
-
-    Example::
-
-        >>> import dataclasses
-        >>> rows = (("x", float, dataclasses.MISSING, dataclasses.MISSING, True),
-        ...         ("y", int, 2, dataclasses.MISSING, True))
-        >>> fn = _template_init(rows, False, False, "self", {"__name__": "demo"})
-        >>> fn.__code__.co_varnames, fn.__defaults__, fn.__annotations__
-        (('self', 'x', 'y'), (2,), {'x': <class 'float'>, 'y': <class 'int'>, 'return': None})
-    """
-    if not _TEMPLATES or self_name != "self":
-        return None
-    missing = dataclasses.MISSING
-    names, notes, defaults = [], {}, []
-    for name, tp, default, factory, init in rows:
-        if factory is not missing:
-            return None
-        if init:
-            names.append(name)
-            notes[name] = tp
-            if default is not missing:
-                defaults.append(default)
-    if (not names or len(names) >= 255 or _RESERVED.intersection(names)
-            or not all(n.isascii() and n.isidentifier() and not iskeyword(n) for n in names)):
-        return None                          # (the compiled source refuses a name that is no identifier)
-    kind = _KINDS.get((frozen, post), missing)
-    if kind is missing:
-        kind = _KINDS[frozen, post] = _Kind.derive(frozen, post)
-    code = kind.code(tuple(names)) if kind is not None else None
-    if code is None:
-        return None
-    closure = (types.CellType(object),) if code.co_freevars else None
-    fn = types.FunctionType(code, module_globals, "__init__", tuple(defaults) or None, closure)
-    notes["return"] = None
-    fn.__annotations__ = notes
-    return fn
-
-
-#: the template path's Pythons (whose code for ``self.x=x`` lines is affine in the field's index)
-_TEMPLATES = sys.version_info[:2] in ((3, 11), (3, 12))
-#: names in the code of every kind: a field named so goes to the compiled source
-_RESERVED = frozenset({"self", "__dataclass_self__", "__post_init__", "__setattr__",
-                       "__dataclass_builtins_object__"})
-#: (frozen, has __post_init__) -> its _Kind (None: the code of 1-3 fields is not affine)
-_KINDS: dict = {}
-_PLACEHOLDERS = ("f000", "f001", "f002")         # the names in _init_samples
-
-
-#: the compiler flag of ``from __future__ import annotations`` (this module's; not dataclasses')
-_FUTURE_FLAGS = __future__.annotations.compiler_flag
-
-
-def _init_samples(__dataclass_builtins_object__):
-    """Never called: its nested functions are what :mod:`dataclasses` compiles for the
-    ``__init__`` of 1, 2 and 3 fields (``f000``-``f002``) of each kind: not frozen, not
-    frozen with ``__post_init__``, frozen, frozen with ``__post_init__`` (the same lines;
-    in this module, their code is read from its ``.pyc`` at import, not compiled)."""
-    def __init__(self,f000):
-        self.f000=f000
-    def __init__(self,f000,f001):
-        self.f000=f000
-        self.f001=f001
-    def __init__(self,f000,f001,f002):
-        self.f000=f000
-        self.f001=f001
-        self.f002=f002
-    def __init__(self,f000):
-        self.f000=f000
-        self.__post_init__()
-    def __init__(self,f000,f001):
-        self.f000=f000
-        self.f001=f001
-        self.__post_init__()
-    def __init__(self,f000,f001,f002):
-        self.f000=f000
-        self.f001=f001
-        self.f002=f002
-        self.__post_init__()
-    def __init__(self,f000):
-        __dataclass_builtins_object__.__setattr__(self,'f000',f000)
-    def __init__(self,f000,f001):
-        __dataclass_builtins_object__.__setattr__(self,'f000',f000)
-        __dataclass_builtins_object__.__setattr__(self,'f001',f001)
-    def __init__(self,f000,f001,f002):
-        __dataclass_builtins_object__.__setattr__(self,'f000',f000)
-        __dataclass_builtins_object__.__setattr__(self,'f001',f001)
-        __dataclass_builtins_object__.__setattr__(self,'f002',f002)
-    def __init__(self,f000):
-        __dataclass_builtins_object__.__setattr__(self,'f000',f000)
-        self.__post_init__()
-    def __init__(self,f000,f001):
-        __dataclass_builtins_object__.__setattr__(self,'f000',f000)
-        __dataclass_builtins_object__.__setattr__(self,'f001',f001)
-        self.__post_init__()
-    def __init__(self,f000,f001,f002):
-        __dataclass_builtins_object__.__setattr__(self,'f000',f000)
-        __dataclass_builtins_object__.__setattr__(self,'f001',f001)
-        __dataclass_builtins_object__.__setattr__(self,'f002',f002)
-        self.__post_init__()
-
-
-class _Kind:
-    """The code of :mod:`dataclasses`' ``__init__`` for every number of fields of one kind
-    (frozen or not, with ``__post_init__`` or not), from the code of 1, 2 and 3 fields named
-    ``f000``-``f002`` (:func:`_init_samples`): the bytecode and line table of n fields are
-    a head, n chunks and a tail whose bytes are affine in n and in the chunk's index
-    (argument, attribute-name, constant and closure indices), and the name tuples hold the
-    field names in one place. The three codes fix that and check it (else no kind: the
-    source is compiled). The code made is the compiled one but for the columns of the line
-    table (the placeholders' columns); its lines are the same, so tracebacks are.
-
-    Example::
-
-        >>> kind = _Kind.derive(False, False)
-        >>> kind.code(("a", "bc")).co_varnames, kind.code(("a", "bc")).co_names
-        (('self', 'a', 'bc'), ('a', 'bc'))
-    """
-
-    def __init__(self, first, code_model, table_model, tuples):
-        self.first, self.code_model, self.table_model, self.tuples = first, code_model, table_model, tuples
-
-    @classmethod
-    def derive(cls, frozen: bool, post: bool):
-        codes = [c for c in _init_samples.__code__.co_consts if isinstance(c, types.CodeType)]
-        if len(codes) != 12:
-            return None
-        k = 6 * frozen + 3 * post
-        c1, c2, c3 = (c.replace(co_filename="<string>", co_firstlineno=2, co_qualname="__create_fn__.<locals>.__init__",
-                                co_flags=c.co_flags & ~_FUTURE_FLAGS) for c in codes[k:k + 3])
-        same = ("co_flags", "co_freevars", "co_cellvars", "co_stacksize", "co_exceptiontable", "co_kwonlyargcount",
-                "co_posonlyargcount", "co_name", "co_qualname")
-        if any(getattr(c1, a, 0) != getattr(c, a, 0) for c in (c2, c3) for a in same):
-            return None
-        code_model = _affine(c1.co_code, c2.co_code, c3.co_code)
-        table_model = _affine(c1.co_linetable, c2.co_linetable, c3.co_linetable)
-        tuples = {a: _slot(getattr(c1, a), getattr(c2, a), getattr(c3, a))
-                  for a in ("co_varnames", "co_names", "co_consts")}
-        if code_model is None or table_model is None or None in tuples.values():
-            return None
-        return cls(c1, code_model, table_model, tuples)
-
-    def code(self, names: tuple):
-        """The code object of the ``__init__`` of the fields ``names`` (None: out of range)."""
-        n = len(names)
-        code, table = _expand(self.code_model, n), _expand(self.table_model, n)
-        if code is None or table is None:
-            return None
-        fill = {a: t[:i] + names + t[i + 1:] if i is not None else t for a, (t, i) in self.tuples.items()}
-        return self.first.replace(co_argcount=n + 1, co_nlocals=n + 1, co_code=code, co_linetable=table, **fill)
-
-
-def _slot(t1: tuple, t2: tuple, t3: tuple):
-    """(t1, i): the tuples of 1, 2 and 3 fields are t1 with its item i (the placeholder
-    ``f000``) replaced by the fields' placeholders (i None: the same tuple); None if not."""
-    i = t1.index(_PLACEHOLDERS[0]) if _PLACEHOLDERS[0] in t1 else None
-    for t, n in ((t2, 2), (t3, 3)):
-        if t != (t1[:i] + _PLACEHOLDERS[:n] + t1[i + 1:] if i is not None else t1):
-            return None
-    return t1, i
-
-
-def _affine(s1: bytes, s2: bytes, s3: bytes):
-    """The model of bytes made of a head, n chunks of one length and a tail, whose values
-    are affine in n and the chunk index, fitted to the bytes of n = 1 and 2 and checked on
-    n = 3 (None: no such model): (head, chunk, tail, and each one's steps as (position,
-    step) pairs: the head's, chunk's and tail's in n, the chunk's in its index).
-
-    Example (a chunk ``9, 10 + index, 20 + n`` between a head and a tail ``5, n``)::
-
-        >>> seq = lambda n: bytes([1, 2] + [b for k in range(n) for b in (9, 10 + k, 20 + n)] + [5, n])
-        >>> list(_expand(_affine(seq(1), seq(2), seq(3)), 4)) == list(seq(4))
-        True
-    """
-    size = len(s2) - len(s1)
-    if size <= 0 or len(s3) - len(s2) != size:
-        return None
-    # the head and the tail are affine in n: at most the first `front` and last `back` bytes
-    affine = lambda a, b, c: b - a == c - b
-    front = next((i for i, abc in enumerate(zip(s1, s2, s3)) if not affine(*abc)), len(s1))
-    back = next((i for i, abc in enumerate(zip(reversed(s1), reversed(s2), reversed(s3))) if not affine(*abc)),
-                len(s1))
-    steps = lambda a, b: tuple((j, y - x) for j, (x, y) in enumerate(zip(a, b)) if y != x)
-    for p in range(max(len(s1) - size - back, 0), min(front, len(s1) - size) + 1):   # where the chunks start
-        head, chunk, tail = s1[:p], s1[p:p + size], s1[p + size:]
-        model = (head, chunk, tail, steps(head, s2[:p]), steps(chunk, s2[p:p + size]), steps(tail, s2[p + 2 * size:]),
-                 steps(s2[p:p + size], s2[p + size:p + 2 * size]))
-        if _expand(model, 3) == s3:
-            return model
-    return None
-
-
-def _expand(model, n: int):
-    """The bytes of :func:`_affine`'s ``model`` for n chunks (None: a byte out of 0..255)."""
-    head, chunk, tail, dhead, dn, dtail, dindex = model
-    try:
-        parts = []
-        for part, steps in ((head, dhead), (chunk, dn), (tail, dtail)):
-            part = bytearray(part)
-            for j, d in steps:
-                part[j] += (n - 1) * d
-            parts.append(part)
-        head, chunk, tail = parts
-        size = len(chunk)
-        body = bytearray(chunk * n)
-        for j, d in dindex:
-            body[j::size] = bytes(range(chunk[j], chunk[j] + n * d, d))
-        return bytes(head + body + tail)
-    except ValueError:                                       # a byte < 0 or > 255
-        return None
 
 
 def _freeze(cls) -> None:
