@@ -6,21 +6,33 @@ in three vectorised steps, for all points at once:
 
 1. the point is turned into tooth 0's sector (the profile repeats every 2π/z);
 2. the three nearest surviving chords, among tooth 0's and its two neighbours' copies, give
-   the pieces and start parameters (the chords' own parameters at the foot points);
+   the candidate pieces; a candidate more than twice the measured chord sag (x2 margin)
+   farther than the nearest *trusted* chord (one that, with its neighbours, survived
+   trimming whole) cannot hold the nearest point and is not followed (:attr:`_reach`);
 3. from the nearest of nine exact points along the chord's parameter interval, Newton's
    method on the piece's parameter, ``(G(t) - q)·G'(t) = 0``, with G' and G''
-   from central differences of the exact evaluator, moves each foot onto the exact curve; the nearest foot wins.
+   from central differences of the exact evaluator, moves each foot onto the exact curve;
+   a foot whose last step has not settled starts again from two zooms of the probes
+   around the best one. The nearest foot wins.
+
+Every candidate foot of a chunk of points goes through these stages together, rows sorted
+by piece: pieces that share a ``batch_key`` (the rack envelope pieces of one rack) are
+evaluated in one call (:meth:`gear3d.envelope.EnvelopePiece.evaluate_many`), others one
+call each.
 
 The result is never worse than the nearest of the exact start points, which are on the
 curve, so a Newton step that does not converge can only overstate the distance (the safe
 side for a measurement that certifies a tolerance). Nothing here looks at a finer
 tessellation: the curve itself is evaluated.
 
-A foot may run up to one chord past a trimmed corner, along the curve that was cut away
-there. Such a foot (one not inside a chord whose both ends survived) is kept only if it
-lies on the trimmed polygon (within the polygon's measured error); otherwise it is pulled
-back along the curve, by bisection, to the last point that does (the corner). Trimmed corners themselves are
-certified by the profile builder (Newton on the crossing of the two exact curves).
+A foot may run up to one chord past a chord's end, along the curve. It never crosses a
+trimmed corner the builder recorded (the chords next to it stop at the corner's exact
+parameter); past a corner that was not recorded, a foot (one not inside a chord whose both
+ends survived) is kept only if it lies on the trimmed polygon (within the polygon's
+measured error, so it may understate the distance by up to that error there); otherwise it
+is pulled back along the curve, by bisection, to the last point that does (the corner).
+Trimmed corners themselves are certified by the profile builder (Newton on the crossing of
+the two exact curves).
 """
 from __future__ import annotations
 
