@@ -4,13 +4,21 @@ The scalar twin of :mod:`gear3d.export.arccert` (which works on numpy arrays), w
 same certificate. A piece is ``(t0, t1, kind, f)``, ``f(t) -> (x, y, dx/dt, dy/dt)`` mm
 (:mod:`gear3d.lite.tooth`); travel runs from t0 to t1.
 
-**Fit.** Each piece is cut into spans in its parameter, greedily from its start; a span
-from (P0, T0) to (P1, T1) (exact points and unit tangents, travel order) is the equal
-tangent length biarc (two arcs meeting at J, tangent Tm there). A span whose certified
-error exceeds the budget is shortened to 0.9 (budget / err)^(1/3) of its length (at most
-0.7; a biarc's error grows with the cube of its length) and tried again; an accepted
-span's length, scaled the same way (at most doubled), is the next one's first try. A
-circle piece (root, tip) is one arc. Consecutive spans share their end point and tangent,
+**Fit.** A piece is cut into spans in its parameter; a span from (P0, T0) to (P1, T1)
+(exact points and unit tangents, travel order) is the equal tangent length biarc (two
+arcs meeting at J, tangent Tm there). Where the spans go (:func:`balanced`, the scalar
+form of :mod:`gear3d.export.biarcfit`'s placement): an error model gives every one of 24
+chords of the piece a weight, the cube root of c |a0 + a1| / 40 (c the chord, a0, a1 its
+end tangents' angles to it; 0 on a circle), since a biarc's error grows as the cube of
+its length and cube roots add up along a stretch. The piece is cut into the fewest equal
+parts of the summed weight that the model puts within the budget, every span is
+certified, and the model is recalibrated (each span's weights rescaled so they add up to
+the cube root of its certified error) and the parts placed again, with the count the
+calibrated model then needs: up to :data:`ROUNDS` placements; the one with the fewest
+spans that all pass is kept (its errors near equal), a count that misses twice is raised
+by one. When none passes, the greedy fit (:func:`greedy`) is used: spans one after
+another from the piece's start, each shortened by the cube law until it passes. A circle
+piece (root, tip) is one arc. Consecutive spans share their end point and tangent,
 so the chain is tangent-continuous inside a piece; at a piece joint the two pieces' own
 tangents meet (the rack is smooth there: the jump is rounding), and their
 gap |end of one - start of the next| is added to the error.
@@ -158,22 +166,32 @@ def arc_error(f, ta, tb, A, B, b, ends=(None, None)) -> float:
 
 
 def _joint(f, ta, tb, J, Tm) -> float:
-    """tJ in [ta, tb] where (G(t) - J).Tm changes sign (bisection), or None."""
+    """tJ in [ta, tb] where g(t) = (G(t) - J).Tm changes sign, or None: Newton's method
+    (g' = G'(t).Tm) kept inside the bracket where g changes sign (a step leaving it
+    bisects), to the last bits (the certificate adds the residual |g(tJ)| anyway)."""
     def g(t):
-        x, y = f(t)[:2]
-        return (x - J[0]) * Tm[0] + (y - J[1]) * Tm[1]
+        x, y, dx, dy = f(t)
+        return (x - J[0]) * Tm[0] + (y - J[1]) * Tm[1], dx * Tm[0] + dy * Tm[1]
     lo, hi = ta, tb
-    if not (g(lo) < 0 < g(hi)):
+    glo, ghi = g(lo)[0], g(hi)[0]
+    if not (glo < 0 < ghi):
         return None
-    for _ in range(200):
-        mid = 0.5 * (lo + hi)
-        if mid in (lo, hi):
-            break
-        if g(mid) < 0:
-            lo = mid
+    t = lo + (hi - lo) * glo / (glo - ghi)                # regula falsi start
+    for _ in range(100):
+        v, dv = g(t)
+        if v == 0:
+            return t
+        if v < 0:
+            lo = t
         else:
-            hi = mid
-    return 0.5 * (lo + hi)
+            hi = t
+        nt = t - v / dv if dv else t
+        if not (min(lo, hi) < nt < max(lo, hi)):
+            nt = 0.5 * (lo + hi)
+        if nt == t or abs(nt - t) <= 4 * math.ulp(t) or nt in (lo, hi):
+            return nt
+        t = nt
+    return t
 
 
 def span(f, ta, tb, sgn, P0=None, T0=None):
@@ -196,18 +214,114 @@ def span(f, ta, tb, sgn, P0=None, T0=None):
     return [(P0, b1), (J, b2)], P1, T1, max(e1, e2, eJ) + res
 
 
-def fit_piece(piece, budget: float, start=None):
-    """Vertices (each the start of an arc), bulges and the certified error (mm) of one
-    piece within ``budget`` mm, or None when no fit is certified. ``start``: the point to
-    begin at (the previous piece's end; the gap to this piece's own start is the
-    caller's to add). The piece's end point is not included."""
+#: chords of the error model along a piece (uniform in its parameter)
+MODEL_CHORDS = 24
+#: the model: one chord's biarc error ~ c |a0 + a1| * MODEL (a0, a1: its end tangents' angles
+#: to the chord; 0 on a circle), as gear3d.export.biarcfit.MODEL
+MODEL = 1 / 40
+#: placements tried (each certified, then calibrated) before the greedy fit is used
+ROUNDS = 5
+
+
+def _model(f, t0, t1, sgn):
+    """The piece's error model: parameters ts (t0 .. t1) and W, the running sum of the
+    chords' cube-root weights (mm^1/3; a biarc over a stretch errs by about the cube of
+    its weight) plus 1e-6 x the chord (a circle's chords weigh ~0)."""
+    ts = [t0 + (t1 - t0) * k / MODEL_CHORDS for k in range(MODEL_CHORDS)] + [t1]
+    pts = [point_tangent(f, t, sgn) for t in ts]
+    W = [0.0]
+    for (P, T), (Q, U) in zip(pts, pts[1:]):
+        dx, dy = Q[0] - P[0], Q[1] - P[1]
+        c = math.hypot(dx, dy)
+        a0 = math.atan2(dx * T[1] - dy * T[0], dx * T[0] + dy * T[1])
+        a1 = math.atan2(dx * U[1] - dy * U[0], dx * U[0] + dy * U[1])
+        W.append(W[-1] + (MODEL * c * abs(a0 + a1)) ** (1 / 3) + 1e-6 * c)
+    return ts, W
+
+
+def _interp(x, xs, ys):
+    """ys at x, linear between the increasing (or decreasing) nodes xs."""
+    s = 1.0 if xs[-1] >= xs[0] else -1.0
+    lo, hi = 0, len(xs) - 1
+    while hi - lo > 1:
+        mid = (lo + hi) // 2
+        if (x - xs[mid]) * s >= 0:
+            lo = mid
+        else:
+            hi = mid
+    d = xs[hi] - xs[lo]
+    return ys[lo] if d == 0 else ys[lo] + (ys[hi] - ys[lo]) * (x - xs[lo]) / d
+
+
+def _place(ts, W, n):
+    """n spans' ends t (n + 1 values, t0 .. t1): equal parts of the model's weight."""
+    inner = [_interp(W[-1] * k / n, W, ts) for k in range(1, n)]
+    return [ts[0]] + inner + [ts[-1]]
+
+
+def _calibrate(ts, W, cuts, errs, budget):
+    """The model rescaled so that every certified span's weight is the cube root of its
+    measured error (no valid biarc: counted as 8 x budget); returns (ts, W)."""
+    nodes = sorted(set(ts) | set(cuts), reverse=ts[-1] < ts[0])
+    Wn = [_interp(t, ts, W) for t in nodes]
+    scale = []
+    for a, b, e in zip(cuts, cuts[1:], errs):
+        w = _interp(b, ts, W) - _interp(a, ts, W)
+        e = e if e < math.inf else 8 * budget
+        scale.append(max(e, 1e-300) ** (1 / 3) / max(w, 1e-300))
+    out, k = [0.0], 0
+    for i in range(1, len(nodes)):
+        while k + 2 < len(cuts) and (nodes[i - 1] - cuts[k + 1]) * (cuts[-1] - cuts[0]) >= 0:
+            k += 1
+        out.append(out[-1] + (Wn[i] - Wn[i - 1]) * scale[k])
+    return nodes, out
+
+
+def _chain(f, cuts, sgn, P, T):
+    """Certified biarcs on the spans between consecutive ``cuts``, from P (tangent T):
+    ([arcs of each span], [error of each span] mm)."""
+    arcs, errs = [], []
+    for ta, tb in zip(cuts, cuts[1:]):
+        a, P, T, err = span(f, ta, tb, sgn, P, T)
+        arcs.append(a)
+        errs.append(err)
+    return arcs, errs
+
+
+def balanced(piece, budget: float, A, most: int = 1 << 16):
+    """Biarcs on the piece with their errors balanced, fewer than ``most`` spans: the
+    model's equal parts, certified, recalibrated by the measured errors and placed again
+    (the count the calibrated model needs at the budget); the fewest spans of a placement
+    that passes, as :func:`fit_piece`'s (V, B, error), or None."""
     t0, t1, kind, f = piece
     sgn = 1.0 if t1 > t0 else -1.0
-    A = start if start is not None else f(t0)[:2]
-    if kind in ("root", "tip"):
-        B = f(t1)[:2]
-        b = math.tan((t1 - t0) / 4)
-        return [A], [b], arc_error(f, t0, t1, A, B, b, (A, B))
+    T = point_tangent(f, t0, sgn)[1]
+    ts, W = _model(f, t0, t1, sgn)
+    best, n, missed = None, max(1, math.ceil(W[-1] / budget ** (1 / 3) - 1e-9)), 0
+    for _ in range(ROUNDS):
+        if n >= most:
+            break
+        cuts = _place(ts, W, n)
+        arcs, errs = _chain(f, cuts, sgn, A, T)
+        worst = max(errs)
+        if worst <= budget:
+            best = ([a[0] for s in arcs for a in s], [a[1] for s in arcs for a in s], worst)
+            most = n
+        ts, W = _calibrate(ts, W, cuts, errs, budget)
+        need = max(1, math.ceil(W[-1] / budget ** (1 / 3) - 1e-9))
+        if worst <= budget and need >= n:
+            break
+        if worst <= budget:
+            n = need
+        else:                                     # missed twice at one count: one span more
+            n, missed = max(need, n + (missed == n)), n
+    return best
+
+
+def greedy(f, t0, t1, budget: float, A):
+    """Spans one after another from t0 (start point A), each as long as the cube law lets
+    it pass (module doc): :func:`fit_piece`'s (V, B, error), or None."""
+    sgn = 1.0 if t1 > t0 else -1.0
     V, Bs, worst = [], [], 0.0
     P, T = A, point_tangent(f, t0, sgn)[1]
     ta, step = t0, t1 - t0
@@ -226,3 +340,19 @@ def fit_piece(piece, budget: float, start=None):
             return None
         step = (tb - ta) * (0.5 if arcs is None else min(0.7, 0.9 * (budget / err) ** (1 / 3)))
     return V, Bs, worst
+
+
+def fit_piece(piece, budget: float, start=None):
+    """Vertices (each the start of an arc), bulges and the certified error (mm) of one
+    piece within ``budget`` mm, or None when no fit is certified: the balanced placement
+    (:func:`balanced`), else the greedy one. ``start``: the point to begin at (the
+    previous piece's end; the gap to this piece's own start is the caller's to add). The
+    piece's end point is not included."""
+    t0, t1, kind, f = piece
+    A = start if start is not None else f(t0)[:2]
+    if kind in ("root", "tip"):
+        B = f(t1)[:2]
+        b = math.tan((t1 - t0) / 4)
+        return [A], [b], arc_error(f, t0, t1, A, B, b, (A, B))
+    got = balanced(piece, budget, A)
+    return got if got is not None else greedy(f, t0, t1, budget, A)
