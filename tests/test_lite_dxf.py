@@ -158,6 +158,57 @@ def test_fast_file_against_the_closed_form_involute(version, tmp_path, capsys):
                        atol=1e-9)
 
 
+def _arc_count(path):
+    """Arcs (non-zero bulges, or ARC entities) in the file, read with ezdxf."""
+    n = 0
+    for e in ezdxf.readfile(path).modelspace():
+        if e.dxftype() == "LWPOLYLINE":
+            n += sum(1 for *_, b in e.get_points("xyb") if b)
+        n += e.dxftype() == "ARC"
+    return n
+
+
+@pytest.mark.parametrize("tol", [1e-3, 3e-3])
+def test_as_few_arcs_as_the_engine(tol, tmp_path, capsys, monkeypatch):
+    """The fast path's balanced spans: at most 5 % more arcs than the numpy engine's own
+    fit of the same gear (its file, written by running the engine path with GEAR3D_LITE=0,
+    counted with ezdxf), and the file within the tolerance and within its own certified
+    error of the closed-form involute, tip and root circles."""
+    from gear3d.lite.dxf import certified_contour
+    argv = ["profile", "involute", "--teeth", "20", "--module", "1", "--tolerance", str(tol), "-o"]
+    lite, eng = str(tmp_path / "lite.dxf"), str(tmp_path / "engine.dxf")
+    rc, out, _ = run_cli(argv + [lite], capsys)
+    assert rc == 0 and "numpy-free path" in out
+    monkeypatch.setenv("GEAR3D_LITE", "0")
+    rc, out, _ = run_cli(argv + [eng], capsys)
+    assert rc == 0 and "numpy-free" not in out
+    n_lite, n_eng = _arc_count(lite), _arc_count(eng)
+    assert n_eng > 200 and n_lite <= 1.05 * n_eng, (n_lite, n_eng)
+    certified = certified_contour(half_tooth(20, 1.0, 20.0), 20, tol)["max_error"]
+    assert certified <= tol
+    pts, _, _ = read_points(lite)
+    flank, tip, root, n = oracle_errors(pts, 20, 1.0, 20.0)
+    assert n > 1000 and len(tip) > 100 and len(root) > 20
+    worst = max(flank.max(), tip.max(), root.max())
+    assert worst <= certified, (worst, certified)
+
+
+def test_greedy_fallback_within_tolerance(tmp_path, monkeypatch):
+    """With no balanced placement (ROUNDS = 0) the greedy spans are written: the file is
+    within the tolerance of the closed-form gear, with no fewer arcs than the balanced."""
+    import gear3d.lite.arcs as la
+    tooth, tol = half_tooth(31, 2.5, 25.0, x=0.4), 1e-3
+    balanced = write_contour(tooth, 31, tol, str(tmp_path / "b.dxf"))
+    monkeypatch.setattr(la, "ROUNDS", 0)
+    path = str(tmp_path / "g.dxf")
+    greedy = write_contour(tooth, 31, tol, path)
+    assert greedy["max_error"] <= tol and greedy["arcs"] >= balanced["arcs"]
+    assert greedy["vertices"] != balanced["vertices"]
+    pts = read_points_vectorised(path)
+    flank, tip, root, n = oracle_errors(pts, 31, 2.5, 25.0, x=0.4)
+    assert n > 1000 and max(flank.max(), tip.max(), root.max()) <= tol
+
+
 def test_numpy_measurement_of_the_fast_file(tmp_path, capsys):
     """The numpy path's measurement (dxfread.measure: Newton on a 50x finer build's exact
     evaluators, and its vertices to the file) of the fast path's file, both ways."""
