@@ -244,6 +244,14 @@ class ExactBoundary:
         self._trusted = (al[s0] & al[s0 + 1] & ~self._known
                          & ((c == 0) | al[np.maximum(s0 - 1, 0)])
                          & ((c + 2 >= nt[pc_of]) | al[np.minimum(s0 + 2, len(al) - 1)]))
+        # the chords (flat, of the same piece) a foot's range [lo, hi] reaches into
+        self._span = np.zeros((len(self._tlo), 2), int)
+        for i, pc in enumerate(ps):
+            a, n = self._coff[i], len(pc.t) - 1
+            k0 = np.clip(np.searchsorted(pc.t, pc.lo, side="right") - 1, 0, n - 1)
+            k1 = np.clip(np.searchsorted(pc.t, pc.hi, side="left") - 1, 0, n - 1)
+            self._span[a:a + n] = np.stack([a + k0, a + np.maximum(k1, k0)], axis=1)
+        self._P = np.concatenate([pc.p for pc in ps]) if ps else np.zeros((0, 2))
         groups, keys = [], {}
         for i, pc in enumerate(ps):
             key = getattr(pc.f, "batch_key", None)
@@ -329,8 +337,17 @@ class ExactBoundary:
             # exact point (see _reach)
             piece, copy, chord = self._owner[j].T
             dc = d[rows, jc]
-            dref = np.where(self._trusted[self._coff[piece] + chord], dc, np.inf).reshape(len(q), m).min(axis=1)
-            near = dc <= np.repeat(dref, m) + self._reach
+            flat = self._coff[piece] + chord
+            dref = np.repeat(np.where(self._trusted[flat], dc, np.inf).reshape(len(q), m).min(axis=1), m)
+            near = dc <= dref + self._reach
+            far = np.nonzero(~near)[0]
+            if len(far):
+                # followed all the same if its foot's range reaches a chord within reach that
+                # no followed candidate of the point (same copy) covers itself
+                key = np.where(near, flat * 3 + copy + 1, -1).reshape(len(q), m)
+                d_far = self._range_distance(rotate(q0[rows[far]], -copy[far] * self.pitch), flat[far],
+                                             key[rows[far]], copy[far])
+                near[far] = d_far <= dref[far] + self._reach
             j, rows, piece, copy, chord = j[near], rows[near], piece[near], copy[near], chord[near]
             # every candidate foot at once, sorted by piece (grouped evaluations)
             order = np.argsort(self._rank[piece], kind="stable")
@@ -344,6 +361,21 @@ class ExactBoundary:
         for R in self.circles:
             best = np.minimum(best, np.abs(r - R))
         return best
+
+    def _range_distance(self, qc, flat, followed, copy) -> np.ndarray:
+        """Distance (mm) from points ``qc`` (in their chords' copy frames) to the nearest of
+        the chords that the foot ranges of chords ``flat`` reach into (:attr:`_span`),
+        leaving out the chords ``followed`` (per row: flat chord * 3 + copy + 1, or -1)."""
+        k0, k1 = self._span[flat].T
+        w = int((k1 - k0).max(initial=0)) + 1
+        k = k0[:, None] + np.arange(w)[None, :]
+        valid = k <= k1[:, None]
+        own = (k * 3 + copy[:, None] + 1)[:, :, None] == followed[:, None, :]
+        valid &= ~own.any(axis=2)
+        k = np.minimum(k, k1[:, None])
+        s = k + np.searchsorted(self._coff, k, side="right") - 1     # first sample (flat)
+        d, _ = segment_foot(qc[:, None, :], self._P[s], self._P[s + 1])
+        return np.where(valid, d, np.inf).min(axis=1)
 
     def _feet(self, pi: np.ndarray, c: np.ndarray, qc: np.ndarray) -> np.ndarray:
         """Distances (mm) from points ``qc`` to the exact pieces ``pi`` near their chords
@@ -386,7 +418,9 @@ class ExactBoundary:
         where its foot may run, being farther still) cannot hold a nearer foot; twice that
         again is kept as margin. Chords cut by trimming never set the reference: a chord
         that runs into a trimmed corner can pass close to a point its surviving curve does
-        not. Without a measured error (no polygon): every candidate."""
+        not. A candidate is measured by the nearest of the chords its foot's range reaches
+        into (:meth:`_range_distance`: a wide chord's foot may run past its neighbours), not
+        only its own. Without a measured error (no polygon): every candidate."""
         if self.polygon is None or not self.polygon_error > 0:
             return np.inf
         return 4 * self.polygon_error + 1e-9
@@ -529,11 +563,13 @@ class ExactBoundary:
             ok = np.isfinite(fval) & np.isfinite(fder) & (fder > 0)
             step = np.where(ok, fval / np.where(ok, fder, 1.0), 0.0)
             free = t - step
-            t = np.clip(free, lo, hi)
+            prev, t = t, np.clip(free, lo, hi)
         if width is None:
             return t, None, None
         fine = ok & (t == free)
-        return t, fine & (np.abs(step) <= SETTLED * width), fine & (np.abs(step) <= CLOSE * width)
+        # pinned: the last step pushed out of [lo, hi] from the end it already sat on
+        pinned = ok & (t != free) & (t == prev)
+        return t, (fine & (np.abs(step) <= SETTLED * width)) | pinned, fine & (np.abs(step) <= CLOSE * width)
 
     def _stencil(self, r, t, tc, h):
         """G at (tc, tc + h, tc - h) per row ((n, 3, 2), mm) and G(t) ((n, 2)): G(tc) unless

@@ -10,7 +10,11 @@ pruning and Newton's method from the best probe, against independent oracles.
   its tip line lands on the root circle, its root line on the tip circle, its flank on the
   involute and its corner on the trochoid (the formulas above);
 * a boundary that mixes grouped and ungrouped pieces (a test double with a batch key, and
-  plain functions), interleaved: the distance to circular arcs, in closed form.
+  plain functions), interleaved: the distance to circular arcs, in closed form;
+* the trimmed corner where an undercutting trochoid crosses the flank, and the tips of a
+  turned blank: the flanks in closed form, the trochoid sampled, the blank's arcs (the
+  distance there was once understated by up to ~0.8 x the tolerance: a foot crossed the
+  recorded corner onto the cut-away branch).
 
 The distance must never come out below the oracle (beyond rounding): it certifies a
 tolerance.
@@ -260,3 +264,32 @@ def test_grouped_and_single_pieces_interleaved_match_the_arcs():
     # measured to the nearer one's neighbour only when the chords mislead (not here)
     assert np.all(got >= want - 1e-12)
     assert np.abs(got - want).max() < 1e-9
+
+
+def test_points_above_a_turned_tip_match_the_flanks_and_the_blank():
+    # above the tips the nearest chords include cut-away ones (the flanks' envelope past
+    # the blank, ending next to the tip corners). Oracle: the flanks of teeth 0 and -1 up
+    # to the blank (closed form) and the blank's arcs over the two tips.
+    g = Gear(20, 1.0)
+    rt = 10.8
+    p = gear3d.profile("involute", teeth=20, module=1.0, tip_radius=rt, tolerance=1e-2)
+    rng = np.random.default_rng(5)
+    pitch = 2 * math.pi / 20
+    ang = rng.uniform(-pitch, 0.0, 4000)
+    rad = rng.uniform(10.4, 11.6, 4000)
+    q = np.stack([rad * np.cos(ang), rad * np.sin(ang)], axis=1)
+    u_lo, u_tip = math.sqrt(((g.rb + 0.3) / g.rb) ** 2 - 1), math.sqrt((rt / g.rb) ** 2 - 1)
+    a_tip = g.psi_b - (u_tip - math.atan(u_tip))          # half the tip's angle
+    q1 = _rot(q, pitch)                                     # tooth -1 turned onto tooth 0
+    want = np.min([g.involute_distance(q * [1, -1], u_lo, u_tip),       # tooth 0, lower flank
+                   g.involute_distance(q1, u_lo, u_tip),                # tooth -1, upper flank
+                   arc_distance(q, rt, -a_tip, a_tip), arc_distance(q1, rt, -a_tip, a_tip)], axis=0)
+    got = p.exact_distance(q)
+    assert want.max() > 1.0
+    # never below the true distance (a foot past a recorded trimmed corner once was)
+    assert np.all(got >= want - 1e-12)
+    # exact up to 0.6 mm (beyond the longest chord, 0.42 mm here); farther out the three
+    # nearest chords need not hold the nearest point, and the distance is an upper bound
+    near = want < 0.6
+    assert near.sum() > 1500
+    assert np.abs(got - want)[near].max() < 1e-8
