@@ -19,14 +19,25 @@ HEADER = b"gear3d binary STL (mm)".ljust(80, b" ")
 def stl_records(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
     """The facet records (:data:`FACET`, one a triangle) of a triangle mesh: ``vertices``
     (n, 3) mm, ``faces`` (m, 3) indices. Facet normals are the unit normals of the float64
-    triangles (zero for degenerate ones), computed before rounding to float32."""
-    tri = np.asarray(vertices, float)[np.asarray(faces, np.int64)]
-    n = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
+    triangles (zero for degenerate ones), computed before rounding to float32.
+
+    >>> r = stl_records(np.array([[0.0, 0, 0], [1, 0, 0], [0, 1, 0]]), np.array([[0, 1, 2], [0, 0, 1]]))
+    >>> r["normal"].tolist(), r["vertices"][0, 2].tolist()
+    ([[0.0, 0.0, 1.0], [0.0, 0.0, 0.0]], [0.0, 1.0, 0.0])
+    """
+    # np.take: a quarter of fancy indexing's time on (m, 3) rows; the cross product by columns
+    tri = np.take(np.asarray(vertices, float), np.asarray(faces, np.int64), axis=0)
+    u, w = tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]
+    n = np.empty((len(tri), 3))
+    n[:, 0] = u[:, 1] * w[:, 2] - u[:, 2] * w[:, 1]
+    n[:, 1] = u[:, 2] * w[:, 0] - u[:, 0] * w[:, 2]
+    n[:, 2] = u[:, 0] * w[:, 1] - u[:, 1] * w[:, 0]
     ln = np.sqrt(np.einsum("ij,ij->i", n, n))
-    n = np.divide(n, ln[:, None], out=np.zeros_like(n), where=ln[:, None] > 0)
-    rec = np.zeros(len(tri), FACET)
+    n /= np.where(ln > 0, ln, np.inf)[:, None]          # a zero-length normal stays zero
+    rec = np.empty(len(tri), FACET)
     rec["normal"] = n
     rec["vertices"] = tri
+    rec["attr"] = 0
     return rec
 
 

@@ -133,7 +133,7 @@ def minimum_vertices(prof, law, tol: float, W: float) -> float:
 
 def mesh_properties(V, F) -> dict:
     """Volume (mm^3), surface area (mm^2) and genus of a closed, consistently oriented mesh."""
-    a, b, c = V[F[:, 0]], V[F[:, 1]], V[F[:, 2]]
+    a, b, c = (np.take(V, F[:, k], axis=0) for k in range(3))      # np.take: faster than V[F[:, k]]
     u, w = b - a, c - a
     cx = u[:, 1] * w[:, 2] - u[:, 2] * w[:, 1]       # the cross product by columns (np.cross
     cy = u[:, 2] * w[:, 0] - u[:, 0] * w[:, 2]       # is a third slower on (m, 3) arrays)
