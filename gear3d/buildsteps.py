@@ -16,6 +16,7 @@ import numpy as np
 from .records import dataclass
 from . import budget as _budget
 from . import probecache as _probecache
+from .cornercuts import SIDE_SLACK, piece_cuts
 from .corners import (CORNER_SHARE, CORNER_SHRINK, MIN_CORNER_SINE, chords_near, corner_angle, exact_crossing,
                       new_vertices, refine)
 from .plan_corners import corner_estimate, corner_refinement
@@ -362,11 +363,10 @@ def exact_boundary(fs, gen: "Generated", keep, tl, tol, rim_radius, max_err):
             start += n if i == 0 else n - 1
         else:
             k = sector_distance(tl, f(t), teeth) <= SURVIVED * tol + 1e-9
-        cuts = {}
-        for c in cs:
-            j = int(np.clip(np.searchsorted(t, c) - 1, 0, n - 2))
-            if t[j] <= c <= t[j + 1] and k[j] != k[j + 1]:
-                cuts[j] = c
+        k0 = k
+        k, cuts = piece_cuts(f, t, k, cs, lambda p: sector_distance(tl, p, teeth),
+                             SIDE_SLACK * max_err + 1e-8)
+        past = k0 & ~k                         # samples past a corner (cut-away branch)
         # a chord whose two ends were trimmed away can still carry boundary in its middle
         # (an arc clipped at both ends): look at three exact points inside it
         dead = np.nonzero(~(k[:-1] | k[1:]))[0]
@@ -379,7 +379,7 @@ def exact_boundary(fs, gen: "Generated", keep, tl, tol, rim_radius, max_err):
             near = np.zeros(len(tm), bool)
             if ok.any():
                 near[ok] = sector_distance(tl, pm[ok], teeth) <= SURVIVED * tol + 1e-9
-            mid_alive[dead] = near.reshape(-1, 3).any(axis=1)
+            mid_alive[dead] = near.reshape(-1, 3).any(axis=1) & ~(past[dead] | past[dead + 1])
         pieces.append((f, t, k, cuts, mid_alive))
     circles = [rim_radius] if internal and rim_radius else []
     a, b = sector_edges(tl, teeth)
