@@ -15,12 +15,15 @@ def piece_cuts(f, t, alive, cs, dist, slack):
     exact corner parameters ``cs`` on it (either piece of each crossing, as
     :func:`measure_corners` found them).
 
-    Every corner on a chord is recorded. Where both ends of the chord survived (the
-    cut-away end lies within SURVIVED x tol of the polygon: short chords at a corner),
-    the kept side is the one whose run up to the next corner (or the piece's end) lies on
-    the trimmed polygon (:func:`kept_side`: ``dist(points)`` (mm) to it, within ``slack`` mm), and the samples
-    past the corner on the other side, up to the first that did not survive, are marked
-    cut away: a foot then stops at the corner on both crossing pieces.
+    Every corner on a chord is recorded with the side trimming kept: the side whose end
+    survived or, where both ends of the chord survived (the cut-away end lies within
+    SURVIVED x tol of the polygon: short chords at a corner), the run up to the next corner
+    (or the piece's end) that lies on the trimmed polygon (:func:`kept_side`:
+    ``dist(points)``, mm, within ``slack`` mm; :func:`clean_side` breaks a tie). Every
+    sample of a run cut away at either end (and kept at neither) is marked cut away, also
+    one that lies near the polygon past the run's first dead samples (an involute's branch
+    past its cusp on the base circle passes about 0.01 mm from an undercut corner): a foot
+    then stops at the corner on both crossing pieces.
 
     >>> f = lambda t: np.stack([np.asarray(t, float), np.zeros(len(t))], axis=1)
     >>> dist = lambda p: np.maximum(p[:, 0] - 0.6, 0.0)      # the polygon ends at x = 0.6
@@ -28,24 +31,48 @@ def piece_cuts(f, t, alive, cs, dist, slack):
     >>> k.tolist(), cuts
     ([True, True, True, False, False], {2: 0.6})
     """
-    t, k, n = np.asarray(t, float), np.array(alive, bool), len(t)
+    t, k0, n = np.asarray(t, float), np.asarray(alive, bool), len(t)
     cs = sorted(c for c in cs if t[0] <= c <= t[-1])
     bounds = [t[0], *cs, t[-1]]
-    cuts = {}
+    cuts, sides = {}, []
     for i, c in enumerate(cs):
         j = int(np.clip(np.searchsorted(t, c) - 1, 0, n - 2))
-        if not t[j] <= c <= t[j + 1]:
-            continue
-        if k[j] == k[j + 1]:
-            side = kept_side(f, c, bounds[i], bounds[i + 2], dist, slack) if k[j] else 0
-            if side == 0:
-                continue                       # undecided: the polygon check in exact.py
-            m, step = (j + 1, 1) if side < 0 else (j, -1)
-            while 0 <= m < n and k[m] and bounds[i] <= t[m] <= bounds[i + 2]:
-                k[m] = False                   # past the corner: on the cut-away branch
-                m += step
-        cuts[j] = c
+        side = 0
+        if t[j] <= c <= t[j + 1]:
+            if k0[j] != k0[j + 1]:
+                side = -1 if k0[j] else 1
+            elif k0[j]:
+                side = kept_side(f, c, bounds[i], bounds[i + 2], dist, slack) or \
+                    clean_side(t, k0, c, bounds[i], bounds[i + 2])
+        if side:                               # else: the polygon check in exact.py
+            cuts[j] = c
+        sides.append(side)
+    k = k0.copy()
+    for r in range(len(cs) + 1):
+        # run r: from corner r - 1 (or the piece's start) to corner r (or its end)
+        before, after = (sides[r - 1] if r else 0), (sides[r] if r < len(cs) else 0)
+        if (before < 0 or after > 0) and not (before > 0 or after < 0):
+            inside = ((t > bounds[r]) | (r == 0)) & ((t < bounds[r + 1]) | (r == len(cs)))
+            k[inside & (t >= bounds[r]) & (t <= bounds[r + 1])] = False
     return k, cuts
+
+
+def clean_side(t, alive, c, lo, hi) -> int:
+    """The tie-break of :func:`kept_side` when both runs' probes lie on the polygon (a run
+    a few hundredths of a mm long): -1 when every sample of the run [lo, c] survived and
+    one of (c, hi] did not, +1 the other way round, else 0. A run trimming kept has every
+    sample on the polygon; the cut-away one leaves it somewhere (a run kept only up to a
+    singular point would be taken for the cut one: a foot then stops early, which can
+    only overstate a distance).
+
+    >>> t = np.linspace(0, 1, 6)
+    >>> clean_side(t, np.array([1, 1, 1, 1, 1, 0], bool), 0.5, 0.0, 1.0)
+    -1
+    """
+    t, alive = np.asarray(t, float), np.asarray(alive, bool)
+    left = alive[(t >= lo) & (t < c)].all()
+    right = alive[(t > c) & (t <= hi)].all()
+    return -1 if left and not right else 1 if right and not left else 0
 
 
 #: probes (fractions) of the runs either side of a trimmed corner, and how far (in the

@@ -73,17 +73,22 @@ class Gear:
         p = np.stack([np.full_like(s, self.rp - self.vc), self.uc + s], axis=-1)
         return _rot(p, -s / self.rp)
 
+    def fillet(self, s):
+        """The root fillet the rack's tip cuts (mm) while the rack moves by s (mm): for a
+        sharp corner its trochoid."""
+        return self.trochoid(s)
+
     def trochoid_distance(self, q, s_lo, s_hi, n=1_000_000):
-        """Distance (mm) from each point q to the trochoid over s in [s_lo, s_hi]: the
+        """Distance (mm) from each point q to the fillet over s in [s_lo, s_hi]: the
         nearest of n samples, then golden-section search on the bracket around it."""
         s = np.linspace(s_lo, s_hi, n)
-        T = self.trochoid(s)
+        T = self.fillet(s)
         out = []
         g = (math.sqrt(5) - 1) / 2
         for x in np.asarray(q, float):
             k = int(np.argmin((T[:, 0] - x[0]) ** 2 + (T[:, 1] - x[1]) ** 2))
             a, b = s[max(k - 1, 0)], s[min(k + 1, n - 1)]
-            f = lambda t: float(np.hypot(*(self.trochoid(np.array([t]))[0] - x)))   # noqa: E731
+            f = lambda t: float(np.hypot(*(self.fillet(np.array([t]))[0] - x)))     # noqa: E731
             c, d = b - g * (b - a), a + g * (b - a)
             for _ in range(80):
                 if f(c) < f(d):
@@ -95,22 +100,49 @@ class Gear:
         return np.array(out)
 
     def junction(self):
-        """Where the trochoid crosses tooth 0's lower flank (undercut: the trimmed corner at
-        the fillet's top): s of the trochoid and u of the involute, by bisection on the
-        polar angle difference at the same radius."""
+        """Where the fillet crosses tooth 0's lower flank (undercut: the trimmed corner at
+        the fillet's top): s of the fillet and u of the involute, by bisection on the polar
+        angle difference at the same radius, from the first sign change on a grid of s
+        past the fillet's bottom (s0 = -uc) where the fillet is outside the base circle."""
         def gap(s):
-            p = self.trochoid(np.array([s]))[0]
+            p = self.fillet(np.array([s]))[0]
             a = math.acos(self.rb / math.hypot(*p))
             return math.atan2(p[1], p[0]) + self.psi_b - (math.tan(a) - a)
-        s0 = -self.uc
-        lo = s0 + math.sqrt(self.rb ** 2 - (self.rp - self.vc) ** 2) + 1e-9     # |T| = rb
-        hi = s0 + 3 * self.hc / math.tan(math.radians(20.0))
-        assert gap(lo) * gap(hi) < 0
+        s = -self.uc + np.linspace(0.0, 3 * self.hc / math.tan(math.radians(20.0)), 4001)
+        out = np.nonzero(np.hypot(*self.fillet(s).T) > self.rb * (1 + 1e-12))[0]
+        g = np.array([gap(x) for x in s[out]])
+        ch = np.nonzero(np.sign(g[:-1]) * np.sign(g[1:]) < 0)[0]
+        assert len(ch) and out[ch[0] + 1] == out[ch[0]] + 1          # no undercut corner otherwise
+        lo, hi = s[out[ch[0]]], s[out[ch[0] + 1]]
         for _ in range(200):
             mid = 0.5 * (lo + hi)
             lo, hi = (mid, hi) if gap(mid) * gap(lo) > 0 else (lo, mid)
         sx = 0.5 * (lo + hi)
-        return sx, math.sqrt((math.hypot(*self.trochoid(np.array([sx]))[0]) / self.rb) ** 2 - 1)
+        return sx, math.sqrt((math.hypot(*self.fillet(np.array([sx]))[0]) / self.rb) ** 2 - 1)
+
+
+class RoundGear(Gear):
+    """The same gear cut by a rack whose tip corner is rounded with radius rho x m: its
+    fillet is the parallel curve, at distance rho m toward the gear, of the trochoid of the
+    rounding circle's centre (u, v) = (-rho m / cos(alpha) - v tan(alpha) - p/4, hc - rho m),
+    the point whose circle touches both the rack's flank and its tip line."""
+
+    def __init__(self, z, m, rho):
+        super().__init__(z, m)
+        alpha = math.radians(20.0)
+        self.rho = rho * m
+        self.vc = self.hc - self.rho
+        self.uc = -self.rho / math.cos(alpha) - self.vc * math.tan(alpha) - math.pi * m / 4
+
+    def fillet(self, s):
+        s = np.asarray(s, float)
+        c = self.trochoid(s)
+        # the trochoid's tangent: d/ds of rot(p(s), -s/r) with p = (r - v, u + s)
+        d = _rot(np.stack([(self.uc + s) / self.rp, 1 - (self.rp - self.vc) / self.rp + 0 * s], axis=-1), -s / self.rp)
+        # the normal that points to the gear's centre at the fillet's bottom (s = -uc,
+        # where the trochoid's tangent is +y): the circle there touches the root circle
+        n = np.stack([-d[..., 1], d[..., 0]], axis=-1) / np.hypot(d[..., 0], d[..., 1])[..., None]
+        return c + self.rho * n
 
 
 def _rot(p, a):
@@ -188,6 +220,71 @@ def test_distance_near_the_trimmed_fillet_corner():
     got = p.exact_distance(q)
     err = got - want
     assert np.abs(err).max() < 1e-8
+
+
+def _fillet_normals(g, s, h=1e-7):
+    """Unit normals of the fillet at s (central differences of its points)."""
+    d = g.fillet(s + h) - g.fillet(s - h)
+    return np.stack([-d[:, 1], d[:, 0]], axis=1) / np.hypot(*d.T)[:, None]
+
+
+def _undercut_corner_points(g, tol, rng, n=12):
+    """Points on, near (+-0.5 tol off the curve) and around the undercut corner X of tooth
+    0's lower flank: on the kept fillet and flank next to X and on their cut-away
+    continuations past X (where a foot that crosses the corner would stop), and a cloud
+    around X (0.5 tol to 0.08 mm); ``n`` distances along each branch, 2 n points per cloud."""
+    sx, ux = g.junction()
+    X = g.fillet(np.array([sx]))[0]
+    out = [X[None, :]]
+    d = np.geomspace(0.2 * tol, 0.3, n)                    # mm of rack travel / of roll
+    for sgn in (-1.0, 1.0):                                  # kept (-) and cut-away (+) fillet
+        s = sx + sgn * d
+        P, nv = g.fillet(s), _fillet_normals(g, s)
+        out += [P, P + 0.5 * tol * nv, P - 0.5 * tol * nv]
+    for sgn in (1.0, -1.0):                                  # kept (+) and cut-away (-) flank
+        u = np.clip(ux + sgn * d / g.rb, 0.0, None)
+        P, nv = g.flank(u)
+        P, nv = P * [1, -1], nv * [1, -1]                    # tooth 0's lower flank
+        out += [P, P + 0.5 * tol * nv, P - 0.5 * tol * nv]
+    out += [X + rng.normal(size=(2 * n, 2)) * sig for sig in (0.5 * tol, 5 * tol, 0.02, 0.08)]
+    return np.concatenate(out), sx, ux
+
+
+def _undercut_oracle(g, q, sx, ux):
+    """Distance (mm) from q to tooth 0's lower flank as trimming left it near the corner:
+    the fillet up to its crossing (sampled, golden section) and the involute from it
+    (closed form, mirrored onto the upper flank)."""
+    u_tip = math.sqrt(((g.rp + g.m - 0.1) / g.rb) ** 2 - 1)
+    return np.minimum(g.trochoid_distance(q, -g.uc, sx), g.involute_distance(q * [1, -1], ux, u_tip))
+
+
+def _check_undercut_corner(z, rho, tol, seed, n=12):
+    g = RoundGear(z, 2.0, rho) if rho else Gear(z, 2.0)
+    p = gear3d.profile("involute", teeth=z, module=2.0, tip_radius_coeff=rho, tolerance=tol)
+    q, sx, ux = _undercut_corner_points(g, tol, np.random.default_rng(seed), n)
+    want = _undercut_oracle(g, q, sx, ux)
+    # the same points on every tooth (the profile repeats every 2 pi / z)
+    k = np.arange(len(q)) % z
+    got = p.exact_distance(_rot(q, 2 * math.pi * k / z))
+    err = got - want
+    # never understated (a foot that ran past the corner onto the cut-away fillet or flank
+    # was: by 1.7e-2 mm for z=8, a sharp rack and tol 0.01), and exact
+    assert err.min() >= -1e-9, (z, rho, tol, err.min(), q[np.argmin(err)])
+    assert err.max() <= 1e-8, (z, rho, tol, err.max(), q[np.argmax(err)])
+
+
+@pytest.mark.parametrize("z,rho,tol", [(8, 0.0, 0.01), (8, 0.25, 0.001)])
+def test_distance_near_the_undercut_corner_never_understated(z, rho, tol):
+    _check_undercut_corner(z, rho, tol, seed=z)
+
+
+@pytest.mark.slow
+def test_distance_near_undercut_corners_z6_to_10():
+    for z in (6, 7, 8, 9, 10):
+        for rho in (0.0, 0.25):
+            for tol in (0.01, 0.001):
+                if (z, rho, tol) not in ((8, 0.0, 0.01), (8, 0.25, 0.001)):
+                    _check_undercut_corner(z, rho, tol, seed=100 * z + int(1000 * tol), n=6)
 
 
 def test_rack_pieces_evaluated_together_lie_on_their_closed_forms():
