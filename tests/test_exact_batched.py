@@ -390,3 +390,31 @@ def test_points_above_a_turned_tip_match_the_flanks_and_the_blank():
     near = want < 0.6
     assert near.sum() > 1500
     assert np.abs(got - want)[near].max() < 1e-8
+
+
+def test_offset_body_near_the_undercut_corner_is_within_tolerance():
+    # a body's XY offset is measured with the exact distance (|distance - offset|): past the
+    # undercut corner's unrecorded side the understated distance once made this body look
+    # 0.0169 mm off and refused it. Oracle: the slice mid-height, edges densified, against
+    # the sampled fillet and the closed-form involute (distance minus the offset).
+    from gear3d.solids.body import body
+    z, tol, delta = 8, 0.01, 0.1
+    g = Gear(z, 2.0)
+    p = gear3d.profile("involute", teeth=z, module=2.0, tip_radius_coeff=0, tolerance=0.00875)
+    b = body(p, width=10.0, xy_offset=delta, tolerance=tol)
+    assert b.report["max_error"] <= tol
+    fr = np.linspace(0, 1, 5)[:-1]
+    polys = b.manifold.slice(5.0).to_polygons()
+    pts = np.concatenate([(np.asarray(q)[:, None, :] + fr[None, :, None] * (np.roll(q, -1, 0) - q)[:, None, :])
+                          .reshape(-1, 2) for q in polys])
+    # tooth 0 and its neighbour's copy of the other corner (the slice's teeth are the same
+    # polygon turned), the upper half mirrored onto the lower flank
+    k = np.round(np.arctan2(pts[:, 1], pts[:, 0]) / (2 * math.pi / z))
+    P = _rot(pts, -k * 2 * math.pi / z)[(k == 0) | (k == 1)]
+    P = np.where(P[:, 1:2] > 0, P * [1, -1], P)
+    sx, ux = g.junction()
+    X = g.fillet(np.array([sx]))[0]
+    q = P[np.hypot(*(P - X).T) < delta + 0.15]
+    assert len(q) > 100
+    err = np.abs(_undercut_oracle(g, q, sx, ux) - delta)
+    assert err.max() <= tol

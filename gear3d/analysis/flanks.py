@@ -166,11 +166,16 @@ def alive_intervals(pc, bnd) -> list:
     for a, b in zip(edges[:-1], edges[1:]):
         if b - a <= 1e-15:
             continue
-        inner = t[(t > a) & (t < b)]
+        sel = (t > a) & (t < b)
+        inner = t[sel]
         if not len(inner):
             inner = np.array([0.5 * (a + b)])
         seq = np.concatenate([[a], inner, [b]])
         on = _on_polygon(bnd, np.asarray(pc.f(seq), float))
+        if sel.any():
+            # a sample past a recorded corner is cut away even where it lies on the polygon
+            # (gear3d.cornercuts: it no longer survives)
+            on[1:-1] &= np.asarray(pc.alive, bool)[sel]
         # a trimmed corner is on the polygon from both sides: it takes its neighbour's state
         if a in cuts:
             on[0] = on[1]
