@@ -347,7 +347,9 @@ def exact_boundary(fs, gen: "Generated", keep, tl, tol, rim_radius, max_err):
     """The exact boundary of the trimmed profile: every piece (``fs``: the raw evaluators)
     with its samples that survived trimming (``keep``: within 2 tol of the trimmed polygon
     ``tl``) and, on a chord that runs into a trimmed corner, the corner's parameter (the
-    exact crossing found by Newton); the turned blank's arc; a ring's rim (mm)."""
+    exact crossing found by Newton) on both crossing pieces, the samples past it marked
+    cut away (:func:`gear3d.cornercuts.piece_cuts`); the turned blank's arc; a ring's rim
+    (mm)."""
     from .exact import ExactBoundary
     ts, teeth, internal, corner_cuts = gen.ts, gen.teeth, gen.internal, gen.trimmed.corner_cuts
     arc_piece, arc_t = gen.arc if gen.arc is not None else (None, None)

@@ -13,7 +13,7 @@ def piece_cuts(f, t, alive, cs, dist, slack):
     """A piece's trimmed corners for :class:`gear3d.exact.ExactBoundary`: (survival mask,
     {chord: corner parameter}) from its samples ``t``, their survival ``alive`` and the
     exact corner parameters ``cs`` on it (either piece of each crossing, as
-    :func:`measure_corners` found them).
+    :func:`gear3d.buildsteps.measure_corners` found them).
 
     Every corner on a chord is recorded with the side trimming kept: the side whose end
     survived or, where both ends of the chord survived (the cut-away end lies within
