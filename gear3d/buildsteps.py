@@ -245,7 +245,7 @@ def _sample_period(pieces, fs, teeth: int, tol: float, budget: float):
         t2 = with_transitions(G, samples.ts[i])
         if len(t2) != len(samples.ts[i]):
             samples.ts[i], samples.pts[i] = t2, fs[i](t2)
-            samples.devs[i] = chord_deviation(fs[i], t2, samples.pts[i])
+            samples.devs[i] = chord_deviation(fs[i], t2, samples.pts[i], budget)
     # the trimmed corners' refinement, planned from this period (gear3d.plan_corners): its
     # work charged, its vertices counted with the profile's
     cr = corner_refinement(samples.pts, samples.devs, teeth, tol,

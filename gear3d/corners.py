@@ -128,5 +128,5 @@ def refine(f, t: np.ndarray, pts: np.ndarray, dev: np.ndarray, chords, target: f
             return t, pts, dev, False
         if np.any(np.diff(t)[bad] < 1e-15):
             break      # the measured corner error then tells (the builder refuses if > tol)
-        t, pts, dev = split_chords(f, t, pts, dev, np.nonzero(bad)[0])
+        t, pts, dev = split_chords(f, t, pts, dev, np.nonzero(bad)[0], target)
     return t, pts, dev, True

@@ -21,8 +21,9 @@ _PROBE = np.array([0.0625, 0.1875, 0.3125, 0.4375, 0.5, 0.5625, 0.6875, 0.8125, 
 MAX_VERTICES = 400_000  # per piece; beyond it the curve jumps or the tolerance is unreasonable
 
 
-def chord_deviation(f, t: np.ndarray, pts: np.ndarray | None = None) -> np.ndarray:
-    """Measured max distance (mm) of the exact curve ``f`` to each chord of samples ``t``."""
+def chord_deviation(f, t: np.ndarray, pts: np.ndarray | None = None, tol: float = np.inf) -> np.ndarray:
+    """Measured max distance (mm) of the exact curve ``f`` to each chord of samples ``t``
+    (:func:`peak_deviation`; ``tol``, mm: the tolerance the chords are held to)."""
     t0, t1 = t[:-1], t[1:]
     tp = (t0[:, None] + (t1 - t0)[:, None] * _PROBE[None, :]).ravel()
     if pts is None:                      # one evaluation for the samples and the probes
@@ -32,7 +33,68 @@ def chord_deviation(f, t: np.ndarray, pts: np.ndarray | None = None) -> np.ndarr
         q = f(tp)
     q = q.reshape(len(t0), len(_PROBE), 2)
     d = point_segment_distance(q, pts[:-1, None, :], pts[1:, None, :])
-    return d.max(axis=1)
+    return peak_deviation(f, t0, t1, pts[:-1], pts[1:], d, tol)
+
+
+def peak_deviation(f, a: np.ndarray, b: np.ndarray, pa: np.ndarray, pb: np.ndarray, d: np.ndarray,
+                   tol: float = np.inf) -> np.ndarray:
+    """Each chord's largest measured deviation (mm): the largest of its probes' distances
+    ``d`` (chords x :data:`_PROBE`) and, for the chords that could reach the tolerance
+    ``tol`` (mm) or the largest deviation (those whose probes come within
+    :data:`PEAK_SHARE` of the smaller), of exact points on a finer grid (:data:`_ZOOM`)
+    between the largest probe's two neighbours and at the peak of the parabola through the
+    grid's largest point and its neighbours (in the chord's parameter interval [a, b],
+    ends ``pa``/``pb``). The probes alone miss a
+    sag's peak that falls between two of them: by 0.2% on an involute's flank chords and
+    by 2% on an arc run as t**1.5 (to 1e-6 here). Every value is the distance of a point on the exact curve.
+
+    >>> import math
+    >>> arc = lambda t: np.stack([np.cos(0.3 * np.asarray(t) ** 1.5), np.sin(0.3 * np.asarray(t) ** 1.5)], axis=1)
+    >>> t = np.array([0.0, 1.0]); p = arc(t)
+    >>> sag = 1 - math.cos(0.15)                          # the arc's true sag (its chord's middle)
+    >>> round(float(chord_deviation(arc, t, p)[0]) / sag, 5)
+    1.0
+    """
+    out = d.max(axis=1)
+    if not len(out):
+        return out
+    with np.errstate(invalid="ignore"):
+        sel = np.nonzero(out >= PEAK_SHARE * min(tol, np.nanmax(out) if np.isfinite(out).any() else 0.0))[0]
+    if not len(sel):
+        return out
+    k = np.clip(d[sel].argmax(axis=1), 1, len(_PROBE) - 2)
+    a, b, pa, pb = a[sel], b[sel], pa[sel], pb[sel]
+    # a finer grid over the largest probe's neighbours, then the parabola through the best
+    # grid point and its two neighbours, evaluated at its peak
+    lo, hi = _PROBE[k - 1], _PROBE[k + 1]
+    x = lo[:, None] + (hi - lo)[:, None] * _ZOOM[None, :]
+    y = np.empty(x.shape)
+    y[:, 0], y[:, -1] = d[sel, k - 1], d[sel, k + 1]
+    inner = x[:, 1:-1]
+    with np.errstate(invalid="ignore"):
+        q = f((a[:, None] + (b - a)[:, None] * inner).ravel()).reshape(len(sel), inner.shape[1], 2)
+        y[:, 1:-1] = point_segment_distance(q, pa[:, None, :], pb[:, None, :])
+    yf = np.where(np.isfinite(y), y, -np.inf)
+    j = np.clip(yf.argmax(axis=1), 1, len(_ZOOM) - 2)
+    rows = np.arange(len(sel))
+    x0, x1, x2 = x[rows, j - 1], x[rows, j], x[rows, j + 1]
+    y0, y1, y2 = y[rows, j - 1], y[rows, j], y[rows, j + 1]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        num = (x1 - x0) ** 2 * (y1 - y2) - (x1 - x2) ** 2 * (y1 - y0)
+        den = (x1 - x0) * (y1 - y2) - (x1 - x2) * (y1 - y0)
+        xs = x1 - 0.5 * num / den
+        xs = np.clip(np.where(np.isfinite(xs), xs, x1), x0, x2)
+        ys = point_segment_distance(f(a + (b - a) * xs), pa, pb)
+    best = np.fmax(out[sel], np.fmax(np.where(np.isfinite(yf), y, np.nan).max(axis=1, initial=-np.inf), ys))
+    out[sel] = best
+    return out
+
+
+#: the share of the tolerance (or of the largest deviation) above which a chord's probes take them
+#: (the probes miss a peak by a few per cent at most: a chord below it cannot reach either)
+PEAK_SHARE = 0.8
+#: the finer grid (fractions of the two probe intervals about the largest probe)
+_ZOOM = np.linspace(0.0, 1.0, 9)
 
 
 def _equal_sag_params(f, tol: float, n0: int) -> np.ndarray:
@@ -71,7 +133,7 @@ class Tessellation:
     deviation: np.ndarray  # measured distance (mm) of the exact curve to each chord
 
 
-def split_chords(f, t: np.ndarray, pts: np.ndarray, dev: np.ndarray, chords: np.ndarray):
+def split_chords(f, t: np.ndarray, pts: np.ndarray, dev: np.ndarray, chords: np.ndarray, tol: float = np.inf):
     """Bisect chords ``chords`` (indices) of samples ``t`` / ``pts`` of piece ``f``.
 
     Only the new midpoints and the new chords' probes are evaluated (one call); the new
@@ -86,7 +148,7 @@ def split_chords(f, t: np.ndarray, pts: np.ndarray, dev: np.ndarray, chords: np.
     pm, q = ev[:len(tm)], ev[len(tm):].reshape(len(a), len(_PROBE), 2)
     pa = np.concatenate([pts[ib], pm])
     pb = np.concatenate([pm, pts[ib + 1]])
-    dnew = point_segment_distance(q, pa[:, None, :], pb[:, None, :]).max(axis=1)
+    dnew = peak_deviation(f, a, b, pa, pb, point_segment_distance(q, pa[:, None, :], pb[:, None, :]), tol)
     n = len(ib)
     # chord i becomes chords (i, i + 1) in the new list: old chords shift by the number of
     # split chords before them
@@ -109,7 +171,7 @@ def tessellate(f, tol: float, n0: int = 512) -> Tessellation:
     t = _equal_sag_params(f, tol, n0)
     min_v = float(len(t) - 1)
     pts = f(t)
-    dev = chord_deviation(f, t, pts)
+    dev = chord_deviation(f, t, pts, tol)
     for _ in range(60):
         bad = dev > tol
         if not bad.any():
@@ -122,5 +184,5 @@ def tessellate(f, tol: float, n0: int = 512) -> Tessellation:
                                  f"more than {MAX_VERTICES} vertices per piece would be needed: the "
                                  "curve jumps (a tool normal that never meets the pitch circle) or the "
                                  "tolerance is far too fine for the part")
-        t, pts, dev = split_chords(f, t, pts, dev, np.nonzero(bad)[0])
+        t, pts, dev = split_chords(f, t, pts, dev, np.nonzero(bad)[0], tol)
     raise ToleranceError("tolerance", tol, "a coarser value", "refinement did not converge")
