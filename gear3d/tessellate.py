@@ -37,10 +37,10 @@ def chord_deviation(f, t: np.ndarray, pts: np.ndarray | None = None, tol: float 
 
 
 def peak_deviation(f, a: np.ndarray, b: np.ndarray, pa: np.ndarray, pb: np.ndarray, d: np.ndarray,
-                   tol: float = np.inf) -> np.ndarray:
+                   tol: float = np.inf, of_largest: bool = True) -> np.ndarray:
     """Each chord's largest measured deviation (mm): the largest of its probes' distances
     ``d`` (chords x :data:`_PROBE`) and, for the chords that could reach the tolerance
-    ``tol`` (mm) or the largest deviation (those whose probes come within
+    ``tol`` (mm) or (``of_largest``) the largest deviation (those whose probes come within
     :data:`PEAK_SHARE` of the smaller), of exact points on a finer grid (:data:`_ZOOM`)
     between the largest probe's two neighbours and at the peak of the parabola through the
     grid's largest point and its neighbours (in the chord's parameter interval [a, b],
@@ -59,7 +59,8 @@ def peak_deviation(f, a: np.ndarray, b: np.ndarray, pa: np.ndarray, pb: np.ndarr
     if not len(out):
         return out
     with np.errstate(invalid="ignore"):
-        sel = np.nonzero(out >= PEAK_SHARE * min(tol, np.nanmax(out) if np.isfinite(out).any() else 0.0))[0]
+        top = np.nanmax(out) if of_largest and np.isfinite(out).any() else np.inf
+        sel = np.nonzero(out >= PEAK_SHARE * min(tol, top))[0]
     if not len(sel):
         return out
     k = np.clip(d[sel].argmax(axis=1), 1, len(_PROBE) - 2)
@@ -148,7 +149,8 @@ def split_chords(f, t: np.ndarray, pts: np.ndarray, dev: np.ndarray, chords: np.
     pm, q = ev[:len(tm)], ev[len(tm):].reshape(len(a), len(_PROBE), 2)
     pa = np.concatenate([pts[ib], pm])
     pb = np.concatenate([pm, pts[ib + 1]])
-    dnew = peak_deviation(f, a, b, pa, pb, point_segment_distance(q, pa[:, None, :], pb[:, None, :]), tol)
+    # halves of chords: only those that could reach the tolerance are followed to their peak
+    dnew = peak_deviation(f, a, b, pa, pb, point_segment_distance(q, pa[:, None, :], pb[:, None, :]), tol, False)
     n = len(ib)
     # chord i becomes chords (i, i + 1) in the new list: old chords shift by the number of
     # split chords before them
