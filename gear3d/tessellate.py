@@ -24,16 +24,26 @@ MAX_VERTICES = 400_000  # per piece; beyond it the curve jumps or the tolerance 
 def chord_deviation(f, t: np.ndarray, pts: np.ndarray | None = None, tol: float = np.inf) -> np.ndarray:
     """Measured max distance (mm) of the exact curve ``f`` to each chord of samples ``t``
     (:func:`peak_deviation`; ``tol``, mm: the tolerance the chords are held to)."""
+    if pts is None:
+        pts = f(t)
+    return peak_deviation(f, t[:-1], t[1:], pts[:-1], pts[1:], _probe_distances(f, t, pts), tol)
+
+
+def chord_peaks(f, a: np.ndarray, b: np.ndarray, pa: np.ndarray, pb: np.ndarray) -> np.ndarray:
+    """Measured max distance (mm) of the exact curve ``f`` to chords that need not be
+    consecutive: parameter intervals [a, b], ends ``pa``/``pb`` (mm), each followed to its
+    sag's peak (:func:`peak_deviation`)."""
+    tp = (a[:, None] + (b - a)[:, None] * _PROBE[None, :]).ravel()
+    q = f(tp).reshape(len(a), len(_PROBE), 2)
+    return peak_deviation(f, a, b, pa, pb, point_segment_distance(q, pa[:, None, :], pb[:, None, :]))
+
+
+def _probe_distances(f, t: np.ndarray, pts: np.ndarray) -> np.ndarray:
+    """Distances (mm, chords x :data:`_PROBE`) of the exact curve's probe points to each chord."""
     t0, t1 = t[:-1], t[1:]
     tp = (t0[:, None] + (t1 - t0)[:, None] * _PROBE[None, :]).ravel()
-    if pts is None:                      # one evaluation for the samples and the probes
-        both = f(np.concatenate([t, tp]))
-        pts, q = both[:len(t)], both[len(t):]
-    else:
-        q = f(tp)
-    q = q.reshape(len(t0), len(_PROBE), 2)
-    d = point_segment_distance(q, pts[:-1, None, :], pts[1:, None, :])
-    return peak_deviation(f, t0, t1, pts[:-1], pts[1:], d, tol)
+    q = f(tp).reshape(len(t0), len(_PROBE), 2)
+    return point_segment_distance(q, pts[:-1, None, :], pts[1:, None, :])
 
 
 def peak_deviation(f, a: np.ndarray, b: np.ndarray, pa: np.ndarray, pb: np.ndarray, d: np.ndarray,
@@ -173,7 +183,9 @@ def tessellate(f, tol: float, n0: int = 512) -> Tessellation:
     t = _equal_sag_params(f, tol, n0)
     min_v = float(len(t) - 1)
     pts = f(t)
-    dev = chord_deviation(f, t, pts, tol)
+    # followed to their peak where they could reach the tolerance; the largest of a whole
+    # profile is followed by its builder (gear3d.buildsteps.Samples.max_deviation)
+    dev = peak_deviation(f, t[:-1], t[1:], pts[:-1], pts[1:], _probe_distances(f, t, pts), tol, False)
     for _ in range(60):
         bad = dev > tol
         if not bad.any():
