@@ -23,7 +23,7 @@ from .plan_corners import corner_estimate, corner_refinement
 from .envelope import PRUNE_SHARE, RIM_SHARE, circle_loop, pattern, signed_area, trim
 from .errors import GearError, ToleranceError
 from .geometry import point_segment_distance, rotate, segment_foot, unique_sorted
-from .tessellate import PEAK_SHARE, chord_deviation, chord_peaks, tessellate
+from .tessellate import PEAK_SHARE, chord_deviation, largest_deviation, tessellate
 
 
 #: Clipper2 (inside manifold3d) rounds to 1e-8 mm; half a unit in each axis
@@ -124,17 +124,8 @@ class Samples:
                                  f"at {target:.2g} mm: its evaluator is not smooth at that scale")
 
     def max_deviation(self) -> float:
-        """The largest measured chord deviation (mm): every chord was measured when made, at
-        its sag's peak where it could reach the tolerance (:func:`gear3d.tessellate.peak_deviation`);
-        the chords within :data:`gear3d.tessellate.PEAK_SHARE` of the largest are followed to
-        their peak here (their probes alone can read a few per cent low)."""
-        top = max((float(d.max(initial=0.0)) for d in self.devs), default=0.0)
-        for i, d in enumerate(self.devs):
-            near = np.nonzero((d >= PEAK_SHARE * top) & (d < self.peaked_above))[0] if top > 0 else []
-            if len(near):
-                t, pts = self.ts[i], self.pts[i]
-                d[near] = np.maximum(d[near], chord_peaks(self.fs[i], t[near], t[near + 1], pts[near], pts[near + 1]))
-        return max(float(d.max(initial=0.0)) for d in self.devs)
+        """The largest measured chord deviation (mm) (:func:`gear3d.tessellate.largest_deviation`)."""
+        return largest_deviation(self.fs, self.ts, self.pts, self.devs, self.peaked_above)
 
 
 @dataclass
@@ -252,8 +243,7 @@ def sample_pieces(pieces, fs, teeth: int, tol: float, budget: float):
 def _sample_period(pieces, fs, teeth: int, tol: float, budget: float):
     """:func:`sample_pieces`' work: (samples, the corner plan, fewest vertices per tooth)."""
     tess = [tessellate(f, budget) for f in fs]
-    samples = Samples(list(fs), [x.t for x in tess], [x.points for x in tess], [x.deviation for x in tess],
-                      PEAK_SHARE * budget)
+    samples = Samples(list(fs), *([getattr(x, a) for x in tess] for a in ("t", "points", "deviation")), PEAK_SHARE * budget)
     for i, G in enumerate(pieces):
         t2 = with_transitions(G, samples.ts[i])
         if len(t2) != len(samples.ts[i]):

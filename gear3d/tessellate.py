@@ -38,6 +38,19 @@ def chord_peaks(f, a: np.ndarray, b: np.ndarray, pa: np.ndarray, pb: np.ndarray)
     return peak_deviation(f, a, b, pa, pb, point_segment_distance(q, pa[:, None, :], pb[:, None, :]))
 
 
+def largest_deviation(fs, ts, pts, devs, peaked_above: float = np.inf) -> float:
+    """The largest measured chord deviation (mm) of pieces ``fs`` (samples ``ts``, points
+    ``pts``, chord deviations ``devs``, updated): the chords within :data:`PEAK_SHARE` of it
+    that were not followed to their sag's peak when made (below ``peaked_above``, mm) are
+    followed now (their probes alone can read a few per cent low)."""
+    top = max((float(d.max(initial=0.0)) for d in devs), default=0.0)
+    for f, t, p, d in zip(fs, ts, pts, devs):
+        near = np.nonzero((d >= PEAK_SHARE * top) & (d < peaked_above))[0] if top > 0 else []
+        if len(near):
+            d[near] = np.maximum(d[near], chord_peaks(f, t[near], t[near + 1], p[near], p[near + 1]))
+    return max((float(d.max(initial=0.0)) for d in devs), default=0.0)
+
+
 def _probe_distances(f, t: np.ndarray, pts: np.ndarray) -> np.ndarray:
     """Distances (mm, chords x :data:`_PROBE`) of the exact curve's probe points to each chord."""
     t0, t1 = t[:-1], t[1:]
