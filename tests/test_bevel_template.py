@@ -6,6 +6,7 @@ Oracle: ``gear3d bevel`` with the same keywords at the same tolerance writes the
 import pytest
 
 from gear3d.cli import main
+from tests.templatevariant import build_one_part_step
 
 SCENE = """
 [scene]
@@ -63,14 +64,8 @@ def test_bevel_part_brep_step(tmp_path):
     """A straight member's B-rep through a template (``[part.options.step] kind = "brep"``;
     the part's bodies carry the pair's geometry to the writer): the CLI's bytes."""
     pytest.importorskip("OCP")
-    from gear3d.jobs.scene import build_scene
-    from gear3d.jobs.template import load_scene
-    src = tmp_path / "s.toml"
-    src.write_text('[scene]\nname = "b"\ntolerance = 0.05\n'
-                   '[[part]]\nname = "straight"\nkind = "bevel"\nteeth = 10\nmate_teeth = 15\nmodule = 2\n'
-                   'face_width = 5\noutputs = ["step"]\n[part.options.step]\nkind = "brep"\n')
-    build_scene(load_scene(str(src)), tmp_path / "out")
-    data = (tmp_path / "out" / "straight.step").read_bytes()
+    data = build_one_part_step(tmp_path, 'name = "straight"\nkind = "bevel"\nteeth = 10\nmate_teeth = 15\nmodule = 2\n'
+                                         'face_width = 5\n', "straight")
     cli = tmp_path / "cli.step"
     assert main(["bevel", "--teeth", "10", "--mate-teeth", "15", "--module", "2", "--face-width", "5",
                  "--tolerance", "0.05", "--step", "brep", "-o", str(cli)]) == 0

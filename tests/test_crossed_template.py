@@ -22,7 +22,7 @@ import numpy as np
 import pytest
 
 from gear3d.cli import main
-from tests.templatevariant import refused_build
+from tests.templatevariant import assert_set_not_pairable, build_one_part_step, refused_build
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 TEMPLATE = os.path.join(ROOT, "templates", "crossed-pair.toml")
@@ -130,13 +130,7 @@ def test_crossed_part_refusals_name_the_key_and_write_nothing(tmp_path, capsys, 
 
 def test_crossed_part_not_in_a_pair(tmp_path):
     """A crossed set is its own pair: a [[pair]] naming it is refused at the key."""
-    from gear3d.jobs.template import TemplateError, load_scene
-    src = tmp_path / "s.toml"
-    src.write_text(open(TEMPLATE, encoding="utf-8").read() +
-                   '[[part]]\nname = "g"\nfamily = "involute"\nteeth = 20\nmodule = 1\n'
-                   '[[pair]]\nname = "p"\nparts = ["crossed-90", "g"]\n')
-    with pytest.raises(TemplateError, match=r"pair\[p\]\.parts\[0\]"):
-        load_scene(src)
+    assert_set_not_pairable(tmp_path, TEMPLATE, "crossed-90")
 
 
 def test_crossed_cli_exports_read_back(tmp_path):
@@ -177,18 +171,11 @@ def test_crossed_cli_exports_read_back(tmp_path):
 def test_crossed_template_brep_step(tmp_path):
     """``[part.options.step] kind = "brep"`` on a crossed part: the CLI's ``--step brep`` bytes."""
     pytest.importorskip("OCP")
-    from gear3d.jobs.scene import build_scene
-    from gear3d.jobs.template import load_scene
-    src = tmp_path / "s.toml"
-    src.write_text('[scene]\nname = "c"\ntolerance = 0.05\n'
-                   '[[part]]\nname = "x"\nkind = "crossed"\nteeth = 12\nmate_teeth = 14\nwidth = 4\n'
-                   'outputs = ["step"]\n[part.options.step]\nkind = "brep"\n')
-    build_scene(load_scene(str(src)), tmp_path / "out")
+    data = build_one_part_step(tmp_path, 'name = "x"\nkind = "crossed"\nteeth = 12\nmate_teeth = 14\nwidth = 4\n', "x")
     cli = tmp_path / "cli.step"
     assert main(["check", "pair", "involute", "--crossed", "--teeth", "12", "--mate-teeth", "14", "--module", "1",
                  "--helix-angle-deg", "45", "--width", "4", "--tolerance", "0.05", "--step", "brep",
                  "-o", str(cli)]) == 0
-    data = (tmp_path / "out" / "x.step").read_bytes()
     assert b"B_SPLINE_SURFACE" in data and data == cli.read_bytes()
 
 

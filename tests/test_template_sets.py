@@ -10,7 +10,7 @@ import os
 
 import pytest
 
-from tests.templatevariant import refused_build
+from tests.templatevariant import assert_set_not_pairable, refused_build
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 TEMPLATE = os.path.join(ROOT, "templates", "bevel-set.toml")
@@ -63,10 +63,4 @@ def test_set_part_refusals_name_the_key_and_write_nothing(tmp_path, capsys, old,
 
 def test_set_part_not_in_a_pair(tmp_path):
     """A bevel set is its own pair: a [[pair]] naming it is refused at the key."""
-    from gear3d.jobs.template import TemplateError, load_scene
-    src = tmp_path / "s.toml"
-    src.write_text(open(TEMPLATE, encoding="utf-8").read() +
-                   '[[part]]\nname = "g"\nfamily = "involute"\nteeth = 20\nmodule = 1\n'
-                   '[[pair]]\nname = "p"\nparts = ["bevel-pair", "g"]\n')
-    with pytest.raises(TemplateError, match=r"pair\[p\]\.parts\[0\]"):
-        load_scene(src)
+    assert_set_not_pairable(tmp_path, TEMPLATE, "bevel-pair")
