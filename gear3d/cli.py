@@ -61,6 +61,20 @@ def _fewer_collections() -> None:
     _young, mid, old = gc.get_threshold()
     gc.set_threshold(GC_YOUNG_THRESHOLD, mid, old)
 
+
+def _untranslated(message: str) -> str:
+    return message
+
+
+def _english_messages() -> None:
+    """A ``gear3d`` process takes argparse's few words of its own ("options", "show this
+    help message and exit") untranslated, as gear3d's own messages are: argparse looks each
+    one up in gettext's catalogues, which imports :mod:`locale` and searches the locale
+    directories for every word, about 1 ms of every command (issue 28). Only argparse's
+    module global is replaced, in a real ``gear3d`` process only (not when :func:`main` is
+    called with a list)."""
+    argparse._ = _untranslated
+
 #: sub-command modules, in help order; each defines ``add_parser(subparsers)`` and ``run(args)``
 COMMANDS = ["profile", "inspect", "body", "pair", "check", "planetary", "harmonic", "bevel", "face-gear", "worm", "drive", "build", "batch", "bench", "families", "serve"]
 
@@ -274,6 +288,7 @@ def main(argv=None) -> int:
     if argv is None:
         _keep_freed_memory()
         _fewer_collections()
+        _english_messages()
     try:
         words, lim = _take_budget(words)
     except GearError as e:

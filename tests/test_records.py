@@ -121,6 +121,7 @@ def _behaviour(cls, args):
     a, b = cls(*args), cls(*args)
     out = {"repr": re.sub(r" at 0x[0-9a-f]+", "", repr(a)), "eq": a == b, "ne": a != b, "eq_other": a == object(),
            "hashable": cls.__hash__ is not None, "fields": [f.name for f in dataclasses.fields(cls)],
+           "types": [f.type for f in dataclasses.fields(cls)], "annotations": dict(cls.__dict__.get("__annotations__", {})),
            "asdict": repr(dataclasses.asdict(a)), "is_dc": dataclasses.is_dataclass(a),
            "params": {k: getattr(cls.__dataclass_params__, k) for k in ("init", "repr", "eq", "frozen")},
            "doc": cls.__doc__ if cls.__doc__ and "(" in cls.__doc__ else None,
