@@ -594,4 +594,5 @@ def finite(G):
             raise GearError("tool", "this cutter", "a tool whose every normal meets the pitch line/circle",
                             "some tool normals never pass through the pitch point (no contact)")
         return p
+    f.raw = G       # evaluated with its batch (gear3d.tessellate.evaluate_grouped), then checked
     return f

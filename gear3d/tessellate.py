@@ -29,26 +29,73 @@ def chord_deviation(f, t: np.ndarray, pts: np.ndarray | None = None, tol: float 
     return peak_deviation(f, t[:-1], t[1:], pts[:-1], pts[1:], _probe_distances(f, t, pts), tol)
 
 
-def chord_peaks(f, a: np.ndarray, b: np.ndarray, pa: np.ndarray, pb: np.ndarray) -> np.ndarray:
+def chord_peaks(f, a: np.ndarray, b: np.ndarray, pa: np.ndarray, pb: np.ndarray, owner=None) -> np.ndarray:
     """Measured max distance (mm) of the exact curve ``f`` to chords that need not be
     consecutive: parameter intervals [a, b], ends ``pa``/``pb`` (mm), each followed to its
-    sag's peak (:func:`peak_deviation`)."""
+    sag's peak (:func:`peak_deviation`). ``owner`` (ascending piece indices, one a chord):
+    ``f`` is a list of pieces, evaluated together (:func:`evaluate_grouped`)."""
     tp = (a[:, None] + (b - a)[:, None] * _PROBE[None, :]).ravel()
-    q = f(tp).reshape(len(a), len(_PROBE), 2)
-    return peak_deviation(f, a, b, pa, pb, point_segment_distance(q, pa[:, None, :], pb[:, None, :]))
+    q = _at(f, owner, None, tp).reshape(len(a), len(_PROBE), 2)
+    return peak_deviation(f, a, b, pa, pb, point_segment_distance(q, pa[:, None, :], pb[:, None, :]), owner=owner)
 
 
 def largest_deviation(fs, ts, pts, devs, peaked_above: float = np.inf) -> float:
     """The largest measured chord deviation (mm) of pieces ``fs`` (samples ``ts``, points
     ``pts``, chord deviations ``devs``, updated): the chords within :data:`PEAK_SHARE` of it
     that were not followed to their sag's peak when made (below ``peaked_above``, mm) are
-    followed now (their probes alone can read a few per cent low)."""
+    followed now (their probes alone can read a few per cent low), all pieces' at once."""
     top = max((float(d.max(initial=0.0)) for d in devs), default=0.0)
-    for f, t, p, d in zip(fs, ts, pts, devs):
-        near = np.nonzero((d >= PEAK_SHARE * top) & (d < peaked_above))[0] if top > 0 else []
-        if len(near):
-            d[near] = np.maximum(d[near], chord_peaks(f, t[near], t[near + 1], p[near], p[near + 1]))
+    near = [np.nonzero((d >= PEAK_SHARE * top) & (d < peaked_above))[0] if top > 0 else np.zeros(0, int)
+            for d in devs]
+    have = [i for i, n in enumerate(near) if len(n)]
+    if have:
+        owner = np.concatenate([np.full(len(near[i]), k) for k, i in enumerate(have)])
+        cat = [np.concatenate(x) for x in zip(*[(ts[i][near[i]], ts[i][near[i] + 1], pts[i][near[i]],
+                                                  pts[i][near[i] + 1]) for i in have])]
+        peaks = chord_peaks([fs[i] for i in have], *cat, owner=owner)
+        a = 0
+        for i in have:
+            n, d = near[i], devs[i]
+            d[n] = np.maximum(d[n], peaks[a:a + len(n)])
+            a += len(n)
     return max((float(d.max(initial=0.0)) for d in devs), default=0.0)
+
+
+def evaluate_grouped(fs, counts, t) -> np.ndarray:
+    """G(t) (mm, (N, 2)) of several pieces at once: ``t`` (N,) holds ``counts[i]``
+    consecutive parameters of ``fs[i]`` for each i in turn. Pieces that share a
+    ``batch_key`` (rack envelope pieces, :meth:`gear3d.envelope.EnvelopePiece.evaluate_many`;
+    a builder's NaN-refusing wrapper, :func:`gear3d.buildsteps.finite`, names its piece
+    ``raw``) are evaluated in one call: the same numbers as one call each, point by point.
+    Where a wrapper would refuse a point, each piece is called on its own (it raises).
+
+    >>> f = lambda t: np.stack([t, 2 * t], axis=1)
+    >>> evaluate_grouped([f, f], [1, 2], np.array([0.5, 1.0, 2.0]))[:, 1].tolist()
+    [1.0, 2.0, 4.0]
+    """
+    raws = [getattr(f, "raw", f) for f in fs]
+    key = getattr(raws[0], "batch_key", None) if raws else None
+    if key is not None and all(getattr(r, "batch_key", None) == key for r in raws):
+        g = raws[0].evaluate_many(raws, counts, t)
+        if all(r is f for r, f in zip(raws, fs)) or np.isfinite(g).all():
+            return g
+    out, a = [], 0
+    for f, n in zip(fs, counts):
+        if n:
+            out.append(np.asarray(f(t[a:a + int(n)]), float))
+        a += int(n)
+    return np.concatenate(out) if out else np.zeros((0, 2))
+
+
+def _at(f, owner, rows, x) -> np.ndarray:
+    """``f`` at parameters ``x`` (mm, (len(x), 2)); with ``owner``: ``f`` is a list of
+    pieces and ``x`` holds an equal number of parameters for each chord ``rows`` (all chords
+    when None) of piece ``owner[row]``, in order (:func:`evaluate_grouped`)."""
+    if owner is None:
+        return f(x)
+    own = owner if rows is None else owner[rows]
+    per = len(x) // max(len(own), 1)
+    return evaluate_grouped(f, np.bincount(own, minlength=len(f)) * per, x)
 
 
 def _probe_distances(f, t: np.ndarray, pts: np.ndarray) -> np.ndarray:
@@ -60,14 +107,15 @@ def _probe_distances(f, t: np.ndarray, pts: np.ndarray) -> np.ndarray:
 
 
 def peak_deviation(f, a: np.ndarray, b: np.ndarray, pa: np.ndarray, pb: np.ndarray, d: np.ndarray,
-                   tol: float = np.inf, of_largest: bool = True) -> np.ndarray:
+                   tol: float = np.inf, of_largest: bool = True, owner=None) -> np.ndarray:
     """Each chord's largest measured deviation (mm): the largest of its probes' distances
     ``d`` (chords x :data:`_PROBE`) and, for the chords that could reach the tolerance
     ``tol`` (mm) or (``of_largest``) the largest deviation (those whose probes come within
     :data:`PEAK_SHARE` of the smaller), of exact points on a finer grid (:data:`_ZOOM`)
     between the largest probe's two neighbours and at the peak of the parabola through the
     grid's largest point and its neighbours (in the chord's parameter interval [a, b],
-    ends ``pa``/``pb``). The probes alone miss a
+    ends ``pa``/``pb``). With ``owner`` (ascending piece indices, one a chord), ``f`` is a
+    list of pieces evaluated together and "the largest" is each piece's own. The probes alone miss a
     sag's peak that falls between two of them: by 0.2% on an involute's flank chords and
     by 2% on an arc run as t**1.5 (to 1e-6 here). Every value is the distance of a point on the exact curve.
 
@@ -82,8 +130,11 @@ def peak_deviation(f, a: np.ndarray, b: np.ndarray, pa: np.ndarray, pb: np.ndarr
     if not len(out):
         return out
     with np.errstate(invalid="ignore"):
-        top = np.nanmax(out) if of_largest and np.isfinite(out).any() else np.inf
-        sel = np.nonzero(out >= PEAK_SHARE * min(tol, top))[0]
+        if owner is None:
+            top = np.nanmax(out) if of_largest and np.isfinite(out).any() else np.inf
+        else:
+            top = _piece_top(out, owner, len(f))[owner] if of_largest else np.inf
+        sel = np.nonzero(out >= PEAK_SHARE * np.minimum(tol, top))[0]
     if not len(sel):
         return out
     k = np.clip(d[sel].argmax(axis=1), 1, len(_PROBE) - 2)
@@ -96,7 +147,7 @@ def peak_deviation(f, a: np.ndarray, b: np.ndarray, pa: np.ndarray, pb: np.ndarr
     y[:, 0], y[:, -1] = d[sel, k - 1], d[sel, k + 1]
     inner = x[:, 1:-1]
     with np.errstate(invalid="ignore"):
-        q = f((a[:, None] + (b - a)[:, None] * inner).ravel()).reshape(len(sel), inner.shape[1], 2)
+        q = _at(f, owner, sel, (a[:, None] + (b - a)[:, None] * inner).ravel()).reshape(len(sel), inner.shape[1], 2)
         y[:, 1:-1] = point_segment_distance(q, pa[:, None, :], pb[:, None, :])
     yf = np.where(np.isfinite(y), y, -np.inf)
     j = np.clip(yf.argmax(axis=1), 1, len(_ZOOM) - 2)
@@ -108,10 +159,19 @@ def peak_deviation(f, a: np.ndarray, b: np.ndarray, pa: np.ndarray, pb: np.ndarr
         den = (x1 - x0) * (y1 - y2) - (x1 - x2) * (y1 - y0)
         xs = x1 - 0.5 * num / den
         xs = np.clip(np.where(np.isfinite(xs), xs, x1), x0, x2)
-        ys = point_segment_distance(f(a + (b - a) * xs), pa, pb)
+        ys = point_segment_distance(_at(f, owner, sel, a + (b - a) * xs), pa, pb)
     best = np.fmax(out[sel], np.fmax(np.where(np.isfinite(yf), y, np.nan).max(axis=1, initial=-np.inf), ys))
     out[sel] = best
     return out
+
+
+def _piece_top(out: np.ndarray, owner: np.ndarray, n: int) -> np.ndarray:
+    """Each piece's largest of ``out`` (NaN skipped; inf for a piece with no finite value)."""
+    top = np.full(n, -np.inf)
+    np.fmax.at(top, owner, out)
+    fin = np.zeros(n, bool)
+    np.logical_or.at(fin, owner, np.isfinite(out))
+    return np.where(fin, top, np.inf)
 
 
 #: the share of the tolerance (or of the largest deviation) above which a chord's probes take them
