@@ -22,17 +22,16 @@ from .corners import (CORNER_SHARE, CORNER_SHRINK, MIN_CORNER_SINE, chords_near,
 from .plan_corners import corner_estimate, corner_refinement
 from .envelope import PRUNE_SHARE, RIM_SHARE, circle_loop, pattern, signed_area, trim
 from .errors import GearError, ToleranceError
-from .geometry import point_segment_distance, rotate, segment_foot, unique_sorted
-from .tessellate import PEAK_SHARE, chord_deviation, largest_deviation, tessellate
+from .geometry import point_segment_distance, rotate, segment_foot
+from .branches import physicals, transitions
+from .tessellate import PEAK_SHARE, chord_deviation, evaluate_grouped, largest_deviation, tessellate, \
+    tessellate_many
 
 
 #: Clipper2 (inside manifold3d) rounds to 1e-8 mm; half a unit in each axis
 CLIPPER_ROUNDING = 0.5e-8 * math.sqrt(2)
 #: rounds of the tip/root radius search: each keeps 2 of 32 intervals, 16^5 ~ 1e6 x narrower
 EXTREME_ROUNDS = 5
-#: singular points: grid points per bracket and rounds (64^9 > 2^52: to double precision)
-TRANSITION_GRID = 64
-TRANSITION_ROUNDS = 9
 #: the blank's radius lies this many tolerances beyond the nominal tip (its chords sag
 #: by up to one tolerance and must never touch the true tip)
 BLANK_MARGIN = 2
@@ -208,7 +207,7 @@ def generate(pieces, teeth: int, internal: bool, tol: float, rim_radius, clip_ra
             samples.add(arc, tessellate(arc, budget * share))
         tr = trim_and_refine(samples, nraw, teeth, internal, rim_radius, tol, blank0, clip_binding, prune)
         chain, label = period_chain(fs, samples.ts[:nraw], samples.pts[:nraw])
-        phys = np.concatenate([physical(pieces[i], samples.ts[i])[(0 if i == 0 else 1):] for i in range(nraw)])
+        phys = physicals(pieces, samples.ts[:nraw])
         if not prune or not tr.loops or not backward_survivors(tooth_loop(tr.loops, internal), chain, label, phys,
                                                                teeth, tol):
             return Generated(samples, tr, nraw, teeth, internal, chain, label, phys, nominal_tip_radius, minv)
@@ -227,7 +226,7 @@ def sample_pieces(pieces, fs, teeth: int, tol: float, budget: float):
     # exact pieces give its points exactly at its parameters; else sampled here
     slot, args = _probecache.first_sampling(), (teeth, tol, budget, len(fs))
     kept = _probecache.take(slot, args)
-    if kept is not None and all(np.array_equal(f(t), p, equal_nan=True) for f, t, p in zip(fs, *kept[:2])):
+    if kept is not None and _gives(fs, kept[0], kept[1]):
         samples, cr, minv = Samples(list(fs), *kept[:3]), kept[3], kept[4]
     else:
         samples, cr, minv = _sample_period(pieces, fs, teeth, tol, budget)
@@ -240,12 +239,20 @@ def sample_pieces(pieces, fs, teeth: int, tol: float, budget: float):
     return samples, minv
 
 
+def _gives(fs, ts, pts) -> bool:
+    """Whether the pieces ``fs`` give exactly the points ``pts`` (mm) at ``ts`` (evaluated
+    together, :func:`gear3d.tessellate.evaluate_grouped`)."""
+    if not fs:
+        return True
+    g = evaluate_grouped(fs, [len(t) for t in ts], np.concatenate(ts))
+    return np.array_equal(g, np.concatenate(pts), equal_nan=True)
+
+
 def _sample_period(pieces, fs, teeth: int, tol: float, budget: float):
     """:func:`sample_pieces`' work: (samples, the corner plan, fewest vertices per tooth)."""
-    tess = [tessellate(f, budget) for f in fs]
+    tess = tessellate_many(fs, budget)
     samples = Samples(list(fs), *([getattr(x, a) for x in tess] for a in ("t", "points", "deviation")), PEAK_SHARE * budget)
-    for i, G in enumerate(pieces):
-        t2 = with_transitions(G, samples.ts[i])
+    for i, t2 in enumerate(transitions(pieces, samples.ts)):
         if len(t2) != len(samples.ts[i]):
             samples.ts[i], samples.pts[i] = t2, fs[i](t2)
             samples.devs[i] = chord_deviation(fs[i], t2, samples.pts[i], budget)
@@ -414,62 +421,6 @@ def sector_distance(loop: np.ndarray, pts: np.ndarray, teeth: int) -> np.ndarray
         dd, _ = segment_foot(pts[s0:s0 + step, None, :], a[None], b[None])
         d[s0:s0 + step] = dd.min(axis=1)
     return d
-
-
-def regularity(piece, t):
-    """dG/dt . (tool tangent) (normalised) at ``t``: > 0 on a regular branch, < 0 past a cusp."""
-    t = np.asarray(t, float)
-    h = 1e-7
-    n = len(t)
-    ev = getattr(piece, "evaluate_with_tangent", None)
-    if ev is not None:                       # one evaluation for the stencil and the tangent
-        G, T3 = ev(np.concatenate([t + h, t - h, t]))
-        dG = (G[:n] - G[n:2 * n]) / (2 * h)
-        T = T3[2 * n:]
-    else:
-        dG = (piece(t + h) - piece(t - h)) / (2 * h)
-        T = piece.tool_tangent(t)
-    scale = np.hypot(*dG.T) * np.hypot(*T.T)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        return np.einsum("ij,ij->i", dG, T) / np.where(scale > 0, scale, 1.0)
-
-
-def with_transitions(piece, t):
-    """Add the parameters where a piece's envelope turns back (singular points) to ``t``."""
-    if getattr(piece, "tool_tangent", None) is None or not getattr(piece, "smooth", False):
-        return t
-    g = regularity(piece, t)
-    flips = np.nonzero(np.sign(g[:-1]) * np.sign(g[1:]) < 0)[0]
-    if not len(flips):
-        return t
-    # all sign changes at once: each round evaluates TRANSITION_GRID points per bracket and
-    # keeps the one sub-interval where the sign flips (to the last representable parameter)
-    a, b, ga = t[flips].copy(), t[flips + 1].copy(), g[flips].copy()
-    frac = np.linspace(0.0, 1.0, TRANSITION_GRID + 1)[1:-1]
-    for _ in range(TRANSITION_ROUNDS):
-        x = a[:, None] + (b - a)[:, None] * frac[None, :]
-        gx = regularity(piece, x.ravel()).reshape(x.shape)
-        same = np.sign(gx) == np.sign(ga)[:, None]
-        # the last grid point on a's side: same sign up to it (the branch is regular there)
-        k = np.where(same.all(axis=1), len(frac), np.argmin(same, axis=1)) - 1
-        rows = np.arange(len(a))
-        has = k >= 0
-        a2 = np.where(has, x[rows, np.maximum(k, 0)], a)
-        ga = np.where(has, gx[rows, np.maximum(k, 0)], ga)
-        b = np.where(k + 1 < len(frac), x[rows, np.minimum(k + 1, len(frac) - 1)], b)
-        a = a2
-        if np.all(b - a <= 4e-16 * np.maximum(1.0, np.abs(a))):
-            break
-    extra = np.where(ga >= 0, a, b)          # the sample on the regular side
-    return unique_sorted(np.sort(np.concatenate([t, extra])))
-
-
-def physical(piece, t):
-    """Mask of samples on a regular branch: the envelope runs the same way as the tool."""
-    tt = getattr(piece, "tool_tangent", None)
-    if tt is None or not getattr(piece, "smooth", False):
-        return np.ones(len(t), bool)
-    return ~(regularity(piece, t) < -1e-9)
 
 
 def period_chain(fs, ts, pts_list=None):

@@ -77,11 +77,12 @@ class EnvelopePiece:
         return self._evaluate(np.asarray(t, float), True)
 
     @staticmethod
-    def evaluate_many(pieces, counts, t) -> np.ndarray:
+    def evaluate_many(pieces, counts, t, tangent: bool = False):
         """G (mm, (N, 2)) of several pieces sharing one ``batch_key`` at once: ``t`` (N,)
         holds ``counts[i]`` consecutive parameters of ``pieces[i]`` for each i in turn. The
         same numbers as calling each piece on its own block (the same operations, point by
-        point).
+        point). ``tangent``: (G, tool tangents) as :meth:`evaluate_with_tangent` (smooth
+        pieces).
 
         >>> from gear3d.racks import involute_rack
         >>> ps = [p for p, _ in rack_envelope(involute_rack(1.0), 10.0)][:3]
@@ -93,7 +94,7 @@ class EnvelopePiece:
         key = pieces[0].batch_key
         if key is None or any(p.batch_key != key for p in pieces):
             raise ValueError("evaluate_many: pieces without one common batch_key")
-        return _rack_many(pieces, counts, np.asarray(t, float), *key[1:])
+        return _rack_many(pieces, counts, np.asarray(t, float), *key[1:], tangent=tangent)
 
 
 def _rack_contact(u, v, du, dv, radius, shift, sigma, tangent):
@@ -120,7 +121,7 @@ def _rack_contact(u, v, du, dv, radius, shift, sigma, tangent):
     return G, T
 
 
-def _rack_many(pieces, counts, t, radius, shift, sigma):
+def _rack_many(pieces, counts, t, radius, shift, sigma, tangent=False):
     """:meth:`EnvelopePiece.evaluate_many` for rack envelope pieces: each element's (u, v,
     du, dv) on its block of ``t``, then one :func:`_rack_contact` for all."""
     n_all = len(t)
@@ -136,7 +137,8 @@ def _rack_many(pieces, counts, t, radius, shift, sigma):
             else:
                 u[a:b], v[a:b], du[a:b], dv[a:b] = el.uv(t[a:b])
         a = b
-    return _rack_contact(u, v, du, dv, radius, shift, sigma, False)[0]
+    g = _rack_contact(u, v, du, dv, radius, shift, sigma, tangent)
+    return g if tangent else g[0]
 
 
 def rack_envelope_piece(el, radius: float, shift: float, internal: bool):

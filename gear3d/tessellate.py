@@ -184,19 +184,28 @@ _ZOOM = np.linspace(0.0, 1.0, 9)
 def _equal_sag_params(f, tol: float, n0: int) -> np.ndarray:
     """Initial parameters placed so that every chord sags about ``tol`` (sqrt-curvature density)."""
     t = np.linspace(0.0, 1.0, n0 + 1)
-    p = f(t)
-    seg = np.diff(p, axis=0)
-    ds = np.hypot(seg[:, 0], seg[:, 1])
-    ang = np.arctan2(seg[:, 1], seg[:, 0])
-    turn = np.abs(np.angle(np.exp(1j * np.diff(ang))))  # turning at interior vertices
+    return _sag_params(t, _sag_levels(np.asarray(f(t))[None], tol)[0], tol)
+
+
+def _sag_levels(p: np.ndarray, tol: float) -> np.ndarray:
+    """Each piece's cumulative chord count (pieces x samples) at its samples ``p`` (mm,
+    pieces x samples x 2) for chords sagging ``tol`` (mm): the sqrt-curvature density."""
+    seg = np.diff(p, axis=1)
+    ds = np.hypot(seg[..., 0], seg[..., 1])
+    ang = np.arctan2(seg[..., 1], seg[..., 0])
+    turn = np.abs(np.angle(np.exp(1j * np.diff(ang, axis=1))))  # turning at interior vertices
     # spread each vertex's turning over its two neighbouring segments
     tseg = np.zeros_like(ds)
-    tseg[:-1] += 0.5 * turn
-    tseg[1:] += 0.5 * turn
+    tseg[:, :-1] += 0.5 * turn
+    tseg[:, 1:] += 0.5 * turn
     # chord of length L on curvature k sags k L^2 / 8; segments needed on a sample
     # segment of length ds with turning dpsi: ds*sqrt(k/(8 tol)) = sqrt(dpsi*ds/(8 tol))
     need = np.sqrt(tseg * ds / (8.0 * tol))
-    cum = np.concatenate([[0.0], np.cumsum(need)])
+    return np.concatenate([np.zeros((len(p), 1)), np.cumsum(need, axis=1)], axis=1)
+
+
+def _sag_params(t: np.ndarray, cum: np.ndarray, tol: float) -> np.ndarray:
+    """Parameters at equal steps of one piece's cumulative chord count ``cum`` over ``t``."""
     if not np.isfinite(cum[-1]) or cum[-1] > MAX_VERTICES:
         raise ToleranceError("tolerance", tol, "a coarser value",
                              f"more than {MAX_VERTICES} vertices per piece would be needed: the curve "
@@ -250,15 +259,64 @@ def split_chords(f, t: np.ndarray, pts: np.ndarray, dev: np.ndarray, chords: np.
 
 def tessellate(f, tol: float, n0: int = 512) -> Tessellation:
     """Sample piece ``f`` so that every chord is within ``tol`` (mm) of it, measured."""
-    if tol < 0.9 * MIN_TOLERANCE:   # builders keep ~7e-9 mm of the budget for Clipper's rounding
-        raise ToleranceError("tolerance", tol, f"a number >= {MIN_TOLERANCE:g} mm",
-                             "finer than double precision can certify on parts up to 1 m")
+    _check_tolerance(tol)
     t = _equal_sag_params(f, tol, n0)
-    min_v = float(len(t) - 1)
     pts = f(t)
     # followed to their peak where they could reach the tolerance; the largest of a whole
     # profile is followed by its builder (gear3d.buildsteps.Samples.max_deviation)
     dev = peak_deviation(f, t[:-1], t[1:], pts[:-1], pts[1:], _probe_distances(f, t, pts), tol, False)
+    return _bisected(f, t, pts, dev, tol)
+
+
+def tessellate_many(fs, tol: float, n0: int = 512) -> list:
+    """:func:`tessellate` of each piece of ``fs`` (a list of :class:`Tessellation`, the same
+    samples and measurements), their first samples and measurements evaluated together
+    (:func:`evaluate_grouped`: one call for pieces that share a ``batch_key``). A piece
+    that fails raises what :func:`tessellate` of the pieces in turn raises.
+
+    >>> arc = lambda r: (lambda t: r * np.stack([np.cos(t), np.sin(t)], axis=1))
+    >>> out = tessellate_many([arc(1.0), arc(4.0)], 1e-3)     # unit-speed arcs, radii 1 and 4 mm
+    >>> [bool(r * (1 - np.cos(np.diff(x.t).max() / 2)) <= 1e-3) for r, x in zip((1.0, 4.0), out)]
+    [True, True]
+    """
+    fs = list(fs)
+    if len(fs) > 1:
+        try:
+            return _tessellate_batch(fs, tol, n0)
+        except Exception:           # noqa: BLE001 - the pieces in turn raise what they raise
+            pass
+    return [tessellate(f, tol, n0) for f in fs]
+
+
+def _tessellate_batch(fs, tol: float, n0: int) -> list:
+    """:func:`tessellate_many`'s work: equal-sag samples, points and chord measurements of
+    all pieces at once, then each piece's bisection (:func:`_bisected`)."""
+    _check_tolerance(tol)
+    k = len(fs)
+    t0 = np.linspace(0.0, 1.0, n0 + 1)
+    cum = _sag_levels(evaluate_grouped(fs, [n0 + 1] * k, np.tile(t0, k)).reshape(k, n0 + 1, 2), tol)
+    ts = [_sag_params(t0, c, tol) for c in cum]
+    n = np.array([len(t) for t in ts])
+    pts = np.split(evaluate_grouped(fs, n, np.concatenate(ts)), np.cumsum(n)[:-1])
+    a, b = np.concatenate([t[:-1] for t in ts]), np.concatenate([t[1:] for t in ts])
+    pa, pb = np.concatenate([p[:-1] for p in pts]), np.concatenate([p[1:] for p in pts])
+    owner = np.repeat(np.arange(k), n - 1)
+    tp = (a[:, None] + (b - a)[:, None] * _PROBE[None, :]).ravel()
+    d = point_segment_distance(_at(fs, owner, None, tp).reshape(len(a), len(_PROBE), 2), pa[:, None, :], pb[:, None, :])
+    dev = np.split(peak_deviation(fs, a, b, pa, pb, d, tol, False, owner=owner), np.cumsum(n - 1)[:-1])
+    return [_bisected(f, t, p, e, tol) for f, t, p, e in zip(fs, ts, pts, dev)]
+
+
+def _check_tolerance(tol: float):
+    if tol < 0.9 * MIN_TOLERANCE:   # builders keep ~7e-9 mm of the budget for Clipper's rounding
+        raise ToleranceError("tolerance", tol, f"a number >= {MIN_TOLERANCE:g} mm",
+                             "finer than double precision can certify on parts up to 1 m")
+
+
+def _bisected(f, t: np.ndarray, pts: np.ndarray, dev: np.ndarray, tol: float) -> Tessellation:
+    """Bisect the chords of samples ``t`` (points ``pts``, measured deviations ``dev``, mm)
+    of piece ``f`` above ``tol`` (mm) until none is."""
+    min_v = float(len(t) - 1)
     for _ in range(60):
         bad = dev > tol
         if not bad.any():
