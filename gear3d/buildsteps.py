@@ -363,39 +363,56 @@ def exact_boundary(fs, gen: "Generated", keep, tl, tol, rim_radius, max_err):
     from .exact import ExactBoundary
     ts, teeth, internal, corner_cuts = gen.ts, gen.teeth, gen.internal, gen.trimmed.corner_cuts
     arc_piece, arc_t = gen.arc if gen.arc is not None else (None, None)
-    pieces = []
-    start = 0
+    edges = sector_edges(tl, teeth)             # one sector's edges for every distance below
+
+    def dist(p):
+        return sector_distance(tl, p, teeth, edges)
     items = [(f, t, corner_cuts.get(i, [])) for i, (f, t) in enumerate(zip(fs, ts))]
     if arc_piece is not None:
         items.append((arc_piece, arc_t, corner_cuts.get(len(fs), [])))
+    runs, start = [], 0
     for i, (f, t, cs) in enumerate(items):
         n = len(t)
         if i < len(fs):
             k = keep[start:start + n] if i == 0 else keep[start - 1:start - 1 + n]
             start += n if i == 0 else n - 1
         else:
-            k = sector_distance(tl, f(t), teeth) <= SURVIVED * tol + 1e-9
+            k = dist(f(t)) <= SURVIVED * tol + 1e-9
         k0 = k
-        k, cuts = piece_cuts(f, t, k, cs, lambda p: sector_distance(tl, p, teeth),
-                             SIDE_SLACK * max_err + 1e-8)
-        past = k0 & ~k                         # samples past a corner (cut-away branch)
+        k, cuts = piece_cuts(f, t, k, cs, dist, SIDE_SLACK * max_err + 1e-8)
         # a chord whose two ends were trimmed away can still carry boundary in its middle
-        # (an arc clipped at both ends): look at three exact points inside it
+        # (an arc clipped at both ends): three exact points inside it, below
         dead = np.nonzero(~(k[:-1] | k[1:]))[0]
-        mid_alive = np.zeros(n - 1, bool)
+        runs.append((f, t, k, cuts, k0 & ~k, dead))      # k0 & ~k: past a corner (cut-away branch)
+    alive = _dead_mids_alive([r[0] for r in runs], [r[1] for r in runs], [r[5] for r in runs], dist,
+                             SURVIVED * tol + 1e-9)
+    pieces = []
+    for (f, t, k, cuts, past, dead), near in zip(runs, alive):
+        mid_alive = np.zeros(len(t) - 1, bool)
         if len(dead):
-            tm = (t[dead][:, None] + (t[dead + 1] - t[dead])[:, None] * np.array([0.25, 0.5, 0.75])).ravel()
-            with np.errstate(invalid="ignore"):
-                pm = np.asarray(f(tm), float)
-            ok = np.isfinite(pm).all(axis=1)
-            near = np.zeros(len(tm), bool)
-            if ok.any():
-                near[ok] = sector_distance(tl, pm[ok], teeth) <= SURVIVED * tol + 1e-9
-            mid_alive[dead] = near.reshape(-1, 3).any(axis=1) & ~(past[dead] | past[dead + 1])
+            mid_alive[dead] = near & ~(past[dead] | past[dead + 1])
         pieces.append((f, t, k, cuts, mid_alive))
     circles = [rim_radius] if internal and rim_radius else []
-    a, b = sector_edges(tl, teeth)
+    a, b = edges
     return ExactBoundary(pieces, teeth, circles, polygon=(a, b), tol=tol, polygon_error=max_err)
+
+
+def _dead_mids_alive(fs, ts, dead, dist, within: float) -> list:
+    """Per piece, whether any of three exact points inside each chord ``dead[i]`` (both ends
+    trimmed away) lies ``within`` (mm) of the polygon (``dist``, mm); all pieces' points
+    evaluated together (:func:`gear3d.tessellate.evaluate_grouped`; NaN: no contact, never)."""
+    tm = [(t[d][:, None] + (t[d + 1] - t[d])[:, None] * np.array([0.25, 0.5, 0.75])).ravel()
+          for t, d in zip(ts, dead)]
+    n = [len(x) for x in tm]
+    if not sum(n):
+        return [np.zeros(0, bool) for _ in fs]
+    with np.errstate(invalid="ignore"):
+        pm = np.asarray(evaluate_grouped(fs, n, np.concatenate(tm)), float)
+    ok = np.isfinite(pm).all(axis=1)
+    near = np.zeros(len(pm), bool)
+    if ok.any():
+        near[ok] = dist(pm[ok]) <= within
+    return [x.reshape(-1, 3).any(axis=1) for x in np.split(near, np.cumsum(n)[:-1])]
 
 
 def sector_edges(loop: np.ndarray, teeth: int):
@@ -411,10 +428,11 @@ def sector_edges(loop: np.ndarray, teeth: int):
     return a, b
 
 
-def sector_distance(loop: np.ndarray, pts: np.ndarray, teeth: int) -> np.ndarray:
+def sector_distance(loop: np.ndarray, pts: np.ndarray, teeth: int, edges=None) -> np.ndarray:
     """Distance (mm) from points near tooth 0 to the edges of ``loop`` that lie within 1.5
-    pitches of tooth 0 (all edges for gears of 4 teeth or fewer)."""
-    a, b = sector_edges(loop, teeth)
+    pitches of tooth 0 (all edges for gears of 4 teeth or fewer; ``edges``: those
+    (:func:`sector_edges`), when known)."""
+    a, b = sector_edges(loop, teeth) if edges is None else edges
     d = np.empty(len(pts))
     step = max(1, 400_000 // max(len(a), 1))
     for s0 in range(0, len(pts), step):

@@ -66,25 +66,40 @@ def evaluate_grouped(fs, counts, t) -> np.ndarray:
     consecutive parameters of ``fs[i]`` for each i in turn. Pieces that share a
     ``batch_key`` (rack envelope pieces, :meth:`gear3d.envelope.EnvelopePiece.evaluate_many`;
     a builder's NaN-refusing wrapper, :func:`gear3d.buildsteps.finite`, names its piece
-    ``raw``) are evaluated in one call: the same numbers as one call each, point by point.
-    Where a wrapper would refuse a point, each piece is called on its own (it raises).
+    ``raw``) are evaluated in one call each batch: the same numbers as one call each, point
+    by point; the others one by one. Where a wrapper would refuse a point, each piece of the
+    batch is called on its own (it raises).
 
     >>> f = lambda t: np.stack([t, 2 * t], axis=1)
     >>> evaluate_grouped([f, f], [1, 2], np.array([0.5, 1.0, 2.0]))[:, 1].tolist()
     [1.0, 2.0, 4.0]
     """
     raws = [getattr(f, "raw", f) for f in fs]
-    key = getattr(raws[0], "batch_key", None) if raws else None
-    if key is not None and all(getattr(r, "batch_key", None) == key for r in raws):
+    counts = [int(n) for n in counts]
+    groups: dict = {}
+    for i, r in enumerate(raws):
+        key = getattr(r, "batch_key", None)
+        groups.setdefault(("piece", i) if key is None else ("batch", key), []).append(i)
+    if len(groups) == 1 and len(raws) > 1 and next(iter(groups))[0] == "batch":
         g = raws[0].evaluate_many(raws, counts, t)
         if all(r is f for r, f in zip(raws, fs)) or np.isfinite(g).all():
             return g
-    out, a = [], 0
-    for f, n in zip(fs, counts):
-        if n:
-            out.append(np.asarray(f(t[a:a + int(n)]), float))
-        a += int(n)
-    return np.concatenate(out) if out else np.zeros((0, 2))
+    bounds = np.cumsum([0, *counts])
+    out = np.empty((len(t), 2))
+    for (kind, _), idx in groups.items():
+        if kind == "batch" and len(idx) > 1:
+            g = raws[idx[0]].evaluate_many([raws[i] for i in idx], [counts[i] for i in idx],
+                                           np.concatenate([t[bounds[i]:bounds[i + 1]] for i in idx]))
+            if all(raws[i] is fs[i] for i in idx) or np.isfinite(g).all():
+                a = 0
+                for i in idx:
+                    out[bounds[i]:bounds[i + 1]] = g[a:a + counts[i]]
+                    a += counts[i]
+                continue
+        for i in idx:
+            if counts[i]:
+                out[bounds[i]:bounds[i + 1]] = fs[i](t[bounds[i]:bounds[i + 1]])
+    return out
 
 
 def _at(f, owner, rows, x) -> np.ndarray:
