@@ -457,27 +457,46 @@ def exact_extreme(fs, ts, label, chain, keep, polygon_value, largest):
     its piece between the neighbouring samples (a zooming grid search). Keeps the polygon value
     when that is more extreme (a trimmed corner) or the sample is not a vertex there.
     """
+    return exact_extremes(fs, ts, label, chain, keep, [(polygon_value, largest)])[0]
+
+
+def exact_extremes(fs, ts, label, chain, keep, wanted) -> list:
+    """:func:`exact_extreme` of each (polygon value, largest) of ``wanted`` (a profile's tip
+    and root), the zooms' exact points evaluated together (:func:`gear3d.tessellate.evaluate_grouped`)."""
     r = np.hypot(chain[:, 0], chain[:, 1])
+    out = [float(v) for v, _ in wanted]
     if not keep.any():
-        return float(polygon_value)
+        return out
     idx = np.nonzero(keep)[0]
-    j = idx[np.argmax(r[idx]) if largest else np.argmin(r[idx])]
-    if abs(r[j] - polygon_value) > 1e-6 * max(1.0, abs(polygon_value)):
-        return float(polygon_value)           # the extreme is a trimmed corner
-    pc = int(label[j])
-    t = ts[pc]
-    k = int(np.argmin(np.abs(fs[pc](t) - chain[j]).sum(axis=1)))
-    a, b = t[max(k - 1, 0)], t[min(k + 1, len(t) - 1)]
-    sgn = 1.0 if largest else -1.0
+    zoom = []                                 # (request, piece, sample, sign)
+    for q, (value, largest) in enumerate(wanted):
+        j = idx[np.argmax(r[idx]) if largest else np.argmin(r[idx])]
+        if not abs(r[j] - value) > 1e-6 * max(1.0, abs(value)):      # else the extreme is a trimmed corner
+            zoom.append((q, int(label[j]), j, 1.0 if largest else -1.0))
+    if not zoom:
+        return out
+    own = [fs[pc] for _, pc, _, _ in zoom]
+    at = np.split(evaluate_grouped(own, [len(ts[pc]) for _, pc, _, _ in zoom],
+                                   np.concatenate([ts[pc] for _, pc, _, _ in zoom])),
+                  np.cumsum([len(ts[pc]) for _, pc, _, _ in zoom])[:-1])
+    ab, best = [], []
+    for (q, pc, j, sgn), g in zip(zoom, at):
+        t = ts[pc]
+        k = int(np.argmin(np.abs(g - chain[j]).sum(axis=1)))
+        ab.append((t[max(k - 1, 0)], t[min(k + 1, len(t) - 1)]))
+        best.append(sgn * out[q])
     # zoom in on the extreme of |G(t)|: each round keeps 2 of 32 intervals
-    best = sgn * polygon_value
     for _ in range(EXTREME_ROUNDS):
-        x = np.linspace(a, b, 33)
-        r = sgn * np.hypot(*fs[pc](x).T)
-        i = int(np.argmax(r))
-        best = max(best, float(r[i]))
-        a, b = x[max(i - 1, 0)], x[min(i + 1, 32)]
-    return float(sgn * best)
+        x = [np.linspace(a, b, 33) for a, b in ab]
+        g = evaluate_grouped(own, [33] * len(zoom), np.concatenate(x)).reshape(len(zoom), 33, 2)
+        for z, (_q, _pc, _j, sgn) in enumerate(zoom):
+            rz = sgn * np.hypot(*g[z].T)
+            i = int(np.argmax(rz))
+            best[z] = max(best[z], float(rz[i]))
+            ab[z] = (x[z][max(i - 1, 0)], x[z][min(i + 1, 32)])
+    for (q, _pc, _j, sgn), v in zip(zoom, best):
+        out[q] = float(sgn * v)
+    return out
 
 
 def arc_piece(radius, teeth):

@@ -14,7 +14,7 @@ from dataclasses import field
 import numpy as np
 
 from .records import dataclass
-from .buildsteps import SURVIVED, cusps, exact_boundary, exact_extreme, generate, measured_error, \
+from .buildsteps import SURVIVED, cusps, exact_boundary, exact_extremes, generate, measured_error, \
     sector_distance, tooth_loop
 from .envelope import RIM_SHARE, signed_area
 from .errors import GearError, ToleranceError, check_number
@@ -284,8 +284,7 @@ def _report(prof: Profile, gen, max_err: float, rim_radius, options: dict) -> np
     # tip and root radii of the exact curve, not of the polygon's vertices: refine the
     # extreme surviving sample on its exact piece (a trimmed corner stays as it is)
     keep = dist <= SURVIVED * tol + 1e-9
-    tip = exact_extreme(gen.fs, gen.ts, label, chain, keep, tip, largest=not internal)
-    root = exact_extreme(gen.fs, gen.ts, label, chain, keep, root, largest=internal)
+    tip, root = exact_extremes(gen.fs, gen.ts, label, chain, keep, [(tip, not internal), (root, internal)])
     rc = np.hypot(chain[:, 0], chain[:, 1])
     removed = dist > SURVIVED * tol + 1e-9
     tip_side = (rc < prof.pitch_radius) if internal else (rc > prof.pitch_radius)
