@@ -125,32 +125,50 @@ def crossings(pts_list, teeth: int):
     h = max(_median(ln[ln > 0]) if (ln > 0).any() else 1.0, 1e-9) * _CELL_CHORDS
     span = float(np.ptp(np.concatenate([a0, b0]), axis=0).max())
     h = max(h, span / 4096)                        # at most 4096 x 4096 cells a side
+    # tooth 0 against itself and its neighbours' copies, all copies' chords at once
+    ks = (0,) if teeth == 1 else (0, 1, -1) if teeth > 2 else (0, 1)
+    copies = [(a0, b0, p0, i0)] + [_chords(pts_list, teeth, k) for k in ks[1:]]
+    a1, b1, p1, i1 = (np.concatenate(c) for c in zip(*copies))
+    n0 = len(a0)
     k0 = _cells(a0, b0, h)
-    out = []
-    for k in ((0,) if teeth == 1 else (0, 1, -1) if teeth > 2 else (0, 1)):
-        a1, b1, p1, i1 = (a0, b0, p0, i0) if k == 0 else _chords(pts_list, teeth, k)
-        i, j = _pairs(k0, k0 if k == 0 else _cells(a1, b1, h))
-        if k == 0:
-            keep = (i < j) & ~((p0[i] == p0[j]) & (np.abs(i0[i] - i0[j]) <= 1)) & \
-                ~((p0[j] == p0[i] + 1) & (i0[i] == (np.bincount(p0)[p0[i]] - 1)) & (i0[j] == 0))
-            i, j = i[keep], j[keep]
-        d1, d2 = b0[i] - a0[i], b1[j] - a1[j]
-        w = a1[j] - a0[i]
-        den = d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0]
-        with np.errstate(divide="ignore", invalid="ignore"):
-            s = (w[:, 0] * d2[:, 1] - w[:, 1] * d2[:, 0]) / den
-            u = (w[:, 0] * d1[:, 1] - w[:, 1] * d1[:, 0]) / den
-        hit = (den != 0) & (s > 0) & (s < 1) & (u > 0) & (u < 1)
-        n1, n2 = np.hypot(*d1[hit].T), np.hypot(*d2[hit].T)
-        sine = np.abs(den[hit]) / (n1 * n2)
-        x = a0[i[hit]] + s[hit, None] * d1[hit]
-        ends = np.stack([a0[i[hit]], b0[i[hit]], a1[j[hit]], b1[j[hit]]])
-        clear = np.hypot(*(ends - x[None]).transpose(2, 0, 1)).min(axis=0) > RAW_EPS
-        keep = clear & on_outline(x, d1[hit] / n1[:, None], d2[hit] / n2[:, None], np.minimum(n1, n2), pts_list, teeth)
-        spread = 0.5 * np.minimum(n1, n2) * sine
-        out.append((p0[i[hit]][keep], i0[i[hit]][keep], p1[j[hit]][keep], i1[j[hit]][keep], sine[keep],
-                    spread[keep]))
-    return tuple(np.concatenate(c) for c in zip(*out))
+    i, j = _pairs(k0, _cells(a1, b1, h))
+    own = j < n0                                   # tooth 0's own chords: each pair once, no neighbours
+    keep = ~own | ((i < j) & ~((p0[i] == p1[j]) & (np.abs(i0[i] - i1[j]) <= 1)) &
+                   ~((p1[j] == p0[i] + 1) & (i0[i] == (np.bincount(p0)[p0[i]] - 1)) & (i1[j] == 0)))
+    i, j = i[keep], j[keep]
+    d1, d2 = b0[i] - a0[i], b1[j] - a1[j]
+    w = a1[j] - a0[i]
+    den = d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        s = (w[:, 0] * d2[:, 1] - w[:, 1] * d2[:, 0]) / den
+        u = (w[:, 0] * d1[:, 1] - w[:, 1] * d1[:, 0]) / den
+    hit = (den != 0) & (s > 0) & (s < 1) & (u > 0) & (u < 1)
+    i, j, copy = i[hit], j[hit], j[hit] // n0
+    n1, n2 = np.hypot(*d1[hit].T), np.hypot(*d2[hit].T)
+    sine = np.abs(den[hit]) / (n1 * n2)
+    x = a0[i] + s[hit, None] * d1[hit]
+    ends = np.stack([a0[i], b0[i], a1[j], b1[j]])
+    clear = np.hypot(*(ends - x[None]).transpose(2, 0, 1)).min(axis=0) > RAW_EPS
+    keep = clear & _outline_copies(x, d1[hit] / n1[:, None], d2[hit] / n2[:, None], np.minimum(n1, n2),
+                                   copy, len(ks), pts_list, teeth)
+    spread = 0.5 * np.minimum(n1, n2) * sine
+    order = np.argsort(copy[keep], kind="stable")  # copy by copy, as tooth 0 meets them in turn
+    return tuple(c[keep][order] for c in (p0[i], i0[i], p1[j], i1[j], sine, spread))
+
+
+def _outline_copies(x, u1, u2, length, copy, copies: int, pts_list, teeth: int) -> np.ndarray:
+    """:func:`on_outline` of the crossings of each tooth copy (``copy``: its index, one a
+    crossing), one test for them all (each copy within :data:`MAX_OUTLINE_PAIRS` on its own;
+    the crossings of a copy past it are all kept)."""
+    out = np.ones(len(x), bool)
+    if not len(x):
+        return out
+    loop = _loop(pts_list, teeth)
+    small = np.bincount(copy, minlength=copies) * len(loop) <= MAX_OUTLINE_PAIRS
+    ok = small[copy]
+    if ok.any():
+        out[ok] = _outline_test(x[ok], u1[ok], u2[ok], length[ok], loop)
+    return out
 
 
 #: crossings x loop vertices the outline test takes at most (four probes each, about 0.2 s;
@@ -222,6 +240,11 @@ def on_outline(x, u1, u2, length, pts_list, teeth: int) -> np.ndarray:
     loop = _loop(pts_list, teeth)
     if len(x) * len(loop) > MAX_OUTLINE_PAIRS:
         return np.ones(len(x), bool)          # too many to test: all kept (the plan errs high)
+    return _outline_test(x, u1, u2, length, loop)
+
+
+def _outline_test(x, u1, u2, length, loop: np.ndarray) -> np.ndarray:
+    """:func:`on_outline` against the patterned ``loop`` (mm)."""
     sense = 1.0 if _winding(loop, np.zeros((1, 2)))[0] >= 0 else -1.0
     eps = 1e-3 * length[:, None]
     q = np.concatenate([x + eps * (sa * u1 + sb * u2) for sa in (1, -1) for sb in (1, -1)])
