@@ -578,7 +578,7 @@ def finite(G):
     """Wrap an evaluator so that NaN points (no contact) raise a clear error."""
     def f(t):
         p = G(t)
-        if not np.all(np.isfinite(p)):
+        if not np.isfinite(p).all():
             raise GearError("tool", "this cutter", "a tool whose every normal meets the pitch line/circle",
                             "some tool normals never pass through the pitch point (no contact)")
         return p

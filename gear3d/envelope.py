@@ -103,8 +103,9 @@ def _rack_contact(u, v, du, dv, radius, shift, sigma, tangent):
     h = v - shift
     with np.errstate(divide="ignore", invalid="ignore"):
         ycon = -h * (dv / du)               # Y of the contact point (X axis through pitch point)
-    bad = ~np.isfinite(ycon)
-    if bad.any():                           # normal parallel to the datum: contact only on it
+    fin = np.isfinite(ycon)
+    if not fin.all():                       # normal parallel to the datum: contact only on it
+        bad = ~fin
         ycon[bad] = np.where(np.abs(h[bad]) < 1e-15, 0.0, np.nan)
     phi = (ycon - u) / radius               # the rack translation at contact, over r
     c, s = np.cos(phi), np.sin(phi)

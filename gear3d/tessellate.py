@@ -242,7 +242,7 @@ class Tessellation:
 
 
 def split_chords(f, t: np.ndarray, pts: np.ndarray, dev: np.ndarray, chords: np.ndarray, tol: float = np.inf):
-    """Bisect chords ``chords`` (indices) of samples ``t`` / ``pts`` of piece ``f``.
+    """Bisect chords ``chords`` (ascending indices) of samples ``t`` / ``pts`` of piece ``f``.
 
     Only the new midpoints and the new chords' probes are evaluated (one call); the new
     chords are measured like every other (:func:`chord_deviation`). Returns the new
@@ -268,8 +268,12 @@ def split_chords(f, t: np.ndarray, pts: np.ndarray, dev: np.ndarray, chords: np.
     dev2[pos] = dev
     dev2[pos[ib]] = dnew[:n]
     dev2[pos[ib] + 1] = dnew[n:]
-    ins = ib + 1                                 # insert the midpoints after t_i
-    return np.insert(t, ins, tm), np.insert(pts, ins, pm, axis=0), dev2
+    # the midpoints go in after t_i (ib ascending: chord i's new first chord is pos[i])
+    vpos = np.append(pos, len(t) - 1 + n)       # where each old sample goes
+    t2, pts2 = np.empty(len(t) + n), np.empty((len(t) + n, 2))
+    t2[vpos], t2[pos[ib] + 1] = t, tm
+    pts2[vpos], pts2[pos[ib] + 1] = pts, pm
+    return t2, pts2, dev2
 
 
 def tessellate(f, tol: float, n0: int = 512) -> Tessellation:
