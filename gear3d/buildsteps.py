@@ -566,9 +566,12 @@ def chords_through(q, near, fs, ts, teeth):
     curves may cross nearer to q) and the number of exact crossings small."""
     if len(near) <= 2:
         return near
+    # every chord's ends (evaluated together), each turned to its tooth copy
+    g = evaluate_grouped([fs[pc] for pc, _, _ in near], [2] * len(near),
+                         np.array([ts[pc][j + e] for pc, j, _ in near for e in (0, 1)])).reshape(len(near), 2, 2)
     ends = np.empty((len(near), 2, 2))
-    for i, (pc, j, k) in enumerate(near):
-        ends[i] = rotate(fs[pc](np.array([ts[pc][j], ts[pc][j + 1]])), 2 * math.pi * k / teeth)
+    for i, (_, _, k) in enumerate(near):
+        ends[i] = rotate(g[i], 2 * math.pi * k / teeth)
     d = point_segment_distance(np.asarray(q, float)[None, :], ends[:, 0], ends[:, 1]).ravel()
     keep = [n for n, di in zip(near, d) if di <= THROUGH_CORNER]
     return keep if len(keep) >= 2 else near
