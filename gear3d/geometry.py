@@ -82,9 +82,26 @@ def segment_foot(p: np.ndarray, a: np.ndarray, b: np.ndarray):
     apx, apy = p[..., 0] - a[..., 0], p[..., 1] - a[..., 1]
     # a zero-length segment has a zero dot product too: s = 0 there
     den = np.maximum(abx * abx + aby * aby, 1e-300)
-    s = np.clip((apx * abx + apy * aby) / den, 0.0, 1.0)
-    dx, dy = apx - s * abx, apy - s * aby
-    return np.sqrt(dx * dx + dy * dy), s
+    # the same operations as sqrt(dx² + dy²) with s = clip(ap·ab / den, 0, 1), in place
+    # (fewer temporaries); minimum(1, maximum(0, x)) is clip's exact result, NaN and -0
+    # included, without np.clip's Python-level dispatch
+    s = apx * abx
+    if not isinstance(s, np.ndarray) or s.dtype != np.float64:    # numpy scalars, ints
+        s = np.clip((s + apy * aby) / den, 0.0, 1.0)
+        dx, dy = apx - s * abx, apy - s * aby
+        return np.sqrt(dx * dx + dy * dy), s
+    s += apy * aby
+    s /= den
+    np.maximum(0.0, s, out=s)
+    np.minimum(1.0, s, out=s)
+    dx = s * abx
+    np.subtract(apx, dx, out=dx)
+    dy = s * aby
+    np.subtract(apy, dy, out=dy)
+    dx *= dx
+    dy *= dy
+    dx += dy
+    return np.sqrt(dx, out=dx), s
 
 
 def circle_crossings(loop, radius: float):

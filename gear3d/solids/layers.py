@@ -276,16 +276,22 @@ def measure_mesh(V, F, law, prof, knots, delta=0.0, skip=(), min_radius=0.0):
     bands = measured_bands(knots, law, list(skip))
     if not bands:
         return float(prof.report["max_error"]), []
-    lay = np.clip(np.searchsorted(knots, V[:, 2] - 1e-9 * max(knots[-1], 1.0)), 0, len(knots) - 1)
-    tl = lay[F]
-    lo, hi = tl.min(axis=1), tl.max(axis=1)
-    sel = (hi - lo == 1) & np.isin(lo, bands)
+    lay = np.searchsorted(knots, V[:, 2] - 1e-9 * max(knots[-1], 1.0))
+    np.minimum(lay, len(knots) - 1, out=lay)
+    # a triangle's lowest and highest layer, column by column (a reduction over a row of
+    # three is ten times slower), and whether its band is measured (a look-up table)
+    l0, l1, l2 = lay[F[:, 0]], lay[F[:, 1]], lay[F[:, 2]]
+    lo = np.minimum(np.minimum(l0, l1), l2)
+    measured = np.zeros(len(knots), bool)
+    measured[bands] = True
+    sel = np.flatnonzero((np.maximum(np.maximum(l0, l1), l2) - lo == 1) & measured[lo])
     tri = V[F[sel]]                                      # (T, 3, 3)
+    # the centroids, summed in mean()'s order: (v0 + v1) + v2, over 3
+    c = (tri[:, 0] + tri[:, 1] + tri[:, 2]) / 3
     if min_radius:
-        c = tri.mean(axis=1)
-        tri = tri[np.hypot(c[:, 0], c[:, 1]) > min_radius]
+        keep = np.hypot(c[:, 0], c[:, 1]) > min_radius
+        tri, c = tri[keep], c[keep]
     if prof.teeth > 2:                                   # tooth 0's sector only
-        c = tri.mean(axis=1)
         a = np.arctan2(c[:, 1], c[:, 0]) - law(c[:, 2])
         a = (a + math.pi) % (2 * math.pi) - math.pi
         tri = tri[np.abs(a) <= math.pi / prof.teeth + 1e-9]
