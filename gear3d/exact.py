@@ -1,8 +1,8 @@
 """Distance to the *exact* boundary of a profile: nearest points on the exact evaluators.
 
-A :class:`ExactBoundary` holds one tooth period's exact pieces ``G(t) -> (N, 2)`` (mm) and
-the sample chords that survived trimming. The distance of a point to the boundary is found
-in three vectorised steps, for all points at once:
+A :class:`ExactBoundary` holds one tooth period's exact pieces ``G(t) -> (N, 2)`` (mm) and the
+sample chords that survived trimming. The distance of a point to the boundary is found in three
+vectorised steps, for all points at once:
 
 1. the point is turned into tooth 0's sector (the profile repeats every 2π/z);
 2. the three nearest surviving chords, among tooth 0's and its two neighbours' copies, give
@@ -15,24 +15,22 @@ in three vectorised steps, for all points at once:
    a foot whose last step has not settled starts again from two zooms of the probes
    around the best one. The nearest foot wins.
 
-Every candidate foot of a chunk of points goes through these stages together, rows sorted
-by piece: pieces that share a ``batch_key`` (the rack envelope pieces of one rack) are
-evaluated in one call (:meth:`gear3d.envelope.EnvelopePiece.evaluate_many`), others one
-call each.
+Every candidate foot of a chunk of points goes through these stages together, rows sorted by
+piece: pieces that share a ``batch_key`` (the rack envelope pieces of one rack) are evaluated
+in one call (:meth:`gear3d.envelope.EnvelopePiece.evaluate_many`), others one call each.
 
-The result is never worse than the nearest of the exact start points, which are on the
-curve, so a Newton step that does not converge can only overstate the distance (the safe
-side for a measurement that certifies a tolerance). Nothing here looks at a finer
-tessellation: the curve itself is evaluated.
+The result is never worse than the nearest of the exact start points, which are on the curve,
+so a Newton step that does not converge can only overstate the distance (the safe side for a
+measurement that certifies a tolerance). Nothing here looks at a finer tessellation: the curve
+itself is evaluated.
 
-A foot may run up to one chord past a chord's end, along the curve. It never crosses a
-trimmed corner the builder recorded (the chords next to it stop at the corner's exact
-parameter); past a corner that was not recorded, a foot (one not inside a chord whose both
-ends survived) is kept only if it lies on the trimmed polygon (within the polygon's
-measured error, so it may understate the distance by up to that error there); otherwise it
-is pulled back along the curve, by bisection, to the last point that does (the corner).
-Trimmed corners themselves are certified by the profile builder (Newton on the crossing of
-the two exact curves).
+A foot may run up to one chord past a chord's end, along the curve. It never crosses a trimmed
+corner the builder recorded (the chords next to it stop at the corner's exact parameter); past
+a corner that was not recorded, a foot (one not inside a chord whose both ends survived) is
+kept only if it lies on the trimmed polygon (within the polygon's measured error, so it may
+understate the distance by up to that error there); otherwise it is pulled back along the
+curve, by bisection, to the last point that does (the corner). Trimmed corners themselves are
+certified by the profile builder (Newton on the crossing of the two exact curves).
 """
 from __future__ import annotations
 
@@ -40,7 +38,7 @@ import math
 
 import numpy as np
 
-from .geometry import check_points, rotate, segment_foot
+from .geometry import check_points, rotate, row_min, segment_foot
 
 #: Newton iterations on the foot-point parameter (quadratic convergence from a chord start)
 NEWTON_STEPS = 3
@@ -113,7 +111,7 @@ def _piece(f, t, alive, cuts=None, mid_alive=None, p=None) -> _Piece:
     keep = alive[:-1] | alive[1:]
     if mid_alive is not None:
         keep = keep | np.asarray(mid_alive, bool)
-    lo, hi = np.clip(t0 - w, 0, 1), np.clip(t1 + w, 0, 1)
+    lo, hi = np.minimum(1.0, np.maximum(0.0, t0 - w)), np.minimum(1.0, np.maximum(0.0, t1 + w))
     for j, c in (cuts or {}).items():
         # no foot crosses a trimmed corner onto the cut-away side: not from this chord,
         # nor from a neighbour whose range reaches past the corner
@@ -148,23 +146,19 @@ class ExactBoundary:
         for (f, t, alive, *extra), p in zip(pieces, ps):
             extra = (extra + [None, None])[:2]
             pc = _piece(f, t, alive, *extra, p=p)
-            if len(t) < 2 or not np.any(pc.keep):
-                continue
-            self.pieces.append(pc)
+            if len(t) >= 2 and np.any(pc.keep):
+                self.pieces.append(pc)
         self.circles = [float(r) for r in circles]
         self._index_pieces()
         self._index_chords()
         # angular index of the chords (used for gears of more than WINDOW_MIN_TEETH teeth)
         a1 = np.arctan2(self._a[:, 1], self._a[:, 0])
-        a2 = np.arctan2(self._b[:, 1], self._b[:, 0])
-        span = (a2 - a1 + np.pi) % (2 * np.pi) - np.pi
-        self._lo = np.minimum(a1, a1 + span)
-        self._hi = np.maximum(a1, a1 + span)
-        self._order = np.argsort(self._lo)
-        self._lo_sorted = self._lo[self._order]
-        ln = np.hypot(*(self._b - self._a).T)
-        self._cap = float(ln.max(initial=0.0))
-        self._rmin = float(np.hypot(*np.concatenate([self._a, self._b]).T).min(initial=0.0))
+        span = (np.arctan2(self._b[:, 1], self._b[:, 0]) - a1 + np.pi) % (2 * np.pi) - np.pi
+        lo = np.minimum(a1, a1 + span)
+        self._order = np.argsort(lo)
+        self._lo_sorted = lo[self._order]
+        self._span_max = float((np.maximum(a1, a1 + span) - lo).max(initial=0.0))
+        self._cap = float(np.hypot(*(self._b - self._a).T).max(initial=0.0))
 
     def _near_chords(self, q0: np.ndarray):
         """Distances (P, W) and foot fractions from points in tooth 0's sector to candidate
@@ -181,8 +175,8 @@ class ExactBoundary:
         ang = np.arctan2(q0[:, 1], q0[:, 0])
         cap = self._cap
         with np.errstate(divide="ignore", invalid="ignore"):
-            half = np.where(r > 2 * cap, np.arcsin(np.clip(cap / r, 0, 1)), np.pi)
-        span_max = float((self._hi - self._lo).max())
+            half = np.where(r > 2 * cap, np.arcsin(np.minimum(1.0, np.maximum(0.0, cap / r))), np.pi)
+        span_max = self._span_max
         lo = np.searchsorted(self._lo_sorted, ang - half - span_max, side="left")
         hi = np.searchsorted(self._lo_sorted, ang + half, side="right")
         width = int((hi - lo).max(initial=0))
@@ -207,9 +201,8 @@ class ExactBoundary:
         """Distance (mm) from ``points`` (N, 2) to the exact boundary."""
         q = check_points(points)
         out = np.empty(len(q))
-        # a chunk of points meets up to every chord at once (P x W arrays): keep it near
-        # 4 million pairs, whatever the chord count (a 2-tooth stator of 12,000 chords took
-        # 4096 x 12,000 x several float64 arrays: over 2 GB)
+        # a chunk of points meets up to every chord at once (P x W arrays): keep it near 4 million
+        # pairs, whatever the chord count (a 2-tooth stator of 12,000 chords took over 2 GB)
         chunk = max(16, min(int(chunk), 4_000_000 // max(len(self._a), 1)))
         for s in range(0, len(q), chunk):
             out[s:s + chunk] = self._distance(q[s:s + chunk])
@@ -230,10 +223,8 @@ class ExactBoundary:
 
         def cat(xs, dtype):
             return np.concatenate(xs).astype(dtype) if xs else np.zeros(0, dtype)
-        self._T = cat([pc.t for pc in ps], float)
+        self._T, self._tlo, self._thi = (cat([getattr(pc, k) for pc in ps], float) for k in ("t", "lo", "hi"))
         self._alive = cat([pc.alive for pc in ps], bool)
-        self._tlo = cat([pc.lo for pc in ps], float)
-        self._thi = cat([pc.hi for pc in ps], float)
         self._known = np.zeros(len(self._tlo), bool)
         self._known[[self._coff[i] + j for i, pc in enumerate(ps) for j in pc.cuts]] = True
         # trusted chords: both ends and both neighbours' far ends survived (or the piece
@@ -245,7 +236,7 @@ class ExactBoundary:
                          & ((c == 0) | al[np.maximum(s0 - 1, 0)])
                          & ((c + 2 >= nt[pc_of]) | al[np.minimum(s0 + 2, len(al) - 1)]))
         # the chords (flat, of the same piece) a foot's range [lo, hi] reaches into
-        self._span = self._chord_spans(ps, nt, pc_of)
+        self._span, self._pc_of = self._chord_spans(nt, pc_of), pc_of
         self._P = np.concatenate([pc.p for pc in ps]) if ps else np.zeros((0, 2))
         groups, keys = [], {}
         for i, pc in enumerate(ps):
@@ -262,33 +253,20 @@ class ExactBoundary:
         self._group_of_rank = np.array([gi for gi, g in enumerate(groups) for _ in g], int)
         self._group_start = np.array([0] + [len(g) for g in groups[:-1]], int).cumsum()
 
-    def _chord_spans(self, ps, nt, pc_of) -> np.ndarray:
+    def _chord_spans(self, nt, pc_of) -> np.ndarray:
         """(first, last) flat chord of the same piece that each chord's foot range [lo, hi]
-        reaches into: the samples t <= lo and t < hi counted (``searchsorted`` on each
-        piece's ascending samples, sides right and left), all pieces in one comparison
-        (a padded table) unless it would be large."""
-        span = np.zeros((len(self._tlo), 2), int)
-        if not len(ps):
-            return span
-        n = nt[pc_of] - 1                                       # chords of each chord's piece
-        if len(pc_of) * int(nt.max()) <= 100_000:
-            tab = np.full((len(ps), int(nt.max())), np.inf)
-            tab[np.repeat(np.arange(len(ps)), nt), np.arange(len(self._T)) - np.repeat(self._toff, nt)] = self._T
-            rows = tab[pc_of]
-            k0 = np.minimum(n - 1, np.maximum(0, (rows <= self._tlo[:, None]).sum(axis=1) - 1))
-            k1 = np.minimum(n - 1, np.maximum(0, (rows < self._thi[:, None]).sum(axis=1) - 1))
-        else:
-            k0, k1 = np.empty(len(pc_of), int), np.empty(len(pc_of), int)
-            for i, pc in enumerate(ps):
-                a, m = self._coff[i], len(pc.t) - 1
-                k0[a:a + m] = np.searchsorted(pc.t, pc.lo, side="right") - 1
-                k1[a:a + m] = np.searchsorted(pc.t, pc.hi, side="left") - 1
-            k0 = np.minimum(n - 1, np.maximum(0, k0))
-            k1 = np.minimum(n - 1, np.maximum(0, k1))
-        a = self._coff[pc_of]
-        span[:, 0] = a + k0
-        span[:, 1] = a + np.maximum(k1, k0)
-        return span
+        reaches into: ``searchsorted`` (sides right, left) on every piece's ascending samples
+        at once, keyed (piece, t) as complex numbers (compared lexicographically, exactly)."""
+        key, q = np.empty(len(self._T), complex), np.empty(len(pc_of), complex)
+        key.real, key.imag = np.repeat(np.arange(len(nt)), nt), self._T
+        q.real, q.imag = pc_of, self._tlo
+        first = self._toff[pc_of] + 1
+        k0 = np.searchsorted(key, q, side="right") - first
+        q.imag = self._thi
+        k1 = np.searchsorted(key, q, side="left") - first
+        last, a = nt[pc_of] - 2, self._coff[pc_of]              # each piece's last chord
+        k0, k1 = np.minimum(last, np.maximum(0, k0)), np.minimum(last, np.maximum(0, k1))
+        return np.stack([a + k0, a + np.maximum(k1, k0)], axis=1)
 
     def _index_chords(self):
         """The chords that carry boundary (a, b in mm), of tooth 0 and its two neighbours'
@@ -361,7 +339,7 @@ class ExactBoundary:
             piece, copy, chord = self._owner[j].T
             dc = d[rows, jc]
             flat = self._coff[piece] + chord
-            dref = np.repeat(np.where(self._trusted[flat], dc, np.inf).reshape(len(q), m).min(axis=1), m)
+            dref = np.repeat(row_min(np.where(self._trusted[flat], dc, np.inf).reshape(len(q), m)), m)
             near = dc <= dref + self._reach
             far = np.nonzero(~near)[0]
             if len(far):
@@ -379,8 +357,8 @@ class ExactBoundary:
             sub = np.empty(len(j))
             sub[order] = self._feet(piece[order], chord[order], qc)
             dist[near] = sub
-            best = dist.reshape(len(q), m).min(axis=1)
-        r = np.hypot(q[:, 0], q[:, 1])
+            best = row_min(dist.reshape(len(q), m))
+        r = np.hypot(q[:, 0], q[:, 1]) if self.circles else None
         for R in self.circles:
             best = np.minimum(best, np.abs(r - R))
         return best
@@ -393,12 +371,13 @@ class ExactBoundary:
         w = int((k1 - k0).max(initial=0)) + 1
         k = k0[:, None] + np.arange(w)[None, :]
         valid = k <= k1[:, None]
-        own = (k * 3 + copy[:, None] + 1)[:, :, None] == followed[:, None, :]
-        valid &= ~own.any(axis=2)
+        own = k * 3 + copy[:, None] + 1
+        for f in followed.T:
+            valid &= own != f[:, None]
         k = np.minimum(k, k1[:, None])
-        s = k + np.searchsorted(self._coff, k, side="right") - 1     # first sample (flat)
+        s = k + self._pc_of[flat][:, None]                 # first sample (flat): k + piece
         d, _ = segment_foot(qc[:, None, :], self._P[s], self._P[s + 1])
-        return np.where(valid, d, np.inf).min(axis=1)
+        return row_min(np.where(valid, d, np.inf))
 
     def _feet(self, pi: np.ndarray, c: np.ndarray, qc: np.ndarray) -> np.ndarray:
         """Distances (mm) from points ``qc`` to the exact pieces ``pi`` near their chords
@@ -493,16 +472,11 @@ class ExactBoundary:
         near = ((box[2] >= lo) & (box[1] <= hi)).all(axis=1)
         if not near.any():
             return np.zeros(len(pts), bool)
-        a, b = a[near], b[near]
-        out = np.empty(len(pts), bool)
-        step = max(1, 200_000 // len(a))
-        for s0 in range(0, len(pts), step):
-            d, _ = segment_foot(pts[s0:s0 + step, None, :], a[None], b[None])
-            out[s0:s0 + step] = d.min(axis=1) <= slack
-        return out
+        return self._poly_dist(pts, a[near], b[near]) <= slack
 
-    def _poly_dist(self, pts: np.ndarray) -> np.ndarray:
-        a, b = self.polygon
+    def _poly_dist(self, pts: np.ndarray, a=None, b=None) -> np.ndarray:
+        """Distance (mm) from ``pts`` to the edges a-b (default: the trimmed polygon's)."""
+        a, b = self.polygon if a is None else (a, b)
         out = np.empty(len(pts))
         step = max(1, 200_000 // max(len(a), 1))
         for s0 in range(0, len(pts), step):
@@ -510,10 +484,9 @@ class ExactBoundary:
             out[s0:s0 + step] = d.min(axis=1)
         return out
 
-    def _newton(self, r, q, t0, t1, lo, hi, chord=None):
-        """Distance (mm) from points ``q`` to the pieces of rank ``r`` near the chords
-        [t0, t1] (a foot may use [lo, hi]), the foot points (mm) and their parameters.
-        ``chord``: the rows' flat chord indices (rows of one chord share its probes).
+    def _newton(self, r, q, t0, t1, lo, hi, chord):
+        """Distance (mm) from points ``q`` to the pieces of rank ``r`` near the flat chords
+        ``chord`` [t0, t1] (a foot may use [lo, hi]), the foot points (mm) and parameters.
 
         Newton's method starts from the nearest of nine exact points along the chord's
         parameter interval; a foot whose last step has not settled (above :data:`SETTLED`
@@ -551,29 +524,19 @@ class ExactBoundary:
         t = np.where(worse, tp[rows, k], t)
         return np.minimum(d, dmin), g, t
 
-    def _probes(self, r, a, b, chord=None):
-        """The probe parameters along [a, b] ((n, 9)) and G there ((n, 9, 2), mm) for rows
-        on the pieces of rank ``r`` (sorted). Rows of one flat ``chord`` (the same a and b)
-        share one evaluation: the same numbers, a chord's probes evaluated once (551
-        points of a helical body's measurement follow about 60 chords)."""
-        if chord is not None and len(chord):
-            rep = np.empty(len(self._tlo), int)
-            rep[chord] = np.arange(len(chord))          # a row of each chord
-            seen = np.zeros(len(self._tlo), bool)
-            seen[chord] = True
-            u = np.flatnonzero(seen)
-            if 2 * len(u) <= len(chord):
-                ru = rep[u]
-                keep = np.argsort(r[ru], kind="stable")   # sorted by rank (one call per group)
-                u, ru = u[keep], ru[keep]
-                pos = np.empty(len(self._tlo), int)
-                pos[u] = np.arange(len(u))
-                inv = pos[chord]
-                au, bu = a[ru], b[ru]
-                tpu = au[:, None] + (bu - au)[:, None] * _PROBES[None, :]
-                return tpu[inv], self._evaluate(r[ru], tpu)[inv]
-        tp = a[:, None] + (b - a)[:, None] * _PROBES[None, :]
-        return tp, self._evaluate(r, tp)
+    def _probes(self, r, a, b, chord):
+        """Probe parameters along [a, b] ((n, 9)) and G there ((n, 9, 2), mm), rows on pieces of
+        rank ``r`` (sorted); rows of one flat ``chord`` (the same a, b) share one evaluation, the
+        same numbers (a helical body's 551 measured points follow about 60 chords)."""
+        rep = np.full(len(self._tlo), -1)
+        rep[chord] = np.arange(len(chord))              # a row of each chord
+        ru = rep[rep >= 0]
+        ru = ru[np.argsort(r[ru], kind="stable")]       # sorted by rank (one call per group)
+        pos = np.empty(len(self._tlo), int)
+        pos[chord[ru]] = np.arange(len(ru))
+        tp = a[ru, None] + (b - a)[ru, None] * _PROBES[None, :]
+        inv = pos[chord]
+        return tp[inv], self._evaluate(r[ru], tp)[inv]
 
     def _zoom(self, r, q, t, dmin, width, lo, hi):
         """The start parameter for Newton's method: the nearest of nine exact points around
