@@ -486,16 +486,26 @@ def exact_extremes(fs, ts, label, chain, keep, wanted) -> list:
         ab.append((t[max(k - 1, 0)], t[min(k + 1, len(t) - 1)]))
         best.append(sgn * out[q])
     # zoom in on the extreme of |G(t)|: each round keeps 2 of 32 intervals
+    a, b = np.array([x for x, _ in ab]), np.array([x for _, x in ab])
+    sgn = np.array([z[3] for z in zoom])
+    rows, grid = np.arange(len(zoom)), np.arange(33.0)
     for _ in range(EXTREME_ROUNDS):
-        x = [np.linspace(a, b, 33) for a, b in ab]
-        g = evaluate_grouped(own, [33] * len(zoom), np.concatenate(x)).reshape(len(zoom), 33, 2)
-        for z, (_q, _pc, _j, sgn) in enumerate(zoom):
-            rz = sgn * np.hypot(*g[z].T)
-            i = int(np.argmax(rz))
-            best[z] = max(best[z], float(rz[i]))
-            ab[z] = (x[z][max(i - 1, 0)], x[z][min(i + 1, 32)])
-    for (q, _pc, _j, sgn), v in zip(zoom, best):
-        out[q] = float(sgn * v)
+        # each zoom's np.linspace(a, b, 33), all at once: its steps (the same numbers while
+        # no step is 0), the last point b
+        step = (b - a) / 32
+        if (step != 0).all():
+            x = grid[None, :] * step[:, None] + a[:, None]
+            x[:, -1] = b
+        else:
+            x = np.array([np.linspace(p, q, 33) for p, q in zip(a, b)])
+        g = evaluate_grouped(own, [33] * len(zoom), x.ravel()).reshape(len(zoom), 33, 2)
+        rz = sgn[:, None] * np.hypot(g[..., 0], g[..., 1])
+        i = np.argmax(rz, axis=1)
+        for z in rows:
+            best[z] = max(best[z], float(rz[z, i[z]]))
+        a, b = x[rows, np.maximum(i - 1, 0)], x[rows, np.minimum(i + 1, 32)]
+    for (q, _pc, _j, sg), v in zip(zoom, best):
+        out[q] = float(sg * v)
     return out
 
 
