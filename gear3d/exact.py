@@ -38,7 +38,7 @@ import math
 
 import numpy as np
 
-from .geometry import check_points, rotate, row_min, segment_foot
+from .geometry import check_points, rotate, row_min, segment_arrays, segment_foot, segment_foot_to
 
 #: Newton iterations on the foot-point parameter (quadratic convergence from a chord start)
 NEWTON_STEPS = 3
@@ -151,6 +151,7 @@ class ExactBoundary:
         self.circles = [float(r) for r in circles]
         self._index_pieces()
         self._index_chords()
+        self._segs = segment_arrays(self._a, self._b)
         # angular index of the chords (used for gears of more than WINDOW_MIN_TEETH teeth)
         a1 = np.arctan2(self._a[:, 1], self._a[:, 0])
         span = (np.arctan2(self._b[:, 1], self._b[:, 0]) - a1 + np.pi) % (2 * np.pi) - np.pi
@@ -169,7 +170,7 @@ class ExactBoundary:
         farther than ``_cap`` from all of them are measured against every chord instead."""
         n_ch = len(self._a)
         if self.teeth <= WINDOW_MIN_TEETH or n_ch <= 64:
-            d, s = segment_foot(q0[:, None, :], self._a[None], self._b[None])
+            d, s = segment_foot_to(q0, self._segs)
             return d, s, None
         r = np.hypot(q0[:, 0], q0[:, 1])
         ang = np.arctan2(q0[:, 1], q0[:, 0])
@@ -181,16 +182,16 @@ class ExactBoundary:
         hi = np.searchsorted(self._lo_sorted, ang + half, side="right")
         width = int((hi - lo).max(initial=0))
         if width >= n_ch // 2 or width == 0:
-            d, s = segment_foot(q0[:, None, :], self._a[None], self._b[None])
+            d, s = segment_foot_to(q0, self._segs)
             return d, s, None
         k = lo[:, None] + np.arange(width)[None, :]
         valid = k < hi[:, None]
         cols = self._order[np.minimum(k, n_ch - 1)]
-        d, s = segment_foot(q0[:, None, :], self._a[cols], self._b[cols])
+        d, s = segment_foot_to(q0, self._segs, cols)
         d = np.where(valid, d, np.inf)
         far = d.min(axis=1) > cap
         if far.any():                      # rare: points far inside or outside the part
-            dd, ss = segment_foot(q0[far, None, :], self._a[None], self._b[None])
+            dd, ss = segment_foot_to(q0[far], self._segs)
             m = min(width, n_ch)
             part = np.argpartition(dd, m - 1, axis=1)[:, :m]
             rows = np.arange(far.sum())[:, None]
@@ -236,8 +237,9 @@ class ExactBoundary:
                          & ((c == 0) | al[np.maximum(s0 - 1, 0)])
                          & ((c + 2 >= nt[pc_of]) | al[np.minimum(s0 + 2, len(al) - 1)]))
         # the chords (flat, of the same piece) a foot's range [lo, hi] reaches into
-        self._span, self._pc_of = self._chord_spans(nt, pc_of), pc_of
+        self._span = self._chord_spans(nt, pc_of)
         self._P = np.concatenate([pc.p for pc in ps]) if ps else np.zeros((0, 2))
+        self._fsegs = segment_arrays(self._P[s0], self._P[s0 + 1])     # every chord, flat
         groups, keys = [], {}
         for i, pc in enumerate(ps):
             key = getattr(pc.f, "batch_key", None)
@@ -374,9 +376,7 @@ class ExactBoundary:
         own = k * 3 + copy[:, None] + 1
         for f in followed.T:
             valid &= own != f[:, None]
-        k = np.minimum(k, k1[:, None])
-        s = k + self._pc_of[flat][:, None]                 # first sample (flat): k + piece
-        d, _ = segment_foot(qc[:, None, :], self._P[s], self._P[s + 1])
+        d, _ = segment_foot_to(qc, self._fsegs, np.minimum(k, k1[:, None]))
         return row_min(np.where(valid, d, np.inf))
 
     def _feet(self, pi: np.ndarray, c: np.ndarray, qc: np.ndarray) -> np.ndarray:

@@ -120,6 +120,42 @@ def segment_foot(p: np.ndarray, a: np.ndarray, b: np.ndarray):
     return np.sqrt(dx, out=dx), s
 
 
+def segment_arrays(a: np.ndarray, b: np.ndarray) -> tuple:
+    """Segments ``a``-``b`` ((N, 2), mm) as the contiguous per-segment arrays (ax, ay, abx,
+    aby, den) that :func:`segment_foot_to` reads: start, direction and squared length
+    (at least 1e-300), each (N,) and computed as :func:`segment_foot` computes them.
+
+    >>> [float(x[0]) for x in segment_arrays(np.array([[0.0, 0.0]]), np.array([[3.0, 4.0]]))]
+    [0.0, 0.0, 3.0, 4.0, 25.0]
+    """
+    a, b = np.asarray(a, float), np.asarray(b, float)
+    abx, aby = b[:, 0] - a[:, 0], b[:, 1] - a[:, 1]
+    return a[:, 0].copy(), a[:, 1].copy(), abx, aby, np.maximum(abx * abx + aby * aby, 1e-300)
+
+
+def segment_foot_to(p: np.ndarray, segs: tuple, cols=None):
+    """:func:`segment_foot` from points ``p`` (P, 2) to the segments ``segs`` (from
+    :func:`segment_arrays`) numbered ``cols`` ((P, W) indices; None: every segment, (P, N)),
+    the same numbers (the same operations), without gathering (P, W, 2) end points: the
+    distances (mm) and the foot fractions s in [0, 1].
+
+    >>> d, s = segment_foot_to(np.array([[1.0, 1.0]]), segment_arrays(np.array([[0.0, 0.0]]), np.array([[2.0, 0.0]])))
+    >>> d.tolist(), s.tolist()
+    ([[1.0]], [[0.5]])
+    """
+    ax, ay, abx, aby, den = segs if cols is None else (v[cols] for v in segs)
+    apx, apy = p[:, 0, None] - ax, p[:, 1, None] - ay
+    s = apx * abx
+    s += apy * aby
+    s /= den
+    np.minimum(1.0, np.maximum(0.0, s, out=s), out=s)
+    dx, dy = apx - s * abx, apy - s * aby
+    dx *= dx
+    dy *= dy
+    dx += dy
+    return np.sqrt(dx, out=dx), s
+
+
 def circle_crossings(loop, radius: float):
     """Where the closed polyline ``loop`` (N, 2) crosses the circle of ``radius`` (mm) about
     the origin, exactly per edge: (points (M, 2), edge indices (M,), fractions s in [0, 1)
