@@ -10,6 +10,7 @@ from __future__ import annotations
 import numpy as np
 
 from .geometry import unique_sorted
+from .tessellate import blocks
 
 #: singular points: grid points per bracket and rounds (64^9 > 2^52: to double precision)
 TRANSITION_GRID = 64
@@ -69,7 +70,7 @@ def regularities(pieces, ts) -> list:
         t = np.concatenate([np.asarray(ts[i], float) for i in idx])
         g = _normalised(*EnvelopePiece.evaluate_many(ps * 3, n * 3, np.concatenate([t + STEP, t - STEP, t]),
                                                      tangent=True), len(t))
-        for i, x in zip(idx, np.split(g, np.cumsum(n)[:-1])):
+        for i, x in zip(idx, blocks(g, n)):
             out[i] = x
         return out
     for i in idx:

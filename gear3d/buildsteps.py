@@ -24,7 +24,7 @@ from .envelope import PRUNE_SHARE, RIM_SHARE, circle_loop, pattern, signed_area,
 from .errors import GearError, ToleranceError
 from .geometry import point_segment_distance, rotate, segment_foot
 from .branches import physicals, transitions
-from .tessellate import PEAK_SHARE, chord_deviation, evaluate_grouped, largest_deviation, tessellate, \
+from .tessellate import PEAK_SHARE, blocks, chord_deviation, evaluate_grouped, largest_deviation, tessellate, \
     tessellate_many
 
 
@@ -412,7 +412,7 @@ def _dead_mids_alive(fs, ts, dead, dist, within: float) -> list:
     near = np.zeros(len(pm), bool)
     if ok.any():
         near[ok] = dist(pm[ok]) <= within
-    return [x.reshape(-1, 3).any(axis=1) for x in np.split(near, np.cumsum(n)[:-1])]
+    return [x.reshape(-1, 3).any(axis=1) for x in blocks(near, n)]
 
 
 def sector_edges(loop: np.ndarray, teeth: int):
@@ -476,9 +476,8 @@ def exact_extremes(fs, ts, label, chain, keep, wanted) -> list:
     if not zoom:
         return out
     own = [fs[pc] for _, pc, _, _ in zoom]
-    at = np.split(evaluate_grouped(own, [len(ts[pc]) for _, pc, _, _ in zoom],
-                                   np.concatenate([ts[pc] for _, pc, _, _ in zoom])),
-                  np.cumsum([len(ts[pc]) for _, pc, _, _ in zoom])[:-1])
+    n = [len(ts[pc]) for _, pc, _, _ in zoom]
+    at = blocks(evaluate_grouped(own, n, np.concatenate([ts[pc] for _, pc, _, _ in zoom])), n)
     ab, best = [], []
     for (q, pc, j, sgn), g in zip(zoom, at):
         t = ts[pc]

@@ -102,6 +102,19 @@ def evaluate_grouped(fs, counts, t) -> np.ndarray:
     return out
 
 
+def blocks(x: np.ndarray, counts) -> list:
+    """``x`` cut into consecutive blocks of ``counts`` rows (views; ``np.split`` by sizes).
+
+    >>> [b.tolist() for b in blocks(np.arange(5), [2, 0, 3])]
+    [[0, 1], [], [2, 3, 4]]
+    """
+    out, a = [], 0
+    for n in counts:
+        out.append(x[a:a + int(n)])
+        a += int(n)
+    return out
+
+
 def _at(f, owner, rows, x) -> np.ndarray:
     """``f`` at parameters ``x`` (mm, (len(x), 2)); with ``owner``: ``f`` is a list of
     pieces and ``x`` holds an equal number of parameters for each chord ``rows`` (all chords
@@ -316,13 +329,13 @@ def _tessellate_batch(fs, tol: float, n0: int) -> list:
     cum = _sag_levels(evaluate_grouped(fs, [n0 + 1] * k, np.tile(t0, k)).reshape(k, n0 + 1, 2), tol)
     ts = [_sag_params(t0, c, tol) for c in cum]
     n = np.array([len(t) for t in ts])
-    pts = np.split(evaluate_grouped(fs, n, np.concatenate(ts)), np.cumsum(n)[:-1])
+    pts = blocks(evaluate_grouped(fs, n, np.concatenate(ts)), n)
     a, b = np.concatenate([t[:-1] for t in ts]), np.concatenate([t[1:] for t in ts])
     pa, pb = np.concatenate([p[:-1] for p in pts]), np.concatenate([p[1:] for p in pts])
     owner = np.repeat(np.arange(k), n - 1)
     tp = (a[:, None] + (b - a)[:, None] * _PROBE[None, :]).ravel()
     d = point_segment_distance(_at(fs, owner, None, tp).reshape(len(a), len(_PROBE), 2), pa[:, None, :], pb[:, None, :])
-    dev = np.split(peak_deviation(fs, a, b, pa, pb, d, tol, False, owner=owner), np.cumsum(n - 1)[:-1])
+    dev = blocks(peak_deviation(fs, a, b, pa, pb, d, tol, False, owner=owner), n - 1)
     return [_bisected(f, t, p, e, tol) for f, t, p, e in zip(fs, ts, pts, dev)]
 
 
