@@ -53,7 +53,7 @@ Z, M, ALPHA, BETA, WIDTH = 20, 1.0, 20.0, 20.0, 10.0
 RP = Z * M / 2
 RB = RP * math.cos(math.radians(ALPHA))
 R_LO, R_HI = RP - 0.4 * M, RP + 0.85 * M       # working flank, clear of root fillet and tip
-TOLS = [0.01, 0.006, 0.005, 0.004, 0.003, 0.002, 0.001]
+TOLS = [0.01, 0.006, 0.005, 0.004, 0.0035, 0.003, 0.002, 0.001]
 #: the interpreter the gear3d rows, the floors and the analyses run with (see the module doc)
 PYTHON = sys.executable
 
