@@ -144,12 +144,15 @@ def segment_foot_to(p: np.ndarray, segs: tuple, cols=None):
     ([[1.0]], [[0.5]])
     """
     ax, ay, abx, aby, den = segs if cols is None else (v[cols] for v in segs)
-    apx, apy = p[:, 0, None] - ax, p[:, 1, None] - ay
+    g = cols is not None                            # gathered rows: reused in place
+    apx = np.subtract(p[:, 0, None], ax, out=ax if g else None)
+    apy = np.subtract(p[:, 1, None], ay, out=ay if g else None)
     s = apx * abx
     s += apy * aby
     s /= den
     np.minimum(1.0, np.maximum(0.0, s, out=s), out=s)
-    dx, dy = apx - s * abx, apy - s * aby
+    dx = np.subtract(apx, np.multiply(s, abx, out=abx if g else None), out=abx if g else None)
+    dy = np.subtract(apy, np.multiply(s, aby, out=aby if g else None), out=aby if g else None)
     dx *= dx
     dy *= dy
     dx += dy
