@@ -497,14 +497,15 @@ class ExactBoundary:
         # (parametrisations can be far from uniform: near a pitch point G ~ t^2)
         a, b = np.maximum(t0, lo), np.minimum(t1, hi)
         b = np.maximum(a, b)
-        tp, gp0 = self._probes(r, a, b, chord)
-        dp = np.hypot(gp0[..., 0] - q[:, None, 0], gp0[..., 1] - q[:, None, 1])
-        dp = np.where(np.isfinite(dp), dp, np.inf)
+        tp, gp, inv = self._probes(r, a, b, chord)       # per chord; row i on chord inv[i]
+        dx, dy = gp[inv, :, 0], gp[inv, :, 1]
+        dp = np.hypot(np.subtract(dx, q[:, None, 0], out=dx), np.subtract(dy, q[:, None, 1], out=dy), out=dx)
+        dp[~np.isfinite(dp)] = np.inf
         k = np.argmin(dp, axis=1)
-        dmin = dp[rows, k]
+        dmin, tk, gk = dp[rows, k], tp[inv, k], gp[inv, k]     # the best probe
         h = np.minimum(np.maximum((t1 - t0) * 1e-4, 1e-12), 0.25)
         width = b - a
-        t, settled, close = self._newton_steps(r, q, tp[rows, k], h, lo, hi, width)
+        t, settled, close = self._newton_steps(r, q, tk.copy(), h, lo, hi, width)
         # one more step where the last one was already small (quadratic convergence: the
         # next is about its square), the zooms and a fresh start for the rest
         more = np.nonzero(~settled & close)[0]
@@ -513,21 +514,21 @@ class ExactBoundary:
                                                            hi[more], width[more], steps=1)
         redo = np.nonzero(~settled)[0]
         if len(redo):
-            tz = self._zoom(r[redo], q[redo], tp[redo, k[redo]], dmin[redo], width[redo], lo[redo], hi[redo])
+            tz = self._zoom(r[redo], q[redo], tk[redo], dmin[redo], width[redo], lo[redo], hi[redo])
             t[redo] = self._newton_steps(r[redo], q[redo], tz, h[redo], lo[redo], hi[redo], None)[0]
         g = self._evaluate(r, t[:, None])[:, 0]
         d = np.hypot(*(g - q).T)
         d = np.where(np.isfinite(d), d, np.inf)
         # never worse than the best exact start point (inside the chord's own interval)
         worse = ~(d <= dmin)
-        g = np.where(worse[:, None], gp0[rows, k], g)
-        t = np.where(worse, tp[rows, k], t)
+        g = np.where(worse[:, None], gk, g)
+        t = np.where(worse, tk, t)
         return np.minimum(d, dmin), g, t
 
     def _probes(self, r, a, b, chord):
-        """Probe parameters along [a, b] ((n, 9)) and G there ((n, 9, 2), mm), rows on pieces of
-        rank ``r`` (sorted); rows of one flat ``chord`` (the same a, b) share one evaluation, the
-        same numbers (a helical body's 551 measured points follow about 60 chords)."""
+        """Probe parameters along [a, b] ((m, 9)) and G there ((m, 9, 2), mm) of the m distinct
+        flat chords of the rows (on pieces of rank ``r``, sorted), and each row's: the same
+        numbers once per chord (a helical body's 551 measured points follow about 60 chords)."""
         rep = np.full(len(self._tlo), -1)
         rep[chord] = np.arange(len(chord))              # a row of each chord
         ru = rep[rep >= 0]
@@ -535,8 +536,7 @@ class ExactBoundary:
         pos = np.empty(len(self._tlo), int)
         pos[chord[ru]] = np.arange(len(ru))
         tp = a[ru, None] + (b - a)[ru, None] * _PROBES[None, :]
-        inv = pos[chord]
-        return tp[inv], self._evaluate(r[ru], tp)[inv]
+        return tp, self._evaluate(r[ru], tp), pos[chord]
 
     def _zoom(self, r, q, t, dmin, width, lo, hi):
         """The start parameter for Newton's method: the nearest of nine exact points around
