@@ -55,7 +55,9 @@ def first_unique_rows(a) -> np.ndarray:
     order = np.lexsort(a.T[::-1])          # stable: equal rows keep their index order
     s = a[order]
     new = np.ones(len(a), bool)
-    new[1:] = np.any(s[1:] != s[:-1], axis=1)
+    new[1:] = False
+    for j in range(s.shape[1]):             # column by column (rows are short)
+        new[1:] |= s[1:, j] != s[:-1, j]
     return np.sort(order[new])
 
 

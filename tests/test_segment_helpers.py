@@ -1,11 +1,12 @@
 """The point-to-segment helpers of gear3d.geometry (segment_foot, segment_arrays /
-segment_foot_to, row_min) against independent oracles written here:
+segment_foot_to, row_min, first_unique_rows) against independent oracles written here:
 
 * the foot on a segment from complex arithmetic: z = (p - a) / (b - a), the foot's fraction is
   Re z clipped to [0, 1], its distance |p - (a + s (b - a))| (a zero-length segment: |p - a|);
 * brute force: the nearest of 20,001 points along the segment (the true distance lies within
   half a sample spacing below it);
-* the row minimum from Python's own min over each row.
+* the row minimum from Python's own min over each row;
+* the first occurrence of each distinct row from a Python scan over the rows.
 
 These helpers carry the exact-distance measurement that certifies a body's tolerance
 (gear3d.exact), so the chord distance must not come out below the oracle.
@@ -14,7 +15,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from gear3d.geometry import row_min, segment_arrays, segment_foot, segment_foot_to
+from gear3d.geometry import first_unique_rows, row_min, segment_arrays, segment_foot, segment_foot_to
 
 
 def _oracle(p, a, b):
@@ -87,3 +88,17 @@ def test_row_min_is_each_rows_smallest_value():
         x[4, :] = np.inf
         got = row_min(x)
         assert got.tolist() == [min(row) for row in x.tolist()]
+
+
+def test_first_unique_rows_are_the_first_occurrences():
+    rng = np.random.default_rng(4)
+    for n, m in ((1, 1), (7, 2), (60, 2), (60, 3), (200, 4)):
+        a = rng.integers(0, 3, size=(n, m)).astype(float)
+        a[rng.random((n, m)) < 0.2] = -0.0            # -0.0 equals 0.0
+        first, seen = [], set()
+        for i, row in enumerate((a + 0.0).tolist()):  # + 0.0: -0.0 becomes 0.0 for the set
+            if tuple(row) not in seen:
+                seen.add(tuple(row))
+                first.append(i)
+        assert first_unique_rows(a).tolist() == first
+    assert first_unique_rows(np.zeros((0, 2))).tolist() == []
