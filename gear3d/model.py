@@ -292,7 +292,7 @@ def _report(prof: Profile, gen, max_err: float, rim_radius, options: dict) -> np
     # undercut: points on regular (physical) branches of the working flank that another
     # part of the tool cut away; branches past singular points never were material
     flank = options.get("flank_pieces")
-    on_flank = np.isin(label, list(range(len(prof.pieces)) if flank is None else list(flank)))
+    on_flank = _labelled(label, len(prof.pieces), list(range(len(prof.pieces)) if flank is None else list(flank)))
     under = removed & ~tip_side & on_flank & gen.phys
     root_cusp = bool(np.any(~tip_side[cusp_idx])) if len(cusp_idx) else False
     # pointed: the flanks cross before the tooth reaches the tip circle it was cut for
@@ -331,6 +331,21 @@ def _report(prof: Profile, gen, max_err: float, rim_radius, options: dict) -> np
         rep.update(options["extra_report"])
     prof.report = rep
     return keep
+
+
+def _labelled(label: np.ndarray, n: int, wanted: list) -> np.ndarray:
+    """``np.isin(label, wanted)`` for piece labels in [0, ``n``): a look-up table when every
+    wanted label is one of them (``np.isin`` costs ~0.2 ms on its first call in a process).
+
+    >>> _labelled(np.array([0, 1, 2, 1]), 3, [1, 5]).tolist()
+    [False, True, False, True]
+    """
+    if len(label) and 0 <= label.min() and label.max() < n and \
+            all(isinstance(i, (int, np.integer)) and 0 <= i < n for i in wanted):
+        table = np.zeros(n, bool)
+        table[wanted] = True
+        return table[label]
+    return np.isin(label, wanted)
 
 
 def _sizes(prof: Profile, tip: float, root: float, rim_radius) -> dict:
