@@ -5,6 +5,10 @@ tessellator places vertices with equal chord sag (density ∝ sqrt(curvature)), 
 measures every chord against the exact curve at interior parameters it has not used
 and bisects the chords that exceed the tolerance, until none does. The returned error
 is that measurement, not an estimate.
+
+A profile's pieces are tessellated together (:func:`tessellate_many`): pieces that share a
+``batch_key`` (a rack's envelope pieces) are evaluated in one call per step
+(:func:`evaluate_grouped`), with the same samples and measurements as one piece at a time.
 """
 from __future__ import annotations
 
