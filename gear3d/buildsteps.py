@@ -460,9 +460,10 @@ def exact_extreme(fs, ts, label, chain, keep, polygon_value, largest):
     return exact_extremes(fs, ts, label, chain, keep, [(polygon_value, largest)])[0]
 
 
-def exact_extremes(fs, ts, label, chain, keep, wanted) -> list:
+def exact_extremes(fs, ts, label, chain, keep, wanted, pts=None) -> list:
     """:func:`exact_extreme` of each (polygon value, largest) of ``wanted`` (a profile's tip
-    and root), the zooms' exact points evaluated together (:func:`gear3d.tessellate.evaluate_grouped`)."""
+    and root), the zooms' exact points evaluated together (:func:`gear3d.tessellate.evaluate_grouped`;
+    ``pts``: each piece's points at ``ts``, mm, when known)."""
     r = np.hypot(chain[:, 0], chain[:, 1])
     out = [float(v) for v, _ in wanted]
     if not keep.any():
@@ -476,8 +477,11 @@ def exact_extremes(fs, ts, label, chain, keep, wanted) -> list:
     if not zoom:
         return out
     own = [fs[pc] for _, pc, _, _ in zoom]
-    n = [len(ts[pc]) for _, pc, _, _ in zoom]
-    at = blocks(evaluate_grouped(own, n, np.concatenate([ts[pc] for _, pc, _, _ in zoom])), n)
+    if pts is None:
+        n = [len(ts[pc]) for _, pc, _, _ in zoom]
+        at = blocks(evaluate_grouped(own, n, np.concatenate([ts[pc] for _, pc, _, _ in zoom])), n)
+    else:
+        at = [pts[pc] for _, pc, _, _ in zoom]
     ab, best = [], []
     for (q, pc, j, sgn), g in zip(zoom, at):
         t = ts[pc]

@@ -284,7 +284,8 @@ def _report(prof: Profile, gen, max_err: float, rim_radius, options: dict) -> np
     # tip and root radii of the exact curve, not of the polygon's vertices: refine the
     # extreme surviving sample on its exact piece (a trimmed corner stays as it is)
     keep = dist <= SURVIVED * tol + 1e-9
-    tip, root = exact_extremes(gen.fs, gen.ts, label, chain, keep, [(tip, not internal), (root, internal)])
+    tip, root = exact_extremes(gen.fs, gen.ts, label, chain, keep, [(tip, not internal), (root, internal)],
+                               gen.samples.pts)
     rc = np.hypot(chain[:, 0], chain[:, 1])
     removed = dist > SURVIVED * tol + 1e-9
     tip_side = (rc < prof.pitch_radius) if internal else (rc > prof.pitch_radius)
