@@ -477,11 +477,9 @@ def exact_extremes(fs, ts, label, chain, keep, wanted, pts=None) -> list:
     if not zoom:
         return out
     own = [fs[pc] for _, pc, _, _ in zoom]
-    if pts is None:
-        n = [len(ts[pc]) for _, pc, _, _ in zoom]
-        at = blocks(evaluate_grouped(own, n, np.concatenate([ts[pc] for _, pc, _, _ in zoom])), n)
-    else:
-        at = [pts[pc] for _, pc, _, _ in zoom]
+    n = [len(ts[pc]) for _, pc, _, _ in zoom]
+    at = [pts[pc] for _, pc, _, _ in zoom] if pts is not None else \
+        blocks(evaluate_grouped(own, n, np.concatenate([ts[pc] for _, pc, _, _ in zoom])), n)
     ab, best = [], []
     for (q, pc, j, sgn), g in zip(zoom, at):
         t = ts[pc]
@@ -496,11 +494,9 @@ def exact_extremes(fs, ts, label, chain, keep, wanted, pts=None) -> list:
         # each zoom's np.linspace(a, b, 33), all at once: its steps (the same numbers while
         # no step is 0), the last point b
         step = (b - a) / 32
-        if (step != 0).all():
-            x = grid[None, :] * step[:, None] + a[:, None]
-            x[:, -1] = b
-        else:
-            x = np.array([np.linspace(p, q, 33) for p, q in zip(a, b)])
+        x = grid[None, :] * step[:, None] + a[:, None] if (step != 0).all() else \
+            np.array([np.linspace(p, q, 33) for p, q in zip(a, b)])
+        x[:, -1] = b
         g = evaluate_grouped(own, [33] * len(zoom), x.ravel()).reshape(len(zoom), 33, 2)
         rz = sgn[:, None] * np.hypot(g[..., 0], g[..., 1])
         i = np.argmax(rz, axis=1)
