@@ -47,17 +47,23 @@ def stl_bytes(vertices: np.ndarray, faces: np.ndarray) -> bytes:
     return HEADER + np.uint32(len(rec)).tobytes() + rec.tobytes()
 
 
+#: triangles whose records are made and written at a time: a few small buffers, reused,
+#: instead of whole-mesh temporaries (the 23,430-triangle reference gear touched about 1,200
+#: fresh memory pages for them, 1-2 ms of CPU; issue 28). The bytes are the same.
+CHUNK = 4096
+
+
 def write(obj, path, **opts):
     bodies = as_bodies(obj, **opts)
-    vs, fs, off = [], [], 0
-    for b in bodies:
-        v, f = body_mesh(b)
-        vs.append(v)
-        fs.append(f + off)
-        off += len(v)
-    faces = np.concatenate(fs)
-    rec = stl_records(np.concatenate(vs), faces)
-    with open(path, "wb") as fh:              # the records straight from the array (no copies)
-        fh.write(HEADER + np.uint32(len(rec)).tobytes())
-        fh.write(rec.view(np.uint8))
+    meshes = [body_mesh(b) for b in bodies]
+    if len(meshes) == 1:
+        vertices, faces = meshes[0]
+    else:
+        offsets = np.cumsum([0] + [len(v) for v, _f in meshes[:-1]])
+        vertices = np.concatenate([v for v, _f in meshes])
+        faces = np.concatenate([f + off for (_v, f), off in zip(meshes, offsets)])
+    with open(path, "wb") as fh:              # the records straight from the arrays (no copies)
+        fh.write(HEADER + np.uint32(len(faces)).tobytes())
+        for start in range(0, len(faces), CHUNK):
+            fh.write(stl_records(vertices, faces[start:start + CHUNK]).view(np.uint8))
     return f"stl: {len(faces)} triangles, {len(bodies)} part(s)"
