@@ -16,6 +16,7 @@ from __future__ import annotations
 import numpy as np
 
 from .records import dataclass
+from .budget import BudgetError
 from .errors import ToleranceError
 from .geometry import point_segment_distance, unique_sorted
 from .params import MIN_TOLERANCE
@@ -319,6 +320,8 @@ def tessellate_many(fs, tol: float, n0: int = 512) -> list:
     if len(fs) > 1:
         try:
             return _tessellate_batch(fs, tol, n0)
+        except BudgetError:         # the watchdog's limit (a one-shot timer) ends the work
+            raise
         except Exception:           # noqa: BLE001 - the pieces in turn raise what they raise
             pass
     return [tessellate(f, tol, n0) for f in fs]

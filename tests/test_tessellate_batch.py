@@ -114,3 +114,26 @@ def test_piece_without_contact_refused_in_a_batch():
     with pytest.raises(GearError, match="tool") as alone:
         tessellate(finite(arcs[2]), 1e-3)
     assert str(batch.value) == str(alone.value)
+
+
+def test_a_limit_in_the_batch_is_not_retried():
+    """The watchdog's time limit (a one-shot timer raising LimitError, a BudgetError) inside
+    the batched tessellation ends the work: it is not caught and run again piece by piece,
+    which would outlive the limit. A piece that refuses on its first call only shows it."""
+    from gear3d.watchdog import LimitError
+    calls = []
+
+    def arc(t):
+        calls.append(len(t))
+        if len(calls) == 1:
+            raise LimitError("time", 61.0, 60.0)
+        t = np.asarray(t, float)
+        return np.stack([np.cos(t), np.sin(t)], axis=1)
+    with pytest.raises(LimitError):
+        tessellate_many([arc, arc], 1e-3)
+    assert len(calls) == 1
+    calls.clear()
+    calls.append(0)                       # past its first call: it answers, and the batch does too
+    out = tessellate_many([arc, arc], 1e-3)
+    assert len(out) == 2 and all(x.max_error <= 1e-3 for x in out)
+    assert max(np.diff(x.t).max() for x in out) > 0
