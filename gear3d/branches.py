@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from .envelope import EnvelopePiece
 from .geometry import unique_sorted
 from .tessellate import blocks
 
@@ -59,7 +60,6 @@ def regularities(pieces, ts) -> list:
     >>> [None if x is None else bool((x > 0).all()) for x in g][2:5]
     [True, None, True]
     """
-    from .envelope import EnvelopePiece
     idx = [i for i, p in enumerate(pieces) if _smooth(p)]
     out = [None] * len(pieces)
     key = getattr(pieces[idx[0]], "batch_key", None) if idx else None
